@@ -1,0 +1,195 @@
+//! Contact parameters of a vehicle pair: every field states its default, unit and effect.
+
+use crate::error::{require_finite, require_finite_vector, Error, Result};
+use crate::impulse::RestitutionMode;
+use crate::math::{Point, Real, Vector};
+
+/// Largest accepted depth-of-penetration time (s).
+pub const MAX_DEPTH_OF_PENETRATION: Real = 0.060;
+
+/// Where the impulse centroid P goes.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum CentroidMode {
+    /// Centre of the overlap region's box in the contact frame (default).
+    #[default]
+    Auto,
+    /// A fixed world point (m).
+    World(Point),
+    /// A point fixed in a body's frame (m from its CG); `body` is the pair's body index in
+    /// the world (it must be one of the pair).
+    Body {
+        /// World index of the body whose frame holds the point.
+        body: usize,
+        /// The point, body frame (m).
+        point: Point,
+    },
+}
+
+/// How the contact normal n (from body 1 into body 2) is chosen.
+#[derive(Clone, Debug, PartialEq)]
+pub enum NormalMode {
+    /// The horizontal part of the volume normal, tilted up by `pitch` rad (default pitch 0:
+    /// the contact plane stands vertical).
+    Horizontal {
+        /// Tilt of the normal above the horizontal (rad), in [-pi/2, pi/2].
+        pitch: Real,
+    },
+    /// The full 3-D volume normal (override and underride).
+    Volume,
+    /// A user-given world direction (normalized here).
+    Fixed(Vector),
+}
+
+impl Default for NormalMode {
+    fn default() -> Self {
+        NormalMode::Horizontal { pitch: 0.0 }
+    }
+}
+
+/// Parameters of one vehicle pair.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactParams {
+    /// Time from first overlap to the impulse exchange (s); default 0.030, in [0, 0.060].
+    pub depth_of_penetration: Real,
+    /// Coefficient of restitution; default 0.1, in [0, 1].
+    pub restitution: Real,
+    /// Inter-vehicle friction coefficient; default 0.6, >= 0.
+    pub friction: Real,
+    /// Restitution convention; default Kudlich-Slibar (total).
+    pub restitution_mode: RestitutionMode,
+    /// Impulse centroid placement; default automatic.
+    pub centroid: CentroidMode,
+    /// Contact normal; default horizontal volume normal.
+    pub normal: NormalMode,
+}
+
+impl Default for ContactParams {
+    fn default() -> Self {
+        ContactParams {
+            depth_of_penetration: 0.030,
+            restitution: 0.1,
+            friction: 0.6,
+            restitution_mode: RestitutionMode::Total,
+            centroid: CentroidMode::Auto,
+            normal: NormalMode::default(),
+        }
+    }
+}
+
+impl ContactParams {
+    /// Checks every field's range.
+    pub fn validate(&self) -> Result<()> {
+        let dtp = self.depth_of_penetration;
+        require_finite("depth_of_penetration", dtp)?;
+        if !(0.0..=MAX_DEPTH_OF_PENETRATION).contains(&dtp) {
+            return Err(Error::parameter(
+                "depth_of_penetration",
+                dtp,
+                "it must lie in [0, 0.060] s (the seed's range; default 0.030 s)",
+            ));
+        }
+        require_finite("restitution", self.restitution)?;
+        if !(0.0..=1.0).contains(&self.restitution) {
+            return Err(Error::parameter(
+                "restitution",
+                self.restitution,
+                "a coefficient of restitution must lie in [0, 1]",
+            ));
+        }
+        require_finite("friction", self.friction)?;
+        if self.friction < 0.0 {
+            return Err(Error::parameter(
+                "friction",
+                self.friction,
+                "a friction coefficient must be >= 0",
+            ));
+        }
+        match &self.centroid {
+            CentroidMode::World(p) | CentroidMode::Body { point: p, .. } => {
+                require_finite_vector("centroid", &p.coords)?
+            }
+            CentroidMode::Auto => {}
+        }
+        match &self.normal {
+            NormalMode::Horizontal { pitch } => {
+                require_finite("pitch", *pitch)?;
+                if pitch.abs() > std::f64::consts::FRAC_PI_2 {
+                    return Err(Error::parameter(
+                        "pitch",
+                        pitch,
+                        "it must lie in [-pi/2, pi/2] rad",
+                    ));
+                }
+            }
+            NormalMode::Fixed(v) => {
+                require_finite_vector("normal", v)?;
+                if v.norm() == 0.0 {
+                    return Err(Error::Parameter(
+                        "the normal vector is zero: give a direction from vehicle 1 into vehicle 2"
+                            .into(),
+                    ));
+                }
+            }
+            NormalMode::Volume => {}
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn out_of_range_parameters_are_refused() {
+        let ok = ContactParams::default();
+        assert!(ok.validate().is_ok());
+        for bad in [
+            ContactParams {
+                depth_of_penetration: 0.061,
+                ..ok.clone()
+            },
+            ContactParams {
+                depth_of_penetration: -0.001,
+                ..ok.clone()
+            },
+            ContactParams {
+                depth_of_penetration: Real::NAN,
+                ..ok.clone()
+            },
+            ContactParams {
+                restitution: 1.01,
+                ..ok.clone()
+            },
+            ContactParams {
+                restitution: -0.1,
+                ..ok.clone()
+            },
+            ContactParams {
+                friction: -0.1,
+                ..ok.clone()
+            },
+            ContactParams {
+                friction: Real::INFINITY,
+                ..ok.clone()
+            },
+            ContactParams {
+                normal: NormalMode::Fixed(Vector::zeros()),
+                ..ok.clone()
+            },
+        ] {
+            assert!(
+                matches!(bad.validate(), Err(Error::Parameter(_))),
+                "{bad:?}"
+            );
+        }
+        for edge in [0.0, 0.060] {
+            assert!(ContactParams {
+                depth_of_penetration: edge,
+                ..ok.clone()
+            }
+            .validate()
+            .is_ok());
+        }
+    }
+}

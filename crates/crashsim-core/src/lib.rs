@@ -1,0 +1,25 @@
+//! crashsim-core: the collision engine of crashsim, pure Rust (parry3d-f64 + nalgebra).
+//!
+//! Vehicles are rigid bodies with triangle meshes ([`shape::MeshShape`]). When two meshes
+//! first overlap a depth-of-penetration timer starts; when it expires one pair of impulses is
+//! exchanged at the impulse centroid by the Kudlich-Slibar model ([`impulse`]). The
+//! [`world::World`] steps everything and logs every exchange. Frames and units: DESIGN.md
+//! section 1 (SI; world z up; body frame at the CG, x forward, y left, z up).
+
+pub mod body;
+pub mod bvh;
+pub mod contact;
+pub mod error;
+pub mod impulse;
+pub mod math;
+pub mod overlap;
+pub mod shape;
+pub mod triangle;
+pub mod world;
+
+pub use body::{BodyState, MassProperties, RigidBody};
+pub use contact::{CentroidMode, ContactParams, NormalMode};
+pub use error::{Error, Result};
+pub use impulse::RestitutionMode;
+pub use shape::MeshShape;
+pub use world::{ContactEvent, ContactEventKind, Impact, RunOutput, World};

@@ -1,0 +1,37 @@
+//! The one place that names the float width and the linear-algebra types.
+//!
+//! Every other module uses these aliases, so the engine's precision is set here.
+//! Units are SI throughout the core: m, kg, s, N, rad.
+
+/// The engine's scalar: 64-bit IEEE float.
+pub type Real = f64;
+/// A 3-vector (a direction, a velocity, an impulse ...).
+pub type Vector = nalgebra::Vector3<Real>;
+/// A 3-D point.
+pub type Point = nalgebra::Point3<Real>;
+/// A 3x3 matrix (an inertia tensor, a rotation matrix, the collision matrix K).
+pub type Matrix = nalgebra::Matrix3<Real>;
+/// A unit quaternion rotating body-frame vectors into the world frame.
+pub type Rotation = nalgebra::UnitQuaternion<Real>;
+/// A rigid transform body -> world (rotation, then the CG translation).
+pub type Isometry = nalgebra::Isometry3<Real>;
+/// An axis-aligned bounding box (parry's).
+pub type Aabb = parry3d_f64::bounding_volume::Aabb;
+
+/// The skew-symmetric matrix [r]x such that [r]x v = r x v.
+#[inline]
+pub fn cross_matrix(r: &Vector) -> Matrix {
+    r.cross_matrix()
+}
+
+/// True when every component of `v` is finite.
+#[inline]
+pub fn is_finite_vector(v: &Vector) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+/// The world-frame AABB of a body-frame AABB moved by `pose`.
+#[inline]
+pub fn transformed_aabb(aabb: &Aabb, pose: &Isometry) -> Aabb {
+    aabb.transform_by(pose)
+}

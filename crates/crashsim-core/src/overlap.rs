@@ -1,0 +1,492 @@
+//! Queries between two posed meshes: do they overlap, how far apart are they, and the
+//! overlap region S with its volume normal (DESIGN.md section 1).
+//!
+//! A pose maps body-frame points into the world. The two-tree traversals work in mesh 1's
+//! body frame: mesh 2's node boxes are carried over by the relative pose and re-boxed
+//! (a conservative box), so pruning never drops a real contact.
+
+use crate::bvh::BvhNode;
+use crate::math::{Aabb, Isometry, Point, Real, Vector};
+use crate::shape::MeshShape;
+use crate::triangle::{
+    scaled_normal, segment_triangle_crossing, triangle_triangle_distance_sq,
+    triangle_triangle_segment, triangles_intersect, Tri,
+};
+use parry3d_f64::bounding_volume::BoundingVolume;
+
+/// Reusable traversal storage, so per-step queries do not allocate once warmed up.
+#[derive(Default, Debug)]
+pub struct QueryWorkspace {
+    pairs: Vec<(u32, u32)>,
+    bounded_pairs: Vec<(Real, u32, u32)>,
+}
+
+#[inline]
+fn transform_tri(t: &Tri, m: &Isometry) -> Tri {
+    [m * t[0], m * t[1], m * t[2]]
+}
+
+/// Simultaneous descent of two trees (2 in 1's frame by `pose12`): calls `leaf` on every leaf
+/// pair whose boxes meet; `leaf` returns true to stop early. Returns true if stopped early.
+fn traverse_pairs(
+    s1: &MeshShape,
+    s2: &MeshShape,
+    pose12: &Isometry,
+    stack: &mut Vec<(u32, u32)>,
+    mut leaf: impl FnMut(&BvhNode, &BvhNode) -> bool,
+) -> bool {
+    let (n1, n2) = (s1.bvh().nodes(), s2.bvh().nodes());
+    stack.clear();
+    stack.push((0, 0));
+    while let Some((i, j)) = stack.pop() {
+        let (a, b) = (&n1[i as usize], &n2[j as usize]);
+        if !a.aabb.intersects(&b.aabb.transform_by(pose12)) {
+            continue;
+        }
+        match (a.is_leaf(), b.is_leaf()) {
+            (true, true) => {
+                if leaf(a, b) {
+                    return true;
+                }
+            }
+            (false, true) => {
+                let (l, r) = s1.bvh().children(i);
+                stack.push((r, j));
+                stack.push((l, j));
+            }
+            (true, false) => {
+                let (l, r) = s2.bvh().children(j);
+                stack.push((i, r));
+                stack.push((i, l));
+            }
+            (false, false) => {
+                // Descend the larger box first keeps the pairs balanced.
+                if a.aabb.volume() >= b.aabb.volume() {
+                    let (l, r) = s1.bvh().children(i);
+                    stack.push((r, j));
+                    stack.push((l, j));
+                } else {
+                    let (l, r) = s2.bvh().children(j);
+                    stack.push((i, r));
+                    stack.push((i, l));
+                }
+            }
+        }
+    }
+    false
+}
+
+/// True when the two posed surfaces touch or cross.
+pub fn surfaces_intersect(
+    s1: &MeshShape,
+    pose1: &Isometry,
+    s2: &MeshShape,
+    pose2: &Isometry,
+    ws: &mut QueryWorkspace,
+) -> bool {
+    let pose12 = pose1.inv_mul(pose2);
+    traverse_pairs(s1, s2, &pose12, &mut ws.pairs, |a, b| {
+        for &t1 in s1.bvh().leaf_primitives(a) {
+            let tri1 = s1.triangle(t1);
+            for &t2 in s2.bvh().leaf_primitives(b) {
+                if triangles_intersect(&tri1, &transform_tri(&s2.triangle(t2), &pose12)) {
+                    return true;
+                }
+            }
+        }
+        false
+    })
+}
+
+/// True when a shell of `inner` lies inside `outer` (its representative vertex has a winding
+/// number above one half); `pose_io` maps inner's frame into outer's.
+fn shell_inside(outer: &MeshShape, inner: &MeshShape, pose_io: &Isometry) -> bool {
+    let bounds = outer.aabb();
+    inner.shells().iter().any(|s| {
+        let p = pose_io * inner.vertices()[s.vertex as usize];
+        bounds.contains_local_point(&p) && outer.contains_point(&p)
+    })
+}
+
+/// True when the two posed meshes overlap: their surfaces touch or cross, or a shell of one
+/// lies inside the other.
+pub fn shapes_overlap(
+    s1: &MeshShape,
+    pose1: &Isometry,
+    s2: &MeshShape,
+    pose2: &Isometry,
+    ws: &mut QueryWorkspace,
+) -> bool {
+    if !s1
+        .aabb()
+        .transform_by(pose1)
+        .intersects(&s2.aabb().transform_by(pose2))
+    {
+        return false;
+    }
+    if surfaces_intersect(s1, pose1, s2, pose2, ws) {
+        return true;
+    }
+    let pose12 = pose1.inv_mul(pose2);
+    shell_inside(s1, s2, &pose12) || shell_inside(s2, s1, &pose12.inverse())
+}
+
+/// Distance between two boxes (0 when they meet).
+#[inline]
+fn aabb_distance(a: &Aabb, b: &Aabb) -> Real {
+    let gap = (a.mins - b.maxs)
+        .sup(&(b.mins - a.maxs))
+        .sup(&Vector::zeros());
+    gap.norm()
+}
+
+/// The smallest distance between the two posed surfaces (m), or `cap` if that is smaller.
+/// 0 when they touch or cross. Branch and bound over the two trees, nearest pairs first.
+pub fn surface_distance(
+    s1: &MeshShape,
+    pose1: &Isometry,
+    s2: &MeshShape,
+    pose2: &Isometry,
+    cap: Real,
+    ws: &mut QueryWorkspace,
+) -> Real {
+    let pose12 = pose1.inv_mul(pose2);
+    let (n1, n2) = (s1.bvh().nodes(), s2.bvh().nodes());
+    let stack = &mut ws.bounded_pairs;
+    stack.clear();
+    let mut best = cap;
+    let bound = |i: u32, j: u32| -> Real {
+        aabb_distance(
+            &n1[i as usize].aabb,
+            &n2[j as usize].aabb.transform_by(&pose12),
+        )
+    };
+    stack.push((bound(0, 0), 0, 0));
+    while let Some((lb, i, j)) = stack.pop() {
+        if lb >= best {
+            continue;
+        }
+        let (a, b) = (&n1[i as usize], &n2[j as usize]);
+        if a.is_leaf() && b.is_leaf() {
+            for &t1 in s1.bvh().leaf_primitives(a) {
+                let tri1 = s1.triangle(t1);
+                for &t2 in s2.bvh().leaf_primitives(b) {
+                    let tri2 = transform_tri(&s2.triangle(t2), &pose12);
+                    let d = triangle_triangle_distance_sq(&tri1, &tri2).sqrt();
+                    if d < best {
+                        best = d;
+                        if best == 0.0 {
+                            return 0.0;
+                        }
+                    }
+                }
+            }
+            continue;
+        }
+        let split_first = !a.is_leaf() && (b.is_leaf() || a.aabb.volume() >= b.aabb.volume());
+        let ((i1, j1), (i2, j2)) = if split_first {
+            let (l, r) = s1.bvh().children(i);
+            ((l, j), (r, j))
+        } else {
+            let (l, r) = s2.bvh().children(j);
+            ((i, l), (i, r))
+        };
+        let (d1, d2) = (bound(i1, j1), bound(i2, j2));
+        // Push the farther first so the nearer is explored first.
+        if d1 <= d2 {
+            if d2 < best {
+                stack.push((d2, i2, j2));
+            }
+            if d1 < best {
+                stack.push((d1, i1, j1));
+            }
+        } else {
+            if d1 < best {
+                stack.push((d1, i1, j1));
+            }
+            if d2 < best {
+                stack.push((d2, i2, j2));
+            }
+        }
+    }
+    best
+}
+
+/// The overlap region of two posed meshes (world frame).
+#[derive(Clone, Debug, Default)]
+pub struct OverlapRegion {
+    /// The set S: end points of all triangle-triangle crossing segments and the vertices of
+    /// each mesh inside the other (m, world).
+    pub points: Vec<Point>,
+    /// Vector area (m^2, world) of mesh 1's surface inside mesh 2, outward normals.
+    pub area_normal_1_in_2: Vector,
+    /// Vector area (m^2, world) of mesh 2's surface inside mesh 1, outward normals.
+    pub area_normal_2_in_1: Vector,
+    /// Number of crossing segments.
+    pub segment_count: usize,
+    /// Number of vertices of either mesh inside the other.
+    pub inside_vertex_count: usize,
+}
+
+impl OverlapRegion {
+    /// True when the meshes do not overlap at all.
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    /// The volume normal from mesh 1 into mesh 2, unit; None when it vanishes.
+    pub fn volume_normal(&self) -> Option<Vector> {
+        let n = self.area_normal_1_in_2 - self.area_normal_2_in_1;
+        let len = n.norm();
+        (len > 0.0 && len.is_finite()).then(|| n / len)
+    }
+}
+
+/// One triangle's crossings: the other mesh's triangle (in this mesh's frame) and the
+/// segment oriented so the other mesh's inside lies to its left (about this triangle's normal).
+type Crossing = (u32, u32, Point, Point);
+
+/// Vector area (own frame) of the part of triangle `t` inside `other`.
+fn inside_vector_area(
+    t: &Tri,
+    crossings: &[(Tri, Point, Point)],
+    other: &MeshShape,
+    to_other: &Isometry,
+) -> Vector {
+    let n = scaled_normal(t);
+    let full = n.norm();
+    if full == 0.0 {
+        return Vector::zeros();
+    }
+    let nhat = n / full;
+    if crossings.is_empty() {
+        let c = Point::from((t[0].coords + t[1].coords + t[2].coords) / 3.0);
+        return if other.contains_point(&(to_other * c)) {
+            n * 0.5
+        } else {
+            Vector::zeros()
+        };
+    }
+    // Green's theorem in the triangle's plane: the region's boundary is the crossing segments
+    // plus the pieces of the triangle's edges that lie inside the other mesh.
+    let c = Point::from((t[0].coords + t[1].coords + t[2].coords) / 3.0);
+    let mut twice_area = 0.0;
+    for (_, p, q) in crossings {
+        twice_area += (p - c).cross(&(q - c)).dot(&nhat);
+    }
+    let mut params: Vec<Real> = Vec::with_capacity(2 + crossings.len());
+    for k in 0..3 {
+        let (e0, e1) = (t[k], t[(k + 1) % 3]);
+        params.clear();
+        params.push(0.0);
+        params.push(1.0);
+        for (u, _, _) in crossings {
+            if let Some(s) = segment_triangle_crossing(&e0, &e1, u) {
+                params.push(s);
+            }
+        }
+        params.sort_by(|a, b| a.total_cmp(b));
+        for w in params.windows(2) {
+            if w[1] <= w[0] {
+                continue;
+            }
+            let p0 = e0 + (e1 - e0) * w[0];
+            let p1 = e0 + (e1 - e0) * w[1];
+            let mid = p0 + (p1 - p0) * 0.5;
+            if other.contains_point(&(to_other * mid)) {
+                twice_area += (p0 - c).cross(&(p1 - c)).dot(&nhat);
+            }
+        }
+    }
+    nhat * (0.5 * twice_area).clamp(0.0, 0.5 * full)
+}
+
+/// Vector area (own frame) of `own`'s surface inside `other`, and the own vertices inside it
+/// (own frame) appended to `inside`. `crossings` are sorted by own triangle.
+fn surface_inside(
+    own: &MeshShape,
+    other: &MeshShape,
+    own_to_other: &Isometry,
+    crossings: &[Crossing],
+    other_tri_in_own: impl Fn(u32) -> Tri,
+    inside: &mut Vec<Point>,
+) -> Vector {
+    let other_box_in_own = other.aabb().transform_by(&own_to_other.inverse());
+    for v in own.vertices() {
+        if other_box_in_own.contains_local_point(v) && other.contains_point(&(own_to_other * v)) {
+            inside.push(*v);
+        }
+    }
+    let mut total = Vector::zeros();
+    let mut k = 0;
+    let mut local: Vec<(Tri, Point, Point)> = Vec::new();
+    for (ti, _) in own.triangles().iter().enumerate() {
+        let ti = ti as u32;
+        local.clear();
+        while k < crossings.len() && crossings[k].0 == ti {
+            let (_, o, p, q) = crossings[k];
+            local.push((other_tri_in_own(o), p, q));
+            k += 1;
+        }
+        let t = own.triangle(ti);
+        if local.is_empty() && !Aabb::from_points(t.iter().copied()).intersects(&other_box_in_own) {
+            continue;
+        }
+        total += inside_vector_area(&t, &local, other, own_to_other);
+    }
+    total
+}
+
+/// The overlap region S of two posed meshes and their inside vector areas.
+pub fn overlap_region(
+    s1: &MeshShape,
+    pose1: &Isometry,
+    s2: &MeshShape,
+    pose2: &Isometry,
+) -> OverlapRegion {
+    let pose12 = pose1.inv_mul(pose2);
+    let pose21 = pose12.inverse();
+    let mut stack = Vec::new();
+    // Crossing segments in frame 1, oriented along n1 x n2.
+    let mut segs: Vec<Crossing> = Vec::new();
+    traverse_pairs(s1, s2, &pose12, &mut stack, |a, b| {
+        for &t1 in s1.bvh().leaf_primitives(a) {
+            let tri1 = s1.triangle(t1);
+            for &t2 in s2.bvh().leaf_primitives(b) {
+                let tri2 = transform_tri(&s2.triangle(t2), &pose12);
+                if let Some((p, q)) = triangle_triangle_segment(&tri1, &tri2) {
+                    segs.push((t1, t2, p, q));
+                }
+            }
+        }
+        false
+    });
+    let mut region = OverlapRegion {
+        segment_count: segs.len(),
+        ..Default::default()
+    };
+    for (_, _, p, q) in &segs {
+        region.points.push(pose1 * p);
+        region.points.push(pose1 * q);
+    }
+    // Mesh 1's side, in frame 1.
+    let mut by_1 = segs.clone();
+    by_1.sort_by_key(|c| (c.0, c.1));
+    let mut inside1 = Vec::new();
+    let va1 = surface_inside(
+        s1,
+        s2,
+        &pose12.inverse(),
+        &by_1,
+        |o| transform_tri(&s2.triangle(o), &pose12),
+        &mut inside1,
+    );
+    // Mesh 2's side, in frame 2: its triangles' segments run the other way (n2 x n1).
+    let mut by_2: Vec<Crossing> = segs
+        .iter()
+        .map(|&(t1, t2, p, q)| (t2, t1, pose21 * q, pose21 * p))
+        .collect();
+    by_2.sort_by_key(|c| (c.0, c.1));
+    let mut inside2 = Vec::new();
+    let va2 = surface_inside(
+        s2,
+        s1,
+        &pose12,
+        &by_2,
+        |o| transform_tri(&s1.triangle(o), &pose21),
+        &mut inside2,
+    );
+    region.inside_vertex_count = inside1.len() + inside2.len();
+    region.points.extend(inside1.iter().map(|p| pose1 * p));
+    region.points.extend(inside2.iter().map(|p| pose2 * p));
+    region.area_normal_1_in_2 = pose1.rotation * va1;
+    region.area_normal_2_in_1 = pose2.rotation * va2;
+    region
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Rotation;
+    use crate::shape::tests::box_mesh;
+
+    fn at(x: Real, y: Real, z: Real, yaw: Real) -> Isometry {
+        Isometry::from_parts(
+            nalgebra::Translation3::new(x, y, z),
+            Rotation::from_axis_angle(&Vector::z_axis(), yaw),
+        )
+    }
+
+    #[test]
+    fn boxes_overlap_touch_and_separate() {
+        let a = box_mesh(Vector::zeros(), Vector::new(1.0, 1.0, 1.0));
+        let b = box_mesh(Vector::zeros(), Vector::new(0.5, 0.5, 0.5));
+        let mut ws = QueryWorkspace::default();
+        let id = at(0.0, 0.0, 0.0, 0.0);
+        assert!(shapes_overlap(
+            &a,
+            &id,
+            &b,
+            &at(1.2, 0.1, 0.0, 0.3),
+            &mut ws
+        ));
+        assert!(!shapes_overlap(
+            &a,
+            &id,
+            &b,
+            &at(3.0, 0.0, 0.0, 0.0),
+            &mut ws
+        ));
+        // b wholly inside a: no surface crossing, still an overlap, both ways round.
+        assert!(!surfaces_intersect(
+            &a,
+            &id,
+            &b,
+            &at(0.1, 0.0, 0.0, 0.2),
+            &mut ws
+        ));
+        assert!(shapes_overlap(
+            &a,
+            &id,
+            &b,
+            &at(0.1, 0.0, 0.0, 0.2),
+            &mut ws
+        ));
+        assert!(shapes_overlap(
+            &b,
+            &at(0.1, 0.0, 0.0, 0.2),
+            &a,
+            &id,
+            &mut ws
+        ));
+        let d = surface_distance(&a, &id, &b, &at(3.0, 0.0, 0.0, 0.0), 1e9, &mut ws);
+        assert!((d - 1.5).abs() < 1e-12, "{d}");
+    }
+
+    #[test]
+    fn box_into_box_side_gives_the_side_normal_and_the_overlap_box() {
+        // Body 1 (4.5 x 1.8 x 1.2, 0.1 m above ground) driven along +x 0.4 m into body 2's
+        // side (a 4.6 long box turned 90 deg, 1.8 wide, 1.45 high, on the ground).
+        let car1 = box_mesh(Vector::zeros(), Vector::new(2.25, 0.9, 0.6));
+        let car2 = box_mesh(Vector::zeros(), Vector::new(2.3, 0.9, 0.725));
+        let pose1 = at(0.0, 0.3, 0.7, 0.0);
+        let pose2 = at(2.25 + 0.9 - 0.4, 0.0, 0.725, std::f64::consts::FRAC_PI_2);
+        let r = overlap_region(&car1, &pose1, &car2, &pose2);
+        let n = r.volume_normal().unwrap();
+        assert!((n - Vector::x()).norm() < 1e-12, "{n}");
+        let (mut lo, mut hi) = (r.points[0], r.points[0]);
+        for p in &r.points {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        let c = nalgebra::center(&lo, &hi);
+        assert!((c.x - (2.25 - 0.2)).abs() < 1e-12, "{c}");
+        assert!(
+            (c.y - 0.3).abs() < 1e-12 && (c.z - 0.7).abs() < 1e-12,
+            "{c}"
+        );
+        // Vector areas: 1's front face (1.8 x 1.2) and 2's struck side under it.
+        assert!((r.area_normal_1_in_2.x - 1.8 * 1.2).abs() < 1e-12);
+        assert!((r.area_normal_2_in_1.x + 1.8 * 1.2).abs() < 1e-12);
+    }
+}

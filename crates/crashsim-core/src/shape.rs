@@ -1,0 +1,380 @@
+//! A vehicle's shape: a triangle mesh in its body frame (origin at the CG, m), with its BVH,
+//! the per-node dipoles of the fast generalized winding number, and one representative
+//! vertex per shell for the whole-inside test.
+//!
+//! Meshes are taken as they come: triangle soups, open bodies and many shells are fine.
+//! "Inside" is decided by the generalized winding number (> 0.5), which degrades gracefully
+//! on open meshes, unlike ray parity.
+
+use crate::bvh::{Bvh, MAX_DEPTH};
+use crate::error::{Error, Result};
+use crate::math::{Aabb, Point, Real, Vector};
+use crate::triangle::{scaled_normal, solid_angle, Tri};
+
+/// Far-field acceptance: a node is approximated by its dipole when the query point is more
+/// than `WINDING_BETA` times the node's radius away from the node's centre.
+const WINDING_BETA: Real = 2.5;
+
+/// First-order (dipole) summary of a BVH node for the winding number.
+#[derive(Clone, Debug)]
+struct Dipole {
+    /// Sum of the triangles' vector areas (m^2), outward normals times area.
+    area_normal: Vector,
+    /// Area-weighted centre of the triangles (m).
+    center: Point,
+    /// Radius of a ball about `center` holding the node's box (m).
+    radius: Real,
+}
+
+/// One connected shell: a vertex of it and its box, body frame.
+#[derive(Clone, Debug)]
+pub struct Shell {
+    /// Index of one vertex of the shell.
+    pub vertex: u32,
+    /// Box of the shell's vertices.
+    pub aabb: Aabb,
+}
+
+/// An immutable triangle mesh in a body frame with everything the overlap queries need.
+#[derive(Clone, Debug)]
+pub struct MeshShape {
+    vertices: Vec<Point>,
+    triangles: Vec<[u32; 3]>,
+    bvh: Bvh,
+    dipoles: Vec<Dipole>,
+    shells: Vec<Shell>,
+    radius: Real,
+}
+
+impl MeshShape {
+    /// Builds a shape from body-frame vertices (m) and triangles (vertex indices).
+    ///
+    /// Errors: no triangles, a non-finite vertex, an index out of range, or no triangle with
+    /// a non-zero area.
+    pub fn new(vertices: Vec<Point>, triangles: Vec<[u32; 3]>) -> Result<MeshShape> {
+        if triangles.is_empty() {
+            return Err(Error::Mesh(
+                "the mesh has no triangles: give at least one face (a vehicle needs a surface)"
+                    .into(),
+            ));
+        }
+        if let Some(i) = vertices
+            .iter()
+            .position(|v| !v.iter().all(|c| c.is_finite()))
+        {
+            return Err(Error::Mesh(format!(
+                "vertex {i} is not finite ({:?}): remove or repair NaN/inf vertices",
+                vertices[i].coords.as_slice()
+            )));
+        }
+        let n = vertices.len() as u64;
+        if let Some((i, t)) = triangles
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.iter().any(|&k| k as u64 >= n))
+        {
+            return Err(Error::Mesh(format!(
+                "triangle {i} refers to vertex {:?} but the mesh has only {n} vertices",
+                t
+            )));
+        }
+        let tri = |t: &[u32; 3]| -> Tri {
+            [
+                vertices[t[0] as usize],
+                vertices[t[1] as usize],
+                vertices[t[2] as usize],
+            ]
+        };
+        if triangles
+            .iter()
+            .all(|t| scaled_normal(&tri(t)).norm_squared() == 0.0)
+        {
+            return Err(Error::Mesh(
+                "every triangle of the mesh has zero area: the mesh has no surface".into(),
+            ));
+        }
+        let boxes: Vec<Aabb> = triangles
+            .iter()
+            .map(|t| Aabb::from_points(tri(t).iter().copied()))
+            .collect();
+        let bvh = Bvh::build(&boxes);
+        let dipoles = build_dipoles(&bvh, &vertices, &triangles);
+        let shells = find_shells(&vertices, &triangles);
+        let radius = vertices
+            .iter()
+            .map(|v| v.coords.norm())
+            .fold(0.0, Real::max);
+        Ok(MeshShape {
+            vertices,
+            triangles,
+            bvh,
+            dipoles,
+            shells,
+            radius,
+        })
+    }
+
+    /// Body-frame vertices (m).
+    #[inline]
+    pub fn vertices(&self) -> &[Point] {
+        &self.vertices
+    }
+
+    /// Triangles as vertex indices.
+    #[inline]
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// The triangle `i` as points, body frame.
+    #[inline]
+    pub fn triangle(&self, i: u32) -> Tri {
+        let t = &self.triangles[i as usize];
+        [
+            self.vertices[t[0] as usize],
+            self.vertices[t[1] as usize],
+            self.vertices[t[2] as usize],
+        ]
+    }
+
+    /// The hierarchy over the triangles.
+    #[inline]
+    pub fn bvh(&self) -> &Bvh {
+        &self.bvh
+    }
+
+    /// Box of the whole mesh, body frame.
+    #[inline]
+    pub fn aabb(&self) -> &Aabb {
+        self.bvh.root_aabb()
+    }
+
+    /// Largest distance from the body origin (the CG) to a vertex (m).
+    #[inline]
+    pub fn radius(&self) -> Real {
+        self.radius
+    }
+
+    /// Connected shells (by shared vertices).
+    #[inline]
+    pub fn shells(&self) -> &[Shell] {
+        &self.shells
+    }
+
+    /// Generalized winding number of a body-frame point: about 1 inside a closed outward
+    /// mesh, 0 outside, in between near holes of an open one. Exact near the surface, the
+    /// dipole approximation far from it.
+    pub fn winding_number(&self, q: &Point) -> Real {
+        let nodes = self.bvh.nodes();
+        let mut stack = [0u32; MAX_DEPTH];
+        let mut top = 1;
+        let mut omega = 0.0;
+        while top > 0 {
+            top -= 1;
+            let i = stack[top];
+            let node = &nodes[i as usize];
+            let d = &self.dipoles[i as usize];
+            let r = d.center - q;
+            let dist = r.norm();
+            if dist > WINDING_BETA * d.radius {
+                omega += d.area_normal.dot(&r) / (dist * dist * dist);
+            } else if node.is_leaf() {
+                for &t in self.bvh.leaf_primitives(node) {
+                    omega += solid_angle(&self.triangle(t), q);
+                }
+            } else {
+                let (l, rr) = self.bvh.children(i);
+                stack[top] = l;
+                stack[top + 1] = rr;
+                top += 2;
+            }
+        }
+        omega / (4.0 * std::f64::consts::PI)
+    }
+
+    /// True when the body-frame point is inside (winding number above one half).
+    #[inline]
+    pub fn contains_point(&self, q: &Point) -> bool {
+        self.winding_number(q) > 0.5
+    }
+}
+
+fn build_dipoles(bvh: &Bvh, vertices: &[Point], triangles: &[[u32; 3]]) -> Vec<Dipole> {
+    let nodes = bvh.nodes();
+    let mut dipoles = vec![
+        Dipole {
+            area_normal: Vector::zeros(),
+            center: Point::origin(),
+            radius: 0.0,
+        };
+        nodes.len()
+    ];
+    // Area-weighted sums; children come after their parent, so go backwards.
+    let mut weights = vec![0.0; nodes.len()];
+    let mut weighted_centers = vec![Vector::zeros(); nodes.len()];
+    for i in (0..nodes.len()).rev() {
+        let node = &nodes[i];
+        if node.is_leaf() {
+            for &t in bvh.leaf_primitives(node) {
+                let tr = triangles[t as usize];
+                let (a, b, c) = (
+                    vertices[tr[0] as usize],
+                    vertices[tr[1] as usize],
+                    vertices[tr[2] as usize],
+                );
+                let an = (b - a).cross(&(c - a)) * 0.5;
+                let area = an.norm();
+                dipoles[i].area_normal += an;
+                weights[i] += area;
+                weighted_centers[i] += (a.coords + b.coords + c.coords) * (area / 3.0);
+            }
+        } else {
+            let (l, r) = bvh.children(i as u32);
+            let (l, r) = (l as usize, r as usize);
+            dipoles[i].area_normal = dipoles[l].area_normal + dipoles[r].area_normal;
+            weights[i] = weights[l] + weights[r];
+            weighted_centers[i] = weighted_centers[l] + weighted_centers[r];
+        }
+    }
+    for (i, node) in nodes.iter().enumerate() {
+        let center = if weights[i] > 0.0 {
+            Point::from(weighted_centers[i] / weights[i])
+        } else {
+            node.aabb.center()
+        };
+        let radius = node
+            .aabb
+            .vertices()
+            .iter()
+            .map(|v| (v - center).norm())
+            .fold(0.0, Real::max);
+        dipoles[i].center = center;
+        dipoles[i].radius = radius;
+    }
+    dipoles
+}
+
+fn find_shells(vertices: &[Point], triangles: &[[u32; 3]]) -> Vec<Shell> {
+    // Union-find over vertices joined by triangle edges.
+    let mut parent: Vec<u32> = (0..vertices.len() as u32).collect();
+    fn root(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            parent[x as usize] = parent[parent[x as usize] as usize];
+            x = parent[x as usize];
+        }
+        x
+    }
+    for t in triangles {
+        for k in 1..3 {
+            let (a, b) = (root(&mut parent, t[0]), root(&mut parent, t[k]));
+            if a != b {
+                let (lo, hi) = (a.min(b), a.max(b));
+                parent[hi as usize] = lo;
+            }
+        }
+    }
+    let mut used = vec![false; vertices.len()];
+    for t in triangles {
+        for &k in t {
+            used[k as usize] = true;
+        }
+    }
+    let mut shells: Vec<Shell> = Vec::new();
+    let mut index_of_root = vec![u32::MAX; vertices.len()];
+    for v in 0..vertices.len() as u32 {
+        if !used[v as usize] {
+            continue;
+        }
+        let r = root(&mut parent, v);
+        let p = vertices[v as usize];
+        match index_of_root[r as usize] {
+            u32::MAX => {
+                index_of_root[r as usize] = shells.len() as u32;
+                shells.push(Shell {
+                    vertex: v,
+                    aabb: Aabb::new(p, p),
+                });
+            }
+            s => shells[s as usize].aabb.take_point(p),
+        }
+    }
+    shells
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// A closed, outward-oriented box with its centre at `c` and half extents `h`.
+    pub fn box_mesh(c: Vector, h: Vector) -> MeshShape {
+        let mut v = Vec::new();
+        for i in 0..8 {
+            let s = Vector::new(
+                if i & 1 == 0 { -1.0 } else { 1.0 },
+                if i & 2 == 0 { -1.0 } else { 1.0 },
+                if i & 4 == 0 { -1.0 } else { 1.0 },
+            );
+            v.push(Point::from(c + h.component_mul(&s)));
+        }
+        let t = vec![
+            [0, 2, 1],
+            [1, 2, 3], // z-
+            [4, 5, 6],
+            [5, 7, 6], // z+
+            [0, 1, 4],
+            [1, 5, 4], // y-
+            [2, 6, 3],
+            [3, 6, 7], // y+
+            [0, 4, 2],
+            [2, 4, 6], // x-
+            [1, 3, 5],
+            [3, 7, 5], // x+
+        ];
+        MeshShape::new(v, t).unwrap()
+    }
+
+    #[test]
+    fn winding_number_of_a_box_is_one_inside_and_zero_outside() {
+        let b = box_mesh(Vector::zeros(), Vector::new(2.0, 1.0, 0.5));
+        assert!((b.winding_number(&Point::new(0.3, 0.2, 0.1)) - 1.0).abs() < 1e-12);
+        assert!(b.winding_number(&Point::new(3.0, 0.0, 0.0)).abs() < 1e-3);
+        assert!(b.winding_number(&Point::new(30.0, 10.0, 0.0)).abs() < 1e-6);
+        assert!(b.contains_point(&Point::new(1.99, 0.99, 0.49)));
+        assert!(!b.contains_point(&Point::new(2.01, 0.0, 0.0)));
+    }
+
+    #[test]
+    fn empty_nan_and_out_of_range_meshes_are_refused() {
+        let p = Point::origin();
+        assert!(matches!(
+            MeshShape::new(vec![p; 3], vec![]),
+            Err(Error::Mesh(_))
+        ));
+        let nan = Point::new(Real::NAN, 0.0, 0.0);
+        assert!(matches!(
+            MeshShape::new(vec![nan, p, p], vec![[0, 1, 2]]),
+            Err(Error::Mesh(_))
+        ));
+        assert!(matches!(
+            MeshShape::new(vec![p, p, p], vec![[0, 1, 3]]),
+            Err(Error::Mesh(_))
+        ));
+        assert!(matches!(
+            MeshShape::new(vec![p, p, p], vec![[0, 1, 2]]),
+            Err(Error::Mesh(_))
+        ));
+    }
+
+    #[test]
+    fn two_disjoint_boxes_make_two_shells() {
+        let a = box_mesh(Vector::zeros(), Vector::new(1.0, 1.0, 1.0));
+        let b = box_mesh(Vector::new(5.0, 0.0, 0.0), Vector::new(1.0, 1.0, 1.0));
+        let mut v = a.vertices().to_vec();
+        v.extend_from_slice(b.vertices());
+        let mut t = a.triangles().to_vec();
+        t.extend(b.triangles().iter().map(|t| [t[0] + 8, t[1] + 8, t[2] + 8]));
+        let m = MeshShape::new(v, t).unwrap();
+        assert_eq!(m.shells().len(), 2);
+        assert!(m.contains_point(&Point::new(5.2, 0.0, 0.0)));
+    }
+}

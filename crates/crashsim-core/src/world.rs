@@ -1,0 +1,712 @@
+//! The world: bodies with meshes, per-pair contact state, the stepper and the event log.
+//!
+//! A run advances on the grid t_start + k dt, stopping early at every first overlap
+//! (found by conservative advancement, then bisection to `TIME_TOLERANCE`) and landing
+//! exactly on every exchange instant t0 + dt_p. Per pair the phases are:
+//! apart -> timer (meshes pass through each other) -> engaged (after an exchange, while
+//! the meshes overlap) -> apart on separation, or -> timer again when the relative velocity
+//! at the centroid along the normal turns closing (a secondary exchange).
+
+use std::sync::Arc;
+
+use crate::body::{BodyState, MassProperties, RigidBody};
+use crate::contact::{CentroidMode, ContactParams, NormalMode};
+use crate::error::{require_finite, Error, Result};
+use crate::impulse::ImpulseProblem;
+use crate::math::{Aabb, Isometry, Matrix, Point, Real, Vector};
+use crate::overlap::{
+    overlap_region, shapes_overlap, surface_distance, surfaces_intersect, QueryWorkspace,
+};
+use crate::shape::MeshShape;
+use parry3d_f64::bounding_volume::BoundingVolume;
+
+/// First-overlap instants are resolved to this (s).
+pub const TIME_TOLERANCE: Real = 1e-9;
+/// Smallest conservative-advancement step (s): a graze shorter than this may be skipped.
+const MIN_ADVANCE: Real = 1e-7;
+/// Separation instants are resolved to this (s).
+const SEPARATION_TOLERANCE: Real = 1e-6;
+/// A relative normal velocity above this (m/s) counts as closing again.
+const CLOSING_TOLERANCE: Real = 1e-6;
+/// Most steps one run may take.
+const MAX_STEPS: Real = 1e8;
+/// Most conservative-advancement iterations in one step before giving up.
+const MAX_ADVANCE_ITERATIONS: usize = 100_000;
+
+/// What happened to a pair, besides impulse exchanges.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ContactEventKind {
+    /// The meshes first overlap; a timer starts.
+    FirstOverlap,
+    /// The relative velocity at the centroid turned closing while engaged; a timer starts.
+    ClosingAgain,
+    /// The meshes no longer overlap.
+    Separation,
+    /// The timer expired but no impulse was exchanged (the reason says why).
+    NoExchange(String),
+}
+
+/// One entry of the contact log.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactEvent {
+    /// World index of body 1 of the pair.
+    pub body1: usize,
+    /// World index of body 2.
+    pub body2: usize,
+    /// When (s).
+    pub time: Real,
+    /// What.
+    pub kind: ContactEventKind,
+}
+
+/// One impulse exchange, world frame, SI.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Impact {
+    /// World index of body 1 (the normal points from it into body 2).
+    pub body1: usize,
+    /// World index of body 2.
+    pub body2: usize,
+    /// When the timer started (s): the first overlap, or the closing-again instant.
+    pub first_contact_time: Real,
+    /// The exchange instant (s).
+    pub time: Real,
+    /// The depth-of-penetration time used (s).
+    pub depth_of_penetration: Real,
+    /// True for an exchange after the first one of an engagement.
+    pub secondary: bool,
+    /// Impulse centroid P (m).
+    pub centroid: Point,
+    /// Unit normal from body 1 into body 2.
+    pub normal: Vector,
+    /// Impulse on body 2 (N s); body 1 receives its negative.
+    pub impulse: Vector,
+    /// True for a sliding impact.
+    pub sliding: bool,
+    /// CG velocities of bodies 1 and 2 before and after (m/s).
+    pub velocity_before: [Vector; 2],
+    /// See `velocity_before`.
+    pub velocity_after: [Vector; 2],
+    /// Angular velocities before and after (rad/s).
+    pub angular_velocity_before: [Vector; 2],
+    /// See `angular_velocity_before`.
+    pub angular_velocity_after: [Vector; 2],
+    /// u at P before: body 1's point velocity minus body 2's (m/s).
+    pub relative_velocity_before: Vector,
+    /// u at P after (m/s).
+    pub relative_velocity_after: Vector,
+    /// Kinetic energy lost (J).
+    pub energy_dissipated: Real,
+    /// The overlap region S (m).
+    pub region_points: Vec<Point>,
+    /// Contact frame: rows n, t (horizontal tangent), b = n x t.
+    pub contact_frame: Matrix,
+    /// Extent of S in the contact frame: minimum (m).
+    pub region_min: Vector,
+    /// Extent of S in the contact frame: maximum (m).
+    pub region_max: Vector,
+}
+
+/// What a run returns: samples of every body's state and the logs.
+#[derive(Clone, Debug, Default)]
+pub struct RunOutput {
+    /// Sample times (s): every grid step end, every first overlap and every exchange.
+    pub times: Vec<Real>,
+    /// `states[k][i]`: body i at `times[k]` (after any exchange at that instant).
+    pub states: Vec<Vec<BodyState>>,
+    /// Impulse exchanges in time order.
+    pub impacts: Vec<Impact>,
+    /// First overlaps, separations, closings and skipped exchanges in time order.
+    pub contacts: Vec<ContactEvent>,
+}
+
+#[derive(Clone, Debug)]
+enum Phase {
+    Apart,
+    Timer {
+        started: Real,
+        exchange_at: Real,
+        secondary: bool,
+    },
+    Engaged {
+        /// The centroid as material points of body 1 and body 2 (their frames, m).
+        centroid_in: [Point; 2],
+        /// The normal, body 1's frame.
+        normal_in_1: Vector,
+    },
+}
+
+#[derive(Clone, Debug)]
+struct Pair {
+    body1: usize,
+    body2: usize,
+    params: ContactParams,
+    phase: Phase,
+    exchanges: usize,
+}
+
+#[derive(Clone, Debug)]
+struct WorldBody {
+    shape: Arc<MeshShape>,
+    body: RigidBody,
+}
+
+/// Bodies, pairs and the clock.
+#[derive(Debug, Default)]
+pub struct World {
+    bodies: Vec<WorldBody>,
+    pairs: Vec<Pair>,
+    time: Real,
+    started: bool,
+    ws: QueryWorkspace,
+}
+
+impl World {
+    /// An empty world at t = 0.
+    pub fn new() -> World {
+        World::default()
+    }
+
+    /// Current time (s).
+    pub fn time(&self) -> Real {
+        self.time
+    }
+
+    /// Number of bodies.
+    pub fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Body `i`'s current state.
+    pub fn state(&self, i: usize) -> BodyState {
+        self.bodies[i].body.state()
+    }
+
+    /// Adds a body; every new pair gets default contact parameters. Returns its index.
+    pub fn add_body(
+        &mut self,
+        shape: Arc<MeshShape>,
+        props: MassProperties,
+        state: &BodyState,
+    ) -> Result<usize> {
+        if self.started {
+            return Err(Error::Parameter(
+                "bodies must be added before the first run".into(),
+            ));
+        }
+        let body = RigidBody::new(props, state)?;
+        let index = self.bodies.len();
+        for other in 0..index {
+            self.pairs.push(Pair {
+                body1: other,
+                body2: index,
+                params: ContactParams::default(),
+                phase: Phase::Apart,
+                exchanges: 0,
+            });
+        }
+        self.bodies.push(WorldBody { shape, body });
+        Ok(index)
+    }
+
+    /// Sets the contact parameters of the pair; the normal points from `body1` into `body2`.
+    pub fn set_contact(&mut self, body1: usize, body2: usize, params: ContactParams) -> Result<()> {
+        let n = self.bodies.len();
+        if body1 >= n || body2 >= n || body1 == body2 {
+            return Err(Error::Parameter(format!(
+                "contact ({body1}, {body2}) must name two different bodies among 0..{n}"
+            )));
+        }
+        params.validate()?;
+        if let CentroidMode::Body { body, .. } = params.centroid {
+            if body != body1 && body != body2 {
+                return Err(Error::Parameter(format!(
+                    "the centroid is fixed in body {body}, which is not in the pair ({body1}, {body2})"
+                )));
+            }
+        }
+        let pair = self
+            .pairs
+            .iter_mut()
+            .find(|p| (p.body1, p.body2) == (body1, body2) || (p.body1, p.body2) == (body2, body1))
+            .expect("every pair of bodies exists");
+        pair.body1 = body1;
+        pair.body2 = body2;
+        pair.params = params;
+        Ok(())
+    }
+
+    /// Advances by `duration` s with steps of at most `dt` s.
+    pub fn run(&mut self, duration: Real, dt: Real) -> Result<RunOutput> {
+        require_finite("duration", duration)?;
+        require_finite("dt", dt)?;
+        if duration < 0.0 {
+            return Err(Error::parameter("duration", duration, "it must be >= 0 s"));
+        }
+        if dt <= 0.0 {
+            return Err(Error::parameter("dt", dt, "the time step must be > 0 s"));
+        }
+        if duration / dt > MAX_STEPS {
+            return Err(Error::parameter(
+                "dt",
+                dt,
+                "duration / dt exceeds 1e8 steps: use a larger step",
+            ));
+        }
+        if !self.started {
+            self.check_initial_overlaps()?;
+            self.started = true;
+        }
+        let t_start = self.time;
+        let t_end = t_start + duration;
+        let steps = (duration / dt).ceil() as usize;
+        let mut out = RunOutput::default();
+        out.times.reserve(steps + 8);
+        out.states.reserve(steps + 8);
+        self.record(&mut out);
+        let mut k = 1usize;
+        while self.time < t_end {
+            let grid = if k >= steps {
+                t_end
+            } else {
+                t_start + k as Real * dt
+            };
+            let mut target = grid;
+            for p in &self.pairs {
+                if let Phase::Timer { exchange_at, .. } = p.phase {
+                    target = target.min(exchange_at);
+                }
+            }
+            target = target.max(self.time);
+            // The earliest first overlap among apart pairs inside (time, target].
+            let mut earliest: Option<(Real, usize)> = None;
+            for pi in 0..self.pairs.len() {
+                if !matches!(self.pairs[pi].phase, Phase::Apart) {
+                    continue;
+                }
+                let horizon = earliest.map_or(target, |(t, _)| t);
+                if let Some(t) = self.first_contact(pi, horizon)? {
+                    if earliest.is_none_or(|(te, _)| t < te) {
+                        earliest = Some((t, pi));
+                    }
+                }
+            }
+            if let Some((tc, pi)) = earliest {
+                self.advance_to(tc);
+                let (b1, b2) = (self.pairs[pi].body1, self.pairs[pi].body2);
+                out.contacts.push(ContactEvent {
+                    body1: b1,
+                    body2: b2,
+                    time: tc,
+                    kind: ContactEventKind::FirstOverlap,
+                });
+                let dtp = self.pairs[pi].params.depth_of_penetration;
+                self.pairs[pi].phase = Phase::Timer {
+                    started: tc,
+                    exchange_at: tc + dtp,
+                    secondary: false,
+                };
+                self.pairs[pi].exchanges = 0;
+                if dtp == 0.0 {
+                    self.exchange(pi, &mut out);
+                }
+                self.record(&mut out);
+                continue;
+            }
+            let t_prev = self.time;
+            self.advance_to(target);
+            for pi in 0..self.pairs.len() {
+                match self.pairs[pi].phase {
+                    Phase::Timer { exchange_at, .. } if exchange_at <= self.time => {
+                        self.exchange(pi, &mut out)
+                    }
+                    Phase::Engaged { .. } => self.follow_engaged(pi, t_prev, &mut out),
+                    _ => {}
+                }
+            }
+            self.record(&mut out);
+            if target == grid {
+                k += 1;
+            }
+        }
+        Ok(out)
+    }
+
+    fn record(&self, out: &mut RunOutput) {
+        if out.times.last() == Some(&self.time) {
+            out.states.pop();
+            out.times.pop();
+        }
+        out.times.push(self.time);
+        out.states
+            .push(self.bodies.iter().map(|b| b.body.state()).collect());
+    }
+
+    fn advance_to(&mut self, t: Real) {
+        let dt = t - self.time;
+        if dt > 0.0 {
+            for b in &mut self.bodies {
+                b.body.advance(dt);
+            }
+        }
+        self.time = t;
+    }
+
+    fn check_initial_overlaps(&mut self) -> Result<()> {
+        for p in &self.pairs {
+            let (a, b) = (&self.bodies[p.body1], &self.bodies[p.body2]);
+            if shapes_overlap(
+                &a.shape,
+                &a.body.pose(),
+                &b.shape,
+                &b.body.pose(),
+                &mut self.ws,
+            ) {
+                return Err(Error::InitialOverlap(format!(
+                    "bodies {} and {} already overlap at the start of the run: place them apart \
+                     (the engine starts every contact at a first overlap it observes)",
+                    p.body1, p.body2
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Poses of the pair's bodies `dt` s after the current time.
+    fn poses_after(&self, pair: &Pair, dt: Real) -> (Isometry, Isometry) {
+        (
+            self.bodies[pair.body1].body.advanced(dt).pose(),
+            self.bodies[pair.body2].body.advanced(dt).pose(),
+        )
+    }
+
+    /// Box swept by a body over the next `dt` s (world).
+    fn swept_box(&self, i: usize, dt: Real) -> Aabb {
+        let wb = &self.bodies[i];
+        let b0 = wb.body.pose();
+        let b1 = wb.body.advanced(dt).pose();
+        if wb.body.angular_speed_bound() == 0.0 {
+            wb.shape
+                .aabb()
+                .transform_by(&b0)
+                .merged(&wb.shape.aabb().transform_by(&b1))
+        } else {
+            let r = Vector::repeat(wb.shape.radius());
+            let (c0, c1) = (
+                Point::from(b0.translation.vector),
+                Point::from(b1.translation.vector),
+            );
+            Aabb::new(c0.inf(&c1) - r, c0.sup(&c1) + r)
+        }
+    }
+
+    /// The first instant in (time, horizon] at which the apart pair's surfaces meet.
+    fn first_contact(&mut self, pi: usize, horizon: Real) -> Result<Option<Real>> {
+        let pair = self.pairs[pi].clone();
+        let span = horizon - self.time;
+        if span <= 0.0 {
+            return Ok(None);
+        }
+        if !self
+            .swept_box(pair.body1, span)
+            .intersects(&self.swept_box(pair.body2, span))
+        {
+            return Ok(None);
+        }
+        let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
+        let (s1, s2) = (wb1.shape.clone(), wb2.shape.clone());
+        // Bound on how fast any point of one surface can approach the other (m/s).
+        let speed = (wb1.body.velocity() - wb2.body.velocity()).norm()
+            + wb1.body.angular_speed_bound() * s1.radius()
+            + wb2.body.angular_speed_bound() * s2.radius();
+        if speed == 0.0 {
+            return Ok(None);
+        }
+        let mut lo = 0.0; // offset from self.time known apart
+        let mut t = 0.0;
+        for _ in 0..MAX_ADVANCE_ITERATIONS {
+            let (p1, p2) = self.poses_after(&pair, t);
+            let cap = (span - t) * speed * (1.0 + 1e-9) + 1e-12;
+            let d = surface_distance(&s1, &p1, &s2, &p2, cap, &mut self.ws);
+            if d == 0.0 {
+                if t == 0.0 {
+                    return Ok(Some(self.time));
+                }
+                let mut hi = t;
+                while hi - lo > TIME_TOLERANCE {
+                    let mid = 0.5 * (lo + hi);
+                    let (p1, p2) = self.poses_after(&pair, mid);
+                    if surfaces_intersect(&s1, &p1, &s2, &p2, &mut self.ws) {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                return Ok(Some(self.time + hi));
+            }
+            if t >= span || t + d / speed > span {
+                return Ok(None);
+            }
+            lo = t;
+            t = (t + (d / speed).max(MIN_ADVANCE)).min(span);
+        }
+        Err(Error::Simulation(format!(
+            "the first-contact search for bodies {} and {} did not converge near t = {} s",
+            pair.body1, pair.body2, self.time
+        )))
+    }
+
+    /// Exchange the impulse of pair `pi` now (its timer expired).
+    fn exchange(&mut self, pi: usize, out: &mut RunOutput) {
+        let (started, secondary) = match self.pairs[pi].phase {
+            Phase::Timer {
+                started, secondary, ..
+            } => (started, secondary),
+            _ => return,
+        };
+        let pair = self.pairs[pi].clone();
+        let (i1, i2) = (pair.body1, pair.body2);
+        let (pose1, pose2) = (self.bodies[i1].body.pose(), self.bodies[i2].body.pose());
+        let region = overlap_region(
+            &self.bodies[i1].shape,
+            &pose1,
+            &self.bodies[i2].shape,
+            &pose2,
+        );
+        let skip = |world: &mut World, out: &mut RunOutput, why: &str, phase: Phase| {
+            out.contacts.push(ContactEvent {
+                body1: i1,
+                body2: i2,
+                time: world.time,
+                kind: ContactEventKind::NoExchange(why.into()),
+            });
+            world.pairs[pi].phase = phase;
+        };
+        if region.is_empty() {
+            skip(
+                self,
+                out,
+                "the meshes no longer overlap at the exchange instant",
+                Phase::Apart,
+            );
+            return;
+        }
+        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        // Normal, then the contact frame, then the centroid.
+        let bbox_center = {
+            let (mut lo, mut hi) = (region.points[0], region.points[0]);
+            for p in &region.points {
+                lo = lo.inf(p);
+                hi = hi.sup(p);
+            }
+            nalgebra::center(&lo, &hi)
+        };
+        let volume_normal = region.volume_normal().unwrap_or_else(|| {
+            // No usable inside area (e.g. open meshes): fall back on the approach direction.
+            let u = b1.point_velocity(&bbox_center) - b2.point_velocity(&bbox_center);
+            if u.norm() > 0.0 {
+                u.normalize()
+            } else {
+                (b2.position() - b1.position()).normalize()
+            }
+        });
+        let normal = match &pair.params.normal {
+            NormalMode::Volume => volume_normal,
+            NormalMode::Fixed(v) => v.normalize(),
+            NormalMode::Horizontal { pitch } => {
+                let h = Vector::new(volume_normal.x, volume_normal.y, 0.0);
+                if h.norm() < 1e-9 {
+                    volume_normal
+                } else {
+                    h.normalize() * pitch.cos() + Vector::z() * pitch.sin()
+                }
+            }
+        };
+        let tangent = {
+            let t = Vector::z().cross(&normal);
+            if t.norm() > 1e-9 {
+                t.normalize()
+            } else {
+                Vector::x().cross(&normal).normalize()
+            }
+        };
+        let binormal = normal.cross(&tangent);
+        let frame = Matrix::from_rows(&[
+            normal.transpose(),
+            tangent.transpose(),
+            binormal.transpose(),
+        ]);
+        let (mut rmin, mut rmax) = (
+            frame * region.points[0].coords,
+            frame * region.points[0].coords,
+        );
+        for p in &region.points {
+            let c = frame * p.coords;
+            rmin = rmin.inf(&c);
+            rmax = rmax.sup(&c);
+        }
+        let centroid = match &pair.params.centroid {
+            CentroidMode::Auto => Point::from(frame.transpose() * ((rmin + rmax) * 0.5)),
+            CentroidMode::World(p) => *p,
+            CentroidMode::Body { body, point } => self.bodies[*body].body.pose() * point,
+        };
+        let r1 = centroid - b1.position();
+        let r2 = centroid - b2.position();
+        let u = b1.point_velocity(&centroid) - b2.point_velocity(&centroid);
+        let problem = ImpulseProblem {
+            inverse_mass_sum: 1.0 / b1.props().mass() + 1.0 / b2.props().mass(),
+            inverse_inertia: [b1.world_inverse_inertia(), b2.world_inverse_inertia()],
+            lever: [r1, r2],
+            relative_velocity: u,
+            normal,
+            restitution: pair.params.restitution,
+            friction: pair.params.friction,
+            mode: pair.params.restitution_mode,
+        };
+        let engaged = Phase::Engaged {
+            centroid_in: [
+                pose1.inverse_transform_point(&centroid),
+                pose2.inverse_transform_point(&centroid),
+            ],
+            normal_in_1: pose1.inverse_transform_vector(&normal),
+        };
+        let Some(solution) = problem.solve() else {
+            skip(
+                self,
+                out,
+                "the vehicles are not approaching at the centroid along the normal",
+                engaged,
+            );
+            return;
+        };
+        let before = [b1.state(), b2.state()];
+        let energy_before = b1.kinetic_energy() + b2.kinetic_energy();
+        let j = solution.impulse;
+        self.bodies[i1].body.apply_impulse(&(-j), &centroid);
+        self.bodies[i2].body.apply_impulse(&j, &centroid);
+        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        let after = [b1.state(), b2.state()];
+        let energy_after = b1.kinetic_energy() + b2.kinetic_energy();
+        let u_after = b1.point_velocity(&centroid) - b2.point_velocity(&centroid);
+        out.impacts.push(Impact {
+            body1: i1,
+            body2: i2,
+            first_contact_time: started,
+            time: self.time,
+            depth_of_penetration: self.time - started,
+            secondary: secondary || pair.exchanges > 0,
+            centroid,
+            normal,
+            impulse: j,
+            sliding: solution.sliding,
+            velocity_before: [before[0].velocity, before[1].velocity],
+            velocity_after: [after[0].velocity, after[1].velocity],
+            angular_velocity_before: [before[0].angular_velocity, before[1].angular_velocity],
+            angular_velocity_after: [after[0].angular_velocity, after[1].angular_velocity],
+            relative_velocity_before: u,
+            relative_velocity_after: u_after,
+            energy_dissipated: energy_before - energy_after,
+            region_points: region.points,
+            contact_frame: frame,
+            region_min: rmin,
+            region_max: rmax,
+        });
+        self.pairs[pi].exchanges += 1;
+        self.pairs[pi].phase = engaged;
+    }
+
+    /// Relative normal velocity (m/s, closing > 0) of an engaged pair `dt` s from now.
+    fn closing_speed(
+        &self,
+        pair: &Pair,
+        centroid_in: &[Point; 2],
+        normal_in_1: &Vector,
+        dt: Real,
+    ) -> Real {
+        let b1 = self.bodies[pair.body1].body.advanced(dt);
+        let b2 = self.bodies[pair.body2].body.advanced(dt);
+        let (p1, p2) = (b1.pose(), b2.pose());
+        let c = nalgebra::center(&(p1 * centroid_in[0]), &(p2 * centroid_in[1]));
+        let n = p1 * normal_in_1;
+        (b1.point_velocity(&c) - b2.point_velocity(&c)).dot(&n)
+    }
+
+    /// After a step, an engaged pair either separates, turns closing again, or stays.
+    fn follow_engaged(&mut self, pi: usize, t_prev: Real, out: &mut RunOutput) {
+        let pair = self.pairs[pi].clone();
+        let Phase::Engaged {
+            centroid_in,
+            normal_in_1,
+        } = pair.phase
+        else {
+            return;
+        };
+        let (i1, i2) = (pair.body1, pair.body2);
+        let (a, b) = (&self.bodies[i1], &self.bodies[i2]);
+        if !shapes_overlap(
+            &a.shape,
+            &a.body.pose(),
+            &b.shape,
+            &b.body.pose(),
+            &mut self.ws,
+        ) {
+            // Bisect the separation instant backwards from now (bodies move freely here).
+            let (mut lo, mut hi) = (t_prev - self.time, 0.0);
+            while hi - lo > SEPARATION_TOLERANCE {
+                let mid = 0.5 * (lo + hi);
+                let (p1, p2) = (
+                    self.bodies[i1].body.advanced(mid).pose(),
+                    self.bodies[i2].body.advanced(mid).pose(),
+                );
+                let (s1, s2) = (self.bodies[i1].shape.clone(), self.bodies[i2].shape.clone());
+                if shapes_overlap(&s1, &p1, &s2, &p2, &mut self.ws) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            out.contacts.push(ContactEvent {
+                body1: i1,
+                body2: i2,
+                time: self.time + hi,
+                kind: ContactEventKind::Separation,
+            });
+            self.pairs[pi].phase = Phase::Apart;
+            return;
+        }
+        if self.closing_speed(&pair, &centroid_in, &normal_in_1, 0.0) > CLOSING_TOLERANCE {
+            // Find when it turned closing inside the step (s is smooth: bisection).
+            let (mut lo, mut hi) = (t_prev - self.time, 0.0);
+            while hi - lo > TIME_TOLERANCE {
+                let mid = 0.5 * (lo + hi);
+                let s = {
+                    let b1 = self.bodies[i1].body.advanced(mid);
+                    let b2 = self.bodies[i2].body.advanced(mid);
+                    let (p1, p2) = (b1.pose(), b2.pose());
+                    let c = nalgebra::center(&(p1 * centroid_in[0]), &(p2 * centroid_in[1]));
+                    (b1.point_velocity(&c) - b2.point_velocity(&c)).dot(&(p1 * normal_in_1))
+                };
+                if s > CLOSING_TOLERANCE {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            let started = self.time + hi;
+            out.contacts.push(ContactEvent {
+                body1: i1,
+                body2: i2,
+                time: started,
+                kind: ContactEventKind::ClosingAgain,
+            });
+            let dtp = pair.params.depth_of_penetration;
+            self.pairs[pi].phase = Phase::Timer {
+                started,
+                exchange_at: (started + dtp).max(self.time),
+                secondary: true,
+            };
+            if started + dtp <= self.time {
+                self.exchange(pi, out);
+            }
+        }
+    }
+}

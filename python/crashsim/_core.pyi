@@ -1,0 +1,143 @@
+"""Type stub of the compiled engine module ``crashsim._core`` (crates/crashsim-py).
+
+Everything here is SI (m, kg, s, rad, N s). Frames: world is right-handed with z up;
+a body frame has its origin at the body's centre of gravity (ISO 8855: x forward,
+y left, z up). Quaternions are (w, x, y, z) and rotate body-frame vectors into the world.
+Users should not need this module: the public API is ``crashsim.Scene``.
+"""
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__version__: str
+
+class CrashsimError(Exception):
+    """Root of every error the engine raises."""
+
+class InputError(CrashsimError, ValueError):
+    """The input is at fault (a value, a mesh, a parameter)."""
+
+class MeshError(InputError):
+    """A mesh is empty, has non-finite vertices or out-of-range triangle indices."""
+
+class ParameterError(InputError):
+    """A number is non-finite or outside its accepted range."""
+
+class InitialOverlapError(InputError):
+    """Two bodies of a contact pair overlap when the run starts."""
+
+class SimulationError(CrashsimError, RuntimeError):
+    """The engine could not complete a run (an internal limit was hit)."""
+
+class Shape:
+    """An immutable triangle mesh in a body frame (m) with its bounding-volume hierarchy."""
+
+    def __init__(self, vertices: ArrayLike, triangles: ArrayLike) -> None:
+        """vertices: (n, 3) float64 in the body frame; triangles: (m, 3) integer indices."""
+    @property
+    def n_vertices(self) -> int: ...
+    @property
+    def n_triangles(self) -> int: ...
+    @property
+    def vertices(self) -> NDArray[np.float64]: ...
+    @property
+    def triangles(self) -> NDArray[np.uint32]: ...
+    def aabb(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """(mins, maxs) of the vertices, body frame."""
+    def winding_numbers(self, points: ArrayLike) -> NDArray[np.float64]:
+        """Generalized winding number of each body-frame point, (k,). About 1 inside, 0 outside."""
+
+def shapes_overlap(
+    shape1: Shape,
+    position1: ArrayLike,
+    orientation1: ArrayLike,
+    shape2: Shape,
+    position2: ArrayLike,
+    orientation2: ArrayLike,
+) -> bool:
+    """True when the two posed meshes' surfaces intersect or one lies inside the other."""
+
+def overlap_region(
+    shape1: Shape,
+    position1: ArrayLike,
+    orientation1: ArrayLike,
+    shape2: Shape,
+    position2: ArrayLike,
+    orientation2: ArrayLike,
+) -> dict[str, Any]:
+    """The overlap region S of DESIGN.md section 1 for two posed meshes (world frame).
+
+    Keys: ``points`` (k, 3) the set S; ``volume_normal`` (3,) the unit area-weighted
+    normal from body 1 into body 2 (zeros if undefined); ``segment_count`` (int) the number
+    of triangle-triangle intersection segments; ``inside_vertices`` (int) vertices of either
+    mesh inside the other.
+    """
+
+class World:
+    """A set of rigid bodies with meshes and the contact parameters of each pair."""
+
+    def __init__(self) -> None: ...
+    @property
+    def time(self) -> float: ...
+    @property
+    def n_bodies(self) -> int: ...
+    def add_body(
+        self,
+        shape: Shape,
+        mass: float,
+        inertia: ArrayLike,
+        position: ArrayLike,
+        orientation: ArrayLike,
+        velocity: ArrayLike,
+        angular_velocity: ArrayLike,
+    ) -> int:
+        """Add a body; returns its index. inertia: (3, 3) about the CG in the body frame (kg m^2);
+        position of the CG (m), orientation (w, x, y, z), velocity (m/s) and angular velocity
+        (rad/s) in the world frame."""
+    def set_contact(
+        self,
+        body1: int,
+        body2: int,
+        *,
+        depth_of_penetration: float = 0.030,
+        restitution: float = 0.1,
+        friction: float = 0.6,
+        restitution_mode: str = "total",
+        centroid: str = "auto",
+        centroid_point: ArrayLike | None = None,
+        centroid_body: int | None = None,
+        normal: str = "horizontal",
+        normal_vector: ArrayLike | None = None,
+        pitch: float = 0.0,
+    ) -> None:
+        """Parameters of the pair (body1, body2); every pair of bodies collides with the
+        defaults unless set here. The normal points from body1 into body2.
+
+        restitution_mode: "total" (Kudlich-Slibar, restitution on the whole compression
+        impulse) or "normal" (Newton/Brach: on the normal relative velocity).
+        centroid: "auto" (centre of the overlap region in the contact frame), "world" (the
+        fixed world point centroid_point) or "body" (centroid_point fixed in the frame of
+        body centroid_body, which must be body1 or body2).
+        normal: "horizontal" (horizontal part of the volume normal, tilted up by pitch rad),
+        "volume" (the full 3-D volume normal) or "vector" (normal_vector, world frame).
+        """
+    def run(self, duration: float, dt: float) -> dict[str, Any]:
+        """Advance the world by duration (s) with steps of at most dt (s).
+
+        Returns a dict: ``t`` (k,) sample times (every step end, every first overlap and
+        every exchange; the state at an exchange is the one after it); ``position``,
+        ``velocity``, ``angular_velocity`` (n_bodies, k, 3); ``orientation`` (n_bodies, k, 4);
+        ``impacts``: a list of dicts, one per impulse exchange, with keys
+        ``body1``, ``body2``, ``first_contact_time``, ``time``, ``depth_of_penetration``,
+        ``secondary`` (bool), ``centroid`` (3,), ``normal`` (3,), ``impulse`` (3,) the impulse
+        on body2 (body1 gets its negative), ``sliding`` (bool), ``velocity_before``,
+        ``velocity_after``, ``angular_velocity_before``, ``angular_velocity_after`` (2, 3)
+        rows for body1 and body2, ``relative_velocity_before``, ``relative_velocity_after``
+        (3,) velocity of body1's point minus body2's at the centroid, ``energy_dissipated``
+        (J), ``region_points`` (p, 3), ``contact_frame`` (3, 3) rows n, t, b,
+        ``region_min``, ``region_max`` (3,) extent of the region in the contact frame;
+        ``contacts``: a list of dicts ``body1``, ``body2``, ``time``, ``kind``
+        ("first_overlap" or "separation").
+        """
