@@ -1,5 +1,316 @@
+//! crashsim._core: thin pyo3 bindings of crashsim-core.
+//!
+//! This crate only translates: numpy arrays in and out, the GIL released while the engine
+//! runs, and core errors mapped in one place ([`errors::to_py`]) onto the Python exception
+//! tree rooted at `CrashsimError`. No physics lives here.
+
+mod convert;
+mod errors;
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::Arc;
+
+use crashsim_core as core;
+use numpy::ndarray::{Array1, Array2, Array3};
+use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use convert::{matrix3, pose, rotation, vector3, vertices, triangles};
+
+/// Runs engine code, turning a panic into a SimulationError instead of letting it cross.
+fn guarded<T>(f: impl FnOnce() -> core::Result<T>) -> core::Result<T> {
+    catch_unwind(AssertUnwindSafe(f)).unwrap_or_else(|payload| {
+        let what = payload
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_else(|| "unknown".into());
+        Err(core::Error::Simulation(format!(
+            "internal engine error ({what}); please report it with the scene that caused it"
+        )))
+    })
+}
+
+/// An immutable triangle mesh in a body frame (m) with its bounding-volume hierarchy.
+#[pyclass(frozen, module = "crashsim._core")]
+struct Shape {
+    inner: Arc<core::MeshShape>,
+}
+
+#[pymethods]
+impl Shape {
+    #[new]
+    fn new(vertices_in: &Bound<'_, PyAny>, triangles_in: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let v = vertices(vertices_in)?;
+        let t = triangles(triangles_in)?;
+        let inner = core::MeshShape::new(v, t).map_err(errors::to_py)?;
+        Ok(Shape {
+            inner: Arc::new(inner),
+        })
+    }
+
+    #[getter]
+    fn n_vertices(&self) -> usize {
+        self.inner.vertices().len()
+    }
+
+    #[getter]
+    fn n_triangles(&self) -> usize {
+        self.inner.triangles().len()
+    }
+
+    #[getter]
+    fn vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        convert::points_to_array(self.inner.vertices()).into_pyarray(py)
+    }
+
+    #[getter]
+    fn triangles<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<u32>> {
+        let t = self.inner.triangles();
+        Array2::from_shape_fn((t.len(), 3), |(i, k)| t[i][k]).into_pyarray(py)
+    }
+
+    /// (mins, maxs) of the vertices, body frame (m).
+    fn aabb<'py>(&self, py: Python<'py>) -> (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>) {
+        let b = self.inner.aabb();
+        (
+            Array1::from_iter(b.mins.iter().copied()).into_pyarray(py),
+            Array1::from_iter(b.maxs.iter().copied()).into_pyarray(py),
+        )
+    }
+
+    /// Generalized winding number of each body-frame point, (k,).
+    fn winding_numbers<'py>(
+        &self,
+        py: Python<'py>,
+        points: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let pts = vertices(points)?;
+        let shape = self.inner.clone();
+        let w: Vec<f64> = py.detach(move || pts.iter().map(|p| shape.winding_number(p)).collect());
+        Ok(w.into_pyarray(py))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Shape(n_vertices={}, n_triangles={})",
+            self.inner.vertices().len(),
+            self.inner.triangles().len()
+        )
+    }
+}
+
+/// True when the two posed meshes' surfaces intersect or one lies inside the other.
+#[pyfunction]
+fn shapes_overlap(
+    py: Python<'_>,
+    shape1: &Shape,
+    position1: &Bound<'_, PyAny>,
+    orientation1: &Bound<'_, PyAny>,
+    shape2: &Shape,
+    position2: &Bound<'_, PyAny>,
+    orientation2: &Bound<'_, PyAny>,
+) -> PyResult<bool> {
+    let p1 = pose(position1, orientation1)?;
+    let p2 = pose(position2, orientation2)?;
+    let (s1, s2) = (shape1.inner.clone(), shape2.inner.clone());
+    py.detach(move || {
+        guarded(|| {
+            let mut ws = core::overlap::QueryWorkspace::default();
+            Ok(core::overlap::shapes_overlap(&s1, &p1, &s2, &p2, &mut ws))
+        })
+    })
+    .map_err(errors::to_py)
+}
+
+/// The overlap region S of two posed meshes (world frame).
+#[pyfunction]
+fn overlap_region<'py>(
+    py: Python<'py>,
+    shape1: &Shape,
+    position1: &Bound<'py, PyAny>,
+    orientation1: &Bound<'py, PyAny>,
+    shape2: &Shape,
+    position2: &Bound<'py, PyAny>,
+    orientation2: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let p1 = pose(position1, orientation1)?;
+    let p2 = pose(position2, orientation2)?;
+    let (s1, s2) = (shape1.inner.clone(), shape2.inner.clone());
+    let region = py
+        .detach(move || guarded(|| Ok(core::overlap::overlap_region(&s1, &p1, &s2, &p2))))
+        .map_err(errors::to_py)?;
+    let d = PyDict::new(py);
+    d.set_item("points", convert::points_to_array(&region.points).into_pyarray(py))?;
+    let n = region.volume_normal().unwrap_or_else(core::math::Vector::zeros);
+    d.set_item("volume_normal", convert::vector_to_array(&n).into_pyarray(py))?;
+    d.set_item("segment_count", region.segment_count)?;
+    d.set_item("inside_vertices", region.inside_vertex_count)?;
+    Ok(d)
+}
+
+/// A set of rigid bodies with meshes and the contact parameters of each pair.
+#[pyclass(module = "crashsim._core")]
+struct World {
+    inner: core::World,
+}
+
+#[pymethods]
+impl World {
+    #[new]
+    fn new() -> Self {
+        World {
+            inner: core::World::new(),
+        }
+    }
+
+    #[getter]
+    fn time(&self) -> f64 {
+        self.inner.time()
+    }
+
+    #[getter]
+    fn n_bodies(&self) -> usize {
+        self.inner.body_count()
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn add_body(
+        &mut self,
+        shape: &Shape,
+        mass: f64,
+        inertia: &Bound<'_, PyAny>,
+        position: &Bound<'_, PyAny>,
+        orientation: &Bound<'_, PyAny>,
+        velocity: &Bound<'_, PyAny>,
+        angular_velocity: &Bound<'_, PyAny>,
+    ) -> PyResult<usize> {
+        let props =
+            core::MassProperties::new(mass, matrix3(inertia, "inertia")?).map_err(errors::to_py)?;
+        let state = core::BodyState {
+            position: vector3(position, "position")?.into(),
+            orientation: rotation(orientation)?,
+            velocity: vector3(velocity, "velocity")?,
+            angular_velocity: vector3(angular_velocity, "angular_velocity")?,
+        };
+        self.inner
+            .add_body(shape.inner.clone(), props, &state)
+            .map_err(errors::to_py)
+    }
+
+    #[pyo3(signature = (
+        body1, body2, *, depth_of_penetration = 0.030, restitution = 0.1, friction = 0.6,
+        restitution_mode = "total", centroid = "auto", centroid_point = None,
+        centroid_body = None, normal = "horizontal", normal_vector = None, pitch = 0.0
+    ))]
+    #[allow(clippy::too_many_arguments)]
+    fn set_contact(
+        &mut self,
+        body1: usize,
+        body2: usize,
+        depth_of_penetration: f64,
+        restitution: f64,
+        friction: f64,
+        restitution_mode: &str,
+        centroid: &str,
+        centroid_point: Option<&Bound<'_, PyAny>>,
+        centroid_body: Option<usize>,
+        normal: &str,
+        normal_vector: Option<&Bound<'_, PyAny>>,
+        pitch: f64,
+    ) -> PyResult<()> {
+        let params = convert::contact_params(
+            depth_of_penetration,
+            restitution,
+            friction,
+            restitution_mode,
+            centroid,
+            centroid_point,
+            centroid_body,
+            normal,
+            normal_vector,
+            pitch,
+        )?;
+        self.inner
+            .set_contact(body1, body2, params)
+            .map_err(errors::to_py)
+    }
+
+    /// Advances the world by `duration` s with steps of at most `dt` s.
+    fn run<'py>(&mut self, py: Python<'py>, duration: f64, dt: f64) -> PyResult<Bound<'py, PyDict>> {
+        let world = &mut self.inner;
+        let out = py
+            .detach(|| guarded(|| world.run(duration, dt)))
+            .map_err(errors::to_py)?;
+        run_output_to_dict(py, &out, self.inner.body_count())
+    }
+}
+
+fn run_output_to_dict<'py>(
+    py: Python<'py>,
+    out: &core::RunOutput,
+    n_bodies: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let k = out.times.len();
+    let d = PyDict::new(py);
+    d.set_item("t", out.times.clone().into_pyarray(py))?;
+    let field = |f: &dyn Fn(&core::BodyState) -> [f64; 4], width: usize| {
+        Array3::from_shape_fn((n_bodies, k, width), |(i, s, c)| f(&out.states[s][i])[c])
+    };
+    let v3 = |v: &core::math::Vector| [v.x, v.y, v.z, 0.0];
+    d.set_item(
+        "position",
+        field(&|s| v3(&s.position.coords), 3).into_pyarray(py),
+    )?;
+    d.set_item(
+        "orientation",
+        field(
+            &|s| {
+                let q = s.orientation.quaternion();
+                [q.w, q.i, q.j, q.k]
+            },
+            4,
+        )
+        .into_pyarray(py),
+    )?;
+    d.set_item("velocity", field(&|s| v3(&s.velocity), 3).into_pyarray(py))?;
+    d.set_item(
+        "angular_velocity",
+        field(&|s| v3(&s.angular_velocity), 3).into_pyarray(py),
+    )?;
+    let impacts = PyList::empty(py);
+    for imp in &out.impacts {
+        impacts.append(convert::impact_to_dict(py, imp)?)?;
+    }
+    d.set_item("impacts", impacts)?;
+    let contacts = PyList::empty(py);
+    for c in &out.contacts {
+        let e = PyDict::new(py);
+        e.set_item("body1", c.body1)?;
+        e.set_item("body2", c.body2)?;
+        e.set_item("time", c.time)?;
+        let (kind, reason) = match &c.kind {
+            core::ContactEventKind::FirstOverlap => ("first_overlap", None),
+            core::ContactEventKind::ClosingAgain => ("closing_again", None),
+            core::ContactEventKind::Separation => ("separation", None),
+            core::ContactEventKind::NoExchange(why) => ("no_exchange", Some(why.clone())),
+        };
+        e.set_item("kind", kind)?;
+        e.set_item("reason", reason)?;
+        contacts.append(e)?;
+    }
+    d.set_item("contacts", contacts)?;
+    Ok(d)
+}
+
 #[pymodule]
-fn _core(_m: &Bound<'_, PyModule>) -> PyResult<()> {
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    errors::register(m)?;
+    m.add_class::<Shape>()?;
+    m.add_class::<World>()?;
+    m.add_function(wrap_pyfunction!(shapes_overlap, m)?)?;
+    m.add_function(wrap_pyfunction!(overlap_region, m)?)?;
     Ok(())
 }

@@ -1,0 +1,240 @@
+//! numpy and Python values <-> core types. Shape and type mistakes become typed errors.
+
+use crashsim_core as core;
+use core::math::{Isometry, Matrix, Point, Rotation, Vector};
+use numpy::ndarray::{Array1, Array2};
+use numpy::{AllowTypeChange, IntoPyArray, PyArrayLike1, PyArrayLike2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors;
+
+/// A (3,) float array-like.
+pub fn vector3(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vector> {
+    let a: PyArrayLike1<'_, f64, AllowTypeChange> = obj
+        .extract()
+        .map_err(|_| errors::parameter(format!("{name} must be a sequence of 3 numbers")))?;
+    let a = a.as_array();
+    if a.len() != 3 {
+        return Err(errors::parameter(format!(
+            "{name} must have 3 components, got {}",
+            a.len()
+        )));
+    }
+    let v = Vector::new(a[0], a[1], a[2]);
+    core::error::require_finite_vector(name, &v).map_err(crate::errors::to_py)?;
+    Ok(v)
+}
+
+/// A (3, 3) float array-like.
+pub fn matrix3(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Matrix> {
+    let a: PyArrayLike2<'_, f64, AllowTypeChange> = obj
+        .extract()
+        .map_err(|_| errors::parameter(format!("{name} must be a 3x3 array of numbers")))?;
+    let a = a.as_array();
+    if a.shape() != [3, 3] {
+        return Err(errors::parameter(format!(
+            "{name} must be 3x3, got shape {:?}",
+            a.shape()
+        )));
+    }
+    Ok(Matrix::from_fn(|i, j| a[[i, j]]))
+}
+
+/// A (w, x, y, z) quaternion array-like, normalized. Zero or non-finite is an error.
+pub fn rotation(obj: &Bound<'_, PyAny>) -> PyResult<Rotation> {
+    let a: PyArrayLike1<'_, f64, AllowTypeChange> = obj.extract().map_err(|_| {
+        errors::parameter("orientation must be a quaternion (w, x, y, z) of 4 numbers".into())
+    })?;
+    let a = a.as_array();
+    if a.len() != 4 {
+        return Err(errors::parameter(format!(
+            "orientation must be a quaternion (w, x, y, z), got {} numbers",
+            a.len()
+        )));
+    }
+    let q = nalgebra::Quaternion::new(a[0], a[1], a[2], a[3]);
+    let norm = q.norm();
+    if !norm.is_finite() || norm == 0.0 {
+        return Err(errors::parameter(
+            "orientation must be a finite, non-zero quaternion (w, x, y, z)".into(),
+        ));
+    }
+    Ok(Rotation::new_normalize(q))
+}
+
+/// A pose from a CG position and a quaternion.
+pub fn pose(position: &Bound<'_, PyAny>, orientation: &Bound<'_, PyAny>) -> PyResult<Isometry> {
+    let p = vector3(position, "position")?;
+    Ok(Isometry::from_parts(p.into(), rotation(orientation)?))
+}
+
+/// (n, 3) float vertices.
+pub fn vertices(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Point>> {
+    let a: PyArrayLike2<'_, f64, AllowTypeChange> = obj
+        .extract()
+        .map_err(|_| errors::mesh("vertices must be an (n, 3) array of numbers".into()))?;
+    let a = a.as_array();
+    if a.ncols() != 3 {
+        return Err(errors::mesh(format!(
+            "vertices must have shape (n, 3), got {:?}",
+            a.shape()
+        )));
+    }
+    Ok(a
+        .rows()
+        .into_iter()
+        .map(|r| Point::new(r[0], r[1], r[2]))
+        .collect())
+}
+
+/// (m, 3) integer triangles.
+pub fn triangles(obj: &Bound<'_, PyAny>) -> PyResult<Vec<[u32; 3]>> {
+    let a: PyArrayLike2<'_, i64, AllowTypeChange> = obj
+        .extract()
+        .map_err(|_| errors::mesh("triangles must be an (m, 3) array of vertex indices".into()))?;
+    let a = a.as_array();
+    if a.ncols() != 3 {
+        return Err(errors::mesh(format!(
+            "triangles must have shape (m, 3), got {:?}",
+            a.shape()
+        )));
+    }
+    let mut out = Vec::with_capacity(a.nrows());
+    for (i, r) in a.rows().into_iter().enumerate() {
+        let mut t = [0u32; 3];
+        for k in 0..3 {
+            t[k] = u32::try_from(r[k]).map_err(|_| {
+                errors::mesh(format!("triangle {i} has an invalid vertex index {}", r[k]))
+            })?;
+        }
+        out.push(t);
+    }
+    Ok(out)
+}
+
+/// Points as an (n, 3) array.
+pub fn points_to_array(points: &[Point]) -> Array2<f64> {
+    Array2::from_shape_fn((points.len(), 3), |(i, k)| points[i][k])
+}
+
+/// A vector as a (3,) array.
+pub fn vector_to_array(v: &Vector) -> Array1<f64> {
+    Array1::from_iter(v.iter().copied())
+}
+
+fn pair_rows(v: &[Vector; 2]) -> Array2<f64> {
+    Array2::from_shape_fn((2, 3), |(i, k)| v[i][k])
+}
+
+/// Contact parameters from the keyword arguments of World.set_contact.
+#[allow(clippy::too_many_arguments)]
+pub fn contact_params(
+    depth_of_penetration: f64,
+    restitution: f64,
+    friction: f64,
+    restitution_mode: &str,
+    centroid: &str,
+    centroid_point: Option<&Bound<'_, PyAny>>,
+    centroid_body: Option<usize>,
+    normal: &str,
+    normal_vector: Option<&Bound<'_, PyAny>>,
+    pitch: f64,
+) -> PyResult<core::ContactParams> {
+    let restitution_mode = match restitution_mode {
+        "total" => core::RestitutionMode::Total,
+        "normal" => core::RestitutionMode::Normal,
+        other => {
+            return Err(errors::parameter(format!(
+                "restitution_mode = {other:?} is unknown: use \"total\" (Kudlich-Slibar) or \"normal\" (Newton/Brach)"
+            )))
+        }
+    };
+    let point = |name: &str| -> PyResult<Point> {
+        let obj = centroid_point.ok_or_else(|| {
+            errors::parameter(format!("centroid = {name:?} needs centroid_point (x, y, z) in m"))
+        })?;
+        Ok(vector3(obj, "centroid_point")?.into())
+    };
+    let centroid = match centroid {
+        "auto" => core::CentroidMode::Auto,
+        "world" => core::CentroidMode::World(point("world")?),
+        "body" => core::CentroidMode::Body {
+            body: centroid_body.ok_or_else(|| {
+                errors::parameter("centroid = \"body\" needs centroid_body (a body index)".into())
+            })?,
+            point: point("body")?,
+        },
+        other => {
+            return Err(errors::parameter(format!(
+                "centroid = {other:?} is unknown: use \"auto\", \"world\" or \"body\""
+            )))
+        }
+    };
+    let normal = match normal {
+        "horizontal" => core::NormalMode::Horizontal { pitch },
+        "volume" => core::NormalMode::Volume,
+        "vector" => core::NormalMode::Fixed(vector3(
+            normal_vector.ok_or_else(|| {
+                errors::parameter("normal = \"vector\" needs normal_vector (x, y, z)".into())
+            })?,
+            "normal_vector",
+        )?),
+        other => {
+            return Err(errors::parameter(format!(
+                "normal = {other:?} is unknown: use \"horizontal\", \"volume\" or \"vector\""
+            )))
+        }
+    };
+    Ok(core::ContactParams {
+        depth_of_penetration,
+        restitution,
+        friction,
+        restitution_mode,
+        centroid,
+        normal,
+    })
+}
+
+/// One impact as a dict of floats, bools and numpy arrays.
+pub fn impact_to_dict<'py>(py: Python<'py>, imp: &core::Impact) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("body1", imp.body1)?;
+    d.set_item("body2", imp.body2)?;
+    d.set_item("first_contact_time", imp.first_contact_time)?;
+    d.set_item("time", imp.time)?;
+    d.set_item("depth_of_penetration", imp.depth_of_penetration)?;
+    d.set_item("secondary", imp.secondary)?;
+    d.set_item("centroid", vector_to_array(&imp.centroid.coords).into_pyarray(py))?;
+    d.set_item("normal", vector_to_array(&imp.normal).into_pyarray(py))?;
+    d.set_item("impulse", vector_to_array(&imp.impulse).into_pyarray(py))?;
+    d.set_item("sliding", imp.sliding)?;
+    d.set_item("velocity_before", pair_rows(&imp.velocity_before).into_pyarray(py))?;
+    d.set_item("velocity_after", pair_rows(&imp.velocity_after).into_pyarray(py))?;
+    d.set_item(
+        "angular_velocity_before",
+        pair_rows(&imp.angular_velocity_before).into_pyarray(py),
+    )?;
+    d.set_item(
+        "angular_velocity_after",
+        pair_rows(&imp.angular_velocity_after).into_pyarray(py),
+    )?;
+    d.set_item(
+        "relative_velocity_before",
+        vector_to_array(&imp.relative_velocity_before).into_pyarray(py),
+    )?;
+    d.set_item(
+        "relative_velocity_after",
+        vector_to_array(&imp.relative_velocity_after).into_pyarray(py),
+    )?;
+    d.set_item("energy_dissipated", imp.energy_dissipated)?;
+    d.set_item("region_points", points_to_array(&imp.region_points).into_pyarray(py))?;
+    let f = &imp.contact_frame;
+    d.set_item(
+        "contact_frame",
+        Array2::from_shape_fn((3, 3), |(i, j)| f[(i, j)]).into_pyarray(py),
+    )?;
+    d.set_item("region_min", vector_to_array(&imp.region_min).into_pyarray(py))?;
+    d.set_item("region_max", vector_to_array(&imp.region_max).into_pyarray(py))?;
+    Ok(d)
+}

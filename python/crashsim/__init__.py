@@ -1,0 +1,1 @@
+from crashsim import _core  # placeholder
