@@ -114,6 +114,35 @@ impl MeshShape {
         })
     }
 
+    /// A closed, outward-oriented box (12 triangles) centred at `c` (body frame, m) with
+    /// half extents `h` (m, all positive).
+    pub fn cuboid(c: Vector, h: Vector) -> MeshShape {
+        let mut v = Vec::new();
+        for i in 0..8 {
+            let s = Vector::new(
+                if i & 1 == 0 { -1.0 } else { 1.0 },
+                if i & 2 == 0 { -1.0 } else { 1.0 },
+                if i & 4 == 0 { -1.0 } else { 1.0 },
+            );
+            v.push(Point::from(c + h.component_mul(&s)));
+        }
+        let t = vec![
+            [0, 2, 1],
+            [1, 2, 3], // z-
+            [4, 5, 6],
+            [5, 7, 6], // z+
+            [0, 1, 4],
+            [1, 5, 4], // y-
+            [2, 6, 3],
+            [3, 6, 7], // y+
+            [0, 4, 2],
+            [2, 4, 6], // x-
+            [1, 3, 5],
+            [3, 7, 5], // x+
+        ];
+        MeshShape::new(v, t).expect("a box with positive extents is a valid mesh")
+    }
+
     /// Body-frame vertices (m).
     #[inline]
     pub fn vertices(&self) -> &[Point] {
@@ -307,30 +336,7 @@ pub(crate) mod tests {
 
     /// A closed, outward-oriented box with its centre at `c` and half extents `h`.
     pub fn box_mesh(c: Vector, h: Vector) -> MeshShape {
-        let mut v = Vec::new();
-        for i in 0..8 {
-            let s = Vector::new(
-                if i & 1 == 0 { -1.0 } else { 1.0 },
-                if i & 2 == 0 { -1.0 } else { 1.0 },
-                if i & 4 == 0 { -1.0 } else { 1.0 },
-            );
-            v.push(Point::from(c + h.component_mul(&s)));
-        }
-        let t = vec![
-            [0, 2, 1],
-            [1, 2, 3], // z-
-            [4, 5, 6],
-            [5, 7, 6], // z+
-            [0, 1, 4],
-            [1, 5, 4], // y-
-            [2, 6, 3],
-            [3, 6, 7], // y+
-            [0, 4, 2],
-            [2, 4, 6], // x-
-            [1, 3, 5],
-            [3, 7, 5], // x+
-        ];
-        MeshShape::new(v, t).unwrap()
+        MeshShape::cuboid(c, h)
     }
 
     #[test]

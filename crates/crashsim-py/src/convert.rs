@@ -1,7 +1,7 @@
 //! numpy and Python values <-> core types. Shape and type mistakes become typed errors.
 
-use crashsim_core as core;
 use core::math::{Isometry, Matrix, Point, Rotation, Vector};
+use crashsim_core as core;
 use numpy::ndarray::{Array1, Array2};
 use numpy::{AllowTypeChange, IntoPyArray, PyArrayLike1, PyArrayLike2};
 use pyo3::prelude::*;
@@ -81,8 +81,7 @@ pub fn vertices(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Point>> {
             a.shape()
         )));
     }
-    Ok(a
-        .rows()
+    Ok(a.rows()
         .into_iter()
         .map(|r| Point::new(r[0], r[1], r[2]))
         .collect())
@@ -152,7 +151,9 @@ pub fn contact_params(
     };
     let point = |name: &str| -> PyResult<Point> {
         let obj = centroid_point.ok_or_else(|| {
-            errors::parameter(format!("centroid = {name:?} needs centroid_point (x, y, z) in m"))
+            errors::parameter(format!(
+                "centroid = {name:?} needs centroid_point (x, y, z) in m"
+            ))
         })?;
         Ok(vector3(obj, "centroid_point")?.into())
     };
@@ -205,12 +206,21 @@ pub fn impact_to_dict<'py>(py: Python<'py>, imp: &core::Impact) -> PyResult<Boun
     d.set_item("time", imp.time)?;
     d.set_item("depth_of_penetration", imp.depth_of_penetration)?;
     d.set_item("secondary", imp.secondary)?;
-    d.set_item("centroid", vector_to_array(&imp.centroid.coords).into_pyarray(py))?;
+    d.set_item(
+        "centroid",
+        vector_to_array(&imp.centroid.coords).into_pyarray(py),
+    )?;
     d.set_item("normal", vector_to_array(&imp.normal).into_pyarray(py))?;
     d.set_item("impulse", vector_to_array(&imp.impulse).into_pyarray(py))?;
     d.set_item("sliding", imp.sliding)?;
-    d.set_item("velocity_before", pair_rows(&imp.velocity_before).into_pyarray(py))?;
-    d.set_item("velocity_after", pair_rows(&imp.velocity_after).into_pyarray(py))?;
+    d.set_item(
+        "velocity_before",
+        pair_rows(&imp.velocity_before).into_pyarray(py),
+    )?;
+    d.set_item(
+        "velocity_after",
+        pair_rows(&imp.velocity_after).into_pyarray(py),
+    )?;
     d.set_item(
         "angular_velocity_before",
         pair_rows(&imp.angular_velocity_before).into_pyarray(py),
@@ -228,13 +238,22 @@ pub fn impact_to_dict<'py>(py: Python<'py>, imp: &core::Impact) -> PyResult<Boun
         vector_to_array(&imp.relative_velocity_after).into_pyarray(py),
     )?;
     d.set_item("energy_dissipated", imp.energy_dissipated)?;
-    d.set_item("region_points", points_to_array(&imp.region_points).into_pyarray(py))?;
+    d.set_item(
+        "region_points",
+        points_to_array(&imp.region_points).into_pyarray(py),
+    )?;
     let f = &imp.contact_frame;
     d.set_item(
         "contact_frame",
         Array2::from_shape_fn((3, 3), |(i, j)| f[(i, j)]).into_pyarray(py),
     )?;
-    d.set_item("region_min", vector_to_array(&imp.region_min).into_pyarray(py))?;
-    d.set_item("region_max", vector_to_array(&imp.region_max).into_pyarray(py))?;
+    d.set_item(
+        "region_min",
+        vector_to_array(&imp.region_min).into_pyarray(py),
+    )?;
+    d.set_item(
+        "region_max",
+        vector_to_array(&imp.region_max).into_pyarray(py),
+    )?;
     Ok(d)
 }

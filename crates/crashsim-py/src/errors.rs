@@ -75,8 +75,9 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         ),
     ];
     for (cell, name, doc) in children {
-        let class =
-            cell.get_or_try_init(py, || new_class(py, name, doc, vec![input.bind(py).clone()]))?;
+        let class = cell.get_or_try_init(py, || {
+            new_class(py, name, doc, vec![input.bind(py).clone()])
+        })?;
         m.add(name, class.bind(py))?;
     }
     let sim = SIMULATION_ERROR.get_or_try_init(py, || {

@@ -16,7 +16,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use convert::{matrix3, pose, rotation, vector3, vertices, triangles};
+use convert::{matrix3, pose, rotation, triangles, vector3, vertices};
 
 /// Runs engine code, turning a panic into a SimulationError instead of letting it cross.
 fn guarded<T>(f: impl FnOnce() -> core::Result<T>) -> core::Result<T> {
@@ -142,9 +142,17 @@ fn overlap_region<'py>(
         .detach(move || guarded(|| Ok(core::overlap::overlap_region(&s1, &p1, &s2, &p2))))
         .map_err(errors::to_py)?;
     let d = PyDict::new(py);
-    d.set_item("points", convert::points_to_array(&region.points).into_pyarray(py))?;
-    let n = region.volume_normal().unwrap_or_else(core::math::Vector::zeros);
-    d.set_item("volume_normal", convert::vector_to_array(&n).into_pyarray(py))?;
+    d.set_item(
+        "points",
+        convert::points_to_array(&region.points).into_pyarray(py),
+    )?;
+    let n = region
+        .volume_normal()
+        .unwrap_or_else(core::math::Vector::zeros);
+    d.set_item(
+        "volume_normal",
+        convert::vector_to_array(&n).into_pyarray(py),
+    )?;
     d.set_item("segment_count", region.segment_count)?;
     d.set_item("inside_vertices", region.inside_vertex_count)?;
     Ok(d)
@@ -238,7 +246,12 @@ impl World {
     }
 
     /// Advances the world by `duration` s with steps of at most `dt` s.
-    fn run<'py>(&mut self, py: Python<'py>, duration: f64, dt: f64) -> PyResult<Bound<'py, PyDict>> {
+    fn run<'py>(
+        &mut self,
+        py: Python<'py>,
+        duration: f64,
+        dt: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
         let world = &mut self.inner;
         let out = py
             .detach(|| guarded(|| world.run(duration, dt)))
