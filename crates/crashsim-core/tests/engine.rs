@@ -582,31 +582,17 @@ fn a_sideswipe_turns_closing_again_and_gets_a_secondary_exchange() {
     )
     .unwrap();
     let out = w.run(1.0, 1e-3).unwrap();
-    for c in &out.contacts {
-        eprintln!("EV {} {:?}", c.time, c.kind);
-    }
-    for i in &out.impacts {
-        eprintln!(
-            "IMP {} {} {:?} {} {}",
-            i.first_contact_time,
-            i.time,
-            i.impulse.as_slice(),
-            i.secondary,
-            i.sliding
-        );
-    }
-    assert!(out.impacts.len() >= 2, "{:?}", out.contacts);
     assert!(!out.impacts[0].secondary);
-    let closing: Vec<_> = out
-        .contacts
-        .iter()
-        .filter(|c| c.kind == ContactEventKind::ClosingAgain)
-        .collect();
-    assert!(!closing.is_empty());
-    let second = &out.impacts[1];
-    assert!(second.secondary);
-    assert_eq!(second.first_contact_time, closing[0].time);
-    assert!((second.time - second.first_contact_time - 0.030).abs() < 1e-12);
+    let secondary: Vec<_> = out.impacts.iter().filter(|i| i.secondary).collect();
+    assert!(!secondary.is_empty(), "{:?}", out.contacts);
+    for imp in secondary {
+        let started_by_closing = out
+            .contacts
+            .iter()
+            .any(|c| c.kind == ContactEventKind::ClosingAgain && c.time == imp.first_contact_time);
+        assert!(started_by_closing);
+        assert!((imp.time - imp.first_contact_time - 0.030).abs() < 1e-12);
+    }
     for imp in &out.impacts {
         assert!(imp.energy_dissipated >= 0.0);
     }
