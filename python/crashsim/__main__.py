@@ -1,0 +1,5 @@
+import sys
+
+from crashsim.cli import main
+
+sys.exit(main())
