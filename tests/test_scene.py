@@ -5,10 +5,9 @@ import math
 import subprocess
 import sys
 
+import crashsim as cs
 import numpy as np
 import pytest
-
-import crashsim as cs
 
 
 def side_impact(speed, angle_deg, offset, dt, dtp=0.030):
@@ -16,8 +15,12 @@ def side_impact(speed, angle_deg, offset, dt, dtp=0.030):
     blue = cs.Vehicle.box(4.6, 1.8, 1.45, mass=1500.0, name="blue")
     a = math.radians(angle_deg)
     scene = cs.Scene(depth_of_penetration=dtp)
-    scene.add(red, position=(-4.0, offset, 0.7), heading=a,
-              velocity=(speed * math.cos(a), speed * math.sin(a), 0.0))
+    scene.add(
+        red,
+        position=(-4.0, offset, 0.7),
+        heading=a,
+        velocity=(speed * math.cos(a), speed * math.sin(a), 0.0),
+    )
     scene.add(blue, position=(0.0, 0.0, 0.725), heading=math.radians(90.0))
     return scene.run(duration=0.3, dt=dt)
 
@@ -73,16 +76,26 @@ def test_published_barrier_case():
     scene.add(car, position=(0.0, 0.0, 0.6), velocity=(17.8613, 0.0, 0.0))
     scene.add(barrier, position=(3.0, 0.0, 1.0))
     a = math.radians(15.4)
-    scene.contact(car, barrier, restitution=0.0, friction=0.82,
-                  centroid=(car, (1.1037, 0.6118, 0.0)), normal=(math.cos(a), math.sin(a), 0.0))
+    scene.contact(
+        car,
+        barrier,
+        restitution=0.0,
+        friction=0.82,
+        centroid=(car, (1.1037, 0.6118, 0.0)),
+        normal=(math.cos(a), math.sin(a), 0.0),
+    )
     imp = scene.run(duration=0.1, dt=1e-3).impacts[0]
     assert not imp.sliding
     dv = imp.delta_v["fusion"]
     dyaw = math.degrees(imp.delta_omega["fusion"][2])
     # The planar closed form of the same inputs (immovable barrier): J = K^-1 u.
     r = np.array([1.1037, 0.6118])
-    k = np.array([[1 / m + r[1] ** 2 / izz, -r[0] * r[1] / izz],
-                  [-r[0] * r[1] / izz, 1 / m + r[0] ** 2 / izz]])
+    k = np.array(
+        [
+            [1 / m + r[1] ** 2 / izz, -r[0] * r[1] / izz],
+            [-r[0] * r[1] / izz, 1 / m + r[0] ** 2 / izz],
+        ]
+    )
     j = np.linalg.solve(k, [17.8613, 0.0])
     assert dv[:2] == pytest.approx(-j / m, rel=1e-3)
     # Published: -15.972 m/s, 3.397 m/s to the right (ISO y -), +176.43 deg/s, 231.06 kJ.
@@ -148,7 +161,12 @@ def test_vehicles_overlapping_at_the_start_raise():
 
 
 def test_demo_command_prints_the_seed_figure():
-    out = subprocess.run([sys.executable, "-m", "crashsim", "demo"], capture_output=True,
-                         text=True, check=True, timeout=120)
+    out = subprocess.run(
+        [sys.executable, "-m", "crashsim", "demo"],
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=120,
+    )
     assert "0.4023 m = 1.320 ft" in out.stdout
     assert "delta-V red" in out.stdout

@@ -2,11 +2,10 @@
 
 import math
 
+import crashsim as cs
 import numpy as np
 import pytest
 import trimesh
-
-import crashsim as cs
 
 # L x W x H (m) from ../shared/meshes/README.md
 PUBLISHED_EXTENTS = {
@@ -33,8 +32,14 @@ def test_unit_factors_are_exact():
 
 def test_box_vehicle_has_the_analytic_inertia_and_a_closed_mesh():
     v = cs.Vehicle.box(length=4.5, width=1.8, height=1.4, mass=1500.0, name="b")
-    m, l, w, h = 1500.0, 4.5, 1.8, 1.4
-    expected = np.diag([m / 12 * (w * w + h * h), m / 12 * (l * l + h * h), m / 12 * (l * l + w * w)])
+    m, length, w, h = 1500.0, 4.5, 1.8, 1.4
+    expected = np.diag(
+        [
+            m / 12 * (w * w + h * h),
+            m / 12 * (length * length + h * h),
+            m / 12 * (length * length + w * w),
+        ]
+    )
     assert np.allclose(v.inertia, expected, rtol=1e-14, atol=0)
     assert v.mesh.is_watertight
     assert np.allclose(v.cg, [0, 0, 0.7])
@@ -77,7 +82,9 @@ def test_bad_inertia_and_meshes_are_typed_errors():
             trimesh.creation.box(), mass=1.0, inertia=np.diag([1.0, 1.0, -1.0])
         )
     with pytest.raises(cs.ParameterError, match="symmetric"):
-        cs.Vehicle.from_mesh(trimesh.creation.box(), mass=1.0, inertia=[[1, 0.5, 0], [0, 1, 0], [0, 0, 1]])
+        cs.Vehicle.from_mesh(
+            trimesh.creation.box(), mass=1.0, inertia=[[1, 0.5, 0], [0, 1, 0], [0, 0, 1]]
+        )
     empty = trimesh.Trimesh(vertices=np.zeros((3, 3)), faces=np.zeros((0, 3), dtype=int))
     with pytest.raises(cs.MeshError, match="no triangles"):
         cs.Vehicle.from_mesh(empty, mass=1.0)

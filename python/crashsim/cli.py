@@ -37,18 +37,24 @@ def _demo(args: argparse.Namespace) -> int:
     travel = float(np.linalg.norm(red1 - red0))
     print(f"crashsim demo: red ({args.speed:g} mph) into the driver side of blue (at rest)")
     print(f"  first overlap        t0 = {imp.first_contact_time * 1e3:8.3f} ms")
-    print(f"  impulse exchange     t  = {imp.time * 1e3:8.3f} ms  (depth of penetration "
-          f"{imp.depth_of_penetration * 1e3:.1f} ms)")
+    print(
+        f"  impulse exchange     t  = {imp.time * 1e3:8.3f} ms  (depth of penetration "
+        f"{imp.depth_of_penetration * 1e3:.1f} ms)"
+    )
     print(f"  red's travel past first overlap: {travel:.4f} m = {to_ft(travel):.3f} ft")
     print(f"  centroid (world)     {np.round(imp.centroid, 4).tolist()} m")
     print(f"  normal (red -> blue) {np.round(imp.normal, 6).tolist()}")
-    print(f"  impulse on blue      {np.round(imp.impulse, 1).tolist()} N s "
-          f"({'sliding' if imp.sliding else 'full'} impact)")
+    print(
+        f"  impulse on blue      {np.round(imp.impulse, 1).tolist()} N s "
+        f"({'sliding' if imp.sliding else 'full'} impact)"
+    )
     for name in imp.vehicles:
         dv = imp.delta_v[name]
         n = float(np.linalg.norm(dv))
-        print(f"  delta-V {name:5s} {np.round(dv, 3).tolist()} m/s, |dV| = {n:.3f} m/s "
-              f"= {to_mph(n):.2f} mph")
+        print(
+            f"  delta-V {name:5s} {np.round(dv, 3).tolist()} m/s, |dV| = {n:.3f} m/s "
+            f"= {to_mph(n):.2f} mph"
+        )
     print(f"  energy dissipated    {imp.energy_dissipated / 1e3:.2f} kJ")
     return 0
 

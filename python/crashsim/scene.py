@@ -119,9 +119,7 @@ class Scene:
         )
         return self
 
-    def contact(
-        self, vehicle1: Vehicle | str, vehicle2: Vehicle | str, **params: Any
-    ) -> Scene:
+    def contact(self, vehicle1: Vehicle | str, vehicle2: Vehicle | str, **params: Any) -> Scene:
         """Parameters of one pair; the normal points from vehicle1 into vehicle2.
 
         Keys: depth_of_penetration, restitution, friction, restitution_mode, normal, pitch,
@@ -138,7 +136,9 @@ class Scene:
         }
         unknown = set(params) - allowed
         if unknown:
-            raise SceneError(f"unknown contact parameter(s) {sorted(unknown)}; use {sorted(allowed)}")
+            raise SceneError(
+                f"unknown contact parameter(s) {sorted(unknown)}; use {sorted(allowed)}"
+            )
         i, j = self._index(vehicle1), self._index(vehicle2)
         if i == j:
             raise SceneError("a contact needs two different vehicles")

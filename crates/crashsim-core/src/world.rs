@@ -22,8 +22,10 @@ use parry3d_f64::bounding_volume::BoundingVolume;
 
 /// First-overlap instants are resolved to this (s).
 pub const TIME_TOLERANCE: Real = 1e-9;
-/// Smallest conservative-advancement step (s): a graze shorter than this may be skipped.
-const MIN_ADVANCE: Real = 1e-7;
+/// Smallest conservative-advancement step (s), and as a fraction of the step searched:
+/// a graze shorter than this may be skipped (surfaces within speed x this of each other).
+const MIN_ADVANCE: Real = 1e-6;
+const MIN_ADVANCE_FRACTION: Real = 1e-3;
 /// Separation instants are resolved to this (s).
 const SEPARATION_TOLERANCE: Real = 1e-6;
 /// A relative normal velocity above this (m/s) counts as closing again.
@@ -423,6 +425,7 @@ impl World {
         }
         let mut lo = 0.0; // offset from self.time known apart
         let mut t = 0.0;
+        let min_advance = MIN_ADVANCE.max(MIN_ADVANCE_FRACTION * span);
         for _ in 0..MAX_ADVANCE_ITERATIONS {
             let (p1, p2) = self.poses_after(&pair, t);
             let cap = (span - t) * speed * (1.0 + 1e-9) + 1e-12;
@@ -447,7 +450,7 @@ impl World {
                 return Ok(None);
             }
             lo = t;
-            t = (t + (d / speed).max(MIN_ADVANCE)).min(span);
+            t = (t + (d / speed).max(min_advance)).min(span);
         }
         Err(Error::Simulation(format!(
             "the first-contact search for bodies {} and {} did not converge near t = {} s",
