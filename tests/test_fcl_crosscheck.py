@@ -55,7 +55,7 @@ def check_pair(a: cs.Vehicle, b: cs.Vehicle, rng: np.random.Generator) -> int:
         gap = 0.3
         pa = np.array([0.0, 0.0, a.cg[2]])
         pb = pa + d * (ra + rb + gap) + side * lateral
-        pb[2] = b.cg[2]
+        pb[2] = b.cg[2] + 0.002  # no coplanar ground faces (see above)
         vb = -d * speed
         scene = cs.Scene(depth_of_penetration=0.060)  # the window ends before most exchanges
         scene.add(a, position=pa, heading=ha)
@@ -86,7 +86,9 @@ def vehicles():
 
 def test_fcl_agrees_for_each_real_mesh_against_a_box():
     rng = np.random.default_rng(2026)
-    box = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1500.0, name="box")
+    # 5 mm off the ground: a box's bottom coplanar with a wheel's flat bottom only touches,
+    # which the engine and FCL may classify differently (a touch is not an overlap here).
+    box = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1500.0, name="box", ground_clearance=0.005)
     for v in vehicles():
         made = check_pair(v, box, rng)
         assert made >= 0.8 * APPROACHES_PER_PAIR, (v.name, made)

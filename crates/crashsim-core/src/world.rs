@@ -430,7 +430,9 @@ impl World {
             let (p1, p2) = self.poses_after(&pair, t);
             let cap = (span - t) * speed * (1.0 + 1e-9) + 1e-12;
             let d = surface_distance(&s1, &p1, &s2, &p2, cap, &mut self.ws);
-            if d == 0.0 {
+            // Zero distance without a crossing is a touch (e.g. coplanar faces on the ground):
+            // not an overlap, so keep advancing by the smallest step.
+            if d == 0.0 && surfaces_intersect(&s1, &p1, &s2, &p2, &mut self.ws) {
                 if t == 0.0 {
                     return Ok(Some(self.time));
                 }
