@@ -1,6 +1,7 @@
 """python-fcl, an independent implementation, agrees with every first-overlap instant the
-engine finds: no collision 1 ms before it, a collision 1 ms after, for each shared real mesh
-against a box and against each other mesh, over 50 random approaches per pair."""
+engine finds: no collision 1 ms before it, a collision 1 ms after. Each shared real mesh meets
+a box in 50 random approaches, and every pair of real meshes in 10 (so each mesh meets the
+others in 50)."""
 
 import itertools
 import math
@@ -13,6 +14,7 @@ from conftest import shared_mesh_paths
 fcl = pytest.importorskip("fcl")
 
 APPROACHES_PER_PAIR = 50
+APPROACHES_PER_MESH_PAIR = 10
 BRACKET = 1e-3  # s
 
 
@@ -41,12 +43,12 @@ def horizontal_radius(v: cs.Vehicle) -> float:
     return float(np.max(np.linalg.norm(v.body_vertices[:, :2], axis=1)))
 
 
-def check_pair(a: cs.Vehicle, b: cs.Vehicle, rng: np.random.Generator) -> int:
+def check_pair(a: cs.Vehicle, b: cs.Vehicle, rng: np.random.Generator, approaches: int) -> int:
     """Runs the random approaches; returns how many made contact (each one checked)."""
     objs = [fcl_object(a), fcl_object(b)]
     ra, rb = horizontal_radius(a), horizontal_radius(b)
     contacts = 0
-    for _ in range(APPROACHES_PER_PAIR):
+    for _ in range(approaches):
         ha, hb, theta = rng.uniform(0, 2 * math.pi, 3)
         speed = rng.uniform(5.0, 30.0)
         lateral = rng.uniform(-0.6, 0.6) * min(ra, rb)
@@ -90,12 +92,12 @@ def test_fcl_agrees_for_each_real_mesh_against_a_box():
     # which the engine and FCL may classify differently (a touch is not an overlap here).
     box = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1500.0, name="box", ground_clearance=0.005)
     for v in vehicles():
-        made = check_pair(v, box, rng)
+        made = check_pair(v, box, rng, APPROACHES_PER_PAIR)
         assert made >= 0.8 * APPROACHES_PER_PAIR, (v.name, made)
 
 
 def test_fcl_agrees_for_every_pair_of_real_meshes():
     rng = np.random.default_rng(1122)
     for a, b in itertools.combinations(vehicles(), 2):
-        made = check_pair(a, b, rng)
-        assert made >= 0.8 * APPROACHES_PER_PAIR, (a.name, b.name, made)
+        made = check_pair(a, b, rng, APPROACHES_PER_MESH_PAIR)
+        assert made >= 0.7 * APPROACHES_PER_MESH_PAIR, (a.name, b.name, made)
