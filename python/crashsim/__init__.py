@@ -2,7 +2,13 @@
 
 Vehicles are rigid bodies with triangle meshes; when two meshes first overlap a
 depth-of-penetration timer starts, and when it expires one pair of impulses is exchanged at
-the impulse centroid by the Kudlich-Slibar model. SI units, world z up, body x forward.
+the impulse centroid by the Kudlich-Slibar model. SI units inside (m, kg, s, rad); world
+frame right-handed with z up; vehicle body frame ISO 8855 (x forward, y left, z up).
+
+    import crashsim as cs
+    red = cs.Vehicle.box(length=4.5, width=1.8, height=1.4, mass=1450.0, name="red")
+    ...
+    result = scene.run(duration=1.0, dt=1e-3)
 """
 
 from crashsim import units
@@ -16,9 +22,22 @@ from crashsim.errors import (
     SceneError,
     SimulationError,
 )
-from crashsim.result import Impact, Result, Trajectory
+from crashsim.result import ContactEvent, Impact, Result, Trajectory
 from crashsim.scene import Scene
-from crashsim.units import deg, ft, ft_s, kmh, lb, mph
+from crashsim.units import (
+    deg,
+    ft,
+    ft_s,
+    kmh,
+    lb,
+    mph,
+    to_deg,
+    to_ft,
+    to_ft_s,
+    to_kmh,
+    to_lb,
+    to_mph,
+)
 from crashsim.vehicle import Vehicle
 
 __all__ = [
@@ -28,6 +47,7 @@ __all__ = [
     "Result",
     "Impact",
     "Trajectory",
+    "ContactEvent",
     "units",
     "mph",
     "kmh",
@@ -35,6 +55,12 @@ __all__ = [
     "ft_s",
     "lb",
     "deg",
+    "to_mph",
+    "to_kmh",
+    "to_ft",
+    "to_ft_s",
+    "to_lb",
+    "to_deg",
     "CrashsimError",
     "InputError",
     "MeshError",

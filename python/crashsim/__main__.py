@@ -1,3 +1,5 @@
+"""`python -m crashsim ...` runs the command line (see crashsim.cli)."""
+
 import sys
 
 from crashsim.cli import main

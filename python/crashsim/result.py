@@ -1,12 +1,13 @@
 """Run results: impacts (one per impulse exchange), trajectories and the contact log.
 
-Everything is SI and world frame: velocities m/s, angular velocities rad/s, impulses N s,
-energies J, positions m, quaternions (w, x, y, z) body -> world.
+Everything is SI and world frame unless a name says otherwise: positions m, velocities m/s,
+angular velocities rad/s, impulses N s, energies J, times s, quaternions (w, x, y, z)
+rotating body-frame vectors into the world. Arrays are read-only.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -14,12 +15,40 @@ from numpy.typing import NDArray
 
 from crashsim.errors import SceneError
 
+__all__ = ["ContactEvent", "Impact", "Result", "Trajectory"]
+
 Array = NDArray[np.float64]
 
 
+def _frozen(a: Any) -> Array:
+    out = np.array(a, dtype=np.float64)
+    out.setflags(write=False)
+    return out
+
+
+def _name_of(vehicle: Any) -> str:
+    """A vehicle's name from a name or a Vehicle."""
+    return vehicle if isinstance(vehicle, str) else str(getattr(vehicle, "name", vehicle))
+
+
+def rotation_matrix(q: Array) -> Array:
+    """The 3x3 rotation (body -> world) of a unit quaternion (w, x, y, z)."""
+    w, x, y, z = np.asarray(q, dtype=np.float64) / np.linalg.norm(q)
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+
+
 class Trajectory(NamedTuple):
-    """One vehicle's samples: times (k,), position (k, 3), orientation (k, 4),
-    velocity (k, 3), angular_velocity (k, 3)."""
+    """One vehicle's samples (world frame): t (k,) s; position (k, 3) of the CG, m;
+    orientation (k, 4) (w, x, y, z); velocity (k, 3) m/s; angular_velocity (k, 3) rad/s.
+
+    Samples are every step end, every first overlap and every exchange (the state just after
+    it); times never decrease."""
 
     t: Array
     position: Array
@@ -29,22 +58,49 @@ class Trajectory(NamedTuple):
 
 
 @dataclass(frozen=True)
-class Impact:
-    """One impulse exchange between `vehicles[0]` (1) and `vehicles[1]` (2).
-
-    The normal points from 1 into 2; `impulse` acts on 2 and its negative on 1 (N s).
-    `first_contact_time` is when the timer started (first overlap, or closing again for a
-    secondary exchange); `time` is the exchange instant."""
+class ContactEvent:
+    """An entry of the contact log: ``kind`` is "first_overlap", "closing_again" (an engaged
+    pair closes again: a secondary timer starts), "separation" or "no_exchange" (with a
+    ``reason``)."""
 
     vehicles: tuple[str, str]
+    time: float
+    kind: str
+    reason: str | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "vehicles": list(self.vehicles),
+            "time": self.time,
+            "kind": self.kind,
+            "reason": self.reason,
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class Impact:
+    """One impulse exchange between ``vehicles[0]`` (vehicle 1) and ``vehicles[1]`` (2).
+
+    The normal (unit) points from 1 into 2; ``impulse`` acts on 2 and its negative on 1
+    (N s). ``first_contact_time`` is when the timer started (the first overlap, or the
+    closing again of an engaged pair for a ``secondary`` exchange); ``time`` is the exchange
+    instant, ``first_contact_time + depth_of_penetration``. Per-vehicle quantities are dicts
+    keyed by vehicle name; relative velocities are vehicle 1's point minus vehicle 2's at
+    the centroid. ``contact_frame`` rows are n, t, b; ``region_min`` / ``region_max`` bound
+    the overlap region ``region_points`` in that frame (m)."""
+
+    vehicles: tuple[str, str]
+    bodies: tuple[int, int]  # the engine's body indices (order of Scene.add)
     first_contact_time: float
     time: float
     depth_of_penetration: float
     secondary: bool
+    sliding: bool
     centroid: Array
     normal: Array
     impulse: Array
-    sliding: bool
+    delta_v: dict[str, Array]
+    delta_omega: dict[str, Array]
     velocity_before: dict[str, Array]
     velocity_after: dict[str, Array]
     angular_velocity_before: dict[str, Array]
@@ -57,109 +113,132 @@ class Impact:
     region_min: Array
     region_max: Array
 
-    @property
-    def delta_v(self) -> dict[str, Array]:
-        """Change of each vehicle's CG velocity (m/s, world)."""
-        return {k: self.velocity_after[k] - self.velocity_before[k] for k in self.vehicles}
+    @classmethod
+    def from_core(cls, raw: dict[str, Any], names: list[str]) -> Impact:
+        """An Impact from one of the engine's impact dicts and the vehicles' names."""
+        bodies = (int(raw["body1"]), int(raw["body2"]))
+        pair = (names[bodies[0]], names[bodies[1]])
 
-    @property
-    def delta_omega(self) -> dict[str, Array]:
-        """Change of each vehicle's angular velocity (rad/s, world)."""
-        return {
-            k: self.angular_velocity_after[k] - self.angular_velocity_before[k]
-            for k in self.vehicles
-        }
+        def per_vehicle(rows: Any) -> dict[str, Array]:
+            rows = np.asarray(rows, dtype=np.float64)
+            return {pair[0]: _frozen(rows[0]), pair[1]: _frozen(rows[1])}
+
+        v0, v1 = per_vehicle(raw["velocity_before"]), per_vehicle(raw["velocity_after"])
+        w0 = per_vehicle(raw["angular_velocity_before"])
+        w1 = per_vehicle(raw["angular_velocity_after"])
+        return cls(
+            vehicles=pair,
+            bodies=bodies,
+            first_contact_time=float(raw["first_contact_time"]),
+            time=float(raw["time"]),
+            depth_of_penetration=float(raw["depth_of_penetration"]),
+            secondary=bool(raw["secondary"]),
+            sliding=bool(raw["sliding"]),
+            centroid=_frozen(raw["centroid"]),
+            normal=_frozen(raw["normal"]),
+            impulse=_frozen(raw["impulse"]),
+            delta_v={k: _frozen(v1[k] - v0[k]) for k in pair},
+            delta_omega={k: _frozen(w1[k] - w0[k]) for k in pair},
+            velocity_before=v0,
+            velocity_after=v1,
+            angular_velocity_before=w0,
+            angular_velocity_after=w1,
+            relative_velocity_before=_frozen(raw["relative_velocity_before"]),
+            relative_velocity_after=_frozen(raw["relative_velocity_after"]),
+            energy_dissipated=float(raw["energy_dissipated"]),
+            region_points=_frozen(np.reshape(raw["region_points"], (-1, 3))),
+            contact_frame=_frozen(raw["contact_frame"]),
+            region_min=_frozen(raw["region_min"]),
+            region_max=_frozen(raw["region_max"]),
+        )
 
     @property
     def closing_speed(self) -> float:
         """Normal relative velocity at the centroid before the exchange (m/s, > 0 closing)."""
         return float(self.relative_velocity_before @ self.normal)
 
+    def impulse_on(self, vehicle: Any) -> Array:
+        """The impulse acting on a vehicle (name or Vehicle), N s, world."""
+        name = self._check(vehicle)
+        return self.impulse if name == self.vehicles[1] else _frozen(-self.impulse)
+
+    def speed_change(self, vehicle: Any) -> float:
+        """|delta-V| of a vehicle's CG (m/s)."""
+        return float(np.linalg.norm(self.delta_v[self._check(vehicle)]))
+
+    def _check(self, vehicle: Any) -> str:
+        name = _name_of(vehicle)
+        if name not in self.vehicles:
+            raise SceneError(f"vehicle {name!r} is not in this impact {self.vehicles}")
+        return name
+
     def to_dict(self) -> dict[str, Any]:
-        """JSON-friendly copy."""
+        """A JSON-friendly copy (lists, floats, bools, str)."""
         out: dict[str, Any] = {}
-        for key, value in self.__dict__.items():
+        for f in fields(self):
+            value = getattr(self, f.name)
             if isinstance(value, np.ndarray):
-                out[key] = value.tolist()
+                out[f.name] = value.tolist()
             elif isinstance(value, dict):
-                out[key] = {k: v.tolist() for k, v in value.items()}
+                out[f.name] = {k: v.tolist() for k, v in value.items()}
+            elif isinstance(value, tuple):
+                out[f.name] = list(value)
             else:
-                out[key] = list(value) if isinstance(value, tuple) else value
-        out["delta_v"] = {k: v.tolist() for k, v in self.delta_v.items()}
-        out["delta_omega"] = {k: v.tolist() for k, v in self.delta_omega.items()}
+                out[f.name] = value
         return out
 
 
-def _impact(raw: dict[str, Any], names: list[str]) -> Impact:
-    pair = (names[raw["body1"]], names[raw["body2"]])
-
-    def per_vehicle(rows: Array) -> dict[str, Array]:
-        return {pair[0]: rows[0].copy(), pair[1]: rows[1].copy()}
-
-    return Impact(
-        vehicles=pair,
-        first_contact_time=float(raw["first_contact_time"]),
-        time=float(raw["time"]),
-        depth_of_penetration=float(raw["depth_of_penetration"]),
-        secondary=bool(raw["secondary"]),
-        centroid=raw["centroid"],
-        normal=raw["normal"],
-        impulse=raw["impulse"],
-        sliding=bool(raw["sliding"]),
-        velocity_before=per_vehicle(raw["velocity_before"]),
-        velocity_after=per_vehicle(raw["velocity_after"]),
-        angular_velocity_before=per_vehicle(raw["angular_velocity_before"]),
-        angular_velocity_after=per_vehicle(raw["angular_velocity_after"]),
-        relative_velocity_before=raw["relative_velocity_before"],
-        relative_velocity_after=raw["relative_velocity_after"],
-        energy_dissipated=float(raw["energy_dissipated"]),
-        region_points=raw["region_points"],
-        contact_frame=raw["contact_frame"],
-        region_min=raw["region_min"],
-        region_max=raw["region_max"],
-    )
-
-
 class Result:
-    """What a run returns: `impacts`, `contacts` (the event log) and trajectories."""
+    """What a run returns: ``impacts`` (Impact list, in time order), ``contacts`` (the
+    ContactEvent log), ``vehicles`` (names in the order added), ``t`` (sample times, s) and
+    per-vehicle trajectories."""
 
     def __init__(self, raw: dict[str, Any], names: list[str]) -> None:
         self.vehicles: list[str] = list(names)
-        self.t: Array = raw["t"]
-        self._raw = raw
-        self.impacts: list[Impact] = [_impact(r, names) for r in raw["impacts"]]
-        self.contacts: list[dict[str, Any]] = [
-            {
-                "vehicles": (names[c["body1"]], names[c["body2"]]),
-                "time": float(c["time"]),
-                "kind": c["kind"],
-                "reason": c["reason"],
-            }
+        self.t: Array = _frozen(raw["t"])
+        self._position = _frozen(raw["position"])  # (n_vehicles, k, 3)
+        self._orientation = _frozen(raw["orientation"])  # (n_vehicles, k, 4)
+        self._velocity = _frozen(raw["velocity"])
+        self._angular_velocity = _frozen(raw["angular_velocity"])
+        self.impacts: list[Impact] = [Impact.from_core(r, self.vehicles) for r in raw["impacts"]]
+        self.contacts: list[ContactEvent] = [
+            ContactEvent(
+                vehicles=(self.vehicles[int(c["body1"])], self.vehicles[int(c["body2"])]),
+                time=float(c["time"]),
+                kind=str(c["kind"]),
+                reason=None if c.get("reason") is None else str(c["reason"]),
+            )
             for c in raw["contacts"]
         ]
 
-    def trajectory(self, vehicle: Any) -> Trajectory:
-        """Samples of one vehicle (name or Vehicle): every step end, first overlap and
-        exchange (the state just after it)."""
-        name = vehicle if isinstance(vehicle, str) else getattr(vehicle, "name", None)
+    def _index(self, vehicle: Any) -> int:
+        name = _name_of(vehicle)
         if name not in self.vehicles:
             raise SceneError(f"no vehicle named {name!r} in this result: {self.vehicles}")
-        i = self.vehicles.index(name)
-        r = self._raw
+        return self.vehicles.index(name)
+
+    def trajectory(self, vehicle: Any) -> Trajectory:
+        """The samples of one vehicle (name or Vehicle)."""
+        i = self._index(vehicle)
         return Trajectory(
             t=self.t,
-            position=r["position"][i],
-            orientation=r["orientation"][i],
-            velocity=r["velocity"][i],
-            angular_velocity=r["angular_velocity"][i],
+            position=self._position[i],
+            orientation=self._orientation[i],
+            velocity=self._velocity[i],
+            angular_velocity=self._angular_velocity[i],
         )
 
     def state_at(self, vehicle: Any, time: float) -> dict[str, Array]:
-        """The recorded sample of a vehicle at exactly `time` (a step end or an event)."""
+        """A vehicle's recorded sample at exactly ``time`` (a step end, a first overlap or an
+        exchange; at an exchange, the state after it): position, orientation, velocity,
+        angular_velocity."""
         tr = self.trajectory(vehicle)
         hits = np.flatnonzero(tr.t == time)
         if hits.size == 0:
-            raise SceneError(f"no sample at t = {time} s; samples are step ends and events")
+            raise SceneError(
+                f"no sample at t = {time!r} s: samples are step ends, first overlaps and "
+                "exchanges (see Result.t)"
+            )
         k = int(hits[-1])
         return {
             "position": tr.position[k],
@@ -168,10 +247,30 @@ class Result:
             "angular_velocity": tr.angular_velocity[k],
         }
 
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-friendly summary (impacts and the contact log)."""
-        return {
-            "vehicles": self.vehicles,
+    def delta_v_body(self, impact: Impact, vehicle: Any) -> Array:
+        """An impact's delta-V of a vehicle in its body frame at the exchange (m/s; ISO 8855:
+        x forward, y left, z up; event data recorders report lateral +right, i.e. -y)."""
+        name = impact._check(vehicle)
+        q = self.state_at(name, impact.time)["orientation"]
+        return _frozen(rotation_matrix(q).T @ impact.delta_v[name])
+
+    def to_dict(self, trajectories: bool = False) -> dict[str, Any]:
+        """A JSON-friendly copy: vehicles, impacts, contacts and, when asked, trajectories
+        ({name: {"t": [...], "position": [...], ...}})."""
+        out: dict[str, Any] = {
+            "vehicles": list(self.vehicles),
             "impacts": [i.to_dict() for i in self.impacts],
-            "contacts": [dict(c, vehicles=list(c["vehicles"])) for c in self.contacts],
+            "contacts": [c.to_dict() for c in self.contacts],
         }
+        if trajectories:
+            out["trajectories"] = {
+                name: {k: v.tolist() for k, v in self.trajectory(name)._asdict().items()}
+                for name in self.vehicles
+            }
+        return out
+
+    def __repr__(self) -> str:
+        return (
+            f"Result(vehicles={self.vehicles}, samples={self.t.size}, "
+            f"impacts={len(self.impacts)}, contacts={len(self.contacts)})"
+        )

@@ -1,217 +1,411 @@
 """Scenes: vehicles with initial states, contact parameters per pair, and runs.
 
-World frame: right-handed, z up, SI. A vehicle's position is its CG's; heading is the yaw of
-its body x axis from world x (rad, counter-clockwise seen from above).
+World frame: right-handed, z up, SI (m, s, rad). A vehicle's position is its CG's; heading is
+the yaw of its body x axis from world x (rad, counter-clockwise seen from above); orientations
+are quaternions (w, x, y, z) rotating body-frame vectors into the world.
+
+Ranges (depth of penetration in [0, 0.060] s, restitution in [0, 1], friction >= 0, finite
+states, ...) are checked by the engine itself, at the call that sets them, so the accepted
+ranges and their messages live in one place (crates/crashsim-core).
 """
 
 from __future__ import annotations
 
+import enum
 import math
-from dataclasses import dataclass, field
+from collections.abc import Iterator
+from dataclasses import dataclass
 from itertools import combinations
-from typing import Any
+from typing import Any, Literal, TypeAlias
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
-from crashsim.errors import ParameterError, SceneError
+from crashsim.errors import InitialOverlapError, ParameterError, SceneError
 from crashsim.result import Result
-from crashsim.vehicle import Vehicle, _finite_vector
+from crashsim.vehicle import Vehicle, _as_float, _probe_shape
+
+__all__ = ["Scene"]
+
+Array = NDArray[np.float64]
+VehicleRef: TypeAlias = Vehicle | str
+# None: horizontal part of the volume normal tilted by pitch; "volume": the full 3-D one;
+# a 3-vector: a fixed world direction from vehicle 1 into vehicle 2.
+NormalSpec: TypeAlias = None | Literal["horizontal", "volume"] | ArrayLike
+# None: automatic; a 3-vector: a fixed world point (m); (vehicle, (x, y, z)): a point fixed in
+# that vehicle's body frame (m from its CG).
+CentroidSpec: TypeAlias = None | ArrayLike | tuple[VehicleRef, ArrayLike]
 
 
-def _quaternion_from_matrix(r: NDArray[np.float64]) -> NDArray[np.float64]:
-    """(w, x, y, z) of a proper rotation matrix."""
-    if r.shape != (3, 3) or not np.allclose(r @ r.T, np.eye(3), atol=1e-9):
-        raise ParameterError("orientation matrix must be a 3x3 rotation (orthonormal)")
+class _Unset(enum.Enum):
+    UNSET = "unset"
+
+
+UNSET = _Unset.UNSET
+"""Marks a contact parameter that is not overridden (the scene default applies)."""
+
+_EYE3 = np.eye(3)
+
+
+def _quaternion_from_matrix(r: Array) -> Array:
+    """(w, x, y, z) of a proper rotation matrix (columns: body axes in world)."""
+    if not np.all(np.isfinite(r)) or not np.allclose(r @ r.T, np.eye(3), rtol=0.0, atol=1e-9):
+        raise ParameterError(
+            "the orientation matrix is not orthonormal: give a 3x3 rotation matrix "
+            "(columns are the body x, y, z axes in world coordinates)"
+        )
     if np.linalg.det(r) <= 0.0:
-        raise ParameterError("orientation matrix must be a proper rotation (det = +1)")
-    t = np.trace(r)
-    if t > 0:
-        s = math.sqrt(t + 1.0) * 2.0
+        raise ParameterError("the orientation matrix is a reflection (det = -1): give a rotation")
+    t = float(np.trace(r))
+    if t > 0.0:
+        s = 2.0 * math.sqrt(t + 1.0)
         q = [0.25 * s, (r[2, 1] - r[1, 2]) / s, (r[0, 2] - r[2, 0]) / s, (r[1, 0] - r[0, 1]) / s]
-    else:
+    else:  # largest diagonal element first, for accuracy
         i = int(np.argmax(np.diag(r)))
         j, k = (i + 1) % 3, (i + 2) % 3
-        s = math.sqrt(1.0 + r[i, i] - r[j, j] - r[k, k]) * 2.0
+        s = 2.0 * math.sqrt(1.0 + r[i, i] - r[j, j] - r[k, k])
         q = [0.0, 0.0, 0.0, 0.0]
         q[0] = (r[k, j] - r[j, k]) / s
         q[1 + i] = 0.25 * s
         q[1 + j] = (r[j, i] + r[i, j]) / s
         q[1 + k] = (r[k, i] + r[i, k]) / s
-    return np.asarray(q, dtype=float)
+    return np.asarray(q, dtype=np.float64)
 
 
-def _orientation(heading: float, orientation: ArrayLike | None) -> NDArray[np.float64]:
+def _orientation(heading: float | None, orientation: ArrayLike | None) -> Any:
+    """The quaternion (w, x, y, z) for a heading (rad about world z) or a full orientation
+    (quaternion or 3x3 rotation matrix). Quaternion checks are the engine's."""
     if orientation is None:
-        if not math.isfinite(heading):
-            raise ParameterError(f"heading = {heading} must be a finite angle in rad")
-        return np.array([math.cos(heading / 2.0), 0.0, 0.0, math.sin(heading / 2.0)])
-    o = np.asarray(orientation, dtype=float)
-    if o.shape == (3, 3):
-        return _quaternion_from_matrix(o)
-    return _finite_vector(o, "orientation (w, x, y, z)", size=4)
+        h = 0.0 if heading is None else _as_float(heading, "heading", "rad")
+        if not math.isfinite(h):
+            raise ParameterError(f"heading = {h} is invalid: give a finite angle in rad")
+        return np.array([math.cos(h / 2.0), 0.0, 0.0, math.sin(h / 2.0)])
+    if heading is not None:
+        raise ParameterError("give heading or orientation, not both")
+    try:
+        o = np.asarray(orientation, dtype=np.float64)
+    except (TypeError, ValueError):
+        return orientation  # the engine says what it expected
+    return _quaternion_from_matrix(o) if o.shape == (3, 3) else o
 
 
-@dataclass
-class _Placed:
+def _read_only(a: ArrayLike) -> Array:
+    out = np.array(a, dtype=np.float64)
+    out.setflags(write=False)
+    return out
+
+
+@dataclass(frozen=True)
+class _Placement:
+    """A vehicle and its initial state (world frame, SI)."""
+
     vehicle: Vehicle
-    position: NDArray[np.float64]
-    orientation: NDArray[np.float64]
-    velocity: NDArray[np.float64]
-    angular_velocity: NDArray[np.float64]
+    position: Array  # CG, m
+    orientation: Array  # (w, x, y, z), body -> world
+    velocity: Array  # CG, m/s
+    angular_velocity: Array  # rad/s
 
 
-@dataclass
+def _check_state(position: Any, orientation: Any, velocity: Any, angular_velocity: Any) -> None:
+    """The engine's checks of an initial state (ParameterError naming the bad input)."""
+    _core.World().add_body(
+        _probe_shape(), 1.0, _EYE3, position, orientation, velocity, angular_velocity
+    )
+
+
+def _check_contact(kwargs: dict[str, Any]) -> None:
+    """The engine's checks of one pair's parameters (ParameterError naming the bad one).
+    Body indices in kwargs must be 0 (vehicle 1) or 1 (vehicle 2)."""
+    world = _core.World()
+    for _ in range(2):
+        world.add_body(_probe_shape(), 1.0, _EYE3, (0, 0, 0), (1, 0, 0, 0), (0, 0, 0), (0, 0, 0))
+    world.set_contact(0, 1, **kwargs)
+
+
 class Scene:
-    """Vehicles and contact parameters. Defaults apply to every pair unless `contact` overrides.
+    """Vehicles with initial states, and the contact parameters of every pair.
 
-    depth_of_penetration (s, [0, 0.060], default 0.030): time from first overlap to the
-    exchange. restitution ([0, 1], 0.1) and friction (>= 0, 0.6). restitution_mode: "total"
-    (Kudlich-Slibar) or "normal" (Newton/Brach). normal: None (horizontal part of the volume
-    normal, tilted by pitch rad), "volume", or a world vector. centroid: None (automatic).
+    The keyword arguments are the defaults of every pair (override per pair with
+    :meth:`contact`):
+
+    - depth_of_penetration: s, in [0, 0.060]; the time from first overlap to the exchange.
+    - restitution: in [0, 1]. friction: inter-vehicle, >= 0.
+    - restitution_mode: "total" (Kudlich-Slibar, on the whole compression impulse) or
+      "normal" (Newton/Brach, on the normal relative velocity).
+    - normal: None (horizontal part of the overlap's volume normal, tilted up by ``pitch``
+      rad), "volume" (full 3-D) or a world vector; it points from vehicle 1 into vehicle 2.
+    - centroid: None (centre of the overlap region), a world point (m), or
+      ``(vehicle_or_name, (x, y, z))``, a point fixed in that vehicle's body frame (m from
+      its CG).
     """
 
-    depth_of_penetration: float = 0.030
-    restitution: float = 0.1
-    friction: float = 0.6
-    restitution_mode: str = "total"
-    normal: Any = None
-    pitch: float = 0.0
-    _placed: list[_Placed] = field(default_factory=list, init=False, repr=False)
-    _contacts: dict[tuple[str, str], dict[str, Any]] = field(
-        default_factory=dict, init=False, repr=False
-    )
+    def __init__(
+        self,
+        depth_of_penetration: float = 0.030,
+        restitution: float = 0.1,
+        friction: float = 0.6,
+        restitution_mode: str = "total",
+        normal: NormalSpec = None,
+        pitch: float = 0.0,
+        centroid: CentroidSpec = None,
+    ) -> None:
+        defaults = {
+            "depth_of_penetration": depth_of_penetration,
+            "restitution": restitution,
+            "friction": friction,
+            "restitution_mode": restitution_mode,
+            "normal": normal,
+            "pitch": pitch,
+            "centroid": centroid,
+        }
+        _check_contact(self._core_kwargs(defaults, None, check_only=True))
+        self._defaults = defaults
+        self._placements: list[_Placement] = []
+        # (name1, name2) -> overridden parameters; the normal points from name1 into name2.
+        self._overrides: dict[tuple[str, str], dict[str, Any]] = {}
+
+    # -- vehicles ------------------------------------------------------------------------
 
     @property
     def vehicles(self) -> list[Vehicle]:
-        """The vehicles, in the order added."""
-        return [p.vehicle for p in self._placed]
+        """The vehicles, in the order added (the engine's body order)."""
+        return [p.vehicle for p in self._placements]
 
-    def _index(self, vehicle: Vehicle | str) -> int:
-        name = vehicle if isinstance(vehicle, str) else vehicle.name
-        for i, p in enumerate(self._placed):
-            if p.vehicle.name == name and (isinstance(vehicle, str) or p.vehicle is vehicle):
-                return i
-        raise SceneError(f"vehicle {name!r} is not in the scene: add it first")
+    @property
+    def defaults(self) -> dict[str, Any]:
+        """The contact parameters every pair gets unless overridden."""
+        return dict(self._defaults)
+
+    def __iter__(self) -> Iterator[Vehicle]:
+        return iter(self.vehicles)
+
+    def __len__(self) -> int:
+        return len(self._placements)
 
     def add(
         self,
         vehicle: Vehicle,
         position: ArrayLike,
-        heading: float = 0.0,
+        heading: float | None = None,
         velocity: ArrayLike = (0.0, 0.0, 0.0),
         angular_velocity: ArrayLike = (0.0, 0.0, 0.0),
         orientation: ArrayLike | None = None,
     ) -> Scene:
-        """Place a vehicle: CG position (m), heading (rad) or a full orientation (quaternion
-        (w, x, y, z) or rotation matrix), velocity (m/s) and angular velocity (rad/s), world."""
-        if any(p.vehicle.name == vehicle.name for p in self._placed):
-            raise SceneError(f"a vehicle named {vehicle.name!r} is already in the scene")
-        self._placed.append(
-            _Placed(
+        """Place a vehicle; returns the scene (calls chain).
+
+        position: the CG in the world (m). heading: yaw about world z (rad; 0 = body x along
+        world x), or instead orientation: a quaternion (w, x, y, z) or a 3x3 rotation matrix
+        (body -> world). velocity (m/s) and angular_velocity (rad/s): world frame.
+        """
+        if not isinstance(vehicle, Vehicle):
+            raise TypeError(f"add() needs a crashsim.Vehicle, got {type(vehicle).__name__}")
+        for p in self._placements:
+            if p.vehicle is vehicle:
+                raise SceneError(f"vehicle {vehicle.name!r} is already in the scene")
+            if p.vehicle.name == vehicle.name:
+                raise SceneError(
+                    f"a vehicle named {vehicle.name!r} is already in the scene: names must be "
+                    "unique (use vehicle.renamed(...) for a second copy)"
+                )
+        q = _orientation(heading, orientation)
+        _check_state(position, q, velocity, angular_velocity)
+        self._placements.append(
+            _Placement(
                 vehicle=vehicle,
-                position=_finite_vector(position, "position"),
-                orientation=_orientation(heading, orientation),
-                velocity=_finite_vector(velocity, "velocity"),
-                angular_velocity=_finite_vector(angular_velocity, "angular_velocity"),
+                position=_read_only(position),
+                orientation=_read_only(q),
+                velocity=_read_only(velocity),
+                angular_velocity=_read_only(angular_velocity),
             )
         )
         return self
 
-    def contact(self, vehicle1: Vehicle | str, vehicle2: Vehicle | str, **params: Any) -> Scene:
-        """Parameters of one pair; the normal points from vehicle1 into vehicle2.
+    def _index(self, vehicle: VehicleRef) -> int:
+        """Index of a vehicle (object or name) in the scene."""
+        for i, p in enumerate(self._placements):
+            if isinstance(vehicle, str):
+                if p.vehicle.name == vehicle:
+                    return i
+            elif p.vehicle is vehicle:
+                return i
+        name = vehicle if isinstance(vehicle, str) else getattr(vehicle, "name", vehicle)
+        known = [p.vehicle.name for p in self._placements]
+        raise SceneError(
+            f"vehicle {name!r} is not in the scene (it holds {known}): add it with scene.add"
+        )
 
-        Keys: depth_of_penetration, restitution, friction, restitution_mode, normal, pitch,
-        centroid (None; a world point (x, y, z); or (vehicle, (x, y, z)) a point fixed in that
-        vehicle's body frame, m from its CG)."""
-        allowed = {
-            "depth_of_penetration",
-            "restitution",
-            "friction",
-            "restitution_mode",
-            "normal",
-            "pitch",
-            "centroid",
-        }
-        unknown = set(params) - allowed
-        if unknown:
-            raise SceneError(
-                f"unknown contact parameter(s) {sorted(unknown)}; use {sorted(allowed)}"
-            )
+    # -- contact parameters --------------------------------------------------------------
+
+    def contact(
+        self,
+        vehicle1: VehicleRef,
+        vehicle2: VehicleRef,
+        *,
+        depth_of_penetration: float | _Unset = UNSET,
+        restitution: float | _Unset = UNSET,
+        friction: float | _Unset = UNSET,
+        restitution_mode: str | _Unset = UNSET,
+        normal: NormalSpec | _Unset = UNSET,
+        pitch: float | _Unset = UNSET,
+        centroid: CentroidSpec | _Unset = UNSET,
+    ) -> Scene:
+        """Override parameters of one pair (vehicles or names); the rest keep the scene's
+        defaults. The normal points from vehicle1 into vehicle2. Calling again for the same
+        ordered pair adds to its overrides; calling with the pair reversed replaces them.
+        Meanings and units are those of :class:`Scene`. Returns the scene."""
         i, j = self._index(vehicle1), self._index(vehicle2)
         if i == j:
             raise SceneError("a contact needs two different vehicles")
-        names = (self._placed[i].vehicle.name, self._placed[j].vehicle.name)
-        self._contacts.pop((names[1], names[0]), None)
-        self._contacts[names] = params
+        names = (self._placements[i].vehicle.name, self._placements[j].vehicle.name)
+        given = {
+            "depth_of_penetration": depth_of_penetration,
+            "restitution": restitution,
+            "friction": friction,
+            "restitution_mode": restitution_mode,
+            "normal": normal,
+            "pitch": pitch,
+            "centroid": centroid,
+        }
+        overrides = dict(self._overrides.get(names, {}))
+        overrides.update({k: v for k, v in given.items() if v is not UNSET})
+        merged = {**self._defaults, **overrides}
+        _check_contact(self._core_kwargs(merged, (i, j), check_only=True))
+        self._overrides.pop((names[1], names[0]), None)
+        self._overrides[names] = overrides
         return self
 
-    def _contact_kwargs(self, params: dict[str, Any], i: int, j: int) -> dict[str, Any]:
+    def contact_parameters(self, vehicle1: VehicleRef, vehicle2: VehicleRef) -> dict[str, Any]:
+        """The parameters the pair will run with (defaults merged with overrides), as seen
+        from vehicle1 (the normal points from vehicle1 into vehicle2 when set that way)."""
+        i, j = self._index(vehicle1), self._index(vehicle2)
+        names = (self._placements[i].vehicle.name, self._placements[j].vehicle.name)
+        overrides = self._overrides.get(names, self._overrides.get(names[::-1], {}))
+        return {**self._defaults, **overrides}
+
+    def _core_kwargs(
+        self, params: dict[str, Any], pair: tuple[int, int] | None, check_only: bool = False
+    ) -> dict[str, Any]:
+        """World.set_contact keywords for a pair of body indices (i, j). With check_only the
+        body indices become 0 and 1 (the probe world of _check_contact); pair None means the
+        scene defaults, before any vehicle is known."""
         kw: dict[str, Any] = {
-            "depth_of_penetration": params.get("depth_of_penetration", self.depth_of_penetration),
-            "restitution": params.get("restitution", self.restitution),
-            "friction": params.get("friction", self.friction),
-            "restitution_mode": params.get("restitution_mode", self.restitution_mode),
-            "pitch": params.get("pitch", self.pitch),
+            "depth_of_penetration": _as_float(
+                params["depth_of_penetration"], "depth_of_penetration", "s"
+            ),
+            "restitution": _as_float(params["restitution"], "restitution", "1"),
+            "friction": _as_float(params["friction"], "friction", "1"),
+            "restitution_mode": params["restitution_mode"],
+            "pitch": _as_float(params["pitch"], "pitch", "rad"),
         }
-        normal = params.get("normal", self.normal)
-        if normal is None:
+        if not isinstance(kw["restitution_mode"], str):
+            raise ParameterError(
+                f'restitution_mode must be "total" or "normal", got {kw["restitution_mode"]!r}'
+            )
+        normal = params["normal"]
+        if normal is None or (isinstance(normal, str) and normal == "horizontal"):
             kw["normal"] = "horizontal"
         elif isinstance(normal, str):
-            if normal not in ("horizontal", "volume"):
-                raise ParameterError(f"normal = {normal!r}: use None, 'volume' or a vector")
-            kw["normal"] = normal
+            if normal != "volume":
+                raise ParameterError(
+                    f"normal = {normal!r} is unknown: use None (horizontal, tilted by pitch), "
+                    "'volume' (full 3-D) or a world vector (x, y, z)"
+                )
+            kw["normal"] = "volume"
         else:
             kw["normal"] = "vector"
-            kw["normal_vector"] = _finite_vector(normal, "normal")
-        centroid = params.get("centroid")
-        if centroid is None:
+            kw["normal_vector"] = normal
+        centroid = params["centroid"]
+        if centroid is None or (isinstance(centroid, str) and centroid == "auto"):
             kw["centroid"] = "auto"
         elif (
-            isinstance(centroid, tuple)
+            isinstance(centroid, tuple | list)
             and len(centroid) == 2
             and isinstance(centroid[0], Vehicle | str)
         ):
-            body = self._index(centroid[0])
-            if body not in (i, j):
-                raise SceneError("the centroid must be fixed in one of the pair's vehicles")
-            kw.update(centroid="body", centroid_body=body)
-            kw["centroid_point"] = _finite_vector(centroid[1], "centroid point")
+            if pair is None:  # a scene default fixed in a vehicle: checked per pair at run
+                kw.update(centroid="world", centroid_point=centroid[1])
+            else:
+                body = self._index(centroid[0])
+                if body not in pair:
+                    a, b = (self._placements[k].vehicle.name for k in pair)
+                    raise SceneError(
+                        f"the centroid is fixed in {self._placements[body].vehicle.name!r}, "
+                        f"which is not in the pair ({a!r}, {b!r}): fix it in one of the two"
+                    )
+                kw["centroid"] = "body"
+                kw["centroid_body"] = pair.index(body) if check_only else body
+                kw["centroid_point"] = centroid[1]
+        elif isinstance(centroid, str):
+            raise ParameterError(
+                f"centroid = {centroid!r} is unknown: use None (automatic), a world point "
+                "(x, y, z) or (vehicle, (x, y, z)) fixed in a vehicle"
+            )
         else:
-            kw.update(centroid="world", centroid_point=_finite_vector(centroid, "centroid"))
-        for key in ("depth_of_penetration", "restitution", "friction", "pitch"):
-            try:
-                kw[key] = float(kw[key])
-            except (TypeError, ValueError) as e:
-                raise ParameterError(f"{key} must be a number, got {kw[key]!r}") from e
+            kw.update(centroid="world", centroid_point=centroid)
         return kw
 
+    # -- running -------------------------------------------------------------------------
+
     def build_world(self) -> _core.World:
-        """A fresh engine world holding this scene."""
-        if len(self._placed) < 1:
+        """A fresh engine world holding this scene: bodies in the order added, and every pair
+        with the defaults merged with its overrides."""
+        if not self._placements:
             raise SceneError("the scene has no vehicles: add some with scene.add(...)")
         world = _core.World()
-        for p in self._placed:
+        for p in self._placements:
+            v = p.vehicle
             world.add_body(
-                p.vehicle.shape,
-                p.vehicle.mass,
-                p.vehicle.inertia,
+                v.shape,
+                v.mass,
+                v.inertia,
                 p.position,
                 p.orientation,
                 p.velocity,
                 p.angular_velocity,
             )
-        names = [p.vehicle.name for p in self._placed]
+        names = [p.vehicle.name for p in self._placements]
         for i, j in combinations(range(len(names)), 2):
-            if (names[j], names[i]) in self._contacts:
+            if (names[j], names[i]) in self._overrides:
                 i, j = j, i
-            params = self._contacts.get((names[i], names[j]), {})
-            world.set_contact(i, j, **self._contact_kwargs(params, i, j))
+            params = {**self._defaults, **self._overrides.get((names[i], names[j]), {})}
+            world.set_contact(i, j, **self._core_kwargs(params, (i, j)))
         return world
 
     def run(self, duration: float = 1.0, dt: float = 1e-3) -> Result:
-        """Run the scene for `duration` s with steps of at most `dt` s (default 1 ms)."""
+        """Run the scene from t = 0 for ``duration`` s with steps of at most ``dt`` s.
+
+        Every call starts afresh from the initial states (a new engine world). Raises
+        InitialOverlapError when two vehicles already overlap at t = 0."""
+        duration = _as_float(duration, "duration", "s")
+        dt = _as_float(dt, "dt", "s")
         world = self.build_world()
-        raw = world.run(float(duration), float(dt))
-        return Result(raw, [p.vehicle.name for p in self._placed])
+        try:
+            raw = world.run(duration, dt)
+        except InitialOverlapError as e:
+            raise self._named_overlap_error(e) from e
+        return Result(raw, [p.vehicle.name for p in self._placements])
+
+    def _named_overlap_error(self, error: InitialOverlapError) -> InitialOverlapError:
+        """The engine's error with the vehicles' names instead of body indices."""
+        pairs = []
+        for a, b in combinations(self._placements, 2):
+            if _core.shapes_overlap(
+                a.vehicle.shape,
+                a.position,
+                a.orientation,
+                b.vehicle.shape,
+                b.position,
+                b.orientation,
+            ):
+                pairs.append(f"{a.vehicle.name!r} and {b.vehicle.name!r}")
+        if not pairs:
+            return error
+        return InitialOverlapError(
+            f"vehicles {', '.join(pairs)} already overlap at t = 0: place them apart (the "
+            "engine starts every contact at a first overlap it observes)"
+        )
+
+    def __repr__(self) -> str:
+        names = [p.vehicle.name for p in self._placements]
+        return f"Scene(vehicles={names}, defaults={self._defaults})"
