@@ -23,7 +23,7 @@ from crashsim.errors import (
     SimulationError,
 )
 from crashsim.result import ContactEvent, Impact, Result, Trajectory
-from crashsim.scene import Scene
+from crashsim.scene import DepthOfPenetrationWarning, Scene
 from crashsim.units import (
     deg,
     ft,
@@ -44,6 +44,7 @@ __all__ = [
     "__version__",
     "Vehicle",
     "Scene",
+    "DepthOfPenetrationWarning",
     "Result",
     "Impact",
     "Trajectory",

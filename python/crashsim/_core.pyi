@@ -46,6 +46,10 @@ class Shape:
     def triangles(self) -> NDArray[np.uint32]: ...
     def aabb(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(mins, maxs) of the vertices, body frame."""
+    def solid_properties(self) -> dict[str, Any]:
+        """The mesh as a uniform solid of unit density, body frame: ``volume`` (m^3, signed:
+        positive for an outward-wound closed mesh), ``centroid`` (3,) m, ``inertia`` (3, 3)
+        about the centroid (kg m^2 per kg/m^3). Meaningful for closed meshes only."""
     def winding_numbers(self, points: ArrayLike) -> NDArray[np.float64]:
         """Generalized winding number of each body-frame point, (k,). About 1 inside, 0 outside."""
 
@@ -75,6 +79,18 @@ def overlap_region(
     mesh inside the other.
     """
 
+def free_motion(
+    mass: float,
+    inertia: ArrayLike,
+    position: ArrayLike,
+    orientation: ArrayLike,
+    velocity: ArrayLike,
+    angular_velocity: ArrayLike,
+    dt: float,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """A body's state after dt s of torque-free motion (negative dt runs it back):
+    (position, orientation (w, x, y, z), velocity, angular_velocity), world frame."""
+
 class World:
     """A set of rigid bodies with meshes and the contact parameters of each pair."""
 
@@ -101,7 +117,7 @@ class World:
         body1: int,
         body2: int,
         *,
-        depth_of_penetration: float = 0.030,
+        depth_of_penetration: float | str | None = None,
         restitution: float = 0.1,
         friction: float = 0.6,
         restitution_mode: str = "total",
@@ -115,14 +131,27 @@ class World:
         """Parameters of the pair (body1, body2); every pair of bodies collides with the
         defaults unless set here. The normal points from body1 into body2.
 
+        depth_of_penetration: a time in s in [0, 0.060] (None: 0.030) or "auto"
+        (sqrt(m'/k') per impact; needs stiffness on every face of both bodies).
         restitution_mode: "total" (Kudlich-Slibar, restitution on the whole compression
         impulse) or "normal" (Newton/Brach: on the normal relative velocity).
-        centroid: "auto" (centre of the overlap region in the contact frame), "world" (the
+        centroid: "auto" (centre of the overlap region in the contact frame), "stiffness" (that
+        centre moved along n so the crush splits as C1 : C2 = k2 : k1), "world" (the
         fixed world point centroid_point) or "body" (centroid_point fixed in the frame of
         body centroid_body, which must be body1 or body2).
         normal: "horizontal" (horizontal part of the volume normal, tilted up by pitch rad),
         "volume" (the full 3-D volume normal) or "vector" (normal_vector, world frame).
         """
+    def set_stiffness(
+        self,
+        body: int,
+        *,
+        front: tuple[float, float] | None = None,
+        rear: tuple[float, float] | None = None,
+        left: tuple[float, float] | None = None,
+        right: tuple[float, float] | None = None,
+    ) -> None:
+        """A body's face stiffness: each face (A, B) in (N/m, N/m^2), or None without data."""
     def run(self, duration: float, dt: float) -> dict[str, Any]:
         """Advance the world by duration (s) with steps of at most dt (s).
 
@@ -137,7 +166,11 @@ class World:
         rows for body1 and body2, ``relative_velocity_before``, ``relative_velocity_after``
         (3,) velocity of body1's point minus body2's at the centroid, ``energy_dissipated``
         (J), ``region_points`` (p, 3), ``contact_frame`` (3, 3) rows n, t, b,
-        ``region_min``, ``region_max`` (3,) extent of the region in the contact frame;
+        ``region_min``, ``region_max`` (3,) extent of the region in the contact frame,
+        ``depth_of_penetration_mode`` ("fixed" or "auto"), ``struck_faces`` (face of body1,
+        face of body2), ``overlap_width`` (m), ``spring_rates`` ((k1, k2) N/m or None),
+        ``effective_mass`` ((m1, m2) kg along n at the centroid), ``notes`` (list of str);
         ``contacts``: a list of dicts ``body1``, ``body2``, ``time``, ``kind``
-        ("first_overlap" or "separation").
+        ("first_overlap", "closing_again", "separation" or "no_exchange") and ``reason``
+        (str or None).
         """

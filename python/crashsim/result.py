@@ -7,13 +7,18 @@ rotating body-frame vectors into the world. Arrays are read-only.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
-from typing import Any, NamedTuple
+from dataclasses import dataclass, field, fields
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
 
+from crashsim import _core
 from crashsim.errors import SceneError
+
+if TYPE_CHECKING:
+    from crashsim.scene import Scene
+    from crashsim.vehicle import Vehicle
 
 __all__ = ["ContactEvent", "Impact", "Result", "Trajectory"]
 
@@ -87,7 +92,15 @@ class Impact:
     instant, ``first_contact_time + depth_of_penetration``. Per-vehicle quantities are dicts
     keyed by vehicle name; relative velocities are vehicle 1's point minus vehicle 2's at
     the centroid. ``contact_frame`` rows are n, t, b; ``region_min`` / ``region_max`` bound
-    the overlap region ``region_points`` in that frame (m)."""
+    the overlap region ``region_points`` in that frame (m).
+
+    ``depth_of_penetration_mode`` is "fixed" (the pair's parameter) or "auto"
+    (sqrt(m'/k') from ``effective_mass`` and ``spring_rates``). ``struck_faces`` names each
+    vehicle's face ("front", "rear", "left", "right") facing the other along the normal;
+    ``overlap_width`` is the region's extent along the contact tangent t (m);
+    ``spring_rates`` are k = B W of the struck faces (N/m; None without stiffness data);
+    ``effective_mass`` is each vehicle's mass as felt along n at the centroid (kg);
+    ``notes`` are the engine's remarks (e.g. an automatic dt_p outside 10-60 ms)."""
 
     vehicles: tuple[str, str]
     bodies: tuple[int, int]  # the engine's body indices (order of Scene.add)
@@ -112,6 +125,12 @@ class Impact:
     contact_frame: Array
     region_min: Array
     region_max: Array
+    depth_of_penetration_mode: str = "fixed"
+    struck_faces: dict[str, str] = field(default_factory=dict)
+    overlap_width: float = 0.0
+    spring_rates: dict[str, float] | None = None
+    effective_mass: dict[str, float] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
 
     @classmethod
     def from_core(cls, raw: dict[str, Any], names: list[str]) -> Impact:
@@ -150,6 +169,14 @@ class Impact:
             contact_frame=_frozen(raw["contact_frame"]),
             region_min=_frozen(raw["region_min"]),
             region_max=_frozen(raw["region_max"]),
+            depth_of_penetration_mode=str(raw["depth_of_penetration_mode"]),
+            struck_faces=dict(zip(pair, raw["struck_faces"], strict=True)),
+            overlap_width=float(raw["overlap_width"]),
+            spring_rates=None
+            if raw["spring_rates"] is None
+            else dict(zip(pair, map(float, raw["spring_rates"]), strict=True)),
+            effective_mass=dict(zip(pair, map(float, raw["effective_mass"]), strict=True)),
+            notes=tuple(raw["notes"]),
         )
 
     @property
@@ -180,7 +207,9 @@ class Impact:
             if isinstance(value, np.ndarray):
                 out[f.name] = value.tolist()
             elif isinstance(value, dict):
-                out[f.name] = {k: v.tolist() for k, v in value.items()}
+                out[f.name] = {
+                    k: v.tolist() if isinstance(v, np.ndarray) else v for k, v in value.items()
+                }
             elif isinstance(value, tuple):
                 out[f.name] = list(value)
             else:
@@ -190,11 +219,12 @@ class Impact:
 
 class Result:
     """What a run returns: ``impacts`` (Impact list, in time order), ``contacts`` (the
-    ContactEvent log), ``vehicles`` (names in the order added), ``t`` (sample times, s) and
-    per-vehicle trajectories."""
+    ContactEvent log), ``vehicles`` (names in the order added), ``t`` (sample times, s),
+    per-vehicle trajectories, and ``scene`` (the Scene that ran, None for a bare result)."""
 
-    def __init__(self, raw: dict[str, Any], names: list[str]) -> None:
+    def __init__(self, raw: dict[str, Any], names: list[str], scene: Scene | None = None) -> None:
         self.vehicles: list[str] = list(names)
+        self.scene = scene
         self.t: Array = _frozen(raw["t"])
         self._position = _frozen(raw["position"])  # (n_vehicles, k, 3)
         self._orientation = _frozen(raw["orientation"])  # (n_vehicles, k, 4)
@@ -246,6 +276,64 @@ class Result:
             "velocity": tr.velocity[k],
             "angular_velocity": tr.angular_velocity[k],
         }
+
+    def vehicle(self, vehicle: Any) -> Vehicle:
+        """The Vehicle object (mesh, mass properties, stiffness) of a name."""
+        i = self._index(vehicle)
+        if self.scene is None:
+            raise SceneError("this result has no scene, so no vehicle objects")
+        return self.scene.vehicles[i]
+
+    def state(self, vehicle: Any, time: float) -> dict[str, Array]:
+        """A vehicle's state at any ``time`` (s) in the run: the last sample at or before it
+        carried forward by torque-free motion (exact: nothing else acts between samples).
+        At an exchange instant this is the state after the exchange; ask for
+        ``impact.time`` minus a hair (or use ``state_before``) for the one before."""
+        tr = self.trajectory(vehicle)
+        if not tr.t[0] <= time <= tr.t[-1]:
+            raise SceneError(f"t = {time!r} s is outside the run [{tr.t[0]}, {tr.t[-1]}] s")
+        k = int(np.searchsorted(tr.t, time, side="right")) - 1
+        sample = {
+            "position": tr.position[k],
+            "orientation": tr.orientation[k],
+            "velocity": tr.velocity[k],
+            "angular_velocity": tr.angular_velocity[k],
+        }
+        if tr.t[k] == time:
+            return sample
+        v = self.vehicle(vehicle)
+        p, q, vel, w = _core.free_motion(
+            v.mass,
+            v.inertia,
+            sample["position"],
+            sample["orientation"],
+            sample["velocity"],
+            sample["angular_velocity"],
+            float(time - tr.t[k]),
+        )
+        return {
+            "position": _frozen(p),
+            "orientation": _frozen(q),
+            "velocity": _frozen(vel),
+            "angular_velocity": _frozen(w),
+        }
+
+    def state_before(self, vehicle: Any, impact: Impact) -> dict[str, Array]:
+        """A vehicle's state just before an impact's exchange (same pose; the velocities
+        before the impulse)."""
+        name = impact._check(vehicle)
+        after = self.state_at(name, impact.time)
+        return {
+            "position": after["position"],
+            "orientation": after["orientation"],
+            "velocity": impact.velocity_before[name],
+            "angular_velocity": impact.angular_velocity_before[name],
+        }
+
+    def pose(self, vehicle: Any, time: float) -> tuple[Array, Array]:
+        """(CG position (3,) m, rotation matrix (3, 3) body -> world) at ``time``."""
+        s = self.state(vehicle, time)
+        return s["position"], _frozen(rotation_matrix(s["orientation"]))
 
     def delta_v_body(self, impact: Impact, vehicle: Any) -> Array:
         """An impact's delta-V of a vehicle in its body frame at the exchange (m/s; ISO 8855:

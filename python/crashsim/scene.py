@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import enum
 import math
+import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
 from itertools import combinations
@@ -24,9 +25,15 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim import _core
 from crashsim.errors import InitialOverlapError, ParameterError, SceneError
 from crashsim.result import Result
+from crashsim.stiffness import FACES, Stiffness
 from crashsim.vehicle import Vehicle, _as_float, _probe_shape
 
-__all__ = ["Scene"]
+__all__ = ["DepthOfPenetrationWarning", "Scene"]
+
+
+class DepthOfPenetrationWarning(UserWarning):
+    """An automatic depth of penetration outside the seed's typical 10-60 ms (or clamped to
+    the accepted 60 ms): the report of that impact says so too."""
 
 Array = NDArray[np.float64]
 VehicleRef: TypeAlias = Vehicle | str
@@ -116,11 +123,42 @@ def _check_state(position: Any, orientation: Any, velocity: Any, angular_velocit
 
 def _check_contact(kwargs: dict[str, Any]) -> None:
     """The engine's checks of one pair's parameters (ParameterError naming the bad one).
-    Body indices in kwargs must be 0 (vehicle 1) or 1 (vehicle 2)."""
+    Body indices in kwargs must be 0 (vehicle 1) or 1 (vehicle 2). The probe bodies have
+    stiffness on every face: whether the real vehicles have it is checked when the world is
+    built (_check_stiffness), with their names."""
     world = _core.World()
-    for _ in range(2):
+    probe = (0.0, 1.0)  # (A, B): any valid pair
+    for i in range(2):
         world.add_body(_probe_shape(), 1.0, _EYE3, (0, 0, 0), (1, 0, 0, 0), (0, 0, 0), (0, 0, 0))
+        world.set_stiffness(i, **dict.fromkeys(FACES, probe))
     world.set_contact(0, 1, **kwargs)
+
+
+def _stiffness_of(vehicle: Vehicle) -> Stiffness:
+    """The vehicle's face stiffness (none when it has no such attribute)."""
+    return Stiffness.coerce(getattr(vehicle, "stiffness", None))
+
+
+def _needs_stiffness(params: dict[str, Any]) -> bool:
+    return (
+        isinstance(params["depth_of_penetration"], str)
+        and params["depth_of_penetration"] == "auto"
+    ) or (isinstance(params["centroid"], str) and params["centroid"] == "stiffness")
+
+
+def _check_stiffness(params: dict[str, Any], vehicles: tuple[Vehicle, Vehicle]) -> None:
+    """ParameterError when the pair's parameters need face stiffness a vehicle lacks."""
+    if not _needs_stiffness(params):
+        return
+    for v in vehicles:
+        missing = [f for f in FACES if _stiffness_of(v).face(f) is None]
+        if missing:
+            raise ParameterError(
+                f"vehicle {v.name!r} has no stiffness on its {', '.join(missing)} face(s): "
+                'depth_of_penetration="auto" and centroid="stiffness" need CRASH3 A and B on '
+                "every face of both vehicles; give the vehicle stiffness=... (or build it from "
+                "a vehicle class), or use a fixed depth of penetration and the automatic centroid"
+            )
 
 
 class Scene:
@@ -130,19 +168,24 @@ class Scene:
     :meth:`contact`):
 
     - depth_of_penetration: s, in [0, 0.060]; the time from first overlap to the exchange.
+      Or "auto": per impact dt_p = sqrt(m'/k') from the vehicles' effective masses along the
+      normal at the centroid and the series stiffness k' of the struck faces (k = B W, W the
+      overlap width), clamped to 60 ms; a DepthOfPenetrationWarning outside 10-60 ms. Needs
+      face stiffness on both vehicles.
     - restitution: in [0, 1]. friction: inter-vehicle, >= 0.
     - restitution_mode: "total" (Kudlich-Slibar, on the whole compression impulse) or
       "normal" (Newton/Brach, on the normal relative velocity).
     - normal: None (horizontal part of the overlap's volume normal, tilted up by ``pitch``
       rad), "volume" (full 3-D) or a world vector; it points from vehicle 1 into vehicle 2.
-    - centroid: None (centre of the overlap region), a world point (m), or
-      ``(vehicle_or_name, (x, y, z))``, a point fixed in that vehicle's body frame (m from
-      its CG).
+    - centroid: None (centre of the overlap region), "stiffness" (that centre moved along
+      the normal so the crush splits as C1 : C2 = k2 : k1; needs face stiffness), a world
+      point (m), or ``(vehicle_or_name, (x, y, z))``, a point fixed in that vehicle's body
+      frame (m from its CG).
     """
 
     def __init__(
         self,
-        depth_of_penetration: float = 0.030,
+        depth_of_penetration: float | Literal["auto"] = 0.030,
         restitution: float = 0.1,
         friction: float = 0.6,
         restitution_mode: str = "total",
@@ -242,7 +285,7 @@ class Scene:
         vehicle1: VehicleRef,
         vehicle2: VehicleRef,
         *,
-        depth_of_penetration: float | _Unset = UNSET,
+        depth_of_penetration: float | Literal["auto"] | _Unset = UNSET,
         restitution: float | _Unset = UNSET,
         friction: float | _Unset = UNSET,
         restitution_mode: str | _Unset = UNSET,
@@ -271,6 +314,7 @@ class Scene:
         overrides.update({k: v for k, v in given.items() if v is not UNSET})
         merged = {**self._defaults, **overrides}
         _check_contact(self._core_kwargs(merged, (i, j), check_only=True))
+        _check_stiffness(merged, (self._placements[i].vehicle, self._placements[j].vehicle))
         self._overrides.pop((names[1], names[0]), None)
         self._overrides[names] = overrides
         return self
@@ -289,10 +333,11 @@ class Scene:
         """World.set_contact keywords for a pair of body indices (i, j). With check_only the
         body indices become 0 and 1 (the probe world of _check_contact); pair None means the
         scene defaults, before any vehicle is known."""
+        dtp = params["depth_of_penetration"]
         kw: dict[str, Any] = {
-            "depth_of_penetration": _as_float(
-                params["depth_of_penetration"], "depth_of_penetration", "s"
-            ),
+            "depth_of_penetration": dtp
+            if isinstance(dtp, str)
+            else _as_float(dtp, "depth_of_penetration", "s"),
             "restitution": _as_float(params["restitution"], "restitution", "1"),
             "friction": _as_float(params["friction"], "friction", "1"),
             "restitution_mode": params["restitution_mode"],
@@ -318,6 +363,8 @@ class Scene:
         centroid = params["centroid"]
         if centroid is None or (isinstance(centroid, str) and centroid == "auto"):
             kw["centroid"] = "auto"
+        elif isinstance(centroid, str) and centroid == "stiffness":
+            kw["centroid"] = "stiffness"
         elif (
             isinstance(centroid, tuple | list)
             and len(centroid) == 2
@@ -338,8 +385,8 @@ class Scene:
                 kw["centroid_point"] = centroid[1]
         elif isinstance(centroid, str):
             raise ParameterError(
-                f"centroid = {centroid!r} is unknown: use None (automatic), a world point "
-                "(x, y, z) or (vehicle, (x, y, z)) fixed in a vehicle"
+                f"centroid = {centroid!r} is unknown: use None (automatic), 'stiffness', a world "
+                "point (x, y, z) or (vehicle, (x, y, z)) fixed in a vehicle"
             )
         else:
             kw.update(centroid="world", centroid_point=centroid)
@@ -353,7 +400,7 @@ class Scene:
         if not self._placements:
             raise SceneError("the scene has no vehicles: add some with scene.add(...)")
         world = _core.World()
-        for p in self._placements:
+        for i, p in enumerate(self._placements):
             v = p.vehicle
             world.add_body(
                 v.shape,
@@ -364,11 +411,17 @@ class Scene:
                 p.velocity,
                 p.angular_velocity,
             )
+            faces = _stiffness_of(v)
+            world.set_stiffness(
+                i,
+                **{f: None if (s := faces.face(f)) is None else (s.A, s.B) for f in FACES},
+            )
         names = [p.vehicle.name for p in self._placements]
         for i, j in combinations(range(len(names)), 2):
             if (names[j], names[i]) in self._overrides:
                 i, j = j, i
             params = {**self._defaults, **self._overrides.get((names[i], names[j]), {})}
+            _check_stiffness(params, (self._placements[i].vehicle, self._placements[j].vehicle))
             world.set_contact(i, j, **self._core_kwargs(params, (i, j)))
         return world
 
@@ -384,7 +437,15 @@ class Scene:
             raw = world.run(duration, dt)
         except InitialOverlapError as e:
             raise self._named_overlap_error(e) from e
-        return Result(raw, [p.vehicle.name for p in self._placements])
+        result = Result(raw, [p.vehicle.name for p in self._placements], scene=self)
+        for imp in result.impacts:
+            for note in imp.notes:
+                warnings.warn(
+                    f"{imp.vehicles[0]!r} - {imp.vehicles[1]!r} at t = {imp.time:.6f} s: {note}",
+                    DepthOfPenetrationWarning,
+                    stacklevel=2,
+                )
+        return result
 
     def _named_overlap_error(self, error: InitialOverlapError) -> InitialOverlapError:
         """The engine's error with the vehicles' names instead of body indices."""

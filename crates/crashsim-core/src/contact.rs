@@ -6,6 +6,20 @@ use crate::math::{Point, Real, Vector};
 
 /// Largest accepted depth-of-penetration time (s).
 pub const MAX_DEPTH_OF_PENETRATION: Real = 0.060;
+/// The seed's typical range of dt_p (s): an automatic value outside it is reported.
+pub const TYPICAL_DEPTH_OF_PENETRATION: (Real, Real) = (0.010, 0.060);
+
+/// How long the meshes pass through each other before the exchange.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum DepthOfPenetration {
+    /// A fixed time (s) in [0, 0.060].
+    Fixed(Real),
+    /// Per impact, dt_p = sqrt(m'/k') from the reduced effective mass m' along the normal at
+    /// the centroid and the series stiffness k' of the struck faces (k = B W, W the overlap
+    /// width), evaluated at the exchange itself; clamped to [0, 0.060] s. Needs face
+    /// stiffness on both bodies.
+    Auto,
+}
 
 /// Where the impulse centroid P goes.
 #[derive(Clone, Debug, PartialEq, Default)]
@@ -23,6 +37,9 @@ pub enum CentroidMode {
         /// The point, body frame (m).
         point: Point,
     },
+    /// The automatic centroid moved along n inside the overlap region so that the crush
+    /// splits as C1 : C2 = k2 : k1 (seed eqs. 34-35). Needs face stiffness on both bodies.
+    Stiffness,
 }
 
 /// How the contact normal n (from body 1 into body 2) is chosen.
@@ -49,8 +66,8 @@ impl Default for NormalMode {
 /// Parameters of one vehicle pair.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactParams {
-    /// Time from first overlap to the impulse exchange (s); default 0.030, in [0, 0.060].
-    pub depth_of_penetration: Real,
+    /// Time from first overlap to the impulse exchange; default Fixed(0.030 s).
+    pub depth_of_penetration: DepthOfPenetration,
     /// Coefficient of restitution; default 0.1, in [0, 1].
     pub restitution: Real,
     /// Inter-vehicle friction coefficient; default 0.6, >= 0.
@@ -66,7 +83,7 @@ pub struct ContactParams {
 impl Default for ContactParams {
     fn default() -> Self {
         ContactParams {
-            depth_of_penetration: 0.030,
+            depth_of_penetration: DepthOfPenetration::Fixed(0.030),
             restitution: 0.1,
             friction: 0.6,
             restitution_mode: RestitutionMode::Total,
@@ -77,16 +94,23 @@ impl Default for ContactParams {
 }
 
 impl ContactParams {
+    /// True when the parameters need face stiffness on both bodies.
+    pub fn needs_stiffness(&self) -> bool {
+        self.depth_of_penetration == DepthOfPenetration::Auto
+            || self.centroid == CentroidMode::Stiffness
+    }
+
     /// Checks every field's range.
     pub fn validate(&self) -> Result<()> {
-        let dtp = self.depth_of_penetration;
-        require_finite("depth_of_penetration", dtp)?;
-        if !(0.0..=MAX_DEPTH_OF_PENETRATION).contains(&dtp) {
-            return Err(Error::parameter(
-                "depth_of_penetration",
-                dtp,
-                "it must lie in [0, 0.060] s (the seed's range; default 0.030 s)",
-            ));
+        if let DepthOfPenetration::Fixed(dtp) = self.depth_of_penetration {
+            require_finite("depth_of_penetration", dtp)?;
+            if !(0.0..=MAX_DEPTH_OF_PENETRATION).contains(&dtp) {
+                return Err(Error::parameter(
+                    "depth_of_penetration",
+                    dtp,
+                    "it must lie in [0, 0.060] s (the seed's range; default 0.030 s) or be auto",
+                ));
+            }
         }
         require_finite("restitution", self.restitution)?;
         if !(0.0..=1.0).contains(&self.restitution) {
@@ -108,7 +132,7 @@ impl ContactParams {
             CentroidMode::World(p) | CentroidMode::Body { point: p, .. } => {
                 require_finite_vector("centroid", &p.coords)?
             }
-            CentroidMode::Auto => {}
+            CentroidMode::Auto | CentroidMode::Stiffness => {}
         }
         match &self.normal {
             NormalMode::Horizontal { pitch } => {
@@ -146,15 +170,15 @@ mod tests {
         assert!(ok.validate().is_ok());
         for bad in [
             ContactParams {
-                depth_of_penetration: 0.061,
+                depth_of_penetration: DepthOfPenetration::Fixed(0.061),
                 ..ok.clone()
             },
             ContactParams {
-                depth_of_penetration: -0.001,
+                depth_of_penetration: DepthOfPenetration::Fixed(-0.001),
                 ..ok.clone()
             },
             ContactParams {
-                depth_of_penetration: Real::NAN,
+                depth_of_penetration: DepthOfPenetration::Fixed(Real::NAN),
                 ..ok.clone()
             },
             ContactParams {
@@ -185,7 +209,7 @@ mod tests {
         }
         for edge in [0.0, 0.060] {
             assert!(ContactParams {
-                depth_of_penetration: edge,
+                depth_of_penetration: DepthOfPenetration::Fixed(edge),
                 ..ok.clone()
             }
             .validate()

@@ -9,8 +9,8 @@ use crate::bvh::BvhNode;
 use crate::math::{Aabb, Isometry, Point, Real, Vector};
 use crate::shape::MeshShape;
 use crate::triangle::{
-    scaled_normal, segment_triangle_crossing, triangle_triangle_distance_sq,
-    triangle_triangle_segment, triangles_intersect, Tri,
+    scaled_normal, segment_triangle_crossing, triangle_cut_by_plane_of,
+    triangle_triangle_distance_sq, triangle_triangle_segment, triangles_intersect, Tri,
 };
 use parry3d_f64::bounding_volume::BoundingVolume;
 
@@ -242,14 +242,25 @@ impl OverlapRegion {
     }
 }
 
-/// One triangle's crossings: the other mesh's triangle (in this mesh's frame) and the
-/// segment oriented so the other mesh's inside lies to its left (about this triangle's normal).
-type Crossing = (u32, u32, Point, Point);
+/// One triangle's crossing with a triangle of the other mesh: own triangle, other triangle,
+/// the segment (own frame) oriented so the other mesh's inside lies to its left (about the own
+/// triangle's normal), and whether the own triangle is cut by the other's plane (false for a
+/// mere touch, which bounds no inside region of the own triangle).
+type Crossing = (u32, u32, Point, Point, bool);
+
+/// Relative size of the nudges that settle inside tests of points lying exactly on the other
+/// surface (coplanar faces, edges on faces): into the own triangle and into the own solid.
+const NUDGE: Real = 1e-7;
 
 /// Vector area (own frame) of the part of triangle `t` inside `other`.
+///
+/// Points exactly on the other surface are classified as the point a hair into the own
+/// triangle and into the own solid would be (a symbolic perturbation): so two coplanar faces
+/// of the same orientation both count as inside (and cancel in the volume normal), two facing
+/// ones neither, and an edge lying on the other's face takes the side of its triangle.
 fn inside_vector_area(
     t: &Tri,
-    crossings: &[(Tri, Point, Point)],
+    crossings: &[(Tri, Point, Point, bool)],
     other: &MeshShape,
     to_other: &Isometry,
 ) -> Vector {
@@ -259,20 +270,23 @@ fn inside_vector_area(
         return Vector::zeros();
     }
     let nhat = n / full;
-    if crossings.is_empty() {
-        let c = Point::from((t[0].coords + t[1].coords + t[2].coords) / 3.0);
-        return if other.contains_point(&(to_other * c)) {
-            n * 0.5
-        } else {
-            Vector::zeros()
-        };
-    }
-    // Green's theorem in the triangle's plane: the region's boundary is the crossing segments
-    // plus the pieces of the triangle's edges that lie inside the other mesh.
     let c = Point::from((t[0].coords + t[1].coords + t[2].coords) / 3.0);
+    let inward = nhat * (NUDGE * full.sqrt());
+    let inside = |p: &Point| -> bool {
+        let q = p + (c - p) * NUDGE - inward;
+        other.contains_point(&(to_other * q))
+    };
+    if !crossings.iter().any(|x| x.3) {
+        return if inside(&c) { n * 0.5 } else { Vector::zeros() };
+    }
+    // Green's theorem in the triangle's plane: the region's boundary is the segments along
+    // which the other surface cuts the triangle plus the pieces of the triangle's edges that
+    // lie inside the other mesh.
     let mut twice_area = 0.0;
-    for (_, p, q) in crossings {
-        twice_area += (p - c).cross(&(q - c)).dot(&nhat);
+    for (_, p, q, cut) in crossings {
+        if *cut {
+            twice_area += (p - c).cross(&(q - c)).dot(&nhat);
+        }
     }
     let mut params: Vec<Real> = Vec::with_capacity(2 + crossings.len());
     for k in 0..3 {
@@ -280,7 +294,7 @@ fn inside_vector_area(
         params.clear();
         params.push(0.0);
         params.push(1.0);
-        for (u, _, _) in crossings {
+        for (u, _, _, _) in crossings {
             if let Some(s) = segment_triangle_crossing(&e0, &e1, u) {
                 params.push(s);
             }
@@ -292,8 +306,7 @@ fn inside_vector_area(
             }
             let p0 = e0 + (e1 - e0) * w[0];
             let p1 = e0 + (e1 - e0) * w[1];
-            let mid = p0 + (p1 - p0) * 0.5;
-            if other.contains_point(&(to_other * mid)) {
+            if inside(&(p0 + (p1 - p0) * 0.5)) {
                 twice_area += (p0 - c).cross(&(p1 - c)).dot(&nhat);
             }
         }
@@ -319,13 +332,13 @@ fn surface_inside(
     }
     let mut total = Vector::zeros();
     let mut k = 0;
-    let mut local: Vec<(Tri, Point, Point)> = Vec::new();
+    let mut local: Vec<(Tri, Point, Point, bool)> = Vec::new();
     for (ti, _) in own.triangles().iter().enumerate() {
         let ti = ti as u32;
         local.clear();
         while k < crossings.len() && crossings[k].0 == ti {
-            let (_, o, p, q) = crossings[k];
-            local.push((other_tri_in_own(o), p, q));
+            let (_, o, p, q, cut) = crossings[k];
+            local.push((other_tri_in_own(o), p, q, cut));
             k += 1;
         }
         let t = own.triangle(ti);
@@ -347,15 +360,18 @@ pub fn overlap_region(
     let pose12 = pose1.inv_mul(pose2);
     let pose21 = pose12.inverse();
     let mut stack = Vec::new();
-    // Crossing segments in frame 1, oriented along n1 x n2.
-    let mut segs: Vec<Crossing> = Vec::new();
+    // Crossing segments in frame 1, oriented along n1 x n2, with whether triangle 1 and
+    // triangle 2 are cut (not merely touched) by the other's plane.
+    let mut segs: Vec<(u32, u32, Point, Point, bool, bool)> = Vec::new();
     traverse_pairs(s1, s2, &pose12, &mut stack, |a, b| {
         for &t1 in s1.bvh().leaf_primitives(a) {
             let tri1 = s1.triangle(t1);
             for &t2 in s2.bvh().leaf_primitives(b) {
                 let tri2 = transform_tri(&s2.triangle(t2), &pose12);
                 if let Some((p, q)) = triangle_triangle_segment(&tri1, &tri2) {
-                    segs.push((t1, t2, p, q));
+                    let cut1 = triangle_cut_by_plane_of(&tri1, &tri2);
+                    let cut2 = triangle_cut_by_plane_of(&tri2, &tri1);
+                    segs.push((t1, t2, p, q, cut1, cut2));
                 }
             }
         }
@@ -365,12 +381,15 @@ pub fn overlap_region(
         segment_count: segs.len(),
         ..Default::default()
     };
-    for (_, _, p, q) in &segs {
+    for (_, _, p, q, _, _) in &segs {
         region.points.push(pose1 * p);
         region.points.push(pose1 * q);
     }
     // Mesh 1's side, in frame 1.
-    let mut by_1 = segs.clone();
+    let mut by_1: Vec<Crossing> = segs
+        .iter()
+        .map(|&(t1, t2, p, q, cut1, _)| (t1, t2, p, q, cut1))
+        .collect();
     by_1.sort_by_key(|c| (c.0, c.1));
     let mut inside1 = Vec::new();
     let va1 = surface_inside(
@@ -384,7 +403,7 @@ pub fn overlap_region(
     // Mesh 2's side, in frame 2: its triangles' segments run the other way (n2 x n1).
     let mut by_2: Vec<Crossing> = segs
         .iter()
-        .map(|&(t1, t2, p, q)| (t2, t1, pose21 * q, pose21 * p))
+        .map(|&(t1, t2, p, q, _, cut2)| (t2, t1, pose21 * q, pose21 * p, cut2))
         .collect();
     by_2.sort_by_key(|c| (c.0, c.1));
     let mut inside2 = Vec::new();
@@ -488,5 +507,32 @@ mod tests {
         // Vector areas: 1's front face (1.8 x 1.2) and 2's struck side under it.
         assert!((r.area_normal_1_in_2.x - 1.8 * 1.2).abs() < 1e-12);
         assert!((r.area_normal_2_in_1.x + 1.8 * 1.2).abs() < 1e-12);
+    }
+
+    #[test]
+    fn coplanar_bottoms_and_tops_do_not_tilt_the_normal() {
+        // Regression: two boxes standing on the same ground (coplanar bottoms, and in the
+        // second case coplanar tops too), one driven 0.3 m into the other's rear. Points on
+        // the shared planes used to be classified at random, tilting the normal by 1.3 deg.
+        let car1 = box_mesh(Vector::zeros(), Vector::new(2.25, 0.9, 0.7));
+        for h2 in [0.6, 0.7] {
+            let car2 = box_mesh(Vector::zeros(), Vector::new(2.1, 0.85, h2));
+            let pose1 = at(-4.05, 0.0, 0.7, 0.0);
+            let pose2 = at(0.0, 0.0, h2, 0.0);
+            let r = overlap_region(&car1, &pose1, &car2, &pose2);
+            let n = r.volume_normal().unwrap();
+            let horizontal = Vector::new(n.x, n.y, 0.0).normalize();
+            assert!((horizontal - Vector::x()).norm() < 1e-12, "{n}");
+            // Front face of 1 inside 2 and rear face of 2 inside 1: 1.7 m x (2 h2) each.
+            assert!((r.area_normal_1_in_2.x - 1.7 * 2.0 * h2).abs() < 1e-12);
+            assert!((r.area_normal_2_in_1.x + 1.7 * 2.0 * h2).abs() < 1e-12);
+            let (mut lo, mut hi) = (r.points[0], r.points[0]);
+            for p in &r.points {
+                lo = lo.inf(p);
+                hi = hi.sup(p);
+            }
+            assert!((lo.y + 0.85).abs() < 1e-12 && (hi.y - 0.85).abs() < 1e-12);
+            assert!((lo.x + 2.1).abs() < 1e-12 && (hi.x + 1.8).abs() < 1e-12);
+        }
     }
 }

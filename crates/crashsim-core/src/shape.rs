@@ -221,6 +221,12 @@ impl MeshShape {
         omega / (4.0 * std::f64::consts::PI)
     }
 
+    /// Volume, centroid and inertia of the mesh as a uniform solid of unit density (body
+    /// frame); meaningful for a closed, outward-wound mesh (see [`crate::mass`]).
+    pub fn solid_properties(&self) -> crate::mass::SolidProperties {
+        crate::mass::solid_properties(&self.vertices, &self.triangles)
+    }
+
     /// True when the body-frame point is inside (winding number above one half).
     #[inline]
     pub fn contains_point(&self, q: &Point) -> bool {

@@ -100,6 +100,20 @@ pub fn triangle_triangle_segment(a: &Tri, b: &Tri) -> Option<(Point, Point)> {
     Some((lo, hi))
 }
 
+/// True when the vertices of `a` lie strictly on both sides of the plane of `b` (so `a` is
+/// cut by that plane, not merely touching it).
+#[inline]
+pub fn triangle_cut_by_plane_of(a: &Tri, b: &Tri) -> bool {
+    let nb = scaled_normal(b);
+    let (mut below, mut above) = (false, false);
+    for v in a {
+        let d = nb.dot(&(v - b[0]));
+        below |= d < 0.0;
+        above |= d > 0.0;
+    }
+    below && above
+}
+
 /// True when the triangles touch or cross (coplanar pairs count as not crossing).
 #[inline]
 pub fn triangles_intersect(a: &Tri, b: &Tri) -> bool {

@@ -10,14 +10,19 @@
 use std::sync::Arc;
 
 use crate::body::{BodyState, MassProperties, RigidBody};
-use crate::contact::{CentroidMode, ContactParams, NormalMode};
+use crate::contact::{
+    CentroidMode, ContactParams, DepthOfPenetration, NormalMode, MAX_DEPTH_OF_PENETRATION,
+    TYPICAL_DEPTH_OF_PENETRATION,
+};
 use crate::error::{require_finite, Error, Result};
 use crate::impulse::ImpulseProblem;
 use crate::math::{Aabb, Isometry, Matrix, Point, Real, Vector};
 use crate::overlap::{
-    overlap_region, shapes_overlap, surface_distance, surfaces_intersect, QueryWorkspace,
+    overlap_region, shapes_overlap, surface_distance, surfaces_intersect, OverlapRegion,
+    QueryWorkspace,
 };
 use crate::shape::MeshShape;
+use crate::stiffness::{effective_mass, Face, Stiffness};
 use parry3d_f64::bounding_volume::BoundingVolume;
 
 /// First-overlap instants are resolved to this (s).
@@ -72,8 +77,10 @@ pub struct Impact {
     pub first_contact_time: Real,
     /// The exchange instant (s).
     pub time: Real,
-    /// The depth-of-penetration time used (s).
+    /// The depth-of-penetration time used (s): exchange time minus timer start.
     pub depth_of_penetration: Real,
+    /// How it was chosen: the pair's fixed value, or automatic (sqrt(m'/k')).
+    pub depth_of_penetration_mode: DepthOfPenetration,
     /// True for an exchange after the first one of an engagement.
     pub secondary: bool,
     /// Impulse centroid P (m).
@@ -106,6 +113,50 @@ pub struct Impact {
     pub region_min: Vector,
     /// Extent of S in the contact frame: maximum (m).
     pub region_max: Vector,
+    /// The struck face of body 1 (facing +n) and of body 2 (facing -n).
+    pub struck_faces: [Face; 2],
+    /// Overlap width W: extent of S along the contact tangent t (m).
+    pub overlap_width: Real,
+    /// Spring rates k_i = B_i W of the struck faces (N/m), when both have stiffness data.
+    pub spring_rates: Option<[Real; 2]>,
+    /// Effective masses of bodies 1 and 2 along n at the centroid (kg).
+    pub effective_mass: [Real; 2],
+    /// Remarks on this exchange (e.g. an automatic dt_p outside the typical 10-60 ms).
+    pub notes: Vec<String>,
+}
+
+/// Where and how a pair touches at one instant (world frame, SI).
+#[derive(Clone, Debug)]
+struct ContactGeometry {
+    region: OverlapRegion,
+    normal: Vector,
+    /// Rows n, t, b.
+    frame: Matrix,
+    region_min: Vector,
+    region_max: Vector,
+    centroid: Point,
+    faces: [Face; 2],
+    width: Real,
+    spring_rates: Option<[Real; 2]>,
+    effective_mass: [Real; 2],
+}
+
+impl ContactGeometry {
+    /// sqrt(m'/k') (s) from the reduced effective mass and the series spring rate; infinite
+    /// without stiffness data or contact width.
+    fn spring_time(&self) -> Real {
+        let Some([k1, k2]) = self.spring_rates else {
+            return Real::INFINITY;
+        };
+        let [m1, m2] = self.effective_mass;
+        let k = k1 * k2 / (k1 + k2);
+        let m = m1 * m2 / (m1 + m2);
+        if k > 0.0 && m.is_finite() {
+            (m / k).sqrt()
+        } else {
+            Real::INFINITY
+        }
+    }
 }
 
 /// What a run returns: samples of every body's state and the logs.
@@ -128,6 +179,7 @@ enum Phase {
         started: Real,
         exchange_at: Real,
         secondary: bool,
+        notes: Vec<String>,
     },
     Engaged {
         /// The centroid as material points of body 1 and body 2 (their frames, m).
@@ -150,6 +202,7 @@ struct Pair {
 struct WorldBody {
     shape: Arc<MeshShape>,
     body: RigidBody,
+    stiffness: Stiffness,
 }
 
 /// Bodies, pairs and the clock.
@@ -206,8 +259,45 @@ impl World {
                 exchanges: 0,
             });
         }
-        self.bodies.push(WorldBody { shape, body });
+        self.bodies.push(WorldBody {
+            shape,
+            body,
+            stiffness: Stiffness::none(),
+        });
         Ok(index)
+    }
+
+    /// Sets body `i`'s face stiffness (used by automatic dt_p, the stiffness centroid and
+    /// reported per impact).
+    pub fn set_stiffness(&mut self, i: usize, stiffness: Stiffness) -> Result<()> {
+        let n = self.bodies.len();
+        let body = self.bodies.get_mut(i).ok_or_else(|| {
+            Error::Parameter(format!(
+                "body {i} does not exist (the world has {n} bodies)"
+            ))
+        })?;
+        body.stiffness = stiffness;
+        Ok(())
+    }
+
+    /// An error when the pair's parameters need face stiffness that a body lacks.
+    fn check_stiffness(&self, body1: usize, body2: usize, params: &ContactParams) -> Result<()> {
+        if !params.needs_stiffness() {
+            return Ok(());
+        }
+        for i in [body1, body2] {
+            let s = &self.bodies[i].stiffness;
+            if let Some(face) = Face::ALL.iter().find(|f| s.face(**f).is_none()) {
+                return Err(Error::Parameter(format!(
+                    "body {i} has no stiffness on its {} face: depth_of_penetration = auto and \
+                     centroid = stiffness need CRASH3 A and B on every face of both vehicles \
+                     (give the vehicle a stiffness, or use a fixed dt_p and the automatic \
+                     centroid)",
+                    face.name()
+                )));
+            }
+        }
+        Ok(())
     }
 
     /// Sets the contact parameters of the pair; the normal points from `body1` into `body2`.
@@ -219,6 +309,7 @@ impl World {
             )));
         }
         params.validate()?;
+        self.check_stiffness(body1, body2, &params)?;
         if let CentroidMode::Body { body, .. } = params.centroid {
             if body != body1 && body != body2 {
                 return Err(Error::Parameter(format!(
@@ -255,6 +346,9 @@ impl World {
             ));
         }
         if !self.started {
+            for p in &self.pairs {
+                self.check_stiffness(p.body1, p.body2, &p.params)?;
+            }
             self.check_initial_overlaps()?;
             self.started = true;
         }
@@ -301,16 +395,8 @@ impl World {
                     time: tc,
                     kind: ContactEventKind::FirstOverlap,
                 });
-                let dtp = self.pairs[pi].params.depth_of_penetration;
-                self.pairs[pi].phase = Phase::Timer {
-                    started: tc,
-                    exchange_at: tc + dtp,
-                    secondary: false,
-                };
                 self.pairs[pi].exchanges = 0;
-                if dtp == 0.0 {
-                    self.exchange(pi, &mut out);
-                }
+                self.start_timer(pi, tc, false, &mut out);
                 self.record(&mut out);
                 continue;
             }
@@ -460,43 +546,85 @@ impl World {
         )))
     }
 
-    /// Exchange the impulse of pair `pi` now (its timer expired).
-    fn exchange(&mut self, pi: usize, out: &mut RunOutput) {
-        let (started, secondary) = match self.pairs[pi].phase {
-            Phase::Timer {
-                started, secondary, ..
-            } => (started, secondary),
-            _ => return,
+    /// Starts pair `pi`'s timer at `started` (s, at most now); exchanges at once when it has
+    /// already expired.
+    fn start_timer(&mut self, pi: usize, started: Real, secondary: bool, out: &mut RunOutput) {
+        let (dtp, notes) = match self.pairs[pi].params.depth_of_penetration {
+            DepthOfPenetration::Fixed(dtp) => (dtp, Vec::new()),
+            DepthOfPenetration::Auto => self.auto_depth_of_penetration(pi, started),
         };
-        let pair = self.pairs[pi].clone();
-        let (i1, i2) = (pair.body1, pair.body2);
-        let (pose1, pose2) = (self.bodies[i1].body.pose(), self.bodies[i2].body.pose());
-        let region = overlap_region(
-            &self.bodies[i1].shape,
-            &pose1,
-            &self.bodies[i2].shape,
-            &pose2,
-        );
-        let skip = |world: &mut World, out: &mut RunOutput, why: &str, phase: Phase| {
-            out.contacts.push(ContactEvent {
-                body1: i1,
-                body2: i2,
-                time: world.time,
-                kind: ContactEventKind::NoExchange(why.into()),
-            });
-            world.pairs[pi].phase = phase;
+        let exchange_at = (started + dtp).max(self.time);
+        self.pairs[pi].phase = Phase::Timer {
+            started,
+            exchange_at,
+            secondary,
+            notes,
         };
-        if region.is_empty() {
-            skip(
-                self,
-                out,
-                "the meshes no longer overlap at the exchange instant",
-                Phase::Apart,
-            );
-            return;
+        if exchange_at <= self.time {
+            self.exchange(pi, out);
         }
-        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
-        // Normal, then the contact frame, then the centroid.
+    }
+
+    /// The automatic dt_p of pair `pi` whose timer starts at `started`: the dt in
+    /// (0, 0.060] s with dt = sqrt(m'/k') evaluated at started + dt, where the bodies will be
+    /// (they move freely while the timer runs). Bisection to `TIME_TOLERANCE`; clamped to
+    /// 0.060 s, with a note, when sqrt(m'/k') is still longer there.
+    fn auto_depth_of_penetration(&self, pi: usize, started: Real) -> (Real, Vec<String>) {
+        let pair = &self.pairs[pi];
+        let offset = started - self.time;
+        let spring_time = |dt: Real| -> Real {
+            let b1 = self.bodies[pair.body1].body.advanced(offset + dt);
+            let b2 = self.bodies[pair.body2].body.advanced(offset + dt);
+            self.contact_geometry(pair, &b1, &b2)
+                .map_or(Real::INFINITY, |g| g.spring_time())
+        };
+        let max = MAX_DEPTH_OF_PENETRATION;
+        let at_max = spring_time(max);
+        if at_max >= max {
+            return (
+                max,
+                vec![format!(
+                    "automatic depth of penetration: sqrt(m'/k') = {:.1} ms at 60 ms after the \
+                     first overlap, longer than the accepted 60 ms; clamped to 60 ms",
+                    at_max * 1e3
+                )],
+            );
+        }
+        let (mut lo, mut hi) = (0.0, max);
+        while hi - lo > TIME_TOLERANCE {
+            let mid = 0.5 * (lo + hi);
+            if mid < spring_time(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let mut notes = Vec::new();
+        let (typical_lo, typical_hi) = TYPICAL_DEPTH_OF_PENETRATION;
+        if hi < typical_lo || hi > typical_hi {
+            notes.push(format!(
+                "automatic depth of penetration {:.2} ms lies outside the typical 10-60 ms",
+                hi * 1e3
+            ));
+        }
+        (hi, notes)
+    }
+
+    /// The pair's contact geometry with its bodies at the given states (world frame): the
+    /// overlap region, normal, contact frame, centroid, struck faces, width, spring rates and
+    /// effective masses. None when the meshes do not overlap.
+    fn contact_geometry(
+        &self,
+        pair: &Pair,
+        b1: &RigidBody,
+        b2: &RigidBody,
+    ) -> Option<ContactGeometry> {
+        let (w1, w2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
+        let (pose1, pose2) = (b1.pose(), b2.pose());
+        let region = overlap_region(&w1.shape, &pose1, &w2.shape, &pose2);
+        if region.is_empty() {
+            return None;
+        }
         let bbox_center = {
             let (mut lo, mut hi) = (region.points[0], region.points[0]);
             for p in &region.points {
@@ -549,11 +677,99 @@ impl World {
             rmin = rmin.inf(&c);
             rmax = rmax.sup(&c);
         }
+        let faces = [
+            Face::facing(&pose1.inverse_transform_vector(&normal)),
+            Face::facing(&pose2.inverse_transform_vector(&-normal)),
+        ];
+        let width = rmax.y - rmin.y;
+        let spring_rates = match (w1.stiffness.face(faces[0]), w2.stiffness.face(faces[1])) {
+            (Some(s1), Some(s2)) => Some([s1.spring_rate(width), s2.spring_rate(width)]),
+            _ => None,
+        };
         let centroid = match &pair.params.centroid {
             CentroidMode::Auto => Point::from(frame.transpose() * ((rmin + rmax) * 0.5)),
+            CentroidMode::Stiffness => {
+                // Body 1's undeformed surface is at the region's far end along +n, body 2's at
+                // the near end: C1 = rmax.n - P.n, C2 = P.n - rmin.n, C1 : C2 = k2 : k1.
+                let mut c = (rmin + rmax) * 0.5;
+                if let Some([k1, k2]) = spring_rates {
+                    if k1 + k2 > 0.0 {
+                        c.x = rmax.x - k2 / (k1 + k2) * (rmax.x - rmin.x);
+                    }
+                }
+                Point::from(frame.transpose() * c)
+            }
             CentroidMode::World(p) => *p,
-            CentroidMode::Body { body, point } => self.bodies[*body].body.pose() * point,
+            CentroidMode::Body { body, point } => {
+                if *body == pair.body1 {
+                    pose1 * point
+                } else {
+                    pose2 * point
+                }
+            }
         };
+        let effective_mass = [
+            effective_mass(
+                b1.props().mass(),
+                &b1.world_inverse_inertia(),
+                &(centroid - b1.position()),
+                &normal,
+            ),
+            effective_mass(
+                b2.props().mass(),
+                &b2.world_inverse_inertia(),
+                &(centroid - b2.position()),
+                &normal,
+            ),
+        ];
+        Some(ContactGeometry {
+            region,
+            normal,
+            frame,
+            region_min: rmin,
+            region_max: rmax,
+            centroid,
+            faces,
+            width,
+            spring_rates,
+            effective_mass,
+        })
+    }
+
+    /// Exchange the impulse of pair `pi` now (its timer expired).
+    fn exchange(&mut self, pi: usize, out: &mut RunOutput) {
+        let (started, secondary, notes) = match &self.pairs[pi].phase {
+            Phase::Timer {
+                started,
+                secondary,
+                notes,
+                ..
+            } => (*started, *secondary, notes.clone()),
+            _ => return,
+        };
+        let pair = self.pairs[pi].clone();
+        let (i1, i2) = (pair.body1, pair.body2);
+        let skip = |world: &mut World, out: &mut RunOutput, why: &str, phase: Phase| {
+            out.contacts.push(ContactEvent {
+                body1: i1,
+                body2: i2,
+                time: world.time,
+                kind: ContactEventKind::NoExchange(why.into()),
+            });
+            world.pairs[pi].phase = phase;
+        };
+        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        let Some(geometry) = self.contact_geometry(&pair, b1, b2) else {
+            skip(
+                self,
+                out,
+                "the meshes no longer overlap at the exchange instant",
+                Phase::Apart,
+            );
+            return;
+        };
+        let (pose1, pose2) = (b1.pose(), b2.pose());
+        let (centroid, normal) = (geometry.centroid, geometry.normal);
         let r1 = centroid - b1.position();
         let r2 = centroid - b2.position();
         let u = b1.point_velocity(&centroid) - b2.point_velocity(&centroid);
@@ -598,6 +814,7 @@ impl World {
             first_contact_time: started,
             time: self.time,
             depth_of_penetration: self.time - started,
+            depth_of_penetration_mode: pair.params.depth_of_penetration,
             secondary: secondary || pair.exchanges > 0,
             centroid,
             normal,
@@ -610,10 +827,15 @@ impl World {
             relative_velocity_before: u,
             relative_velocity_after: u_after,
             energy_dissipated: energy_before - energy_after,
-            region_points: region.points,
-            contact_frame: frame,
-            region_min: rmin,
-            region_max: rmax,
+            region_points: geometry.region.points,
+            contact_frame: geometry.frame,
+            region_min: geometry.region_min,
+            region_max: geometry.region_max,
+            struck_faces: geometry.faces,
+            overlap_width: geometry.width,
+            spring_rates: geometry.spring_rates,
+            effective_mass: geometry.effective_mass,
+            notes,
         });
         self.pairs[pi].exchanges += 1;
         self.pairs[pi].phase = engaged;
@@ -703,15 +925,7 @@ impl World {
                 time: started,
                 kind: ContactEventKind::ClosingAgain,
             });
-            let dtp = pair.params.depth_of_penetration;
-            self.pairs[pi].phase = Phase::Timer {
-                started,
-                exchange_at: (started + dtp).max(self.time),
-                secondary: true,
-            };
-            if started + dtp <= self.time {
-                self.exchange(pi, out);
-            }
+            self.start_timer(pi, started, true, out);
         }
     }
 }

@@ -126,10 +126,30 @@ fn pair_rows(v: &[Vector; 2]) -> Array2<f64> {
     Array2::from_shape_fn((2, 3), |(i, k)| v[i][k])
 }
 
+/// The depth of penetration from a time in s, "auto", or None (the default).
+fn depth_of_penetration(value: Option<&Bound<'_, PyAny>>) -> PyResult<core::DepthOfPenetration> {
+    let Some(value) = value.filter(|v| !v.is_none()) else {
+        return Ok(core::ContactParams::default().depth_of_penetration);
+    };
+    if let Ok(text) = value.extract::<String>() {
+        return if text == "auto" {
+            Ok(core::DepthOfPenetration::Auto)
+        } else {
+            Err(errors::parameter(format!(
+                "depth_of_penetration = {text:?} is unknown: give a time in s or \"auto\""
+            )))
+        };
+    }
+    let seconds = value.extract::<f64>().map_err(|_| {
+        errors::parameter("depth_of_penetration must be a time in s (a number) or \"auto\"".into())
+    })?;
+    Ok(core::DepthOfPenetration::Fixed(seconds))
+}
+
 /// Contact parameters from the keyword arguments of World.set_contact.
 #[allow(clippy::too_many_arguments)]
 pub fn contact_params(
-    depth_of_penetration: f64,
+    depth_of_penetration_in: Option<&Bound<'_, PyAny>>,
     restitution: f64,
     friction: f64,
     restitution_mode: &str,
@@ -159,6 +179,7 @@ pub fn contact_params(
     };
     let centroid = match centroid {
         "auto" => core::CentroidMode::Auto,
+        "stiffness" => core::CentroidMode::Stiffness,
         "world" => core::CentroidMode::World(point("world")?),
         "body" => core::CentroidMode::Body {
             body: centroid_body.ok_or_else(|| {
@@ -166,11 +187,9 @@ pub fn contact_params(
             })?,
             point: point("body")?,
         },
-        other => {
-            return Err(errors::parameter(format!(
-                "centroid = {other:?} is unknown: use \"auto\", \"world\" or \"body\""
-            )))
-        }
+        other => return Err(errors::parameter(format!(
+            "centroid = {other:?} is unknown: use \"auto\", \"stiffness\", \"world\" or \"body\""
+        ))),
     };
     let normal = match normal {
         "horizontal" => core::NormalMode::Horizontal { pitch },
@@ -188,7 +207,7 @@ pub fn contact_params(
         }
     };
     Ok(core::ContactParams {
-        depth_of_penetration,
+        depth_of_penetration: depth_of_penetration(depth_of_penetration_in)?,
         restitution,
         friction,
         restitution_mode,
@@ -205,6 +224,13 @@ pub fn impact_to_dict<'py>(py: Python<'py>, imp: &core::Impact) -> PyResult<Boun
     d.set_item("first_contact_time", imp.first_contact_time)?;
     d.set_item("time", imp.time)?;
     d.set_item("depth_of_penetration", imp.depth_of_penetration)?;
+    d.set_item(
+        "depth_of_penetration_mode",
+        match imp.depth_of_penetration_mode {
+            core::DepthOfPenetration::Fixed(_) => "fixed",
+            core::DepthOfPenetration::Auto => "auto",
+        },
+    )?;
     d.set_item("secondary", imp.secondary)?;
     d.set_item(
         "centroid",
@@ -255,5 +281,34 @@ pub fn impact_to_dict<'py>(py: Python<'py>, imp: &core::Impact) -> PyResult<Boun
         "region_max",
         vector_to_array(&imp.region_max).into_pyarray(py),
     )?;
+    d.set_item(
+        "struck_faces",
+        (imp.struck_faces[0].name(), imp.struck_faces[1].name()),
+    )?;
+    d.set_item("overlap_width", imp.overlap_width)?;
+    d.set_item("spring_rates", imp.spring_rates.map(|[a, b]| (a, b)))?;
+    d.set_item(
+        "effective_mass",
+        (imp.effective_mass[0], imp.effective_mass[1]),
+    )?;
+    d.set_item("notes", imp.notes.clone())?;
     Ok(d)
+}
+
+/// A face's (A, B) pair (N/m, N/m^2) or None.
+pub fn face_stiffness(
+    value: Option<&Bound<'_, PyAny>>,
+    face: &str,
+) -> PyResult<Option<core::FaceStiffness>> {
+    let Some(value) = value.filter(|v| !v.is_none()) else {
+        return Ok(None);
+    };
+    let (a, b): (f64, f64) = value.extract().map_err(|_| {
+        errors::parameter(format!(
+            "the {face} stiffness must be a pair (A, B) of numbers in N/m and N/m^2"
+        ))
+    })?;
+    core::FaceStiffness::new(a, b)
+        .map(Some)
+        .map_err(errors::to_py)
 }

@@ -80,6 +80,24 @@ impl Shape {
         )
     }
 
+    /// Volume (m^3), centroid (m) and inertia about the centroid (kg m^2 for unit density) of
+    /// the mesh as a uniform solid, body frame; meaningful for a closed, outward-wound mesh.
+    fn solid_properties<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let p = self.inner.solid_properties();
+        let d = PyDict::new(py);
+        d.set_item("volume", p.volume)?;
+        d.set_item(
+            "centroid",
+            convert::vector_to_array(&p.centroid.coords).into_pyarray(py),
+        )?;
+        let i = p.inertia;
+        d.set_item(
+            "inertia",
+            Array2::from_shape_fn((3, 3), |(r, c)| i[(r, c)]).into_pyarray(py),
+        )?;
+        Ok(d)
+    }
+
     /// Generalized winding number of each body-frame point, (k,).
     fn winding_numbers<'py>(
         &self,
@@ -208,7 +226,7 @@ impl World {
     }
 
     #[pyo3(signature = (
-        body1, body2, *, depth_of_penetration = 0.030, restitution = 0.1, friction = 0.6,
+        body1, body2, *, depth_of_penetration = None, restitution = 0.1, friction = 0.6,
         restitution_mode = "total", centroid = "auto", centroid_point = None,
         centroid_body = None, normal = "horizontal", normal_vector = None, pitch = 0.0
     ))]
@@ -217,7 +235,7 @@ impl World {
         &mut self,
         body1: usize,
         body2: usize,
-        depth_of_penetration: f64,
+        depth_of_penetration: Option<&Bound<'_, PyAny>>,
         restitution: f64,
         friction: f64,
         restitution_mode: &str,
@@ -243,6 +261,30 @@ impl World {
         self.inner
             .set_contact(body1, body2, params)
             .map_err(errors::to_py)
+    }
+
+    /// Sets a body's face stiffness: each face (A, B) in (N/m, N/m^2) or None.
+    #[pyo3(signature = (body, *, front = None, rear = None, left = None, right = None))]
+    fn set_stiffness(
+        &mut self,
+        body: usize,
+        front: Option<&Bound<'_, PyAny>>,
+        rear: Option<&Bound<'_, PyAny>>,
+        left: Option<&Bound<'_, PyAny>>,
+        right: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let mut s = core::Stiffness::none();
+        for (face, value) in [
+            (core::Face::Front, front),
+            (core::Face::Rear, rear),
+            (core::Face::Left, left),
+            (core::Face::Right, right),
+        ] {
+            if let Some(f) = convert::face_stiffness(value, face.name())? {
+                s = s.with(face, f);
+            }
+        }
+        self.inner.set_stiffness(body, s).map_err(errors::to_py)
     }
 
     /// Advances the world by `duration` s with steps of at most `dt` s.
@@ -317,6 +359,46 @@ fn run_output_to_dict<'py>(
     Ok(d)
 }
 
+/// The state of a body after `dt` s of torque-free motion (negative `dt` runs it back):
+/// (position, orientation (w, x, y, z), velocity, angular_velocity), world frame, SI.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+#[allow(clippy::type_complexity)]
+fn free_motion<'py>(
+    py: Python<'py>,
+    mass: f64,
+    inertia: &Bound<'py, PyAny>,
+    position: &Bound<'py, PyAny>,
+    orientation: &Bound<'py, PyAny>,
+    velocity: &Bound<'py, PyAny>,
+    angular_velocity: &Bound<'py, PyAny>,
+    dt: f64,
+) -> PyResult<(
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+)> {
+    let props =
+        core::MassProperties::new(mass, matrix3(inertia, "inertia")?).map_err(errors::to_py)?;
+    let state = core::BodyState {
+        position: vector3(position, "position")?.into(),
+        orientation: rotation(orientation)?,
+        velocity: vector3(velocity, "velocity")?,
+        angular_velocity: vector3(angular_velocity, "angular_velocity")?,
+    };
+    core::error::require_finite("dt", dt).map_err(errors::to_py)?;
+    let body = core::RigidBody::new(props, &state).map_err(errors::to_py)?;
+    let s = py.detach(move || body.advanced(dt).state());
+    let q = s.orientation.quaternion();
+    Ok((
+        convert::vector_to_array(&s.position.coords).into_pyarray(py),
+        Array1::from_vec(vec![q.w, q.i, q.j, q.k]).into_pyarray(py),
+        convert::vector_to_array(&s.velocity).into_pyarray(py),
+        convert::vector_to_array(&s.angular_velocity).into_pyarray(py),
+    ))
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
@@ -325,5 +407,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<World>()?;
     m.add_function(wrap_pyfunction!(shapes_overlap, m)?)?;
     m.add_function(wrap_pyfunction!(overlap_region, m)?)?;
+    m.add_function(wrap_pyfunction!(free_motion, m)?)?;
     Ok(())
 }
