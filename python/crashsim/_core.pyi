@@ -6,6 +6,7 @@ y left, z up). Quaternions are (w, x, y, z) and rotate body-frame vectors into t
 Users should not need this module: the public API is ``crashsim.Scene``.
 """
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -50,6 +51,11 @@ class Shape:
         """The mesh as a uniform solid of unit density, body frame: ``volume`` (m^3, signed:
         positive for an outward-wound closed mesh), ``centroid`` (3,) m, ``inertia`` (3, 3)
         about the centroid (kg m^2 per kg/m^3). Meaningful for closed meshes only."""
+    def ray_hits(
+        self, origin: ArrayLike, direction: ArrayLike, max_distance: float = ...
+    ) -> NDArray[np.float64]:
+        """Distances (m, ascending) at which the ray from origin along direction (body frame)
+        crosses the mesh, up to max_distance (default: no limit); a shared edge counts once."""
     def winding_numbers(self, points: ArrayLike) -> NDArray[np.float64]:
         """Generalized winding number of each body-frame point, (k,). About 1 inside, 0 outside."""
 
@@ -152,8 +158,12 @@ class World:
         right: tuple[float, float] | None = None,
     ) -> None:
         """A body's face stiffness: each face (A, B) in (N/m, N/m^2), or None without data."""
-    def run(self, duration: float, dt: float) -> dict[str, Any]:
-        """Advance the world by duration (s) with steps of at most dt (s).
+    def run(
+        self, duration: float, dt: float, progress: Callable[[float], object] | None = None
+    ) -> dict[str, Any]:
+        """Advance the world by duration (s) with steps of at most dt (s). progress, if given,
+        is called with the current time (s) at most every 0.1 s of wall time (Ctrl-C is
+        honoured then); an exception it raises stops the run and propagates.
 
         Returns a dict: ``t`` (k,) sample times (every step end, every first overlap and
         every exchange; the state at an exchange is the one after it); ``position``,

@@ -14,7 +14,7 @@ from __future__ import annotations
 import enum
 import math
 import warnings
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from itertools import combinations
 from typing import Any, Literal, TypeAlias
@@ -425,16 +425,23 @@ class Scene:
             world.set_contact(i, j, **self._core_kwargs(params, (i, j)))
         return world
 
-    def run(self, duration: float = 1.0, dt: float = 1e-3) -> Result:
+    def run(
+        self,
+        duration: float = 1.0,
+        dt: float = 1e-3,
+        progress: Callable[[float], object] | None = None,
+    ) -> Result:
         """Run the scene from t = 0 for ``duration`` s with steps of at most ``dt`` s.
 
         Every call starts afresh from the initial states (a new engine world). Raises
-        InitialOverlapError when two vehicles already overlap at t = 0."""
+        InitialOverlapError when two vehicles already overlap at t = 0. ``progress``, if
+        given, is called with the simulated time reached (s) about every 0.1 s of wall time;
+        it cannot change the results (an exception it raises stops the run)."""
         duration = _as_float(duration, "duration", "s")
         dt = _as_float(dt, "dt", "s")
         world = self.build_world()
         try:
-            raw = world.run(duration, dt)
+            raw = world.run(duration, dt, progress)
         except InitialOverlapError as e:
             raise self._named_overlap_error(e) from e
         result = Result(raw, [p.vehicle.name for p in self._placements], scene=self)

@@ -227,6 +227,45 @@ impl MeshShape {
         crate::mass::solid_properties(&self.vertices, &self.triangles)
     }
 
+    /// Distances (m, ascending) along the ray from `origin` in the unit direction `dir` (body
+    /// frame) at which it crosses the mesh's triangles, up to `max_distance`. A ray through a
+    /// shared edge or vertex counts once (hits closer than 1e-12 m relative are merged).
+    pub fn ray_hits(&self, origin: &Point, dir: &Vector, max_distance: Real) -> Vec<Real> {
+        use parry3d_f64::query::{Ray, RayCast};
+        use parry3d_f64::shape::Triangle;
+        let ray = Ray::new(*origin, *dir);
+        let nodes = self.bvh.nodes();
+        let mut stack = [0u32; MAX_DEPTH];
+        let mut top = 1;
+        let mut hits = Vec::new();
+        while top > 0 {
+            top -= 1;
+            let i = stack[top];
+            let node = &nodes[i as usize];
+            if !node.aabb.intersects_local_ray(&ray, max_distance) {
+                continue;
+            }
+            if node.is_leaf() {
+                for &t in self.bvh.leaf_primitives(node) {
+                    let [a, b, c] = self.triangle(t);
+                    if let Some(toi) =
+                        Triangle::new(a, b, c).cast_local_ray(&ray, max_distance, false)
+                    {
+                        hits.push(toi);
+                    }
+                }
+            } else {
+                let (l, r) = self.bvh.children(i);
+                stack[top] = l;
+                stack[top + 1] = r;
+                top += 2;
+            }
+        }
+        hits.sort_by(|a, b| a.total_cmp(b));
+        hits.dedup_by(|b, a| (*b - *a).abs() <= 1e-12 * a.abs().max(1.0));
+        hits
+    }
+
     /// True when the body-frame point is inside (winding number above one half).
     #[inline]
     pub fn contains_point(&self, q: &Point) -> bool {
@@ -375,6 +414,19 @@ pub(crate) mod tests {
             MeshShape::new(vec![p, p, p], vec![[0, 1, 2]]),
             Err(Error::Mesh(_))
         ));
+    }
+
+    #[test]
+    fn a_ray_through_a_box_hits_both_walls() {
+        let b = box_mesh(Vector::zeros(), Vector::new(2.0, 1.0, 0.5));
+        let hits = b.ray_hits(&Point::new(-5.0, 0.1, 0.2), &Vector::x(), 100.0);
+        assert_eq!(hits.len(), 2, "{hits:?}");
+        assert!((hits[0] - 3.0).abs() < 1e-12 && (hits[1] - 7.0).abs() < 1e-12);
+        assert!(b.ray_hits(&Point::origin(), &Vector::y(), 0.5).is_empty());
+        // Through the top face's diagonal (shared by its two triangles): one hit.
+        let from_inside = b.ray_hits(&Point::origin(), &Vector::z(), 10.0);
+        assert_eq!(from_inside.len(), 1, "{from_inside:?}");
+        assert!((from_inside[0] - 0.5).abs() < 1e-12);
     }
 
     #[test]

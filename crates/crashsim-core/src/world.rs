@@ -330,6 +330,18 @@ impl World {
 
     /// Advances by `duration` s with steps of at most `dt` s.
     pub fn run(&mut self, duration: Real, dt: Real) -> Result<RunOutput> {
+        self.run_with_progress(duration, dt, &mut |_| true)
+    }
+
+    /// [`World::run`] calling `progress(t)` (the current time, s) after every step; when it
+    /// returns false the run stops with an error (an interrupted run has no output). The hook
+    /// cannot change the results: a run with a hook gives the same bits as one without.
+    pub fn run_with_progress(
+        &mut self,
+        duration: Real,
+        dt: Real,
+        progress: &mut dyn FnMut(Real) -> bool,
+    ) -> Result<RunOutput> {
         require_finite("duration", duration)?;
         require_finite("dt", dt)?;
         if duration < 0.0 {
@@ -414,6 +426,12 @@ impl World {
             self.record(&mut out);
             if target == grid {
                 k += 1;
+            }
+            if !progress(self.time) {
+                return Err(Error::Simulation(format!(
+                    "the run was interrupted at t = {} s",
+                    self.time
+                )));
             }
         }
         Ok(out)

@@ -187,9 +187,11 @@ pub fn contact_params(
             })?,
             point: point("body")?,
         },
-        other => return Err(errors::parameter(format!(
+        other => {
+            return Err(errors::parameter(format!(
             "centroid = {other:?} is unknown: use \"auto\", \"stiffness\", \"world\" or \"body\""
-        ))),
+        )))
+        }
     };
     let normal = match normal {
         "horizontal" => core::NormalMode::Horizontal { pitch },

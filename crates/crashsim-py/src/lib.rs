@@ -98,6 +98,35 @@ impl Shape {
         Ok(d)
     }
 
+    /// Distances (m, ascending) at which the ray from `origin` along `direction` (body frame;
+    /// normalized here) crosses the mesh, up to `max_distance`.
+    #[pyo3(signature = (origin, direction, max_distance = f64::INFINITY))]
+    fn ray_hits<'py>(
+        &self,
+        py: Python<'py>,
+        origin: &Bound<'py, PyAny>,
+        direction: &Bound<'py, PyAny>,
+        max_distance: f64,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let o = vector3(origin, "origin")?;
+        let d = vector3(direction, "direction")?;
+        let len = d.norm();
+        if len == 0.0 || !len.is_finite() {
+            return Err(errors::parameter(
+                "the ray direction must be a non-zero finite vector".into(),
+            ));
+        }
+        if max_distance.is_nan() || max_distance < 0.0 {
+            return Err(errors::parameter(format!(
+                "max_distance = {max_distance} is invalid: it must be >= 0 m"
+            )));
+        }
+        let shape = self.inner.clone();
+        let hits =
+            py.detach(move || shape.ray_hits(&o.into(), &(d / len), max_distance.min(f64::MAX)));
+        Ok(hits.into_pyarray(py))
+    }
+
     /// Generalized winding number of each body-frame point, (k,).
     fn winding_numbers<'py>(
         &self,
@@ -287,17 +316,46 @@ impl World {
         self.inner.set_stiffness(body, s).map_err(errors::to_py)
     }
 
-    /// Advances the world by `duration` s with steps of at most `dt` s.
+    /// Advances the world by `duration` s with steps of at most `dt` s. `progress`, if given,
+    /// is called with the current time (s) at most every 0.1 s of wall time (and Ctrl-C is
+    /// honoured then); an exception it raises stops the run and propagates.
+    #[pyo3(signature = (duration, dt, progress = None))]
     fn run<'py>(
         &mut self,
         py: Python<'py>,
         duration: f64,
         dt: f64,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let world = &mut self.inner;
-        let out = py
-            .detach(|| guarded(|| world.run(duration, dt)))
-            .map_err(errors::to_py)?;
+        let mut failure: Option<PyErr> = None;
+        let out = py.detach(|| {
+            let mut last = std::time::Instant::now();
+            let mut hook = |t: f64| -> bool {
+                if last.elapsed().as_secs_f64() < 0.1 {
+                    return true;
+                }
+                last = std::time::Instant::now();
+                Python::attach(|py| {
+                    let called = py.check_signals().and_then(|()| match &progress {
+                        Some(f) => f.call1(py, (t,)).map(|_| ()),
+                        None => Ok(()),
+                    });
+                    match called {
+                        Ok(()) => true,
+                        Err(e) => {
+                            failure = Some(e);
+                            false
+                        }
+                    }
+                })
+            };
+            guarded(|| world.run_with_progress(duration, dt, &mut hook))
+        });
+        if let Some(e) = failure {
+            return Err(e);
+        }
+        let out = out.map_err(errors::to_py)?;
         run_output_to_dict(py, &out, self.inner.body_count())
     }
 }
