@@ -17,6 +17,7 @@ from crashsim import _core
 from crashsim.errors import SceneError
 
 if TYPE_CHECKING:
+    from crashsim.report import Report
     from crashsim.scene import Scene
     from crashsim.vehicle import Vehicle
 
@@ -220,11 +221,21 @@ class Impact:
 class Result:
     """What a run returns: ``impacts`` (Impact list, in time order), ``contacts`` (the
     ContactEvent log), ``vehicles`` (names in the order added), ``t`` (sample times, s),
-    per-vehicle trajectories, and ``scene`` (the Scene that ran, None for a bare result)."""
+    per-vehicle trajectories, ``scene`` (the Scene that ran, None for a bare result) and the
+    run's ``duration`` and largest step ``dt`` (s; None when not known)."""
 
-    def __init__(self, raw: dict[str, Any], names: list[str], scene: Scene | None = None) -> None:
+    def __init__(
+        self,
+        raw: dict[str, Any],
+        names: list[str],
+        scene: Scene | None = None,
+        duration: float | None = None,
+        dt: float | None = None,
+    ) -> None:
         self.vehicles: list[str] = list(names)
         self.scene = scene
+        self.duration = duration
+        self.dt = dt
         self.t: Array = _frozen(raw["t"])
         self._position = _frozen(raw["position"])  # (n_vehicles, k, 3)
         self._orientation = _frozen(raw["orientation"])  # (n_vehicles, k, 4)
@@ -356,6 +367,14 @@ class Result:
                 for name in self.vehicles
             }
         return out
+
+    def report(self) -> Report:
+        """The reconstruction report of this run (crashsim.report.build_report): per exchange
+        delta-V, PDOF, clock, energy, EES and deformation; ``str()`` of it is a text table,
+        ``to_dict()`` / ``write_json()`` the versioned JSON (docs/report.md)."""
+        from crashsim.report import build_report  # imported on first use
+
+        return build_report(self)
 
     def __repr__(self) -> str:
         return (

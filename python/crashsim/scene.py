@@ -319,6 +319,19 @@ class Scene:
         self._overrides[names] = overrides
         return self
 
+    def pairs(self) -> list[tuple[str, str, dict[str, Any]]]:
+        """Every pair of vehicles as the engine gets it: (vehicle 1, vehicle 2, parameters),
+        vehicle 1 being the one the normal points away from (the first argument of the last
+        :meth:`contact` call for the pair, else the one added first)."""
+        names = [p.vehicle.name for p in self._placements]
+        out = []
+        for i, j in combinations(range(len(names)), 2):
+            a, b = names[i], names[j]
+            if (b, a) in self._overrides:
+                a, b = b, a
+            out.append((a, b, {**self._defaults, **self._overrides.get((a, b), {})}))
+        return out
+
     def contact_parameters(self, vehicle1: VehicleRef, vehicle2: VehicleRef) -> dict[str, Any]:
         """The parameters the pair will run with (defaults merged with overrides), as seen
         from vehicle1 (the normal points from vehicle1 into vehicle2 when set that way)."""
@@ -416,11 +429,8 @@ class Scene:
                 i,
                 **{f: None if (s := faces.face(f)) is None else (s.A, s.B) for f in FACES},
             )
-        names = [p.vehicle.name for p in self._placements]
-        for i, j in combinations(range(len(names)), 2):
-            if (names[j], names[i]) in self._overrides:
-                i, j = j, i
-            params = {**self._defaults, **self._overrides.get((names[i], names[j]), {})}
+        for a, b, params in self.pairs():
+            i, j = self._index(a), self._index(b)
             _check_stiffness(params, (self._placements[i].vehicle, self._placements[j].vehicle))
             world.set_contact(i, j, **self._core_kwargs(params, (i, j)))
         return world
@@ -444,7 +454,9 @@ class Scene:
             raw = world.run(duration, dt, progress)
         except InitialOverlapError as e:
             raise self._named_overlap_error(e) from e
-        result = Result(raw, [p.vehicle.name for p in self._placements], scene=self)
+        result = Result(
+            raw, [p.vehicle.name for p in self._placements], scene=self, duration=duration, dt=dt
+        )
         for imp in result.impacts:
             for note in imp.notes:
                 warnings.warn(
