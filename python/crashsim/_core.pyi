@@ -85,6 +85,10 @@ def overlap_region(
     mesh inside the other.
     """
 
+def solid_properties(vertices: ArrayLike, triangles: ArrayLike) -> dict[str, Any]:
+    """The solid bounded by a closed, outward-wound mesh, unit density (no BVH is built):
+    ``volume`` (m^3, signed), ``centroid`` (3,) m, ``inertia`` (3, 3) about the centroid."""
+
 def free_motion(
     mass: float,
     inertia: ArrayLike,

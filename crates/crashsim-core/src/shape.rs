@@ -266,6 +266,17 @@ impl MeshShape {
         hits
     }
 
+    /// [`MeshShape::winding_number`] of many body-frame points, in parallel (each value is
+    /// computed alone, so the result does not depend on the thread count).
+    pub fn winding_numbers(&self, points: &[Point]) -> Vec<Real> {
+        use rayon::prelude::*;
+        points
+            .par_iter()
+            .with_min_len(256)
+            .map(|p| self.winding_number(p))
+            .collect()
+    }
+
     /// True when the body-frame point is inside (winding number above one half).
     #[inline]
     pub fn contains_point(&self, q: &Point) -> bool {

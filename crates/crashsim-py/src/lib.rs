@@ -83,19 +83,7 @@ impl Shape {
     /// Volume (m^3), centroid (m) and inertia about the centroid (kg m^2 for unit density) of
     /// the mesh as a uniform solid, body frame; meaningful for a closed, outward-wound mesh.
     fn solid_properties<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let p = self.inner.solid_properties();
-        let d = PyDict::new(py);
-        d.set_item("volume", p.volume)?;
-        d.set_item(
-            "centroid",
-            convert::vector_to_array(&p.centroid.coords).into_pyarray(py),
-        )?;
-        let i = p.inertia;
-        d.set_item(
-            "inertia",
-            Array2::from_shape_fn((3, 3), |(r, c)| i[(r, c)]).into_pyarray(py),
-        )?;
-        Ok(d)
+        solid_properties_to_dict(py, &self.inner.solid_properties())
     }
 
     /// Distances (m, ascending) at which the ray from `origin` along `direction` (body frame;
@@ -135,7 +123,7 @@ impl Shape {
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let pts = vertices(points)?;
         let shape = self.inner.clone();
-        let w: Vec<f64> = py.detach(move || pts.iter().map(|p| shape.winding_number(p)).collect());
+        let w: Vec<f64> = py.detach(move || shape.winding_numbers(&pts));
         Ok(w.into_pyarray(py))
     }
 
@@ -417,6 +405,47 @@ fn run_output_to_dict<'py>(
     Ok(d)
 }
 
+/// Volume (m^3), centroid (m) and inertia about the centroid (kg m^2 for unit density) of
+/// the solid bounded by a closed, outward-wound triangle mesh (no BVH is built).
+#[pyfunction]
+fn solid_properties<'py>(
+    py: Python<'py>,
+    vertices_in: &Bound<'py, PyAny>,
+    triangles_in: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let v = vertices(vertices_in)?;
+    let t = triangles(triangles_in)?;
+    if t.is_empty() {
+        return Err(errors::mesh("the mesh has no triangles".into()));
+    }
+    if let Some(bad) = t.iter().flatten().find(|&&k| k as usize >= v.len()) {
+        return Err(errors::mesh(format!(
+            "a triangle refers to vertex {bad} but the mesh has only {} vertices",
+            v.len()
+        )));
+    }
+    let p = py.detach(move || core::mass::solid_properties(&v, &t));
+    solid_properties_to_dict(py, &p)
+}
+
+fn solid_properties_to_dict<'py>(
+    py: Python<'py>,
+    p: &core::SolidProperties,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("volume", p.volume)?;
+    d.set_item(
+        "centroid",
+        convert::vector_to_array(&p.centroid.coords).into_pyarray(py),
+    )?;
+    let i = p.inertia;
+    d.set_item(
+        "inertia",
+        Array2::from_shape_fn((3, 3), |(r, c)| i[(r, c)]).into_pyarray(py),
+    )?;
+    Ok(d)
+}
+
 /// The state of a body after `dt` s of torque-free motion (negative `dt` runs it back):
 /// (position, orientation (w, x, y, z), velocity, angular_velocity), world frame, SI.
 #[pyfunction]
@@ -466,5 +495,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(shapes_overlap, m)?)?;
     m.add_function(wrap_pyfunction!(overlap_region, m)?)?;
     m.add_function(wrap_pyfunction!(free_motion, m)?)?;
+    m.add_function(wrap_pyfunction!(solid_properties, m)?)?;
     Ok(())
 }

@@ -1,0 +1,885 @@
+"""Top-down pictures of a run: the impact diagram and the whole motion.
+
+Everything is drawn in the world's x-y plane seen from above (z up, out of the page), in
+metres with equal axes, so lengths can be read off the grid. A vehicle's outline is its true
+silhouette: the union of its mesh triangles projected on the ground plane (shapely), not a
+convex hull, so mirrors, wheels and notches show as they are.
+
+Figures are matplotlib ``Figure`` objects on the Agg canvas, built without pyplot, so the
+functions are safe in library code, threads and on machines without a display.
+
+    from crashsim.plots import plot_impact, plot_trajectories
+    plot_impact(result, "impact.png")         # first contact | exchange, one impact
+    plot_trajectories(result, "motion.png")   # the whole run, outlines at regular times
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from crashsim.errors import ParameterError, SceneError
+from crashsim.units import to_mph
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from crashsim.result import Impact, Result
+    from crashsim.vehicle import Vehicle
+
+__all__ = [
+    "VEHICLE_COLOURS",
+    "plot_impact",
+    "plot_trajectories",
+    "silhouette",
+    "vehicle_colour",
+]
+
+Array = NDArray[np.float64]
+
+# One colour per vehicle, by its order in the scene (also used by crashsim.export).
+VEHICLE_COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b")
+
+IMPACT_FIGSIZE = (15.0, 8.2)  # inches: plot_impact's figure
+TRAJECTORY_FIGSIZE = (12.0, 8.5)  # inches: plot_trajectories' figure
+DPI = 120  # pixels per inch of the PNGs written
+
+# Holes of the projected outline smaller than this are round-off slivers between triangles
+# (measured: below 1e-8 m^2 on the shared meshes), not holes through the vehicle (m^2).
+SLIVER_AREA = 1e-4
+# A rotation is a pure yaw when its z column is (0, 0, 1) to this tolerance: the outline is
+# then the body-frame one turned and moved (exact), else the mesh is projected afresh.
+YAW_ONLY_TOL = 1e-12
+
+
+def vehicle_colour(index: int) -> str:
+    """The colour (hex) of the vehicle added ``index``-th to the scene."""
+    return VEHICLE_COLOURS[index % len(VEHICLE_COLOURS)]
+
+
+# -- silhouettes ---------------------------------------------------------------------------
+
+
+def _import_shapely() -> Any:
+    try:
+        import shapely
+    except ImportError as e:  # shapely is needed for pictures only
+        raise ImportError("vehicle outlines need shapely: pip install shapely") from e
+    return shapely
+
+
+def _projected_union(xy: Array, faces: NDArray[np.int64]) -> Any:
+    """The union of the triangles (x-y of their vertices, m) as a shapely (Multi)Polygon,
+    with round-off slivers dropped. Triangles seen edge-on (zero projected area) add no area
+    and are skipped."""
+    shapely = _import_shapely()
+    tri = xy[faces]
+    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    area2 = np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    scale = float(np.max(np.abs(xy))) if xy.size else 1.0
+    keep = area2 > 1e-14 * max(scale, 1.0) ** 2
+    if not np.any(keep):
+        raise SceneError(
+            "the mesh has no area seen from above (every triangle is edge-on): it cannot be "
+            "drawn top-down"
+        )
+    # Shared vertices are projected once, so neighbouring triangles share exact edges.
+    union = shapely.union_all(shapely.polygons(tri[keep]))
+    return _clean(union)
+
+
+def _clean(geom: Any) -> Any:
+    """Drops holes and parts smaller than SLIVER_AREA (round-off between triangles)."""
+    shapely = _import_shapely()
+    from shapely.geometry import MultiPolygon, Polygon
+
+    parts = []
+    for g in shapely.get_parts(geom):
+        if not isinstance(g, Polygon) or g.area < SLIVER_AREA:
+            continue
+        holes = [r for r in g.interiors if Polygon(r).area >= SLIVER_AREA]
+        parts.append(Polygon(g.exterior, holes))
+    if not parts:
+        raise SceneError("the vehicle's outline seen from above is empty (a degenerate mesh?)")
+    return parts[0] if len(parts) == 1 else MultiPolygon(parts)
+
+
+@functools.lru_cache(maxsize=32)
+def _body_silhouette(vehicle: Vehicle) -> Any:
+    """The outline of the body-frame mesh projected along body z (m, CG at the origin)."""
+    faces = np.asarray(vehicle.mesh.faces, dtype=np.int64)
+    return _projected_union(vehicle.body_vertices[:, :2].copy(), faces)
+
+
+def silhouette(
+    vehicle: Vehicle, position: ArrayLike = (0.0, 0.0, 0.0), rotation: ArrayLike | None = None
+) -> Any:
+    """The vehicle's outline seen from above at a pose: the union of its mesh triangles
+    projected on the world x-y plane, a shapely Polygon (or MultiPolygon when parts are
+    apart), in world metres.
+
+    position: the CG in the world (m); rotation: (3, 3) body -> world (default identity). A
+    pure yaw turns and moves the body-frame outline (computed once per vehicle); any roll or
+    pitch projects the turned mesh afresh."""
+    p = np.asarray(position, dtype=np.float64).reshape(3)
+    r = np.eye(3) if rotation is None else np.asarray(rotation, dtype=np.float64).reshape(3, 3)
+    if not (np.all(np.isfinite(p)) and np.all(np.isfinite(r))):
+        raise ParameterError("position and rotation must be finite")
+    if np.max(np.abs(r[:, 2] - (0.0, 0.0, 1.0))) <= YAW_ONLY_TOL:
+        from shapely import affinity
+
+        base = _body_silhouette(vehicle)
+        return affinity.affine_transform(
+            base, [r[0, 0], r[0, 1], r[1, 0], r[1, 1], float(p[0]), float(p[1])]
+        )
+    world = vehicle.body_vertices @ r.T + p
+    return _projected_union(world[:, :2].copy(), np.asarray(vehicle.mesh.faces, dtype=np.int64))
+
+
+# -- drawing helpers -----------------------------------------------------------------------
+
+
+def _patch(geom: Any, **kw: Any) -> Any:
+    """A matplotlib PathPatch of a shapely (Multi)Polygon, holes included."""
+    import shapely
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path as MPath
+    from shapely.geometry.polygon import orient
+
+    verts: list[Any] = []
+    codes: list[int] = []
+    for poly in shapely.get_parts(geom):
+        poly = orient(poly, 1.0)  # exterior counter-clockwise, holes clockwise
+        for ring in [poly.exterior, *poly.interiors]:
+            xy = np.asarray(ring.coords)
+            verts.extend(xy)
+            codes.extend([MPath.MOVETO] + [MPath.LINETO] * (len(xy) - 2) + [MPath.CLOSEPOLY])
+    return PathPatch(MPath(np.asarray(verts), codes), **kw)
+
+
+def _nice(x: float) -> float:
+    """The number of the form 1, 2, 2.5 or 5 times a power of ten nearest to x (x > 0), by
+    ratio: an arrow scale a reader can multiply with."""
+    e = 10.0 ** math.floor(math.log10(x))
+    candidates = [m * e for m in (1.0, 2.0, 2.5, 5.0, 10.0)]
+    return min(candidates, key=lambda c: abs(math.log(c / x)))
+
+
+def _fmt(x: float) -> str:
+    return f"{x:g}"
+
+
+def _arrow(
+    ax: Axes,
+    tail: Array,
+    vec: Array,
+    colour: str,
+    lw: float,
+    z: float,
+    *,
+    style: str = "-|>",
+    head: float = 16.0,
+    edge: str | None = None,
+) -> None:
+    """An arrow from ``tail`` along ``vec`` (data units: m), filled with ``colour`` and
+    outlined with ``edge`` (default the same colour); none when ``vec`` is shorter than 1 nm."""
+    from matplotlib.patches import FancyArrowPatch
+
+    if float(np.hypot(vec[0], vec[1])) < 1e-9:
+        return
+    ax.add_patch(
+        FancyArrowPatch(
+            (float(tail[0]), float(tail[1])),
+            (float(tail[0] + vec[0]), float(tail[1] + vec[1])),
+            arrowstyle=style,
+            mutation_scale=head,
+            facecolor=colour,
+            edgecolor=colour if edge is None else edge,
+            linewidth=lw,
+            shrinkA=0.0,
+            shrinkB=0.0,
+            zorder=z,
+        )
+    )
+
+
+def _arrow_handler() -> Any:
+    """A legend handler that draws a FancyArrowPatch proxy as a short arrow."""
+    from matplotlib.legend_handler import HandlerBase
+    from matplotlib.patches import FancyArrowPatch
+
+    class ArrowHandler(HandlerBase):
+        def create_artists(  # type: ignore[override]
+            self,
+            legend: Any,
+            orig_handle: Any,
+            xdescent: float,
+            ydescent: float,
+            width: float,
+            height: float,
+            fontsize: float,
+            trans: Any,
+        ) -> list[Any]:
+            y = height / 2.0 - ydescent
+            a = FancyArrowPatch(
+                (-xdescent, y),
+                (width - xdescent, y),
+                arrowstyle=orig_handle.get_arrowstyle(),
+                mutation_scale=12.0,
+                facecolor=orig_handle.get_facecolor(),
+                edgecolor=orig_handle.get_edgecolor(),
+                linewidth=orig_handle.get_linewidth(),
+                transform=trans,
+            )
+            return [a]
+
+    return ArrowHandler()
+
+
+def _arrow_proxy(colour: str, lw: float, style: str = "-|>", edge: str | None = None) -> Any:
+    from matplotlib.patches import FancyArrowPatch
+
+    return FancyArrowPatch(
+        (0, 0),
+        (1, 0),
+        arrowstyle=style,
+        facecolor=colour,
+        edgecolor=colour if edge is None else edge,
+        linewidth=lw,
+    )
+
+
+def _new_figure(figsize: tuple[float, float]) -> Figure:
+    try:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+    except ImportError as e:  # matplotlib is needed for pictures only
+        raise ImportError("pictures need matplotlib: pip install matplotlib") from e
+    fig = Figure(figsize=figsize, layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig
+
+
+class _Pose:
+    """A vehicle's pose at one time, with what the drawings need from it (world, m)."""
+
+    def __init__(self, result: Result, name: str, time: float) -> None:
+        self.name = name
+        self.vehicle = result.vehicle(name)
+        self.position, self.rotation = result.pose(name, time)
+        self.outline = silhouette(self.vehicle, self.position, self.rotation)
+        body = self.vehicle.body_vertices
+        self.front = float(np.max(body[:, 0]))  # body x of the foremost point (m)
+        self.rear = float(np.min(body[:, 0]))
+        self.half_width = 0.5 * float(np.ptp(body[:, 1]))
+        self.length = self.front - self.rear
+        # angle between the body z axis and world z (deg): roll and pitch together
+        self.tilt = math.degrees(math.acos(float(np.clip(self.rotation[2, 2], -1.0, 1.0))))
+
+    def world(self, body_xy: ArrayLike) -> Array:
+        """World x-y of body-frame points (x, y) at the CG's height."""
+        b = np.atleast_2d(np.asarray(body_xy, dtype=np.float64))
+        pts = np.column_stack([b, np.zeros(len(b))]) @ self.rotation.T + self.position
+        return pts[:, :2]
+
+
+def _draw_vehicle(
+    ax: Axes,
+    pose: _Pose,
+    colour: str,
+    *,
+    fill_alpha: float = 0.22,
+    edge_alpha: float = 1.0,
+    lw: float = 1.6,
+    ls: str = "-",
+    details: bool = True,
+    gid: str | None = None,
+    z: float = 2.0,
+) -> None:
+    """The outline (filled), and with ``details`` the body x axis, the front marker and the
+    CG symbol."""
+    from matplotlib.colors import to_rgba
+
+    patch = _patch(
+        pose.outline,
+        facecolor=to_rgba(colour, fill_alpha),
+        edgecolor=to_rgba(colour, edge_alpha),
+        linewidth=lw,
+        linestyle=ls,
+        zorder=z,
+    )
+    if gid is not None:
+        patch.set_gid(gid)
+    ax.add_patch(patch)
+    if not details:
+        return
+    # Body x axis from the rear to the front, and a filled chevron pointing forward.
+    axis = pose.world([[pose.rear, 0.0], [pose.front, 0.0]])
+    ax.plot(axis[:, 0], axis[:, 1], color=colour, lw=0.9, ls="-.", zorder=z + 0.1)
+    w = min(0.2 * pose.half_width, 0.06 * pose.length)
+    tip = pose.front - 0.04 * pose.length
+    chevron = pose.world([[tip, 0.0], [tip - 1.6 * w, w], [tip - 1.6 * w, -w]])
+    ax.fill(chevron[:, 0], chevron[:, 1], color=colour, alpha=0.9, lw=0, zorder=z + 0.2)
+    cg = pose.position
+    ax.plot([cg[0]], [cg[1]], marker="o", ms=9, mfc="white", mec=colour, mew=1.8, zorder=z + 3.0)
+    ax.plot([cg[0]], [cg[1]], marker="+", ms=9, color=colour, mew=1.8, zorder=z + 3.1)
+
+
+def _label(ax: Axes, pose: _Pose, colour: str, obstacles: Array, text: str) -> None:
+    """The vehicle's name inside its outline, at the candidate spot farthest from the
+    ``obstacles`` (world x-y points, m: arrows, paths, the centroid) so it hides none."""
+    cand = np.array(
+        [
+            [fx * end, fy * pose.half_width]
+            for end in (pose.front, pose.rear)
+            for fx in (0.62, 0.35)
+            for fy in (0.0, 0.45, -0.45)
+        ]
+    )
+    spots = pose.world(cand)
+    obs = np.asarray(obstacles, dtype=np.float64).reshape(-1, 2)
+    if len(obs):
+        gap = np.min(np.linalg.norm(spots[:, None, :] - obs[None, :, :], axis=2), axis=1)
+        x, y = spots[int(np.argmax(gap))]
+    else:
+        x, y = spots[0]
+    ax.text(
+        x,
+        y,
+        text,
+        color=colour,
+        fontsize=11,
+        fontweight="bold",
+        ha="center",
+        va="center",
+        zorder=9.0,
+        bbox={
+            "boxstyle": "round,pad=0.25",
+            "facecolor": "white",
+            "edgecolor": colour,
+            "alpha": 0.85,
+        },
+    )
+
+
+def _segment_points(tail: ArrayLike, vec: ArrayLike, n: int = 12) -> Array:
+    """Points along an arrow (x-y, m), for keeping labels off it."""
+    t = np.asarray(tail, dtype=np.float64)[:2]
+    v = np.asarray(vec, dtype=np.float64)[:2]
+    return t + np.linspace(0.0, 1.0, n)[:, None] * v
+
+
+def _path_points(result: Result) -> Array:
+    """Every vehicle's CG path (x-y, m), thinned to at most 200 points each."""
+    pts = []
+    for name in result.vehicles:
+        xy = result.trajectory(name).position[:, :2]
+        pts.append(xy[:: max(1, len(xy) // 200)])
+    return np.concatenate(pts)
+
+
+def _draw_paths(ax: Axes, result: Result, split_time: float) -> None:
+    """Every vehicle's CG path: solid up to ``split_time``, dashed after it."""
+    for k, name in enumerate(result.vehicles):
+        tr = result.trajectory(name)
+        xy = tr.position[:, :2]
+        before = tr.t <= split_time
+        after = tr.t >= split_time
+        c = vehicle_colour(k)
+        ax.plot(xy[before, 0], xy[before, 1], color=c, lw=1.2, ls="-", zorder=1.5)
+        ax.plot(xy[after, 0], xy[after, 1], color=c, lw=1.2, ls=(0, (4, 3)), zorder=1.5)
+
+
+TILT_NOTE_DEG = 5.0  # a vehicle tilted more than this gets a note under the title
+
+
+def _tilt_note(result: Result, tilts: dict[str, float]) -> str:
+    """A note naming the vehicles whose body z axis leaves world z by more than
+    TILT_NOTE_DEG (their outline is then the tilted body's projection)."""
+    big = [f"{n} {tilts[n]:.0f} deg" for n in result.vehicles if tilts.get(n, 0.0) > TILT_NOTE_DEG]
+    if not big:
+        return ""
+    return (
+        "note: largest roll/pitch drawn: " + ", ".join(big) + " (no ground or tyres in the "
+        "model; a tilted vehicle's outline is its projection)"
+    )
+
+
+def _impact_of(result: Result, impact: int | Impact) -> tuple[int, Impact]:
+    if not result.impacts:
+        raise SceneError(
+            "this result has no impacts to draw: the vehicles never exchanged an impulse "
+            "(use plot_trajectories to see the motion)"
+        )
+    if isinstance(impact, int | np.integer) and not isinstance(impact, bool):
+        i = int(impact)
+        if not -len(result.impacts) <= i < len(result.impacts):
+            raise ParameterError(
+                f"impact = {i} is out of range: this result has {len(result.impacts)} "
+                f"impact(s), numbered 0 to {len(result.impacts) - 1}"
+            )
+        i %= len(result.impacts)
+        return i, result.impacts[i]
+    for i, imp in enumerate(result.impacts):
+        if imp is impact:
+            return i, imp
+    raise ParameterError("impact must be an index into result.impacts or one of its Impacts")
+
+
+def _check_scene(result: Result) -> None:
+    if result.scene is None:
+        raise SceneError(
+            "this result has no scene, so no vehicle meshes to draw: draw the Result that "
+            "Scene.run returned"
+        )
+
+
+def _bounds(geoms: list[Any], points: list[Array]) -> tuple[float, float, float, float]:
+    import shapely
+
+    lo = np.array([np.inf, np.inf])
+    hi = -lo
+    for g in geoms:
+        b = shapely.bounds(g)
+        lo, hi = np.minimum(lo, b[:2]), np.maximum(hi, b[2:])
+    for p in points:
+        p = np.atleast_2d(p)[:, :2]
+        lo, hi = np.minimum(lo, p.min(axis=0)), np.maximum(hi, p.max(axis=0))
+    return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
+
+
+def _set_view(
+    fig: Figure, axes: list[Axes], box: tuple[float, float, float, float], margin: float
+) -> None:
+    """Equal axes in metres showing ``box`` (x0, y0, x1, y1) plus ``margin`` of its larger
+    side, widened along x or y to the panel's own shape so that no space is wasted. Call it
+    last: it lays the figure out (titles, legend) to learn the panels' shape."""
+    x0, y0, x1, y1 = box
+    pad = margin * max(x1 - x0, y1 - y0, 1e-3)
+    x0, y0, x1, y1 = x0 - pad, y0 - pad, x1 + pad, y1 + pad
+    for ax in axes:
+        ax.grid(True, color="0.88", lw=0.6)
+        ax.set_axisbelow(True)
+        ax.set_xlabel("world x (m)")
+        ax.set_xlim(x0, x1)
+        ax.set_ylim(y0, y1)
+    engine = fig.get_layout_engine()
+    if engine is not None:
+        engine.execute(fig)
+    pos = axes[0].get_position()
+    shape = (pos.width * fig.get_figwidth()) / max(pos.height * fig.get_figheight(), 1e-9)
+    w, h = x1 - x0, y1 - y0
+    if w / h < shape:  # too narrow for the panel: widen x about its middle
+        cx, w = 0.5 * (x0 + x1), h * shape
+        x0, x1 = cx - w / 2.0, cx + w / 2.0
+    else:
+        cy, h = 0.5 * (y0 + y1), w / shape
+        y0, y1 = cy - h / 2.0, cy + h / 2.0
+    for ax in axes:
+        ax.set_xlim(x0, x1)
+        ax.set_ylim(y0, y1)
+        ax.set_aspect("equal", adjustable="box")  # exact metres; the box is already right
+
+
+def _speeds(v: float) -> str:
+    return f"{v:.2f} m/s ({to_mph(v):.1f} mph)"
+
+
+# -- the impact diagram --------------------------------------------------------------------
+
+
+def plot_impact(
+    result: Result, path: str | Path | None = None, impact: int | Impact = 0, *, dpi: int = DPI
+) -> Figure:
+    """The top-down diagram of one impact: two panels, at first contact and at the impulse
+    exchange, with both vehicles' outlines (true silhouettes), their body x axes and fronts,
+    CGs, CG paths over the whole run (solid before the exchange, dashed after), and:
+
+    - first contact: each CG's velocity (arrow, m/s);
+    - exchange: the overlap region (the engine's region points, their 2-D hull), the impulse
+      centroid, the contact normal n (vehicle 1 into 2, fixed length) and the contact plane,
+      the impulse on each vehicle at the centroid (horizontal part, N s) and each CG's
+      delta-V (m/s); the outlines at first contact dotted, to show the travel in between.
+
+    Velocity and delta-V arrows share one scale, impulses have their own; both scales are in
+    the legend (1 m of arrow = ...). ``impact`` is an index into ``result.impacts`` or one of
+    them. Writes a PNG (or any format matplotlib knows by the suffix) to ``path`` when given,
+    IMPACT_FIGSIZE inches at ``dpi``; returns the Figure (Agg canvas, no pyplot state)."""
+    _check_scene(result)
+    index, imp = _impact_of(result, impact)
+    from matplotlib.colors import to_rgba
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import FancyArrowPatch, Patch
+
+    names = list(imp.vehicles)
+    colours = {n: vehicle_colour(result.vehicles.index(n)) for n in result.vehicles}
+    others = [n for n in result.vehicles if n not in names]
+    t0, t1 = imp.first_contact_time, imp.time
+    at_contact = {n: _Pose(result, n, t0) for n in result.vehicles}
+    at_exchange = {n: _Pose(result, n, t1) for n in result.vehicles}
+    velocity = {n: result.state(n, t0)["velocity"][:2] for n in names}
+    dv = {n: imp.delta_v[n][:2] for n in names}
+    j_on = {n: imp.impulse_on(n)[:2] for n in names}
+    size = max(p.length for p in at_exchange.values())
+
+    # Arrow scales (unit per m of arrow): the longest velocity about half the longest vehicle,
+    # the impulses shorter, so that the one on vehicle 1 rarely reaches its CG's delta-V.
+    v_max = max(float(np.linalg.norm(v)) for v in [*velocity.values(), *dv.values()])
+    v_unit = _nice(max(v_max, 1e-6) / (0.55 * size))  # m/s per m of arrow
+    j_max = max(float(np.linalg.norm(j)) for j in j_on.values())
+    j_unit = _nice(max(j_max, 1e-6) / (0.3 * size))  # N s per m of arrow
+    n_len = 0.12 * size  # m: the normal's drawn length
+
+    fig = _new_figure(IMPACT_FIGSIZE)
+    ax1 = fig.add_subplot(1, 2, 1)
+    ax2 = fig.add_subplot(1, 2, 2, sharex=ax1, sharey=ax1)
+    centroid = np.asarray(imp.centroid)
+
+    # Panel 1: first contact.
+    _draw_paths(ax1, result, t1)
+    paths = _path_points(result)
+    for n in result.vehicles:
+        _draw_vehicle(ax1, at_contact[n], colours[n], gid=f"silhouette:{n}:first_contact")
+    tips = []
+    busy = [paths, centroid[None, :2]]  # where labels should not go
+    for n in names:
+        cg = at_contact[n].position
+        _arrow(ax1, cg, velocity[n] / v_unit, colours[n], 2.6, 6.0)
+        busy.append(_segment_points(cg, velocity[n] / v_unit))
+        if float(np.linalg.norm(velocity[n])) < 0.005:  # m/s: no arrow to see
+            ax1.annotate(
+                "at rest",
+                (cg[0], cg[1]),
+                xytext=(8, -14),
+                textcoords="offset points",
+                color=colours[n],
+                fontsize=9,
+                zorder=9.0,
+            )
+        tips.append(cg[:2] + velocity[n] / v_unit)
+    for n in result.vehicles:
+        _label(ax1, at_contact[n], colours[n], np.concatenate(busy), n)
+    ax1.set_title(
+        f"First contact, t = {t0:.4f} s\n(the meshes touch; the depth-of-penetration timer starts)",
+        fontsize=11,
+    )
+    ax1.set_ylabel("world y (m)")
+
+    # Panel 2: the exchange.
+    _draw_paths(ax2, result, t1)
+    for n in result.vehicles:
+        _draw_vehicle(
+            ax2,
+            at_contact[n],
+            colours[n],
+            fill_alpha=0.0,
+            edge_alpha=0.55,
+            lw=1.0,
+            ls=":",
+            details=False,
+            z=1.8,
+        )
+        _draw_vehicle(ax2, at_exchange[n], colours[n], gid=f"silhouette:{n}:exchange")
+    busy = [paths, centroid[None, :2]]
+    import shapely
+
+    region = shapely.convex_hull(shapely.multipoints(np.asarray(imp.region_points)[:, :2]))
+    if region.geom_type == "Polygon" and region.area > 0.0:
+        ax2.add_patch(
+            _patch(
+                region,
+                facecolor=to_rgba("0.25", 0.35),
+                edgecolor="0.1",
+                hatch="////",
+                linewidth=1.0,
+                zorder=4.0,
+            )
+        )
+    nrm = np.asarray(imp.normal)[:2]
+    nrm_len = float(np.linalg.norm(nrm))
+    if nrm_len > 1e-9:
+        # The contact plane's trace through the centroid, and n drawn from a point on it off
+        # the centroid, so that it does not sit on the impulse arrows.
+        u = nrm / nrm_len
+        t_dir = np.array([-u[1], u[0]])
+        half = 0.3 * size
+        ends = np.array([centroid[:2] - t_dir * half, centroid[:2] + t_dir * half])
+        ax2.plot(ends[:, 0], ends[:, 1], color="black", lw=1.0, ls=(0, (6, 2, 1, 2)), zorder=6.5)
+        foot = centroid[:2] + t_dir * 0.8 * half
+        _arrow(ax2, foot, u * n_len, "black", 1.6, 7.5)
+        ax2.annotate(
+            "n",
+            tuple(foot + u * n_len),
+            xytext=(4, 4),
+            textcoords="offset points",
+            fontsize=11,
+            fontstyle="italic",
+            fontweight="bold",
+            zorder=9.0,
+        )
+        tips += [*ends, foot + u * n_len]
+        busy += [_segment_points(ends[0], ends[1] - ends[0], 30), _segment_points(foot, u * n_len)]
+    for n in names:
+        _arrow(
+            ax2,
+            centroid,
+            j_on[n] / j_unit,
+            colours[n],
+            1.2,
+            7.0,
+            style="fancy",
+            head=22.0,
+            edge="black",
+        )
+        cg = at_exchange[n].position
+        _arrow(ax2, cg, dv[n] / v_unit, colours[n], 3.2, 8.0, style="simple", head=20.0)
+        tips += [centroid[:2] + j_on[n] / j_unit, cg[:2] + dv[n] / v_unit]
+        busy += [_segment_points(centroid, j_on[n] / j_unit), _segment_points(cg, dv[n] / v_unit)]
+    for n in result.vehicles:
+        _label(ax2, at_exchange[n], colours[n], np.concatenate(busy), n)
+    ax2.plot(
+        [centroid[0]],
+        [centroid[1]],
+        marker="X",
+        ms=11,
+        mfc="gold",
+        mec="black",
+        mew=1.2,
+        zorder=9.5,
+    )
+    dtp_ms = 1e3 * (t1 - t0)
+    ax2.set_title(
+        f"Impulse exchange, t = {t1:.4f} s ({dtp_ms:.1f} ms after first contact)\n"
+        "(the impulse acts at the centroid; velocities jump by delta-V)",
+        fontsize=11,
+    )
+
+    outlines = [p.outline for p in [*at_contact.values(), *at_exchange.values()]]
+    view = _bounds(outlines, [*tips, centroid])
+
+    # Legend: vehicles, then symbols, then arrows with their scales.
+    handles: list[Any] = []
+    labels: list[str] = []
+    for n in result.vehicles:
+        v = result.vehicle(n)
+        handles.append(Patch(facecolor=to_rgba(colours[n], 0.22), edgecolor=colours[n]))
+        labels.append(f"{n}: {v.mass:.0f} kg, outline seen from above")
+    handles += [
+        Line2D([], [], color="0.3", lw=0.9, ls="-.", marker=">", ms=7, mfc="0.3", mec="0.3"),
+        Line2D([], [], ls="", marker="o", ms=9, mfc="white", mec="0.3", mew=1.8),
+        Line2D([], [], color="0.3", lw=1.2, ls="-"),
+        Line2D([], [], color="0.3", lw=1.2, ls=(0, (4, 3))),
+        Line2D([], [], color="0.3", lw=1.0, ls=":"),
+        Patch(facecolor=to_rgba("0.25", 0.35), edgecolor="0.1", hatch="////"),
+        Line2D([], [], ls="", marker="X", ms=11, mfc="gold", mec="black"),
+        _arrow_proxy("black", 1.6),
+        Line2D([], [], color="black", lw=1.0, ls=(0, (6, 2, 1, 2))),
+        _arrow_proxy("0.3", 2.6),
+        _arrow_proxy("0.3", 1.2, style="fancy", edge="black"),
+        _arrow_proxy("0.3", 3.2, style="simple"),
+    ]
+    labels += [
+        "body x axis, front (chevron)",
+        "centre of gravity (CG)",
+        "CG path up to the exchange",
+        "CG path after the exchange",
+        "outline at first contact",
+        "overlap region at the exchange",
+        "impulse centroid",
+        f"contact normal n ({names[0]} into {names[1]})",
+        "contact plane (normal to n)",
+        f"velocity at first contact (1 m = {_fmt(v_unit)} m/s)",
+        f"impulse on the vehicle of its colour (1 m = {_fmt(j_unit / 1e3)} kN s)",
+        f"delta-V of the CG (1 m = {_fmt(v_unit)} m/s)",
+    ]
+    fig.legend(
+        handles,
+        labels,
+        loc="outside lower center",
+        ncols=4,
+        fontsize=9,
+        handler_map={FancyArrowPatch: _arrow_handler()},
+        frameon=False,
+    )
+
+    # Caption: the key numbers.
+    j = np.asarray(imp.impulse)
+    title = (
+        f"Impact {index + 1} of {len(result.impacts)}: {names[0]} and {names[1]}"
+        + (" (secondary exchange)" if imp.secondary else "")
+        + " - top view, world frame (z up, out of the page), metres"
+    )
+    line2 = f"closing speed {_speeds(imp.closing_speed)} at the centroid;  " + ";  ".join(
+        f"delta-V {n} {_speeds(imp.speed_change(n))}" for n in names
+    )
+    line3 = (
+        f"impulse {np.linalg.norm(j) / 1e3:.2f} kN s (vertical part "
+        f"{round(j[2] / 1e3, 2) + 0.0:+.2f} kN s, "
+        f"not drawn);  depth of penetration {dtp_ms:.1f} ms ({imp.depth_of_penetration_mode});"
+        f"  energy dissipated {imp.energy_dissipated / 1e3:.1f} kJ"
+        + (";  sliding (tangential impulse limited by friction)" if imp.sliding else "")
+    )
+    if others:
+        line3 += f";  also in the scene: {', '.join(others)}"
+    tilts = {n: max(at_contact[n].tilt, at_exchange[n].tilt) for n in result.vehicles}
+    note = _tilt_note(result, tilts)
+    fig.suptitle(f"{title}\n{line2}\n{line3}" + (f"\n{note}" if note else ""), fontsize=11)
+    _set_view(fig, [ax1, ax2], view, 0.06)
+    if path is not None:
+        fig.savefig(Path(path), dpi=dpi)
+    return fig
+
+
+def _auto_count(result: Result) -> int:
+    """Outlines per vehicle that put the most-travelled vehicle's about half a length apart."""
+    spacings = []
+    for name in result.vehicles:
+        xy = result.trajectory(name).position[:, :2]
+        travel = float(np.sum(np.linalg.norm(np.diff(xy, axis=0), axis=1)))
+        length = float(np.ptp(result.vehicle(name).body_vertices[:, 0]))
+        spacings.append(travel / (0.5 * length))
+    return int(np.clip(round(max(spacings)) + 1, 4, 15))
+
+
+# -- the whole run -------------------------------------------------------------------------
+
+
+def plot_trajectories(
+    result: Result,
+    path: str | Path | None = None,
+    *,
+    count: int | None = None,
+    dpi: int = DPI,
+) -> Figure:
+    """The whole run from above: each vehicle's outline at ``count`` regular times from the
+    start to the end (faded, darker as time goes on, each marked with its time; by default
+    as many as put the farthest-travelling vehicle's outlines about half its length apart,
+    4 to 15), the outline
+    at every exchange drawn bold, the CG paths (solid before the first exchange, dashed
+    after), the start and end positions and every impulse centroid numbered as in
+    ``result.impacts``. Writes a PNG to ``path`` when given (TRAJECTORY_FIGSIZE inches at
+    ``dpi``); returns the Figure (Agg canvas, no pyplot state)."""
+    _check_scene(result)
+    if count is None:
+        count = _auto_count(result)
+    if not isinstance(count, int | np.integer) or isinstance(count, bool) or count < 2:
+        raise ParameterError(f"count must be an integer >= 2 (outlines per vehicle), got {count!r}")
+    from matplotlib.colors import to_rgba
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    t_start, t_end = float(result.t[0]), float(result.t[-1])
+    times = np.linspace(t_start, t_end, int(count))
+    split = result.impacts[0].time if result.impacts else t_end
+    fig = _new_figure(TRAJECTORY_FIGSIZE)
+    ax = fig.add_subplot(1, 1, 1)
+    _draw_paths(ax, result, split)
+    outlines = []
+    tilts: dict[str, float] = {}
+    for k, name in enumerate(result.vehicles):
+        c = vehicle_colour(k)
+        last: Array | None = None  # CG of the last time stamp written
+        for i, t in enumerate(times):
+            pose = _Pose(result, name, float(t))
+            outlines.append(pose.outline)
+            tilts[name] = max(tilts.get(name, 0.0), pose.tilt)
+            share = i / (len(times) - 1)
+            _draw_vehicle(
+                ax,
+                pose,
+                c,
+                fill_alpha=0.03 + 0.05 * share,
+                edge_alpha=0.3 + 0.5 * share,
+                lw=0.9,
+                details=False,
+                z=2.0 + share,
+            )
+            cg = pose.position
+            ax.plot([cg[0]], [cg[1]], marker=".", ms=5, color=c, zorder=3.5)
+            if last is not None and float(np.linalg.norm(cg[:2] - last)) < 0.4:
+                continue  # m: the previous stamp is in the way (the vehicle hardly moved)
+            last = cg[:2]
+            ax.annotate(
+                f"{t:.2f} s",
+                (cg[0], cg[1]),
+                xytext=(4, 4),
+                textcoords="offset points",
+                fontsize=7.5,
+                color=c,
+                alpha=0.9,
+                zorder=3.6,
+            )
+        for i, imp in enumerate(result.impacts):
+            if name in imp.vehicles:
+                pose = _Pose(result, name, imp.time)
+                outlines.append(pose.outline)
+                _draw_vehicle(ax, pose, c, fill_alpha=0.25, lw=1.8, z=4.0)
+                cg = pose.position
+                ax.annotate(
+                    f"impact {i + 1}, {imp.time:.3f} s",
+                    (cg[0], cg[1]),
+                    xytext=(6, -13),
+                    textcoords="offset points",
+                    fontsize=8.5,
+                    fontweight="bold",
+                    color=c,
+                    zorder=8.0,
+                    bbox={"boxstyle": "square,pad=0.1", "fc": "white", "ec": "none", "alpha": 0.7},
+                )
+        first = _Pose(result, name, t_start)
+        _label(ax, first, c, _path_points(result), f"{name} (start)")
+    for i, imp in enumerate(result.impacts):
+        p = np.asarray(imp.centroid)
+        ax.plot([p[0]], [p[1]], marker="X", ms=11, mfc="gold", mec="black", zorder=9.5)
+        angle = -0.25 * math.pi - 0.5 * math.pi * i  # labels of close centroids fan out
+        ax.annotate(
+            f"{i + 1}",
+            (p[0], p[1]),
+            xytext=(12 * math.cos(angle) - 4, 12 * math.sin(angle) - 4),
+            textcoords="offset points",
+            fontsize=10,
+            fontweight="bold",
+            zorder=9.6,
+        )
+    ax.set_ylabel("world y (m)")
+    handles: list[Any] = []
+    labels: list[str] = []
+    for k, name in enumerate(result.vehicles):
+        c = vehicle_colour(k)
+        handles.append(Patch(facecolor=to_rgba(c, 0.12), edgecolor=to_rgba(c, 0.6)))
+        labels.append(f"{name} every {(times[1] - times[0]):.3g} s (darker = later)")
+    handles += [
+        Patch(facecolor=to_rgba("0.3", 0.25), edgecolor="0.3", lw=1.8),
+        Line2D([], [], color="0.3", lw=1.2, ls="-"),
+        Line2D([], [], color="0.3", lw=1.2, ls=(0, (4, 3))),
+        Line2D([], [], ls="", marker="X", ms=11, mfc="gold", mec="black"),
+    ]
+    labels += [
+        "at an impulse exchange (with body x axis, front chevron, CG)",
+        "CG path before the first exchange",
+        "CG path after it",
+        "impulse centroid (numbered in time order)",
+    ]
+    ax.legend(handles, labels, loc="best", fontsize=8.5, framealpha=0.9)
+    summary = "; ".join(
+        f"impact {i + 1} at {imp.time:.3f} s ({imp.vehicles[0]}-{imp.vehicles[1]}, "
+        f"closing {imp.closing_speed:.1f} m/s)"
+        for i, imp in enumerate(result.impacts)
+    )
+    note = _tilt_note(result, tilts)
+    fig.suptitle(
+        f"The run from above, {t_start:g} to {t_end:g} s (world frame, z up, metres)\n"
+        + (summary or "no impacts")
+        + (f"\n{note}" if note else ""),
+        fontsize=11,
+    )
+    _set_view(fig, [ax], _bounds(outlines, []), 0.05)
+    if path is not None:
+        fig.savefig(Path(path), dpi=dpi)
+    return fig
