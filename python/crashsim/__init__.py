@@ -11,7 +11,17 @@ frame right-handed with z up; vehicle body frame ISO 8855 (x forward, y left, z 
     result = scene.run(duration=1.0, dt=1e-3)
 """
 
-from crashsim import units
+from crashsim import (
+    export,
+    generator,
+    meshio,
+    montecarlo,
+    penetration,
+    plots,
+    report,
+    units,
+    vehicle_data,
+)
 from crashsim._core import __version__
 from crashsim.errors import (
     CrashsimError,
@@ -22,8 +32,14 @@ from crashsim.errors import (
     SceneError,
     SimulationError,
 )
+from crashsim.export import export_frames, export_glb
+from crashsim.meshio import MeshQuality, load_mesh, mesh_quality
+from crashsim.montecarlo import dtp_montecarlo
+from crashsim.plots import plot_impact, plot_trajectories
+from crashsim.report import Report, build_report
 from crashsim.result import ContactEvent, Impact, Result, Trajectory
 from crashsim.scene import DepthOfPenetrationWarning, Scene
+from crashsim.stiffness import FaceStiffness, Stiffness
 from crashsim.units import (
     deg,
     ft,
@@ -39,6 +55,7 @@ from crashsim.units import (
     to_mph,
 )
 from crashsim.vehicle import Vehicle
+from crashsim.vehicle_data import VehicleClass, vehicle_class, vehicle_classes
 
 __all__ = [
     "__version__",
@@ -49,7 +66,30 @@ __all__ = [
     "Impact",
     "Trajectory",
     "ContactEvent",
+    "Stiffness",
+    "FaceStiffness",
+    "VehicleClass",
+    "vehicle_class",
+    "vehicle_classes",
+    "MeshQuality",
+    "load_mesh",
+    "mesh_quality",
+    "Report",
+    "build_report",
+    "plot_impact",
+    "plot_trajectories",
+    "export_glb",
+    "export_frames",
+    "dtp_montecarlo",
+    "export",
+    "generator",
+    "meshio",
+    "montecarlo",
+    "penetration",
+    "plots",
+    "report",
     "units",
+    "vehicle_data",
     "mph",
     "kmh",
     "ft",

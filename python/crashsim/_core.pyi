@@ -183,7 +183,8 @@ class World:
         ``region_min``, ``region_max`` (3,) extent of the region in the contact frame,
         ``depth_of_penetration_mode`` ("fixed" or "auto"), ``struck_faces`` (face of body1,
         face of body2), ``overlap_width`` (m), ``spring_rates`` ((k1, k2) N/m or None),
-        ``effective_mass`` ((m1, m2) kg along n at the centroid), ``notes`` (list of str);
+        ``effective_mass`` ((m1, m2) kg along n at the centroid), ``notes`` (list of str),
+        ``normal_time`` (s: when the overlap's volume normal behind ``normal`` was taken);
         ``contacts``: a list of dicts ``body1``, ``body2``, ``time``, ``kind``
         ("first_overlap", "closing_again", "separation" or "no_exchange") and ``reason``
         (str or None).

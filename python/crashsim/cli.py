@@ -1,33 +1,58 @@
 """The ``crashsim`` command line.
 
+``crashsim run case.toml`` loads a scene file (crashsim.scenefile; docs/scene-format.md), runs
+it, prints the report's summary table and writes report.json, the time histories (CSV), the
+top-down pictures (PNG) and the 3-D motion (GLB) into a folder.
+
+``crashsim check case.toml`` runs a scene file and checks the engine's first overlaps against
+the independent python-fcl cross-check; it fails (exit 1) when they disagree.
+
 ``crashsim demo`` runs the built-in side impact (the seed's first worked example): a red box
 car at 30 mph square into the driver (left) side of a stationary blue box car, with the
 default contact parameters (depth of penetration 30 ms, restitution 0.1, friction 0.6).
 
 ``crashsim dtp-montecarlo`` samples the depth of penetration dt_p = sqrt(m'/k') over pairs of
 the built-in vehicle classes (crashsim.montecarlo) and prints its percentiles in ms.
+
+Exit codes: 0 success; 1 the run or the check failed (or an output could not be written);
+2 bad input (a malformed scene file, bad arguments, vehicles overlapping at t = 0); 130
+interrupted (Ctrl-C). Messages go to stderr, one line for input errors.
 """
 
 from __future__ import annotations
 
 import argparse
+import csv
+import importlib
 import json
+import os
 import sys
-from collections.abc import Sequence
+import warnings
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import IO, Any, NoReturn
 
 import numpy as np
 
 from crashsim._core import __version__
-from crashsim.errors import CrashsimError, ParameterError
+from crashsim.errors import CrashsimError, InputError, ParameterError, SimulationError
 from crashsim.montecarlo import PERCENTILES, dtp_montecarlo, plot_dtp_histogram
 from crashsim.result import Result
 from crashsim.scene import Scene
-from crashsim.units import deg, mph, to_ft, to_mph
+from crashsim.scenefile import SceneFile, load_scene, parse_quantity
+from crashsim.units import deg, mph, to_ft, to_kmh, to_mph
 from crashsim.vehicle import Vehicle
 
-__all__ = ["demo_scene", "main"]
+__all__ = ["EXIT_FAILED", "EXIT_INPUT", "EXIT_INTERRUPTED", "demo_scene", "main", "write_csv"]
+
+EXIT_FAILED = 1  # the run or the check failed
+EXIT_INPUT = 2  # bad input: a malformed scene file, bad arguments
+EXIT_INTERRUPTED = 130  # Ctrl-C (128 + SIGINT), as shells report it
+
+REPORT_FILE = "report.json"
+CSV_FILE = "time-histories.csv"
+GLB_FILE = "motion.glb"
+TRAJECTORIES_FILE = "trajectories.png"
 
 DEMO_GAP = 0.5  # m between red's front and blue's side at t = 0
 
@@ -149,14 +174,336 @@ def _dtp_montecarlo(args: argparse.Namespace) -> int:
     return 0
 
 
+# -- scene files ---------------------------------------------------------------------------
+
+
+class _Unavailable(Exception):
+    """An optional output module (report, plots, export, cross-check) is not installed."""
+
+
+def _optional(module: str, name: str) -> Any:
+    """``module.name``, or _Unavailable when the module does not exist (an error inside an
+    existing module propagates)."""
+    try:
+        mod = importlib.import_module(module)
+    except ModuleNotFoundError as e:
+        if e.name != module:
+            raise
+        raise _Unavailable(f"{module} is not available in this crashsim") from None
+    return getattr(mod, name)
+
+
+def _note(message: str) -> None:
+    print(f"crashsim: note: {message}", file=sys.stderr)
+
+
+class ProgressBar:
+    """A one-line progress bar on a stream, driven by Scene.run's progress callback (the
+    simulated time reached, s)."""
+
+    def __init__(self, duration: float, stream: IO[str], width: int = 30) -> None:
+        self.duration = duration
+        self.stream = stream
+        self.width = width
+        self.drawn = False
+
+    def __call__(self, t: float) -> None:
+        frac = min(max(t / self.duration, 0.0), 1.0) if self.duration > 0 else 1.0
+        filled = int(frac * self.width)
+        bar = "#" * filled + "." * (self.width - filled)
+        self.drawn = True  # first: a Ctrl-C during the write still gets its line ended
+        self.stream.write(f"\r  [{bar}] {100.0 * frac:5.1f} %  t = {t:.3f} of {self.duration:g} s")
+        self.stream.flush()
+
+    def close(self, done: bool) -> None:
+        """Finish the line (drawn at 100 % when the run completed)."""
+        if self.drawn:
+            if done:
+                self(self.duration)
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+def _no_progress(t: float) -> None:
+    """A progress callback that shows nothing (it lets the engine notice Ctrl-C)."""
+
+
+def _time(text: str) -> float:
+    """argparse type: a time ("2 ms", "0.5 s" or a number of seconds), > 0."""
+    try:
+        value = parse_quantity(_number_or_text(text), "time")
+    except ParameterError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+    if not value > 0.0:
+        raise argparse.ArgumentTypeError(f"{text!r} must be positive")
+    return value
+
+
+def _number_or_text(text: str) -> float | str:
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+def _heading(q: np.ndarray) -> np.ndarray:
+    """Yaw of the body x axis from world x (rad, counter-clockwise seen from above) for
+    quaternions (k, 4) (w, x, y, z), unwrapped so it runs on continuously past +-pi."""
+    w, x, y, z = q.T
+    return np.unwrap(np.arctan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z)))
+
+
+def write_csv(result: Result, path: str | Path) -> list[str]:
+    """Write the time histories: one row per sample (step ends, first overlaps, exchanges;
+    at an exchange the state after it), a header row with units; SI, world frame. Per
+    vehicle: CG x, y, z (m), heading (rad, yaw of the body x axis, unwrapped), orientation
+    quaternion qw, qx, qy, qz, CG velocity vx, vy, vz (m/s), angular velocity wx, wy, wz
+    (rad/s; wz is the yaw rate). Returns the header."""
+    header = ["t [s]"]
+    columns = [np.asarray(result.t)]
+    parts = [
+        ("x [m]", "y [m]", "z [m]"),
+        ("heading [rad]",),
+        ("qw [1]", "qx [1]", "qy [1]", "qz [1]"),
+        ("vx [m/s]", "vy [m/s]", "vz [m/s]"),
+        ("wx [rad/s]", "wy [rad/s]", "wz (yaw rate) [rad/s]"),
+    ]
+    for name in result.vehicles:
+        tr = result.trajectory(name)
+        blocks = [
+            tr.position,
+            _heading(np.asarray(tr.orientation))[:, None],
+            tr.orientation,
+            tr.velocity,
+            tr.angular_velocity,
+        ]
+        for labels, block in zip(parts, blocks, strict=True):
+            header += [f"{name} {label}" for label in labels]
+            columns += list(np.asarray(block).T)
+    table = np.column_stack(columns)
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        writer = csv.writer(f)
+        writer.writerow(header)
+        for row in table:
+            writer.writerow([f"{x:.15g}" for x in row])
+    return header
+
+
+def _fallback_summary(result: Result) -> str:
+    """A short table of the exchanges (used only while crashsim.report is missing)."""
+    lines = [
+        f"{'#':>3} {'vehicles':<24}{'t0 ms':>9}{'t ms':>9}{'dt_p ms':>9}  "
+        f"{'kind':<8}{'|dV| km/h (mph)':>30}{'energy kJ':>11}"
+    ]
+    for k, imp in enumerate(result.impacts, 1):
+        dv = "  ".join(
+            f"{to_kmh(imp.speed_change(n)):.1f} ({to_mph(imp.speed_change(n)):.1f})"
+            for n in imp.vehicles
+        )
+        kind = ("sliding" if imp.sliding else "full") + ("*" if imp.secondary else "")
+        lines.append(
+            f"{k:>3} {' - '.join(imp.vehicles):<24}{imp.first_contact_time * 1e3:9.2f}"
+            f"{imp.time * 1e3:9.2f}{imp.depth_of_penetration * 1e3:9.2f}  {kind:<8}{dv:>30}"
+            f"{imp.energy_dissipated / 1e3:11.2f}"
+        )
+    if any(imp.secondary for imp in result.impacts):
+        lines.append("  * a secondary exchange of an engaged pair")
+    return "\n".join(lines)
+
+
+def _summary_and_json(result: Result, json_path: Path | None) -> str:
+    """The report's summary table, writing report.json when a path is given."""
+    try:
+        build_report = _optional("crashsim.report", "build_report")
+    except _Unavailable as e:
+        _note(f"{e}: a minimal summary and the raw result instead of the report")
+        if json_path is not None:
+            json_path.write_text(json.dumps(result.to_dict(), indent=2), encoding="utf-8")
+        return _fallback_summary(result)
+    report = build_report(result)
+    if json_path is not None:
+        report.write_json(json_path)
+    return str(report.summary_table())
+
+
+def _simulate(args: argparse.Namespace, case: SceneFile) -> Result:
+    duration = case.run.duration if args.duration is None else args.duration
+    dt = case.run.dt if args.dt is None else args.dt
+    bar = ProgressBar(duration, sys.stderr) if args.progress or sys.stderr.isatty() else None
+    done = False
+    try:
+        # always a callback: the engine honours Ctrl-C when it calls back into Python
+        result = case.simulate(duration=duration, dt=dt, progress=bar or _no_progress)
+        done = True
+    except InputError as e:  # e.g. vehicles overlapping at t = 0: name the file
+        raise type(e)(f"{case.path}: {e}") from e
+    finally:
+        if bar is not None:
+            bar.close(done)
+    return result
+
+
+def _header(case: SceneFile) -> str:
+    title = case.title or (case.path.stem if case.path else "scene")
+    names = ", ".join(v.name for v in case.scene.vehicles)
+    return f"crashsim: {title} ({case.path}): {len(case.scene)} vehicles ({names})"
+
+
+def _out_dir(args: argparse.Namespace, case: SceneFile) -> Path:
+    if args.out is not None:
+        out = Path(args.out)
+    elif case.output.dir is not None:
+        out = case.output.dir
+    else:
+        stem = case.path.stem if case.path is not None else "scene"
+        out = Path(f"{stem}-out")
+    if out.exists() and not out.is_dir():
+        raise ParameterError(f"the output folder {out} is a file: give another --out")
+    return out
+
+
+def _make(out: Path) -> None:
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise ParameterError(f"cannot create the output folder {out}: {e.strerror or e}") from e
+
+
+def _run(args: argparse.Namespace) -> int:
+    case = load_scene(args.scene)
+    out = _out_dir(args, case)  # checked before the run, made after it
+    print(_header(case))
+    result = _simulate(args, case)
+    _make(out)
+    written: list[Path] = []
+    want = case.output
+    json_path = out / REPORT_FILE if want.report else None
+    summary = _summary_and_json(result, json_path)
+    if json_path is not None:
+        written.append(json_path)
+    if want.csv:
+        write_csv(result, out / CSV_FILE)
+        written.append(out / CSV_FILE)
+    if want.pictures and not args.no_pictures:
+        written += _pictures(result, out)
+    if want.glb and not args.no_pictures:
+        written += _glb(result, out)
+    # printed last: the files are complete even when the reader of stdout stops early
+    print(summary)
+    if not result.impacts:
+        print("no impulse exchange happened within the run")
+    print("wrote: " + ", ".join(str(p) for p in written) if written else "wrote nothing")
+    return 0
+
+
+def _pictures(result: Result, out: Path) -> list[Path]:
+    try:
+        plot_impact = _optional("crashsim.plots", "plot_impact")
+    except _Unavailable as e:
+        _note(f"{e}: no pictures")
+        return []
+    plot_trajectories = _optional("crashsim.plots", "plot_trajectories")
+    plot_trajectories(result, out / TRAJECTORIES_FILE)
+    paths = [out / TRAJECTORIES_FILE]
+    for k in range(len(result.impacts)):
+        path = out / f"impact-{k + 1}.png"
+        plot_impact(result, path, impact=k)
+        paths.append(path)
+    return paths
+
+
+def _glb(result: Result, out: Path) -> list[Path]:
+    try:
+        export_glb = _optional("crashsim.export", "export_glb")
+    except _Unavailable as e:
+        _note(f"{e}: no 3-D motion file")
+        return []
+    path = out / GLB_FILE
+    export_glb(result, path)
+    return [path]
+
+
+def _check(args: argparse.Namespace) -> int:
+    case = load_scene(args.scene)
+    try:
+        cross_check = _optional("crashsim.crosscheck", "cross_check")
+    except _Unavailable as e:
+        print(f"crashsim: error: cannot check: {e}", file=sys.stderr)
+        return EXIT_FAILED
+    print(_header(case))
+    result = _simulate(args, case)
+    check = cross_check(result)
+    print(check)
+    return 0 if check.ok else EXIT_FAILED
+
+
+# -- the parser ----------------------------------------------------------------------------
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with a one-line error message (exit 2)."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(EXIT_INPUT, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def _scene_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("scene", type=Path, help="the scene file (TOML, docs/scene-format.md)")
+    p.add_argument(
+        "--dt",
+        type=_time,
+        help='largest time step ("2 ms" or seconds), overriding the file\'s run.dt',
+    )
+    p.add_argument(
+        "--duration",
+        type=_time,
+        help='simulated time ("0.5 s" or seconds), overriding the file\'s run.duration',
+    )
+    p.add_argument(
+        "--progress",
+        action="store_true",
+        help="show the progress bar on stderr even when it is not a terminal",
+    )
+
+
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="crashsim",
         description="Open 3-D vehicle collision engine (depth of penetration, Kudlich-Slibar "
         "impulse). SI units inside.",
+        epilog="Exit codes: 0 success, 1 the run or check failed, 2 bad input, 130 interrupted.",
     )
     parser.add_argument("--version", action="version", version=f"crashsim {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="command")
+    run = sub.add_parser(
+        "run",
+        help="run a scene file; print the summary; write the report, CSV, pictures, GLB",
+        description="Runs a scene file (docs/scene-format.md) and prints the summary table. "
+        f"Writes into the output folder: {REPORT_FILE} (the full report), {CSV_FILE} (time "
+        f"histories, SI, one row per sample), {TRAJECTORIES_FILE} (the run from above), "
+        "impact-N.png (top-down picture of each exchange) "
+        f"and {GLB_FILE} (the 3-D motion). Folder: --out, else the file's output.dir, else "
+        "<scene name>-out in the current folder.",
+        epilog="Exit codes: 0 success, 1 the run failed, 2 bad input, 130 interrupted.",
+    )
+    _scene_arguments(run)
+    run.add_argument("--out", metavar="DIR", help="output folder (created if needed)")
+    run.add_argument(
+        "--no-pictures",
+        action="store_true",
+        help="write neither the PNG pictures nor the GLB motion (faster)",
+    )
+    run.set_defaults(func=_run)
+    check = sub.add_parser(
+        "check",
+        help="run a scene file and cross-check its first overlaps with python-fcl",
+        description="Runs a scene file and compares the engine's first overlaps with the "
+        "independent python-fcl check; prints the comparison.",
+        epilog="Exit codes: 0 they agree, 1 they disagree (or the check is unavailable), "
+        "2 bad input, 130 interrupted.",
+    )
+    _scene_arguments(check)
+    check.set_defaults(func=_check)
     demo = sub.add_parser(
         "demo",
         help="run the built-in 30 mph side impact and print what happened",
@@ -186,14 +533,45 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _show_warning(
+    message: Warning | str,
+    category: type[Warning],
+    filename: str,
+    lineno: int,
+    file: Any = None,
+    line: str | None = None,
+) -> None:
+    print(f"crashsim: warning: {' '.join(str(message).split())}", file=sys.stderr)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``crashsim`` command; returns the exit code."""
+    """Entry point of the ``crashsim`` command; returns the exit code (0 success, 1 the run
+    or check failed, 2 bad input, 130 interrupted). Bad arguments exit 2 through SystemExit,
+    as argparse does."""
     args = _parser().parse_args(argv)
+    func: Callable[[argparse.Namespace], int] = args.func
     try:
-        return int(args.func(args))
-    except CrashsimError as e:
-        print(f"crashsim: error: {e}", file=sys.stderr)
-        return 2
+        with warnings.catch_warnings():
+            warnings.simplefilter("default")  # every warning once, as one line on stderr
+            warnings.showwarning = _show_warning
+            code = int(func(args))
+        sys.stdout.flush()  # here, so a closed pipe is caught below
+        return code
+    except KeyboardInterrupt:
+        print("crashsim: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except SimulationError as e:
+        print(f"crashsim: error: {' '.join(str(e).split())}", file=sys.stderr)
+        return EXIT_FAILED
+    except CrashsimError as e:  # the input is at fault
+        print(f"crashsim: error: {' '.join(str(e).split())}", file=sys.stderr)
+        return EXIT_INPUT
+    except BrokenPipeError:  # stdout's reader stopped (crashsim run ... | head)
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
+        return EXIT_FAILED
+    except OSError as e:  # writing an output failed (disk full, permissions, ...)
+        print(f"crashsim: error: {' '.join(str(e).split())}", file=sys.stderr)
+        return EXIT_FAILED
 
 
 if __name__ == "__main__":

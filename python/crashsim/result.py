@@ -101,7 +101,10 @@ class Impact:
     ``overlap_width`` is the region's extent along the contact tangent t (m);
     ``spring_rates`` are k = B W of the struck faces (N/m; None without stiffness data);
     ``effective_mass`` is each vehicle's mass as felt along n at the centroid (kg);
-    ``notes`` are the engine's remarks (e.g. an automatic dt_p outside 10-60 ms)."""
+    ``notes`` are the engine's remarks (e.g. an automatic dt_p outside 10-60 ms);
+    ``normal_time`` is when the overlap's volume normal behind ``normal`` was taken (s): for a
+    first exchange, once the overlap is at most 2 cm deep (a deep, narrow overlap at the
+    exchange would turn it toward the side walls that sank into each other), else ``time``."""
 
     vehicles: tuple[str, str]
     bodies: tuple[int, int]  # the engine's body indices (order of Scene.add)
@@ -132,6 +135,7 @@ class Impact:
     spring_rates: dict[str, float] | None = None
     effective_mass: dict[str, float] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
+    normal_time: float = float("nan")
 
     @classmethod
     def from_core(cls, raw: dict[str, Any], names: list[str]) -> Impact:
@@ -178,6 +182,7 @@ class Impact:
             else dict(zip(pair, map(float, raw["spring_rates"]), strict=True)),
             effective_mass=dict(zip(pair, map(float, raw["effective_mass"]), strict=True)),
             notes=tuple(raw["notes"]),
+            normal_time=float(raw["normal_time"]),
         )
 
     @property

@@ -33,6 +33,11 @@ const MIN_ADVANCE: Real = 1e-6;
 const MIN_ADVANCE_FRACTION: Real = 1e-3;
 /// Separation instants are resolved to this (s).
 const SEPARATION_TOLERANCE: Real = 1e-6;
+/// The automatic normal of a first exchange is the overlap's volume normal taken while the
+/// overlap is at most this deep (m): at the exchange a deep, narrow overlap (an offset
+/// frontal) puts the side walls that sank into each other ahead of the faces that met, and
+/// its volume normal turns toward the side (52 deg for two boxes 0.9 m offset, 1.16 m deep).
+pub const NORMAL_DEPTH: Real = 0.02;
 /// A relative normal velocity above this (m/s) counts as closing again.
 const CLOSING_TOLERANCE: Real = 1e-6;
 /// Most steps one run may take.
@@ -121,6 +126,9 @@ pub struct Impact {
     pub spring_rates: Option<[Real; 2]>,
     /// Effective masses of bodies 1 and 2 along n at the centroid (kg).
     pub effective_mass: [Real; 2],
+    /// When the overlap's volume normal behind `normal` was taken (s): early in the timer
+    /// for a first exchange (overlap at most [`NORMAL_DEPTH`] deep), else the exchange.
+    pub normal_time: Real,
     /// Remarks on this exchange (e.g. an automatic dt_p outside the typical 10-60 ms).
     pub notes: Vec<String>,
 }
@@ -139,6 +147,8 @@ struct ContactGeometry {
     width: Real,
     spring_rates: Option<[Real; 2]>,
     effective_mass: [Real; 2],
+    /// When the volume normal was taken, if not at these states.
+    normal_time: Option<Real>,
 }
 
 impl ContactGeometry {
@@ -180,6 +190,8 @@ enum Phase {
         exchange_at: Real,
         secondary: bool,
         notes: Vec<String>,
+        /// The volume normal of the shallow overlap, body 1's frame, and when it was taken.
+        early_normal: Option<(Vector, Real)>,
     },
     Engaged {
         /// The centroid as material points of body 1 and body 2 (their frames, m).
@@ -408,7 +420,7 @@ impl World {
                     kind: ContactEventKind::FirstOverlap,
                 });
                 self.pairs[pi].exchanges = 0;
-                self.start_timer(pi, tc, false, &mut out);
+                self.start_timer(pi, tc, None, &mut out);
                 self.record(&mut out);
                 continue;
             }
@@ -565,11 +577,35 @@ impl World {
     }
 
     /// Starts pair `pi`'s timer at `started` (s, at most now); exchanges at once when it has
-    /// already expired.
-    fn start_timer(&mut self, pi: usize, started: Real, secondary: bool, out: &mut RunOutput) {
+    /// already expired. A secondary timer (an engaged pair closing again) keeps the engaged
+    /// normal `engaged_normal` (body 1's frame), along which it was found closing; a first
+    /// one takes the volume normal of the shallow overlap.
+    fn start_timer(
+        &mut self,
+        pi: usize,
+        started: Real,
+        engaged_normal: Option<Vector>,
+        out: &mut RunOutput,
+    ) {
+        let secondary = engaged_normal.is_some();
+        let cap = match self.pairs[pi].params.depth_of_penetration {
+            DepthOfPenetration::Fixed(dtp) => dtp,
+            DepthOfPenetration::Auto => MAX_DEPTH_OF_PENETRATION,
+        };
+        let mut early_normal = match engaged_normal {
+            Some(n) => Some((n, started)),
+            None => self.early_normal(pi, started, cap),
+        };
         let (dtp, notes) = match self.pairs[pi].params.depth_of_penetration {
             DepthOfPenetration::Fixed(dtp) => (dtp, Vec::new()),
-            DepthOfPenetration::Auto => self.auto_depth_of_penetration(pi, started),
+            DepthOfPenetration::Auto => {
+                let (dtp, notes) = self.auto_depth_of_penetration(pi, started, early_normal);
+                if early_normal.is_some_and(|(_, t)| t > started + dtp) {
+                    // The exchange comes before the overlap is NORMAL_DEPTH deep: use its own.
+                    early_normal = None;
+                }
+                (dtp, notes)
+            }
         };
         let exchange_at = (started + dtp).max(self.time);
         self.pairs[pi].phase = Phase::Timer {
@@ -577,23 +613,55 @@ impl World {
             exchange_at,
             secondary,
             notes,
+            early_normal,
         };
         if exchange_at <= self.time {
             self.exchange(pi, out);
         }
     }
 
+    /// The volume normal (body 1's frame) of pair `pi`'s overlap once it is at most
+    /// NORMAL_DEPTH deep (no later than `cap` s after `started`), and its time; None when
+    /// the meshes no longer overlap then or the normal vanishes.
+    fn early_normal(&self, pi: usize, started: Real, cap: Real) -> Option<(Vector, Real)> {
+        let pair = &self.pairs[pi];
+        let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
+        // An upper bound on the approach speed of any two surface points (m/s).
+        let speed = (wb1.body.velocity() - wb2.body.velocity()).norm()
+            + wb1.body.angular_speed_bound() * wb1.shape.radius()
+            + wb2.body.angular_speed_bound() * wb2.shape.radius();
+        let dt = if speed > 0.0 {
+            (NORMAL_DEPTH / speed).min(cap)
+        } else {
+            cap
+        };
+        let offset = started - self.time + dt;
+        let (b1, b2) = (wb1.body.advanced(offset), wb2.body.advanced(offset));
+        let (pose1, pose2) = (b1.pose(), b2.pose());
+        let n = overlap_region(&wb1.shape, &pose1, &wb2.shape, &pose2).volume_normal()?;
+        Some((pose1.inverse_transform_vector(&n), started + dt))
+    }
+
     /// The automatic dt_p of pair `pi` whose timer starts at `started`: the dt in
     /// (0, 0.060] s with dt = sqrt(m'/k') evaluated at started + dt, where the bodies will be
     /// (they move freely while the timer runs). Bisection to `TIME_TOLERANCE`; clamped to
     /// 0.060 s, with a note, when sqrt(m'/k') is still longer there.
-    fn auto_depth_of_penetration(&self, pi: usize, started: Real) -> (Real, Vec<String>) {
+    fn auto_depth_of_penetration(
+        &self,
+        pi: usize,
+        started: Real,
+        early_normal: Option<(Vector, Real)>,
+    ) -> (Real, Vec<String>) {
         let pair = &self.pairs[pi];
         let offset = started - self.time;
         let spring_time = |dt: Real| -> Real {
             let b1 = self.bodies[pair.body1].body.advanced(offset + dt);
             let b2 = self.bodies[pair.body2].body.advanced(offset + dt);
-            self.contact_geometry(pair, &b1, &b2)
+            // Before the early normal's instant the overlap's own normal is used.
+            let normal = early_normal
+                .filter(|(_, t)| *t <= started + dt)
+                .map(|(n, t)| (b1.pose() * n, t));
+            self.contact_geometry(pair, &b1, &b2, normal)
                 .map_or(Real::INFINITY, |g| g.spring_time())
         };
         let max = MAX_DEPTH_OF_PENETRATION;
@@ -630,12 +698,14 @@ impl World {
 
     /// The pair's contact geometry with its bodies at the given states (world frame): the
     /// overlap region, normal, contact frame, centroid, struck faces, width, spring rates and
-    /// effective masses. None when the meshes do not overlap.
+    /// effective masses. `volume_normal` replaces the region's own volume normal (world frame,
+    /// with the time it was taken). None when the meshes do not overlap.
     fn contact_geometry(
         &self,
         pair: &Pair,
         b1: &RigidBody,
         b2: &RigidBody,
+        volume_normal: Option<(Vector, Real)>,
     ) -> Option<ContactGeometry> {
         let (w1, w2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
         let (pose1, pose2) = (b1.pose(), b2.pose());
@@ -651,15 +721,21 @@ impl World {
             }
             nalgebra::center(&lo, &hi)
         };
-        let volume_normal = region.volume_normal().unwrap_or_else(|| {
-            // No usable inside area (e.g. open meshes): fall back on the approach direction.
-            let u = b1.point_velocity(&bbox_center) - b2.point_velocity(&bbox_center);
-            if u.norm() > 0.0 {
-                u.normalize()
-            } else {
-                (b2.position() - b1.position()).normalize()
-            }
-        });
+        let (volume_normal, normal_time) = volume_normal.map_or_else(
+            || {
+                let n = region.volume_normal().unwrap_or_else(|| {
+                    // No usable inside area (e.g. open meshes): fall back on the approach direction.
+                    let u = b1.point_velocity(&bbox_center) - b2.point_velocity(&bbox_center);
+                    if u.norm() > 0.0 {
+                        u.normalize()
+                    } else {
+                        (b2.position() - b1.position()).normalize()
+                    }
+                });
+                (n, None)
+            },
+            |(n, t)| (n, Some(t)),
+        );
         let normal = match &pair.params.normal {
             NormalMode::Volume => volume_normal,
             NormalMode::Fixed(v) => v.normalize(),
@@ -751,18 +827,20 @@ impl World {
             width,
             spring_rates,
             effective_mass,
+            normal_time,
         })
     }
 
     /// Exchange the impulse of pair `pi` now (its timer expired).
     fn exchange(&mut self, pi: usize, out: &mut RunOutput) {
-        let (started, secondary, notes) = match &self.pairs[pi].phase {
+        let (started, secondary, notes, early_normal) = match &self.pairs[pi].phase {
             Phase::Timer {
                 started,
                 secondary,
                 notes,
+                early_normal,
                 ..
-            } => (*started, *secondary, notes.clone()),
+            } => (*started, *secondary, notes.clone(), *early_normal),
             _ => return,
         };
         let pair = self.pairs[pi].clone();
@@ -777,7 +855,8 @@ impl World {
             world.pairs[pi].phase = phase;
         };
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
-        let Some(geometry) = self.contact_geometry(&pair, b1, b2) else {
+        let normal = early_normal.map(|(n, t)| (b1.pose() * n, t));
+        let Some(geometry) = self.contact_geometry(&pair, b1, b2, normal) else {
             skip(
                 self,
                 out,
@@ -853,6 +932,7 @@ impl World {
             overlap_width: geometry.width,
             spring_rates: geometry.spring_rates,
             effective_mass: geometry.effective_mass,
+            normal_time: geometry.normal_time.unwrap_or(self.time),
             notes,
         });
         self.pairs[pi].exchanges += 1;
@@ -943,7 +1023,7 @@ impl World {
                 time: started,
                 kind: ContactEventKind::ClosingAgain,
             });
-            self.start_timer(pi, started, true, out);
+            self.start_timer(pi, started, Some(normal_in_1), out);
         }
     }
 }

@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use crashsim_core::impulse::{ImpulseProblem, RestitutionMode};
 use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
+use crashsim_core::world::NORMAL_DEPTH;
 use crashsim_core::{
     BodyState, CentroidMode, ContactEventKind, ContactParams, DepthOfPenetration, Error, Face,
     FaceStiffness, MassProperties, MeshShape, NormalMode, Stiffness, World,
@@ -744,4 +745,45 @@ fn stiffness_modes_need_stiffness_on_both_vehicles() {
             other => panic!("expected a parameter error, got {other:?}"),
         }
     }
+}
+
+#[test]
+fn offset_frontal_normal_follows_the_faces_that_met_not_the_deep_overlap() {
+    // Regression: two 4.5 x 1.8 m boxes, 50 % offset (0.9 m of width in common), closing at
+    // 30.5 m/s with a 38 ms timer: 1.16 m deep at the exchange. There the side walls that sank
+    // into each other outweigh the front faces and the volume normal turned 52 deg sideways.
+    // Taken while the overlap is 2 cm deep it is within atan(2 x 0.02 / 1.8) = 1.3 deg of x.
+    let mut w = World::new();
+    w.add_body(
+        box_shape(4.5, 1.8, 1.4),
+        box_props(1500.0, 4.5, 1.8, 1.4),
+        &state(-5.0, 0.9, 0.7, 0.0, Vector::new(30.5, 0.0, 0.0)),
+    )
+    .unwrap();
+    w.add_body(
+        box_shape(4.5, 1.8, 1.4),
+        box_props(1500.0, 4.5, 1.8, 1.4),
+        &state(0.0, 0.0, 0.7, PI, Vector::zeros()),
+    )
+    .unwrap();
+    w.set_contact(
+        0,
+        1,
+        ContactParams {
+            depth_of_penetration: DepthOfPenetration::Fixed(0.038),
+            ..ContactParams::default()
+        },
+    )
+    .unwrap();
+    let out = w.run(0.1, 1e-3).unwrap();
+    let imp = &out.impacts[0];
+    let angle = imp.normal.y.atan2(imp.normal.x).to_degrees();
+    assert!(angle.abs() < 1.3, "normal {} deg off x", angle);
+    // Taken 2 cm of approach after the first overlap (30.5 m/s, no rotation).
+    let expected = imp.first_contact_time + NORMAL_DEPTH / 30.5;
+    assert!(
+        (imp.normal_time - expected).abs() < 1e-12,
+        "{}",
+        imp.normal_time
+    );
 }

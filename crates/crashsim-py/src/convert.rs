@@ -294,6 +294,7 @@ pub fn impact_to_dict<'py>(py: Python<'py>, imp: &core::Impact) -> PyResult<Boun
         (imp.effective_mass[0], imp.effective_mass[1]),
     )?;
     d.set_item("notes", imp.notes.clone())?;
+    d.set_item("normal_time", imp.normal_time)?;
     Ok(d)
 }
 

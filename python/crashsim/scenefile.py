@@ -1,0 +1,1112 @@
+"""Scene files: a collision case as a TOML file (the reference is docs/scene-format.md).
+
+    format_version = 1
+
+    [run]
+    duration = "0.3 s"
+    dt = "1 ms"
+
+    [contact]                       # every pair's parameters unless a [[pairs]] entry overrides
+    depth_of_penetration = "30 ms"
+
+    [[vehicles]]
+    name = "red"
+    box = { length = "4.5 m", width = "1.8 m", height = "1.4 m" }
+    mass = "1450 kg"
+    position = ["-3.65 m", "0.3 m"]  # the CG (x, y); z: the CG's height in the model frame
+    heading = "0 deg"
+    speed = "30 mph"
+
+Every quantity is a plain number in SI units (m, kg, s, rad, m/s, rad/s, N, kg m^2, N/m,
+N/m^2) or a string with a number and a unit ("30 mph", "3200 lb", "90 deg", "30 ms"); the
+unit must fit the quantity (:data:`UNITS`, :func:`parse_quantity`). File paths are relative
+to the scene file. Unknown keys are errors, so a typo is never silently ignored.
+
+Frames: world right-handed, z up, ground z = 0; headings and directions are counter-clockwise
+from world x seen from above. A vehicle's model frame is x forward, y left, z up (ISO 8855).
+
+Every mistake raises :class:`SceneFileError` (a crashsim SceneError, hence a ValueError) with
+a one-line message ``<file>: <key path>: <what is wrong and what is expected>``; key paths
+count array entries from 0 (``vehicles[1].mass`` is the second vehicle's mass).
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+import tomllib
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, NoReturn
+
+import numpy as np
+from numpy.typing import NDArray
+
+from crashsim.errors import CrashsimError, ParameterError, SceneError
+from crashsim.generator import PRESETS, SHAPE_PARAMETERS
+from crashsim.meshio import axes_rotation, unit_scale
+from crashsim.result import Result
+from crashsim.scene import Scene
+from crashsim.stiffness import FACES
+from crashsim.units import FOOT, MILE_PER_HOUR, POUND
+from crashsim.vehicle import SOLIDS, Vehicle
+from crashsim.vehicle_data import vehicle_class
+
+__all__ = [
+    "DIMENSIONS",
+    "FORMAT_VERSION",
+    "UNITS",
+    "OutputSettings",
+    "RunSettings",
+    "SceneFile",
+    "SceneFileError",
+    "Unit",
+    "load_scene",
+    "loads_scene",
+    "parse_quantity",
+]
+
+Array = NDArray[np.float64]
+
+FORMAT_VERSION = 1
+"""The scene-file format this module reads (the file's ``format_version``)."""
+
+
+class SceneFileError(SceneError):
+    """A mistake in a scene file. ``str(error)`` is one line,
+    ``"<file>: [line L, column C: ]<key path>: <what is wrong>"``; the parts are kept as
+    ``file``, ``line`` and ``column`` (TOML syntax errors only), ``key`` and ``reason``."""
+
+    def __init__(
+        self,
+        reason: str,
+        *,
+        file: str | None = None,
+        key: str | None = None,
+        line: int | None = None,
+        column: int | None = None,
+    ) -> None:
+        self.reason = _one_line(reason)
+        self.file = file
+        self.key = key
+        self.line = line
+        self.column = column
+        at = None
+        if line is not None:
+            at = f"line {line}" + ("" if column is None else f", column {column}")
+        where = [file, at, key or None]
+        super().__init__(": ".join([*(w for w in where if w), self.reason]))
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+# -- units -------------------------------------------------------------------------------------
+
+STANDARD_GRAVITY = 9.80665  # m/s^2, exact by definition; 1 lbf = 1 lb x standard gravity
+INCH = 0.0254  # m, exact
+POUND_FORCE = POUND * STANDARD_GRAVITY  # N (4.4482216152605 N)
+
+
+@dataclass(frozen=True)
+class Unit:
+    """A unit: the quantity it measures (a key of :data:`DIMENSIONS`) and its size in SI
+    units (value_SI = number * factor)."""
+
+    dimension: str
+    factor: float
+
+
+DIMENSIONS: dict[str, str] = {
+    # dimension: its SI unit (what a plain number means)
+    "length": "m",
+    "mass": "kg",
+    "time": "s",
+    "speed": "m/s",
+    "angle": "rad",
+    "angular velocity": "rad/s",
+    "force": "N",
+    "moment of inertia": "kg m^2",
+    "force per width": "N/m",  # CRASH3 A
+    "force per width per crush": "N/m^2",  # CRASH3 B
+}
+
+UNITS: dict[str, Unit] = {
+    # length
+    "m": Unit("length", 1.0),
+    "cm": Unit("length", 0.01),
+    "mm": Unit("length", 0.001),
+    "km": Unit("length", 1000.0),
+    "in": Unit("length", INCH),
+    "ft": Unit("length", FOOT),
+    # mass (lb is the pound-mass)
+    "kg": Unit("mass", 1.0),
+    "g": Unit("mass", 0.001),
+    "t": Unit("mass", 1000.0),
+    "lb": Unit("mass", POUND),
+    "lbm": Unit("mass", POUND),
+    # time
+    "s": Unit("time", 1.0),
+    "ms": Unit("time", 0.001),
+    # speed
+    "m/s": Unit("speed", 1.0),
+    "km/h": Unit("speed", 1.0 / 3.6),
+    "kph": Unit("speed", 1.0 / 3.6),
+    "mph": Unit("speed", MILE_PER_HOUR),
+    "ft/s": Unit("speed", FOOT),
+    "fps": Unit("speed", FOOT),
+    # angle
+    "rad": Unit("angle", 1.0),
+    "deg": Unit("angle", math.pi / 180.0),
+    # angular velocity
+    "rad/s": Unit("angular velocity", 1.0),
+    "deg/s": Unit("angular velocity", math.pi / 180.0),
+    "rpm": Unit("angular velocity", 2.0 * math.pi / 60.0),
+    # force (a weight given as a force is turned into a mass with standard gravity)
+    "N": Unit("force", 1.0),
+    "kN": Unit("force", 1000.0),
+    "lbf": Unit("force", POUND_FORCE),
+    # moment of inertia (lb ft s^2: pound-force foot second squared = slug ft^2)
+    "kg m^2": Unit("moment of inertia", 1.0),
+    "lb ft s^2": Unit("moment of inertia", POUND_FORCE * FOOT),
+    "lbf ft s^2": Unit("moment of inertia", POUND_FORCE * FOOT),
+    "slug ft^2": Unit("moment of inertia", POUND_FORCE * FOOT),
+    # CRASH3 stiffness: A (force per width), B (force per width per crush); lb = lbf here
+    "N/m": Unit("force per width", 1.0),
+    "kN/m": Unit("force per width", 1000.0),
+    "lb/in": Unit("force per width", POUND_FORCE / INCH),
+    "lbf/in": Unit("force per width", POUND_FORCE / INCH),
+    "N/m^2": Unit("force per width per crush", 1.0),
+    "kN/m^2": Unit("force per width per crush", 1000.0),
+    "lb/in^2": Unit("force per width per crush", POUND_FORCE / INCH**2),
+    "lbf/in^2": Unit("force per width per crush", POUND_FORCE / INCH**2),
+    "psi": Unit("force per width per crush", POUND_FORCE / INCH**2),
+}
+
+# Other spellings of the units above, after whitespace is collapsed and "*", "·" become " ".
+_ALIASES: dict[str, str] = {
+    "°": "deg",
+    "degree": "deg",
+    "degrees": "deg",
+    "°/s": "deg/s",
+    "kmh": "km/h",
+    "km/hr": "km/h",
+    "m/s^2": "",  # not a unit of any quantity here: reported as unknown
+    "kg m2": "kg m^2",
+    "kg m²": "kg m^2",
+    "slug ft2": "slug ft^2",
+    "N/m2": "N/m^2",
+    "kN/m2": "kN/m^2",
+    "lb/in2": "lb/in^2",
+    "lbf/in2": "lbf/in^2",
+    "lb ft s2": "lb ft s^2",
+    "lbf ft s2": "lbf ft s^2",
+}
+_ALIASES = {k: v for k, v in _ALIASES.items() if v}
+# Case-insensitive look-up (the table has no two units that differ only in case).
+_LOWER: dict[str, str] = {k.lower(): k for k in [*UNITS, *_ALIASES]}
+assert len(_LOWER) == len(UNITS) + len(_ALIASES)
+
+_NUMBER = re.compile(r"\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)(.*)$", re.DOTALL)
+
+
+def _units_of(dimension: str) -> str:
+    return ", ".join(k for k, u in UNITS.items() if u.dimension == dimension)
+
+
+def _unit(text: str) -> str | None:
+    """The key of :data:`UNITS` a unit string names, or None."""
+    t = " ".join(text.replace("*", " ").replace("·", " ").split())
+    t = re.sub(r"\s*/\s*", "/", t)
+    key = _LOWER.get(t.lower())
+    if key is None:
+        return None
+    return _ALIASES.get(key, key)
+
+
+class _Invalid(ValueError):
+    """A value that does not fit (the loader adds the file and the key path)."""
+
+
+def _expected(dimension: str) -> str:
+    return (
+        f"expected a {dimension} such as {_example(dimension)} (units: {_units_of(dimension)}) "
+        f"or a plain number of {DIMENSIONS[dimension]}"
+    )
+
+
+def _example(dimension: str) -> str:
+    return {
+        "length": '"12 ft"',
+        "mass": '"1450 kg"',
+        "time": '"30 ms"',
+        "speed": '"30 mph"',
+        "angle": '"90 deg"',
+        "angular velocity": '"15 deg/s"',
+        "force": '"14.2 kN"',
+        "moment of inertia": '"2500 kg m^2"',
+        "force per width": '"356 lb/in"',
+        "force per width per crush": '"34 lb/in^2"',
+    }[dimension]
+
+
+def _quantity(value: Any, dimension: str) -> tuple[float, float, str | None]:
+    """(value in SI, the number as written, the unit key or None for a plain number)."""
+    if isinstance(value, bool) or not isinstance(value, int | float | str):
+        kind = {bool: "true/false", dict: "a table", list: "a list"}.get(
+            type(value), type(value).__name__
+        )
+        raise _Invalid(f"got {kind}; {_expected(dimension)}")
+    if isinstance(value, int | float):
+        x = float(value)
+        if not math.isfinite(x):
+            raise _Invalid(f"{value} is not a finite number; {_expected(dimension)}")
+        return x, x, None
+    m = _NUMBER.match(value)
+    if m is None:
+        raise _Invalid(f"{_show(value)} does not start with a number; {_expected(dimension)}")
+    number, rest = float(m.group(1)), m.group(2).strip()
+    if not rest:
+        raise _Invalid(
+            f"{_show(value)} has no unit: write e.g. {_example(dimension)}, or the number without "
+            f"quotes for {DIMENSIONS[dimension]}"
+        )
+    key = _unit(rest)
+    if key is None:
+        raise _Invalid(f'{_show(value)}: unknown unit "{rest}"; {_expected(dimension)}')
+    unit = UNITS[key]
+    if unit.dimension != dimension:
+        raise _Invalid(
+            f"{_show(value)} is a {unit.dimension}, not a {dimension}; {_expected(dimension)}"
+        )
+    return number * unit.factor, number, key
+
+
+def parse_quantity(value: Any, dimension: str) -> float:
+    """The SI value of a quantity: a plain number (already SI) or a string "<number> <unit>"
+    whose unit measures ``dimension`` (a key of :data:`DIMENSIONS`). Raises ParameterError
+    saying what was expected (e.g. for "30 mph" given as a length)."""
+    if dimension not in DIMENSIONS:
+        raise ParameterError(f"unknown dimension {dimension!r}: use one of {', '.join(DIMENSIONS)}")
+    try:
+        return _quantity(value, dimension)[0]
+    except _Invalid as e:
+        raise ParameterError(str(e)) from None
+
+
+# -- settings --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class RunSettings:
+    """The run: ``duration`` (s) simulated from t = 0 with steps of at most ``dt`` (s)."""
+
+    duration: float = 1.0
+    dt: float = 1e-3
+
+
+@dataclass(frozen=True)
+class OutputSettings:
+    """What ``crashsim run`` writes: ``dir`` (None: the command's default) and switches for the
+    report (report.json), the time histories (CSV), the top-down pictures (PNG) and the
+    3-D motion (GLB)."""
+
+    dir: Path | None = None
+    report: bool = True
+    csv: bool = True
+    pictures: bool = True
+    glb: bool = True
+
+
+@dataclass(frozen=True)
+class SceneFile:
+    """A loaded scene file: the :class:`~crashsim.scene.Scene`, its run and output settings,
+    the file (None when read from a string), title and description. Unpacks as
+    ``scene, run, output = load_scene(path)``."""
+
+    scene: Scene
+    run: RunSettings = field(default_factory=RunSettings)
+    output: OutputSettings = field(default_factory=OutputSettings)
+    path: Path | None = None
+    title: str = ""
+    description: str = ""
+
+    def __iter__(self) -> Iterator[Any]:
+        return iter((self.scene, self.run, self.output))
+
+    def simulate(
+        self,
+        duration: float | None = None,
+        dt: float | None = None,
+        progress: Callable[[float], object] | None = None,
+    ) -> Result:
+        """Run the scene with the file's settings (``duration``, ``dt`` in s override them)."""
+        return self.scene.run(
+            duration=self.run.duration if duration is None else duration,
+            dt=self.run.dt if dt is None else dt,
+            progress=progress,
+        )
+
+
+# -- reading tables ----------------------------------------------------------------------------
+
+_MISSING: Any = object()
+
+
+class _Table:
+    """A TOML table being read. Keys outside ``keys`` are refused when it is made (with the
+    nearest known key as a hint); every key read is remembered, so :meth:`finish` can refuse
+    one that was given but does not apply. Errors carry the file and the key path."""
+
+    def __init__(
+        self, data: Mapping[str, Any], path: str, file: str, keys: tuple[str, ...] | None = None
+    ) -> None:
+        self.data = data
+        self.path = path
+        self.file = file
+        self.taken: set[str] = set()
+        if keys is not None:  # unknown keys first: a typo explains a "missing" key
+            for k in data:
+                if k not in keys:
+                    close = difflib.get_close_matches(k, keys, n=1, cutoff=0.6)
+                    hint = f'did you mean "{close[0]}"? ' if close else ""
+                    self.fail(k, f"unknown key: {hint}(the keys here: {', '.join(keys)})")
+
+    def key(self, k: str) -> str:
+        return f"{self.path}.{k}" if self.path else k
+
+    def error(self, k: str | None, message: str) -> SceneFileError:
+        return SceneFileError(message, file=self.file, key=self.path if k is None else self.key(k))
+
+    def fail(self, k: str | None, message: str) -> NoReturn:
+        raise self.error(k, message)
+
+    def has(self, k: str) -> bool:
+        return k in self.data
+
+    def raw(self, k: str, default: Any = _MISSING) -> Any:
+        self.taken.add(k)
+        if k in self.data:
+            return self.data[k]
+        if default is _MISSING:
+            self.fail(k, "this key is required and missing")
+        return default
+
+    def _convert(self, k: str, fn: Callable[[Any], Any], value: Any) -> Any:
+        try:
+            return fn(value)
+        except _Invalid as e:
+            self.fail(k, str(e))
+
+    def quantity(
+        self, k: str, dimension: str, default: Any = _MISSING, *, low: str | None = None
+    ) -> Any:
+        """SI value; low: None, ">= 0" or "> 0" (checked here, to name the key)."""
+        if k not in self.data and default is not _MISSING:
+            self.taken.add(k)
+            return default
+        value = self.raw(k)
+        si = self._convert(k, lambda v: _quantity(v, dimension)[0], value)
+        _check_low(self, k, value, si, low)
+        return si
+
+    def quantity_with_unit(self, k: str, dimension: str) -> tuple[float, float, str | None]:
+        value = self.raw(k)
+        out = self._convert(k, lambda v: _quantity(v, dimension), value)
+        _check_low(self, k, value, out[0], "> 0")
+        return out
+
+    def number(self, k: str, default: Any = _MISSING) -> Any:
+        """A plain (dimensionless) number."""
+        if k not in self.data and default is not _MISSING:
+            self.taken.add(k)
+            return default
+        value = self.raw(k)
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            self.fail(k, f"expected a plain number (no unit), got {_show(value)}")
+        if not math.isfinite(value):
+            self.fail(k, f"{value} is not a finite number")
+        return float(value)
+
+    def string(
+        self, k: str, default: Any = _MISSING, choices: tuple[str, ...] | None = None
+    ) -> Any:
+        value = self.raw(k, default)
+        if value is default and k not in self.data:
+            return value
+        if not isinstance(value, str):
+            self.fail(k, f"expected a string in quotes, got {_show(value)}")
+        if choices is not None and value not in choices:
+            self.fail(k, f"{_show(value)} is not one of {_or(choices)}")
+        return value
+
+    def boolean(self, k: str, default: bool) -> bool:
+        value = self.raw(k, default)
+        if not isinstance(value, bool):
+            self.fail(k, f"expected true or false, got {_show(value)}")
+        return value
+
+    def vector(self, k: str, dimension: str | None, sizes: tuple[int, ...] = (3,)) -> Array:
+        """A list of quantities (or plain numbers with dimension None), or with a dimension
+        also a string "(x, y, z) unit"."""
+        value = self.raw(k)
+        want = " or ".join(str(n) for n in sizes)
+        if dimension is not None and isinstance(value, str):
+            items = _split_vector(value)
+            if items is None:
+                self.fail(
+                    k,
+                    f"{_show(value)} is not a vector: give a list such as "
+                    f"{_vector_example(dimension)}"
+                    f' or a string "(x, y, z) {DIMENSIONS[dimension]}"',
+                )
+            value = items
+        if not isinstance(value, list):
+            what = f"{want} numbers" if dimension is None else f"{want} {dimension}s"
+            self.fail(k, f"expected a list of {what}, got {_show(value)}")
+        if len(value) not in sizes:
+            self.fail(k, f"expected {want} components, got {len(value)}")
+        out = []
+        for i, item in enumerate(value):
+            try:
+                if dimension is None:
+                    if isinstance(item, bool) or not isinstance(item, int | float):
+                        raise _Invalid(f"expected a plain number (no unit), got {_show(item)}")
+                    if not math.isfinite(item):
+                        raise _Invalid(f"{item} is not a finite number")
+                    out.append(float(item))
+                else:
+                    out.append(_quantity(item, dimension)[0])
+            except _Invalid as e:
+                self.fail(f"{k}[{i}]", str(e))
+        return np.asarray(out, dtype=np.float64)
+
+    def matrix(self, k: str, dimension: str | None) -> Array:
+        """A 3 x 3 list of lists."""
+        value = self.raw(k)
+        if not (
+            isinstance(value, list)
+            and len(value) == 3
+            and all(isinstance(row, list) and len(row) == 3 for row in value)
+        ):
+            self.fail(k, f"expected 3 rows of 3 values ([[..], [..], [..]]), got {_show(value)}")
+        rows = []
+        for i, row in enumerate(value):  # errors name the element: inertia[0][1]
+            name = f"{k}[{i}]"
+            rows.append(_Table({name: row}, self.path, self.file).vector(name, dimension))
+        return np.vstack(rows)
+
+    def table(self, k: str, keys: tuple[str, ...] | None) -> _Table | None:
+        value = self.raw(k, None)
+        if value is None:
+            return None
+        if not isinstance(value, dict):
+            self.fail(k, f"expected a table, got {_show(value)}")
+        return _Table(value, self.key(k), self.file, keys)
+
+    def tables(self, k: str, keys: tuple[str, ...]) -> list[_Table]:
+        value = self.raw(k, [])
+        if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
+            self.fail(k, f"expected an array of tables ([[{k}]] sections), got {_show(value)}")
+        return [_Table(v, f"{self.key(k)}[{i}]", self.file, keys) for i, v in enumerate(value)]
+
+    def finish(self) -> None:
+        """SceneFileError for a key that was given but not used (one that does not apply
+        where it was given)."""
+        for k in self.data:
+            if k not in self.taken:
+                self.fail(k, "this key does not apply here (see docs/scene-format.md)")
+
+
+def _check_low(t: _Table, k: str, value: Any, si: float, low: str | None) -> None:
+    if low == "> 0" and not si > 0.0:
+        t.fail(k, f"{_show(value)} must be positive")
+    if low == ">= 0" and not si >= 0.0:
+        t.fail(k, f"{_show(value)} must not be negative")
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        return f"a list of {len(value)}"
+    if isinstance(value, str):
+        return f'"{value}"'
+    return repr(value)
+
+
+def _or(choices: tuple[str, ...]) -> str:
+    quoted = [f'"{c}"' for c in choices]
+    return ", ".join(quoted[:-1]) + f" or {quoted[-1]}" if len(quoted) > 1 else quoted[0]
+
+
+def _split_vector(text: str) -> list[str] | None:
+    """'(1, 2, 3) ft' -> ['1 ft', '2 ft', '3 ft']; None if it is not of that form."""
+    m = re.fullmatch(r"\s*[(\[]([^()\[\]]*)[)\]]\s*(.*?)\s*", text)
+    if m is None:
+        return None
+    parts = [p.strip() for p in m.group(1).split(",")]
+    if not all(parts):
+        return None
+    unit = m.group(2)
+    return [f"{p} {unit}" if unit else p for p in parts]
+
+
+def _vector_example(dimension: str) -> str:
+    return {
+        "length": '["-3.65 m", "0.3 m", "0.7 m"]',
+        "speed": '["30 mph", 0, 0]',
+        "angular velocity": '[0, 0, "15 deg/s"]',
+    }.get(dimension, "[x, y, z]")
+
+
+# -- the scene ---------------------------------------------------------------------------------
+
+_GEOMETRY = ("box", "mesh", "generate")
+# The keys of every table (docs/scene-format.md describes each one).
+TOP_KEYS = (
+    "format_version",
+    "title",
+    "description",
+    "run",
+    "contact",
+    "pairs",
+    "vehicles",
+    "output",
+)
+RUN_KEYS = ("duration", "dt")
+OUTPUT_KEYS = ("dir", "report", "csv", "pictures", "glb")
+CONTACT_KEYS = (
+    "depth_of_penetration",
+    "restitution",
+    "friction",
+    "restitution_mode",
+    "normal",
+    "pitch",
+    "centroid",
+)
+VEHICLE_KEYS = (
+    "name",
+    *_GEOMETRY,
+    "mass",
+    "weight",
+    "cg",
+    "cg_height",
+    "inertia",
+    "wheelbase",
+    "stiffness",
+    "position",
+    "heading",
+    "orientation",
+    "velocity",
+    "speed",
+    "direction",
+    "angular_velocity",
+    "yaw_rate",
+)
+_BOX_KEYS = ("length", "width", "height", "ground_clearance")
+MESH_KEYS = ("file", "units", "up", "forward", "ground", "center", "solid")
+GENERATE_KEYS = ("preset", "length", "width", "height", "wheelbase", *SHAPE_PARAMETERS)
+_MOMENTS = ("Ixx", "Iyy", "Izz")
+_STIFFNESS_FACES = ("front", "rear", "left", "right", "side")
+
+
+def _wrap(t: _Table, k: str | None, action: Callable[[], Any]) -> Any:
+    """Run action; a crashsim input error becomes a SceneFileError at key k of table t."""
+    try:
+        return action()
+    except SceneFileError:
+        raise
+    except CrashsimError as e:
+        if not isinstance(e, ValueError):  # a SimulationError is not the file's fault
+            raise
+        raise t.error(k, str(e)) from e
+
+
+def _mass(t: _Table) -> dict[str, float]:
+    """Vehicle keywords for the mass: mass (kg) or weight_lb (lb, kept as written)."""
+    given = [k for k in ("mass", "weight") if t.has(k)]
+    if len(given) == 2:
+        t.fail("weight", "give mass or weight, not both")
+    if not given:
+        t.taken.update(("mass", "weight"))
+        t.fail(
+            "mass",
+            'this key is required and missing: give e.g. mass = "1450 kg" or weight = "3200 lb"',
+        )
+    k = given[0]
+    value = t.raw(k)
+    if k == "weight" and isinstance(value, str):
+        try:  # a weight may be a force: mass = weight / standard gravity
+            si, number, unit = _quantity(value, "force")
+        except _Invalid:
+            pass
+        else:
+            _check_low(t, k, value, si, "> 0")
+            if unit == "lbf":
+                return {"weight_lb": number}
+            return {"mass": si / STANDARD_GRAVITY}
+    si, number, unit = t.quantity_with_unit(k, "mass")
+    if unit in ("lb", "lbm"):
+        return {"weight_lb": number}
+    return {"mass": si}
+
+
+def _stiffness(t: _Table) -> Any:
+    """None, or what Stiffness.coerce takes: a vehicle class's faces or {face: (A, B)}."""
+    if not t.has("stiffness"):
+        t.taken.add("stiffness")
+        return None
+    value = t.raw("stiffness")
+    if isinstance(value, str):
+        return _wrap(t, "stiffness", lambda: vehicle_class(value).stiffness)
+    s = t.table("stiffness", _STIFFNESS_FACES)
+    assert s is not None
+    faces: dict[str, tuple[float, float]] = {}
+    for face in _STIFFNESS_FACES:
+        f = s.table(face, ("A", "B"))
+        if f is None:
+            continue
+        a = f.quantity("A", "force per width", 0.0, low=">= 0")
+        b = f.quantity("B", "force per width per crush", low="> 0")
+        f.finish()
+        faces[face] = (a, b)
+    s.finish()
+    if "side" in faces and ("left" in faces or "right" in faces):
+        s.fail("side", "side sets both left and right: give side, or left and right")
+    if not faces:
+        s.fail(None, f"no face given: use {', '.join(_STIFFNESS_FACES)} (each with A and B)")
+    return faces
+
+
+def _inertia(t: _Table) -> Any:
+    if not t.has("inertia"):
+        t.taken.add("inertia")
+        return None
+    value = t.raw("inertia")
+    if isinstance(value, str):
+        return t.string("inertia", choices=("mesh", "empirical"))
+    if isinstance(value, dict):
+        i = t.table("inertia", _MOMENTS)
+        assert i is not None
+        moments = [i.quantity(k, "moment of inertia", low="> 0") for k in ("Ixx", "Iyy", "Izz")]
+        i.finish()
+        return np.diag(moments)
+    return t.matrix("inertia", "moment of inertia")
+
+
+def _reject(t: _Table, keys: tuple[str, ...], why: str) -> None:
+    for k in keys:
+        if t.has(k):
+            t.fail(k, why)
+
+
+def _vehicle(t: _Table, base: Path) -> Vehicle:
+    name = t.string("name")
+    if not name.strip():
+        t.fail("name", "a vehicle needs a non-empty name")
+    given = [g for g in _GEOMETRY if t.has(g)]
+    t.taken.update(_GEOMETRY)
+    if len(given) != 1:
+        what = "none" if not given else " and ".join(given)
+        t.fail(None, f"give exactly one of box, mesh or generate for the shape (got {what})")
+    geometry = given[0]
+    mass = _mass(t)
+    stiffness = _stiffness(t)
+    if geometry == "box":
+        _reject(t, ("cg",), "a box has its CG at its centre: move it up or down with cg_height")
+        b = t.table("box", _BOX_KEYS)
+        if b is None:
+            t.fail("box", "expected a table { length = ..., width = ..., height = ... }")
+        dims = {k: b.quantity(k, "length", low="> 0") for k in _BOX_KEYS[:3]}
+        dims["ground_clearance"] = b.quantity("ground_clearance", "length", 0.0, low=">= 0")
+        b.finish()
+        cg_height = t.quantity("cg_height", "length", None, low="> 0")
+        inertia = _inertia(t)
+        wheelbase = t.quantity("wheelbase", "length", None, low="> 0")
+        return _wrap(
+            t,
+            None,
+            lambda: Vehicle.box(
+                **dims,
+                name=name,
+                cg_height=cg_height,
+                inertia=inertia,
+                wheelbase=wheelbase,
+                stiffness=stiffness,
+                **mass,
+            ),
+        )
+    if geometry == "mesh":
+        _reject(t, ("cg_height",), "cg_height is for box vehicles: give cg = [x, y, z] (m)")
+        options, file = _mesh_options(t, base)
+        cg: Any = None
+        if t.has("cg"):
+            cg = "mesh" if t.raw("cg") == "mesh" else t.vector("cg", "length")
+        t.taken.add("cg")
+        inertia = _inertia(t)
+        wheelbase = t.quantity("wheelbase", "length", None, low="> 0")
+        return _wrap(
+            t,
+            None,
+            lambda: Vehicle.from_mesh(
+                file,
+                name=name,
+                cg=cg,
+                inertia=inertia,
+                wheelbase=wheelbase,
+                stiffness=stiffness,
+                **options,
+                **mass,
+            ),
+        )
+    _reject(
+        t,
+        ("cg", "cg_height", "inertia", "wheelbase"),
+        "a generated body takes its CG and inertia from the generator (the wheelbase goes "
+        "in the generate table); for other values use a mesh",
+    )
+    g = t.table("generate", GENERATE_KEYS)
+    if g is None:
+        t.fail("generate", 'expected a table { preset = "sedan", length = ..., ... }')
+    preset = g.string("preset", choices=PRESETS)
+    dims = {}
+    for k in GENERATE_KEYS[1:]:
+        if g.has(k):
+            dims[k] = g.quantity(k, "length", low=">= 0" if k == "tumblehome" else "> 0")
+        else:
+            g.taken.add(k)
+    g.finish()
+    generate = getattr(Vehicle, "generate", None)
+    if generate is None:
+        t.fail("generate", "this crashsim has no body generator (Vehicle.generate) yet")
+    return _wrap(
+        t, "generate", lambda: generate(preset, name=name, stiffness=stiffness, **mass, **dims)
+    )
+
+
+def _mesh_options(t: _Table, base: Path) -> tuple[dict[str, Any], Path]:
+    """from_mesh keywords and the mesh file (resolved against the scene file's folder)."""
+    value = t.raw("mesh")
+    options: dict[str, Any] = {}
+    if isinstance(value, str):
+        name, where = value, t
+        key = "mesh"
+    else:
+        m = t.table("mesh", MESH_KEYS)
+        assert m is not None
+        name, where, key = m.string("file"), m, "file"
+        if m.has("units"):
+            units = m.raw("units")
+            if isinstance(units, bool) or not isinstance(units, str | int | float):
+                m.fail(
+                    "units",
+                    f'expected a unit name ("mm", "in", ...) or metres per file unit, '
+                    f"got {_show(units)}",
+                )
+            options["units"] = units
+        for k in ("up", "forward", "solid"):
+            if m.has(k):
+                options[k] = m.string(k)
+        for k in ("ground", "center"):
+            if m.has(k):
+                options[k] = m.boolean(k, False)
+        m.finish()
+    if not name:
+        where.fail(key, "the mesh file name is empty")
+    path = Path(name).expanduser()
+    if not path.is_absolute():
+        path = base / path
+    if not path.is_file():
+        where.fail(
+            key,
+            f'mesh file "{name}" does not exist (looked for {path.resolve()}); paths are relative '
+            "to the scene file",
+        )
+    if options:
+        _wrap(where, None, lambda: _check_mesh_options(options))
+    return options, path
+
+
+def _check_mesh_options(options: dict[str, Any]) -> None:
+    unit_scale(options.get("units", "m"))
+    axes_rotation(options.get("up", "z"), options.get("forward", "x"))
+    solid = options.get("solid", "auto")
+    if solid not in SOLIDS:
+        raise ParameterError(f"solid = {solid!r} is unknown: use one of {', '.join(SOLIDS)}")
+
+
+def _place(t: _Table, scene: Scene, vehicle: Vehicle) -> None:
+    """The initial state: position of the CG, heading or orientation, velocity, spin."""
+    heading = orientation = None
+    if t.has("heading") and t.has("orientation"):
+        t.fail("orientation", "give heading or orientation, not both")
+    if t.has("orientation"):
+        value = t.raw("orientation")
+        if isinstance(value, list) and value and isinstance(value[0], list):
+            orientation = t.matrix("orientation", None)
+        else:
+            orientation = t.vector("orientation", None, sizes=(4,))
+    t.taken.add("orientation")
+    if t.has("heading") or orientation is None:
+        heading = t.quantity("heading", "angle", 0.0)
+    position = t.vector("position", "length", sizes=(2, 3))
+    if position.size == 2:
+        if orientation is not None:
+            t.fail("position", "with an orientation give all of x, y, z (m)")
+        # the model frame's ground (z = 0) on the world's ground: the CG at its own height
+        position = np.array([*position, vehicle.cg[2]])
+    if t.has("velocity") and (t.has("speed") or t.has("direction")):
+        t.fail("velocity", "give velocity, or speed and direction, not both")
+    if t.has("direction") and not t.has("speed"):
+        t.fail("direction", "direction (of travel) needs a speed")
+    if t.has("velocity"):
+        velocity = t.vector("velocity", "speed", sizes=(2, 3))
+        if velocity.size == 2:
+            velocity = np.array([*velocity, 0.0])
+        t.taken.update(("speed", "direction"))
+    else:
+        speed = t.quantity("speed", "speed", 0.0, low=">= 0")
+        if t.has("direction"):
+            direction = t.quantity("direction", "angle")
+        elif heading is not None or not t.has("speed"):
+            direction = 0.0 if heading is None else heading
+            t.taken.add("direction")
+        else:
+            t.fail("speed", "with an orientation give the direction of travel (or a velocity)")
+        velocity = speed * np.array([math.cos(direction), math.sin(direction), 0.0])
+    if t.has("angular_velocity") and t.has("yaw_rate"):
+        t.fail("yaw_rate", "give angular_velocity or yaw_rate, not both")
+    if t.has("angular_velocity"):
+        omega = t.vector("angular_velocity", "angular velocity")
+        t.taken.add("yaw_rate")
+    else:
+        omega = np.array([0.0, 0.0, t.quantity("yaw_rate", "angular velocity", 0.0)])
+    _wrap(
+        t,
+        None,
+        lambda: scene.add(
+            vehicle,
+            position=position,
+            heading=heading,
+            orientation=orientation,
+            velocity=velocity,
+            angular_velocity=omega,
+        ),
+    )
+
+
+def _contact_values(t: _Table, names: list[str]) -> dict[str, Any]:
+    """The contact keys given in table t, as Scene keywords (SI)."""
+    out: dict[str, Any] = {}
+    if t.has("depth_of_penetration"):
+        value = t.raw("depth_of_penetration")
+        if isinstance(value, str) and value.strip() == "auto":
+            out["depth_of_penetration"] = "auto"
+        else:
+            out["depth_of_penetration"] = t.quantity("depth_of_penetration", "time", low=">= 0")
+    for k in ("restitution", "friction"):
+        if t.has(k):
+            out[k] = t.number(k)
+    if t.has("restitution_mode"):
+        out["restitution_mode"] = t.string("restitution_mode", choices=("total", "normal"))
+    if t.has("pitch"):
+        out["pitch"] = t.quantity("pitch", "angle")
+    if t.has("normal"):
+        value = t.raw("normal")
+        if isinstance(value, str):
+            out["normal"] = t.string("normal", choices=("horizontal", "volume"))
+        else:
+            out["normal"] = t.vector("normal", None)
+    if t.has("centroid"):
+        value = t.raw("centroid")
+        if isinstance(value, str) and not value.lstrip().startswith(("(", "[")):
+            mode = t.string("centroid", choices=("auto", "stiffness"))
+            out["centroid"] = None if mode == "auto" else mode
+        elif isinstance(value, dict):
+            c = t.table("centroid", ("vehicle", "point"))
+            assert c is not None
+            owner = c.string("vehicle")
+            if owner not in names:
+                c.fail("vehicle", f'no vehicle named "{owner}" (the vehicles: {", ".join(names)})')
+            point = c.vector("point", "length")
+            c.finish()
+            out["centroid"] = (owner, point)
+        else:
+            out["centroid"] = t.vector("centroid", "length")
+    t.taken.update(CONTACT_KEYS)
+    return out
+
+
+def _defaults(t: _Table | None, names: list[str]) -> Scene:
+    if t is None:
+        return Scene()
+    values = _contact_values(t, names)
+    t.finish()
+    for k, v in values.items():  # one key at a time, so a bad value is named
+        _wrap(t, k, lambda k=k, v=v: Scene(**{k: v}))
+    return _wrap(t, None, lambda: Scene(**values))
+
+
+def _pair(t: _Table, scene: Scene, names: list[str], seen: set[frozenset[str]]) -> None:
+    pair = t.raw("vehicles")
+    if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(p, str) for p in pair)):
+        t.fail("vehicles", f'expected two vehicle names, e.g. ["red", "blue"], got {_show(pair)}')
+    for i, n in enumerate(pair):
+        if n not in names:
+            t.fail(f"vehicles[{i}]", f'no vehicle named "{n}" (the vehicles: {", ".join(names)})')
+    if pair[0] == pair[1]:
+        t.fail("vehicles", "a pair needs two different vehicles")
+    if frozenset(pair) in seen:
+        t.fail("vehicles", f"the pair {pair[0]}, {pair[1]} is given twice: merge the entries")
+    seen.add(frozenset(pair))
+    values = _contact_values(t, names)
+    t.finish()
+    for k, v in values.items():  # one key at a time, so a bad value is named
+        _wrap(t, k, lambda k=k, v=v: scene.contact(pair[0], pair[1], **{k: v}))
+
+
+def _run(t: _Table | None) -> RunSettings:
+    if t is None:
+        return RunSettings()
+    default = RunSettings()
+    run = RunSettings(
+        duration=t.quantity("duration", "time", default.duration, low="> 0"),
+        dt=t.quantity("dt", "time", default.dt, low="> 0"),
+    )
+    t.finish()
+    return run
+
+
+def _output(t: _Table | None, base: Path) -> OutputSettings:
+    if t is None:
+        return OutputSettings()
+    folder = t.string("dir", None)
+    if folder is not None and not folder.strip():
+        t.fail("dir", "the output folder name is empty")
+    out = OutputSettings(
+        dir=None if folder is None else base / Path(folder).expanduser(),
+        report=t.boolean("report", True),
+        csv=t.boolean("csv", True),
+        pictures=t.boolean("pictures", True),
+        glb=t.boolean("glb", True),
+    )
+    t.finish()
+    return out
+
+
+def _check_stiffness_needs(top: _Table, scene: Scene) -> None:
+    """The scene defaults depth_of_penetration = "auto" and centroid = "stiffness" need
+    stiffness on every face of both vehicles of every pair that uses them (a [[pairs]] entry
+    is checked where it is read)."""
+    defaults = scene.defaults
+    needs = [
+        k
+        for k, v in (("depth_of_penetration", "auto"), ("centroid", "stiffness"))
+        if isinstance(defaults[k], str) and defaults[k] == v
+    ]
+    vehicles = scene.vehicles
+    for k in needs:
+        for i, a in enumerate(vehicles):
+            for b in vehicles[i + 1 :]:
+                if scene.contact_parameters(a, b)[k] != defaults[k]:
+                    continue  # the pair overrides it
+                for v in (a, b):
+                    missing = [f for f in FACES if v.stiffness.face(f) is None]
+                    if missing:
+                        top.fail(
+                            f"contact.{k}",
+                            f'"{defaults[k]}" needs stiffness on every face of both vehicles, '
+                            f'and vehicle "{v.name}" has none on its {", ".join(missing)} '
+                            'face(s): give it stiffness = "<vehicle class>" or a stiffness '
+                            "table, or override this pair in [[pairs]]",
+                        )
+
+
+def _syntax_error(e: tomllib.TOMLDecodeError, file: str) -> SceneFileError:
+    text = str(e)
+    m = re.search(r"\s*\(at line (\d+), column (\d+)\)\s*$", text)
+    if m is None:
+        return SceneFileError(f"not valid TOML: {text}", file=file)
+    return SceneFileError(
+        f"not valid TOML: {text[: m.start()]}",
+        file=file,
+        line=int(m.group(1)),
+        column=int(m.group(2)),
+    )
+
+
+def loads_scene(
+    text: str, base_dir: str | Path = ".", source: str = "<scene>", path: Path | None = None
+) -> SceneFile:
+    """A :class:`SceneFile` from TOML text; relative mesh paths and the output folder are
+    taken from ``base_dir``; ``source`` names the text in error messages."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise _syntax_error(e, source) from None
+    base = Path(base_dir)
+    top = _Table(data, "", source, TOP_KEYS)
+    version = top.raw("format_version", None)
+    if version is None:
+        top.fail(
+            "format_version", f"missing: start the file with format_version = {FORMAT_VERSION}"
+        )
+    if isinstance(version, bool) or version != FORMAT_VERSION:
+        top.fail(
+            "format_version",
+            f"{_show(version)} is not a version this crashsim reads: it reads "
+            f"format_version = {FORMAT_VERSION}",
+        )
+    title = top.string("title", "")
+    description = top.string("description", "")
+    vehicle_tables = top.tables("vehicles", VEHICLE_KEYS)
+    if not vehicle_tables:
+        top.fail("vehicles", "the scene has no vehicles: add [[vehicles]] sections")
+    names: list[str] = []
+    for v in vehicle_tables:
+        name = v.string("name")
+        if name in names:
+            v.fail(
+                "name", f'a vehicle named "{name}" is already in the scene: names must be unique'
+            )
+        names.append(name)
+    scene = _defaults(top.table("contact", CONTACT_KEYS), names)
+    for v in vehicle_tables:
+        vehicle = _vehicle(v, base)
+        _place(v, scene, vehicle)
+        v.finish()
+    seen: set[frozenset[str]] = set()
+    for p in top.tables("pairs", ("vehicles", *CONTACT_KEYS)):
+        _pair(p, scene, names, seen)
+    run = _run(top.table("run", RUN_KEYS))
+    output = _output(top.table("output", OUTPUT_KEYS), base)
+    top.finish()
+    _check_stiffness_needs(top, scene)
+    _wrap(top, None, scene.build_world)  # what only the whole scene can tell (stiffness needs)
+    return SceneFile(
+        scene=scene,
+        run=run,
+        output=output,
+        path=path,
+        title=title,
+        description=description,
+    )
+
+
+def load_scene(path: str | Path) -> SceneFile:
+    """Read a scene file (TOML, UTF-8; see docs/scene-format.md). Raises SceneFileError with a
+    one-line message naming the file and the key for every mistake in it."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SceneFileError("no such file", file=str(p)) from None
+    except (OSError, UnicodeDecodeError) as e:
+        raise SceneFileError(f"cannot read it ({e})", file=str(p)) from None
+    return loads_scene(text, base_dir=p.parent, source=str(p), path=p)
