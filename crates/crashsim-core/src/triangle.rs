@@ -122,6 +122,16 @@ pub fn triangles_intersect(a: &Tri, b: &Tri) -> bool {
 
 #[inline]
 fn point_triangle_distance_sq(p: &Point, t: &Tri) -> Real {
+    if scaled_normal(t).norm_squared() == 0.0 {
+        // A zero-area triangle is its edges: parry's projection onto it is undefined (it
+        // returned distance 0 for far points, stalling the first-contact search).
+        let mut best = Real::INFINITY;
+        for i in 0..3 {
+            let seg = Segment::new(t[i], t[(i + 1) % 3]);
+            best = best.min((seg.project_local_point(p, true).point - p).norm_squared());
+        }
+        return best;
+    }
     let tri = Triangle::new(t[0], t[1], t[2]);
     let proj = tri.project_local_point(p, true);
     (proj.point - p).norm_squared()
@@ -196,6 +206,27 @@ mod tests {
 
     fn p(x: Real, y: Real, z: Real) -> Point {
         Point::new(x, y, z)
+    }
+
+    #[test]
+    fn a_zero_area_triangle_is_as_far_as_its_edges() {
+        // Regression: a collinear sliver of the shared sedan mesh and a triangle 4.3 m away
+        // were found at distance 0 (parry's projection onto a zero-area triangle), which made
+        // the first-contact search crawl at its smallest step for the rest of a run.
+        let sliver = [
+            p(-0.6290842128924499, 0.8328753611647658, -0.32834738990404),
+            p(-0.16585975717822407, 0.8328753611647658, -0.32834738990404),
+            p(0.22851519454201366, 0.8328753611647658, -0.32834738990404),
+        ];
+        let other = [
+            p(0.4213799985994494, -3.505786827394423, 0.3201440649659735),
+            p(0.2470379073736806, -3.374318089551551, 0.13379077735084133),
+            p(0.1661761887149371, -3.4824319702711035, 0.13316833429172692),
+        ];
+        let d = triangle_triangle_distance_sq(&sliver, &other).sqrt();
+        assert!(d > 4.0 && d < 4.4, "{d}");
+        let d_rev = triangle_triangle_distance_sq(&other, &sliver).sqrt();
+        assert_eq!(d, d_rev);
     }
 
     #[test]
