@@ -12,6 +12,7 @@ frame right-handed with z up; vehicle body frame ISO 8855 (x forward, y left, z 
 """
 
 from crashsim import (
+    crosscheck,
     export,
     generator,
     meshio,
@@ -23,6 +24,7 @@ from crashsim import (
     vehicle_data,
 )
 from crashsim._core import __version__
+from crashsim.crosscheck import CrossCheck, cross_check
 from crashsim.errors import (
     CrashsimError,
     InitialOverlapError,
@@ -81,6 +83,9 @@ __all__ = [
     "export_glb",
     "export_frames",
     "dtp_montecarlo",
+    "CrossCheck",
+    "cross_check",
+    "crosscheck",
     "export",
     "generator",
     "meshio",

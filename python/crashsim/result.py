@@ -17,6 +17,7 @@ from crashsim import _core
 from crashsim.errors import SceneError
 
 if TYPE_CHECKING:
+    from crashsim.crosscheck import CrossCheck
     from crashsim.report import Report
     from crashsim.scene import Scene
     from crashsim.vehicle import Vehicle
@@ -357,6 +358,13 @@ class Result:
         name = impact._check(vehicle)
         q = self.state_at(name, impact.time)["orientation"]
         return _frozen(rotation_matrix(q).T @ impact.delta_v[name])
+
+    def cross_check(self, **kwargs: Any) -> CrossCheck:
+        """Re-test every first-overlap instant and overlap region with python-fcl on the same
+        poses (crashsim.crosscheck.cross_check; keyword arguments go there)."""
+        from crashsim.crosscheck import cross_check  # crosscheck imports this module
+
+        return cross_check(self, **kwargs)
 
     def to_dict(self, trajectories: bool = False) -> dict[str, Any]:
         """A JSON-friendly copy: vehicles, impacts, contacts and, when asked, trajectories

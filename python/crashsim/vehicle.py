@@ -11,6 +11,10 @@ its mass; the solid is the mesh itself when it is a closed volume, else a docume
 (``solid=``: convex hull, union of the closed shells, or the region the engine counts as inside,
 generalized winding number > 1/2). See docs/meshes.md.
 
+:meth:`Vehicle.generate` builds a vehicle without a mesh file: a body from
+:mod:`crashsim.generator` and every number from the built-in class table
+(:mod:`crashsim.vehicle_data`), scaled to the dimensions given; see docs/generator.md.
+
 Mass and inertia are validated by the engine itself (`_check_mass_properties`), so the
 accepted ranges and their messages live in one place (crates/crashsim-core).
 """
@@ -28,6 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import MeshError, ParameterError
+from crashsim.generator import PRESETS, BodyParams, body_params, generate_body
 from crashsim.meshio import (
     MeshQuality,
     MeshSource,
@@ -40,6 +45,7 @@ from crashsim.meshio import (
 )
 from crashsim.stiffness import FACES, Stiffness
 from crashsim.units import POUND
+from crashsim.vehicle_data import ALIASES, VehicleClass, vehicle_class
 
 __all__ = ["Vehicle", "solid_properties"]
 
@@ -54,6 +60,7 @@ CONVEX_HULL = "convex hull"
 WINDING_SOLID = "winding-number solid"
 UNIFORM_BOX = "uniform box"
 EMPIRICAL = "empirical"
+GENERATED_SOLID = "uniform solid of the generated body"
 
 # solid= choices of from_mesh: the solid that stands for an open mesh.
 SOLIDS = ("auto", "convex hull", "closed shells", "winding number")
@@ -282,9 +289,10 @@ class Vehicle:
     "inertia": ...}: "user", "mesh volume", "closed shells", "convex hull",
     "winding-number solid", "uniform box" or "empirical"); ``mass_source`` ("user" or
     "weight in lb (... lb)"); ``stiffness`` (a crashsim.stiffness.Stiffness); ``quality`` (the
-    mesh's :class:`crashsim.meshio.MeshQuality`).
+    mesh's :class:`crashsim.meshio.MeshQuality`); ``generator_params`` (the
+    :class:`crashsim.generator.BodyParams` of a generated body, else None).
 
-    Build one with :meth:`from_mesh` or :meth:`box`.
+    Build one with :meth:`from_mesh`, :meth:`box` or :meth:`generate`.
     """
 
     def __init__(
@@ -316,6 +324,7 @@ class Vehicle:
         self._details: dict[str, str] = {}
         self._quality: MeshQuality | None = None
         self._shape: _core.Shape | None = None
+        self._generator_params: BodyParams | None = None
 
     # -- constructors --------------------------------------------------------------------
 
@@ -486,6 +495,150 @@ class Vehicle:
         vehicle._mass_source, vehicle._details = mass_source, details
         return vehicle
 
+    @classmethod
+    def generate(
+        cls,
+        preset: str = "sedan",
+        *,
+        name: str | None = None,
+        mass: float | None = None,
+        weight_lb: float | None = None,
+        length: float | None = None,
+        width: float | None = None,
+        height: float | None = None,
+        wheelbase: float | None = None,
+        cg: ArrayLike | str | None = None,
+        inertia: ArrayLike | str | None = None,
+        stiffness: Stiffness | dict[str, Any] | None = None,
+        resolution: float = 1.0,
+        **shape: float,
+    ) -> Vehicle:
+        """A vehicle of a built-in class on a generated body: ``cs.Vehicle.generate("sedan")``
+        needs nothing else; every number not given comes from the class table
+        (:func:`crashsim.vehicle_data.vehicle_class`), scaled to the dimensions given.
+
+        preset: one of crashsim.generator.PRESETS ("sedan", "suv", "pickup", "van", "bus"; an
+        alias of the table such as "mid_car" is accepted). name: defaults to the preset.
+
+        Body (crashsim.generator.body_params and generate_body; model frame, m: x forward,
+        y left, z up, ground z = 0, box centred in x and y): length, width, height (roof above
+        the ground) and wheelbase (m) default to the class's; the shape parameters of
+        crashsim.generator.SHAPE_PARAMETERS (front_overhang, bumper_radius, ...) pass through.
+        resolution: the mesh's (1 = a few thousand triangles).
+
+        Mass: exactly one of ``mass`` (kg) and ``weight_lb`` (lb), else the class's.
+
+        cg: a model-frame point (m); None / "class" (default): from the class, keeping its
+        ratios: x = front axle (length/2 - front_overhang) - cg_to_front_axle x WB/WB_class,
+        y = 0, z = cg_height x H/H_class; "mesh": the centroid of the body as a uniform solid
+        (too high for a real vehicle).
+
+        inertia: (3, 3) about the CG in body axes (kg m^2); None / "class" (default): Ixx,
+        Iyy and Ixy of the body as a uniform solid, scaled to the mass and moved to the CG
+        (parallel axes), and Izz = yaw_inertia_class x (m / m_class) x (WB / WB_class)^2 (the
+        class figures follow a yaw radius of gyration proportional to the wheelbase); the yaw
+        products Ixz and Iyz are zero (the class has no figure for them, and so the tensor is
+        positive definite for any CG). "mesh": the whole uniform solid's tensor at the CG;
+        "empirical": :func:`empirical_inertia` with the body's wheelbase and extents.
+
+        stiffness: the class's CRASH3 A and B (front, rear, side -> left and right) unless
+        given; a given value replaces all of them (see crashsim.stiffness.Stiffness.coerce;
+        to change one face, start from ``vehicle_class(preset).stiffness.to_dict()``).
+
+        ``sources`` names the origin of every number ("cg", "inertia", "mass", "dimensions",
+        "body", "stiffness") and ``summary()`` prints them; ``generator_params`` keeps the
+        BodyParams. Raises ParameterError for an unknown preset (listing the presets), a bad
+        number, or dimensions that give no valid body (the generator's message).
+        """
+        vc, key = _preset_class(preset)
+        table = f"class table ({key})"
+        if mass is None and weight_lb is None:
+            mass_kg, mass_source = vc.mass.value, table
+        else:
+            mass_kg, mass_source = _mass(mass, weight_lb)
+        if stiffness is None:
+            stiff, stiffness_source = vc.stiffness, table
+        else:
+            stiff, stiffness_source = Stiffness.coerce(stiffness), USER
+        cg_mode = "class" if cg is None else _mode(cg, "cg", ("class", "mesh"))
+        inertia_mode = "class" if inertia is None else _mode(inertia, "inertia", _INERTIA_WORDS)
+        asked = {"length": length, "width": width, "height": height, "wheelbase": wheelbase}
+        dims = {k: getattr(vc, k).value if v is None else v for k, v in asked.items()}
+        params = body_params(key, **dims, **shape)
+        mesh = generate_body(params, resolution)
+        # Ratios to the class (exactly 1.0 for the class's own numbers).
+        wb_ratio = params.wheelbase / vc.wheelbase.value
+        h_ratio = params.height / vc.height.value
+        m_ratio = mass_kg / vc.mass.value
+        sources: dict[str, str] = {}
+        details: dict[str, str] = {}
+        solid = solid_properties(mesh)  # closed and outward by construction: volume > 0
+        volume, centroid, unit_inertia = solid
+        if cg_mode == "class":
+            front_axle = params.length / 2.0 - params.front_overhang
+            to_axle = vc.cg_to_front_axle.value * wb_ratio
+            cg_v = np.array([front_axle - to_axle, 0.0, vc.cg_height.value * h_ratio])
+            scaled = _scaled_to(
+                ("wheelbase", wb_ratio, params.wheelbase, "m"),
+                ("height", h_ratio, params.height, "m"),
+            )
+            sources["cg"] = table + scaled
+            details["cg"] = (
+                f"{table}{scaled}: {to_axle:.3f} m behind the front axle, "
+                f"{cg_v[2]:.3f} m above the ground"
+            )
+        elif cg_mode == "mesh":
+            cg_v, sources["cg"] = centroid, GENERATED_SOLID
+            details["cg"] = f"{GENERATED_SOLID} ({volume:.4g} m^3)"
+        else:
+            cg_v, sources["cg"] = _point(cg, "cg"), USER
+        inertia_v: ArrayLike
+        if inertia_mode in ("class", "mesh"):
+            inertia_v = _parallel_axis(unit_inertia * (mass_kg / volume), mass_kg, cg_v - centroid)
+            if inertia_mode == "class":
+                izz = vc.yaw_inertia.value * m_ratio * wb_ratio**2
+                inertia_v[2, 2] = izz
+                inertia_v[0, 2] = inertia_v[2, 0] = inertia_v[1, 2] = inertia_v[2, 1] = 0.0
+                scaled = _scaled_to(
+                    ("mass", m_ratio, mass_kg, "kg"),
+                    ("wheelbase", wb_ratio, params.wheelbase, "m"),
+                )
+                sources["inertia"] = f"Izz {table}{scaled}; Ixx, Iyy: {GENERATED_SOLID}"
+                details["inertia"] = (
+                    f"Izz {table}{scaled}; Ixx, Iyy, Ixy: {GENERATED_SOLID} "
+                    f"({volume:.4g} m^3) at the CG; Ixz = Iyz = 0"
+                )
+            else:
+                sources["inertia"] = GENERATED_SOLID
+                details["inertia"] = f"{GENERATED_SOLID} ({volume:.4g} m^3) at the CG"
+        elif inertia_mode == "empirical":
+            ext_l, ext_w, ext_h = (float(e) for e in mesh.extents)
+            inertia_v = empirical_inertia(mass_kg, params.wheelbase, ext_l, ext_w, ext_h)
+            sources["inertia"] = EMPIRICAL
+            details["inertia"] = (
+                f"{EMPIRICAL}: Izz = m (0.5 WB)^2 with WB = {params.wheelbase:.3f} m; Ixx, Iyy "
+                f"of the uniform {ext_l:.2f} x {ext_w:.2f} x {ext_h:.2f} m box"
+            )
+        else:
+            inertia_v, sources["inertia"] = np.asarray(inertia, dtype=np.float64), USER
+        sources["mass"] = mass_source
+        sources["dimensions"] = _given_or(asked, table)
+        defaults = f"generator defaults ({key})"
+        sources["body"] = f"{USER} ({', '.join(sorted(shape))}); {defaults}" if shape else defaults
+        sources["stiffness"] = stiffness_source
+        vehicle = cls(
+            mesh,
+            mass_kg,
+            cg_v,
+            inertia_v,
+            name=key if name is None else name,
+            sources=sources,
+            stiffness=stiff,
+        )
+        vehicle._mass_source, vehicle._details = mass_source, details
+        vehicle._generator_params = params
+        return vehicle
+
     # -- properties ----------------------------------------------------------------------
 
     @property
@@ -520,8 +673,17 @@ class Vehicle:
     @property
     def sources(self) -> dict[str, str]:
         """Where "cg" and "inertia" came from: "user", "mesh volume", "closed shells",
-        "convex hull", "winding-number solid", "uniform box" or "empirical"."""
+        "convex hull", "winding-number solid", "uniform box" or "empirical"; for a generated
+        vehicle (:meth:`generate`) "class table (<preset>)" (", scaled to ..." when scaled),
+        "uniform solid of the generated body" or a mix for the inertia, and also "mass",
+        "dimensions", "body" (the shape parameters) and "stiffness"."""
         return dict(self._sources)
+
+    @property
+    def generator_params(self) -> BodyParams | None:
+        """The crashsim.generator.BodyParams the body was made from (:meth:`generate`), or
+        None for a vehicle from a mesh or a box."""
+        return self._generator_params
 
     @property
     def stiffness(self) -> Stiffness:
@@ -567,6 +729,7 @@ class Vehicle:
         )
         other._mass_source, other._details = self._mass_source, dict(self._details)
         other._quality = self._quality
+        other._generator_params = self._generator_params
         other._shape = self.shape
         return other
 
@@ -595,7 +758,19 @@ class Vehicle:
             s = self._stiffness.face(f)
             if s is not None:
                 faces.append(f"{f} A = {s.A:.4g} N/m, B = {s.B:.4g} N/m^2")
-        lines.append("  stiffness: " + ("; ".join(faces) if faces else "no data"))
+        p = self._generator_params
+        if p is not None:
+            lines.append(
+                f"  body: crashsim.generator {p.preset}, L {p.length:.3f} x W {p.width:.3f} x "
+                f"H {p.height:.3f} m (roof above the ground), wheelbase {p.wheelbase:.3f} m, "
+                f"front overhang {p.front_overhang:.3f} m, wheel radius {p.wheel_radius:.3f} m"
+                f"  [dimensions: {self._sources.get('dimensions', USER)}; shape: "
+                f"{self._sources.get('body', USER)}]"
+            )
+        stiffness_line = "  stiffness: " + ("; ".join(faces) if faces else "no data")
+        if "stiffness" in self._sources:
+            stiffness_line += f"  [{self._sources['stiffness']}]"
+        lines.append(stiffness_line)
         return "\n".join(lines)
 
     def __repr__(self) -> str:
@@ -603,6 +778,43 @@ class Vehicle:
             f"Vehicle(name={self._name!r}, mass={self._mass:g} kg, "
             f"triangles={len(self._mesh.faces)}, cg={np.round(self._cg, 4).tolist()})"
         )
+
+
+_INERTIA_WORDS = ("class", "mesh", "empirical")
+
+
+def _preset_class(preset: Any) -> tuple[VehicleClass, str]:
+    """The class table entry and the generator preset of a preset name (or table alias)."""
+    key = preset.strip().lower() if isinstance(preset, str) else None
+    key = ALIASES.get(key, key) if key is not None else None
+    if key not in PRESETS:
+        raise ParameterError(
+            f"unknown preset {preset!r}: use one of {', '.join(PRESETS)} (the vehicle classes "
+            "that have a generated body)"
+        )
+    return vehicle_class(key), key
+
+
+def _scaled_to(*parts: tuple[str, float, float, str]) -> str:
+    """The text ', scaled to mass 1600.0 kg and wheelbase 2.900 m' for the parts whose ratio
+    to the class is not 1 (each part: name, ratio, value, unit); "" when none is."""
+    changed = [
+        f"{name} {value:.1f} {unit}" if unit == "kg" else f"{name} {value:.3f} {unit}"
+        for name, ratio, value, unit in parts
+        if ratio != 1.0
+    ]
+    return f", scaled to {' and '.join(changed)}" if changed else ""
+
+
+def _given_or(values: dict[str, Any], default: str) -> str:
+    """The text 'user (a, b); <default> for the rest' for the names given (not None), "user"
+    when all are, else default."""
+    given = [k for k, v in values.items() if v is not None]
+    if not given:
+        return default
+    if len(given) == len(values):
+        return USER
+    return f"{USER} ({', '.join(given)}); {default} for the rest"
 
 
 def _mode(value: Any, name: str, words: tuple[str, ...]) -> str:
