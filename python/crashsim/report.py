@@ -657,6 +657,9 @@ def _scene_record(result: Result, include_meshes: bool) -> dict[str, Any]:
                 "stiffness": _plain(v.stiffness.to_dict()),
                 "summary": v.summary(),
                 "mesh": _mesh_record(v, include_meshes),
+                "generator": None
+                if getattr(v, "generator_params", None) is None
+                else _plain(v.generator_params.as_dict()),
                 "initial_state": {
                     "time": float(tr.t[0]),
                     "position": _vec(tr.position[0]),
