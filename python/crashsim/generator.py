@@ -949,7 +949,8 @@ def loft(x: Array, sections: Array) -> trimesh.Trimesh:
     simple polygon counter-clockwise seen from +x, point j of one section joined to point j of
     the next. Each end is closed by a fan from the centre of its section's bounding box, so
     the end sections must be star-shaped from there (a convex section is). Vertices: the
-    sections in order, then the two fan centres (rear end, front end).
+    sections in order, then the two fan centres (rear end, front end). Quads are split so
+    that mirror-symmetric sections (about y = 0) give a mirror-symmetric mesh.
     """
     x = np.asarray(x, dtype=np.float64)
     sections = np.asarray(sections, dtype=np.float64)
@@ -987,7 +988,19 @@ def loft(x: Array, sections: Array) -> trimesh.Trimesh:
     b = (i + (j + 1) % n).ravel()
     c = a + n
     dd = b + n
-    sides = np.concatenate([np.column_stack([a, b, c]), np.column_stack([b, dd, c])])
+    # Split each quad along the diagonal b-c where its mean y >= 0 and along a-dd where it is
+    # below: mirrored quads get mirrored diagonals, so a left-right symmetric set of sections
+    # gives a mirror-symmetric mesh (no spurious products of inertia or normal tilt).
+    flat = sections.reshape(-1, 2)
+    left = flat[a, 0] + flat[b, 0] + flat[c, 0] + flat[dd, 0] >= 0.0
+    sides = np.concatenate(
+        [
+            np.column_stack([a, b, c])[left],
+            np.column_stack([b, dd, c])[left],
+            np.column_stack([a, b, dd])[~left],
+            np.column_stack([a, dd, c])[~left],
+        ]
+    )
     rear_c, front_c = k * n, k * n + 1
     jj = np.arange(n)
     rear = np.column_stack([np.full(n, rear_c), (jj + 1) % n, jj])
