@@ -193,6 +193,26 @@ fn overlap_region<'py>(
     Ok(d)
 }
 
+/// Checked mass properties and state of a body from Python values (SI, world frame).
+fn body_input(
+    mass: f64,
+    inertia: &Bound<'_, PyAny>,
+    position: &Bound<'_, PyAny>,
+    orientation: &Bound<'_, PyAny>,
+    velocity: &Bound<'_, PyAny>,
+    angular_velocity: &Bound<'_, PyAny>,
+) -> PyResult<(core::MassProperties, core::BodyState)> {
+    let props =
+        core::MassProperties::new(mass, matrix3(inertia, "inertia")?).map_err(errors::to_py)?;
+    let state = core::BodyState {
+        position: vector3(position, "position")?.into(),
+        orientation: rotation(orientation)?,
+        velocity: vector3(velocity, "velocity")?,
+        angular_velocity: vector3(angular_velocity, "angular_velocity")?,
+    };
+    Ok((props, state))
+}
+
 /// A set of rigid bodies with meshes and the contact parameters of each pair.
 #[pyclass(module = "crashsim._core")]
 struct World {
@@ -229,14 +249,14 @@ impl World {
         velocity: &Bound<'_, PyAny>,
         angular_velocity: &Bound<'_, PyAny>,
     ) -> PyResult<usize> {
-        let props =
-            core::MassProperties::new(mass, matrix3(inertia, "inertia")?).map_err(errors::to_py)?;
-        let state = core::BodyState {
-            position: vector3(position, "position")?.into(),
-            orientation: rotation(orientation)?,
-            velocity: vector3(velocity, "velocity")?,
-            angular_velocity: vector3(angular_velocity, "angular_velocity")?,
-        };
+        let (props, state) = body_input(
+            mass,
+            inertia,
+            position,
+            orientation,
+            velocity,
+            angular_velocity,
+        )?;
         self.inner
             .add_body(shape.inner.clone(), props, &state)
             .map_err(errors::to_py)
@@ -466,14 +486,14 @@ fn free_motion<'py>(
     Bound<'py, PyArray1<f64>>,
     Bound<'py, PyArray1<f64>>,
 )> {
-    let props =
-        core::MassProperties::new(mass, matrix3(inertia, "inertia")?).map_err(errors::to_py)?;
-    let state = core::BodyState {
-        position: vector3(position, "position")?.into(),
-        orientation: rotation(orientation)?,
-        velocity: vector3(velocity, "velocity")?,
-        angular_velocity: vector3(angular_velocity, "angular_velocity")?,
-    };
+    let (props, state) = body_input(
+        mass,
+        inertia,
+        position,
+        orientation,
+        velocity,
+        angular_velocity,
+    )?;
     core::error::require_finite("dt", dt).map_err(errors::to_py)?;
     let body = core::RigidBody::new(props, &state).map_err(errors::to_py)?;
     let s = py.detach(move || body.advanced(dt).state());
