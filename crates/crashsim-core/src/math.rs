@@ -35,3 +35,41 @@ pub fn is_finite_vector(v: &Vector) -> bool {
 pub fn transformed_aabb(aabb: &Aabb, pose: &Isometry) -> Aabb {
     aabb.transform_by(pose)
 }
+
+/// A rigid map (rotation matrix, its element-wise absolute value, translation) built once
+/// from an isometry, for transforming many points and boxes: a matrix product instead of a
+/// quaternion rotation per point, and a box's extents through |R| (as parry's
+/// `Aabb::transform_by`, without rebuilding the matrix every call).
+#[derive(Clone, Copy, Debug)]
+pub struct RigidMap {
+    rot: Matrix,
+    abs_rot: Matrix,
+    trans: Vector,
+}
+
+impl RigidMap {
+    /// The map of `iso`.
+    #[inline]
+    pub fn new(iso: &Isometry) -> RigidMap {
+        let rot = iso.rotation.to_rotation_matrix().into_inner();
+        RigidMap {
+            rot,
+            abs_rot: rot.abs(),
+            trans: iso.translation.vector,
+        }
+    }
+
+    /// The image of a point.
+    #[inline]
+    pub fn point(&self, p: &Point) -> Point {
+        Point::from(self.rot * p.coords + self.trans)
+    }
+
+    /// The axis-aligned box holding the image of a box.
+    #[inline]
+    pub fn aabb(&self, b: &Aabb) -> Aabb {
+        let center = self.rot * b.center().coords + self.trans;
+        let half = self.abs_rot * b.half_extents();
+        Aabb::new(Point::from(center - half), Point::from(center + half))
+    }
+}

@@ -6,7 +6,7 @@
 //! (a conservative box), so pruning never drops a real contact.
 
 use crate::bvh::BvhNode;
-use crate::math::{Aabb, Isometry, Point, Real, Vector};
+use crate::math::{Aabb, Isometry, Point, Real, RigidMap, Vector};
 use crate::shape::MeshShape;
 use crate::triangle::{
     scaled_normal, segment_triangle_crossing, triangle_cut_by_plane_of,
@@ -26,6 +26,11 @@ fn transform_tri(t: &Tri, m: &Isometry) -> Tri {
     [m * t[0], m * t[1], m * t[2]]
 }
 
+#[inline]
+fn map_tri(t: &Tri, m: &RigidMap) -> Tri {
+    [m.point(&t[0]), m.point(&t[1]), m.point(&t[2])]
+}
+
 /// Simultaneous descent of two trees (2 in 1's frame by `pose12`): calls `leaf` on every leaf
 /// pair whose boxes meet; `leaf` returns true to stop early. Returns true if stopped early.
 fn traverse_pairs(
@@ -36,11 +41,12 @@ fn traverse_pairs(
     mut leaf: impl FnMut(&BvhNode, &BvhNode) -> bool,
 ) -> bool {
     let (n1, n2) = (s1.bvh().nodes(), s2.bvh().nodes());
+    let map = RigidMap::new(pose12);
     stack.clear();
     stack.push((0, 0));
     while let Some((i, j)) = stack.pop() {
         let (a, b) = (&n1[i as usize], &n2[j as usize]);
-        if !a.aabb.intersects(&b.aabb.transform_by(pose12)) {
+        if !a.aabb.intersects(&map.aabb(&b.aabb)) {
             continue;
         }
         match (a.is_leaf(), b.is_leaf()) {
@@ -85,11 +91,12 @@ pub fn surfaces_intersect(
     ws: &mut QueryWorkspace,
 ) -> bool {
     let pose12 = pose1.inv_mul(pose2);
+    let map = RigidMap::new(&pose12);
     traverse_pairs(s1, s2, &pose12, &mut ws.pairs, |a, b| {
         for &t1 in s1.bvh().leaf_primitives(a) {
             let tri1 = s1.triangle(t1);
             for &t2 in s2.bvh().leaf_primitives(b) {
-                if triangles_intersect(&tri1, &transform_tri(&s2.triangle(t2), &pose12)) {
+                if triangles_intersect(&tri1, &map_tri(&s2.triangle(t2), &map)) {
                     return true;
                 }
             }
@@ -151,15 +158,13 @@ pub fn surface_distance(
     ws: &mut QueryWorkspace,
 ) -> Real {
     let pose12 = pose1.inv_mul(pose2);
+    let map = RigidMap::new(&pose12);
     let (n1, n2) = (s1.bvh().nodes(), s2.bvh().nodes());
     let stack = &mut ws.bounded_pairs;
     stack.clear();
     let mut best = cap;
     let bound = |i: u32, j: u32| -> Real {
-        aabb_distance(
-            &n1[i as usize].aabb,
-            &n2[j as usize].aabb.transform_by(&pose12),
-        )
+        aabb_distance(&n1[i as usize].aabb, &map.aabb(&n2[j as usize].aabb))
     };
     stack.push((bound(0, 0), 0, 0));
     while let Some((lb, i, j)) = stack.pop() {
@@ -170,8 +175,13 @@ pub fn surface_distance(
         if a.is_leaf() && b.is_leaf() {
             for &t1 in s1.bvh().leaf_primitives(a) {
                 let tri1 = s1.triangle(t1);
+                let box1 = Aabb::from_points(tri1.iter().copied());
                 for &t2 in s2.bvh().leaf_primitives(b) {
-                    let tri2 = transform_tri(&s2.triangle(t2), &pose12);
+                    let tri2 = map_tri(&s2.triangle(t2), &map);
+                    // The boxes' distance bounds the triangles' from below: a cheap reject.
+                    if aabb_distance(&box1, &Aabb::from_points(tri2.iter().copied())) >= best {
+                        continue;
+                    }
                     let d = triangle_triangle_distance_sq(&tri1, &tri2).sqrt();
                     if d < best {
                         best = d;
@@ -258,11 +268,16 @@ const NUDGE: Real = 1e-7;
 /// triangle and into the own solid would be (a symbolic perturbation): so two coplanar faces
 /// of the same orientation both count as inside (and cancel in the volume normal), two facing
 /// ones neither, and an edge lying on the other's face takes the side of its triangle.
+///
+/// `edges[k]` says what is known of edge k (vertex k to k + 1): wholly inside or outside, or
+/// the status of its two ends, from which the pieces follow by flipping at each crossing when
+/// the count of crossings agrees (else, and when unknown, a winding number per piece).
 fn inside_vector_area(
     t: &Tri,
     crossings: &[(Tri, Point, Point, bool)],
     other: &MeshShape,
     to_other: &Isometry,
+    edges: [EdgeStatus; 3],
 ) -> Vector {
     let n = scaled_normal(t);
     let full = n.norm();
@@ -291,6 +306,12 @@ fn inside_vector_area(
     let mut params: Vec<Real> = Vec::with_capacity(2 + crossings.len());
     for k in 0..3 {
         let (e0, e1) = (t[k], t[(k + 1) % 3]);
+        if let EdgeStatus::Whole(is_inside) = edges[k] {
+            if is_inside {
+                twice_area += (e0 - c).cross(&(e1 - c)).dot(&nhat);
+            }
+            continue;
+        }
         params.clear();
         params.push(0.0);
         params.push(1.0);
@@ -300,13 +321,27 @@ fn inside_vector_area(
             }
         }
         params.sort_by(|a, b| a.total_cmp(b));
-        for w in params.windows(2) {
+        // A crossing through a shared edge of the other mesh is reported by both its
+        // triangles: count it once.
+        params.dedup_by(|b, a| *b - *a <= 1e-12);
+        let crossings_along = params.len() - 2;
+        let parity = match edges[k] {
+            EdgeStatus::Ends(start, end) if start ^ end == (crossings_along % 2 == 1) => {
+                Some(start)
+            }
+            _ => None,
+        };
+        for (i, w) in params.windows(2).enumerate() {
             if w[1] <= w[0] {
                 continue;
             }
             let p0 = e0 + (e1 - e0) * w[0];
             let p1 = e0 + (e1 - e0) * w[1];
-            if inside(&(p0 + (p1 - p0) * 0.5)) {
+            let piece_inside = match parity {
+                Some(start) => start ^ (i % 2 == 1),
+                None => inside(&(p0 + (p1 - p0) * 0.5)),
+            };
+            if piece_inside {
                 twice_area += (p0 - c).cross(&(p1 - c)).dot(&nhat);
             }
         }
@@ -316,6 +351,13 @@ fn inside_vector_area(
 
 /// Vector area (own frame) of `own`'s surface inside `other`, and the own vertices inside it
 /// (own frame) appended to `inside`. `crossings` are sorted by own triangle.
+///
+/// When `other` is closed, inside and outside change only across its surface: the own
+/// triangles no crossing touches form patches (joined across shared edges) that are wholly
+/// inside or outside, decided by one winding number per patch (none for a patch reaching out
+/// of the other's box), and a vertex takes the status of a patch it belongs to. Otherwise
+/// (an open mesh, whose winding number also changes near its holes) every triangle and vertex
+/// is decided alone.
 fn surface_inside(
     own: &MeshShape,
     other: &MeshShape,
@@ -323,18 +365,37 @@ fn surface_inside(
     crossings: &[Crossing],
     other_tri_in_own: impl Fn(u32) -> Tri,
     inside: &mut Vec<Point>,
+    use_patches: bool,
 ) -> Vector {
     let other_box_in_own = other.aabb().transform_by(&own_to_other.inverse());
-    for v in own.vertices() {
-        if other_box_in_own.contains_local_point(v) && other.contains_point(&(own_to_other * v)) {
-            inside.push(*v);
-        }
+    let n = own.triangles().len();
+    let mut crossed = vec![false; n];
+    for x in crossings {
+        crossed[x.0 as usize] = true;
     }
+    let in_box =
+        |ti: u32| Aabb::from_points(own.triangle(ti).iter().copied()).intersects(&other_box_in_own);
+    let patches = (use_patches && other.is_closed()).then(|| Patches::new(own, &crossed, &in_box));
+    let mut cls = Classifier {
+        own,
+        other,
+        own_to_other,
+        crossed: &crossed,
+        patches: patches.as_ref(),
+        patch_status: vec![None; if patches.is_some() { n } else { 0 }],
+        vertex_status: vec![
+            None;
+            if patches.is_some() {
+                own.vertices().len()
+            } else {
+                0
+            }
+        ],
+    };
     let mut total = Vector::zeros();
     let mut k = 0;
     let mut local: Vec<(Tri, Point, Point, bool)> = Vec::new();
-    for (ti, _) in own.triangles().iter().enumerate() {
-        let ti = ti as u32;
+    for ti in 0..n as u32 {
         local.clear();
         while k < crossings.len() && crossings[k].0 == ti {
             let (_, o, p, q, cut) = crossings[k];
@@ -342,12 +403,170 @@ fn surface_inside(
             k += 1;
         }
         let t = own.triangle(ti);
-        if local.is_empty() && !Aabb::from_points(t.iter().copied()).intersects(&other_box_in_own) {
-            continue;
+        if local.is_empty() {
+            if !in_box(ti) {
+                continue;
+            }
+            if let Some(is_inside) = cls.patch(ti) {
+                if is_inside {
+                    total += scaled_normal(&t) * 0.5;
+                }
+                continue;
+            }
         }
-        total += inside_vector_area(&t, &local, other, own_to_other);
+        let mut edges = [EdgeStatus::Unknown; 3];
+        if patches.is_some() && !local.is_empty() {
+            let tri = own.triangles()[ti as usize];
+            for (k, &nb) in own.neighbors(ti).iter().enumerate() {
+                edges[k] = match (nb != u32::MAX && !crossed[nb as usize])
+                    .then(|| cls.patch(nb))
+                    .flatten()
+                {
+                    Some(is_inside) => EdgeStatus::Whole(is_inside),
+                    None => EdgeStatus::Ends(cls.vertex(tri[k]), cls.vertex(tri[(k + 1) % 3])),
+                };
+            }
+        }
+        total += inside_vector_area(&t, &local, other, own_to_other, edges);
+    }
+    for (vi, v) in own.vertices().iter().enumerate() {
+        if other_box_in_own.contains_local_point(v) && cls.vertex(vi as u32) {
+            inside.push(*v);
+        }
     }
     total
+}
+
+/// What is known of an edge of a cut triangle before its pieces are classified.
+#[derive(Clone, Copy, Debug)]
+enum EdgeStatus {
+    /// Nothing: classify each piece by a winding number.
+    Unknown,
+    /// The other surface does not meet the edge (the triangle beyond it is uncut): wholly
+    /// inside or outside.
+    Whole(bool),
+    /// Whether its start and end vertices are inside (the other mesh is closed, so the status
+    /// flips at each crossing of its surface along the edge).
+    Ends(bool, bool),
+}
+
+/// Inside/outside decisions for one mesh's triangles and vertices against a closed other
+/// mesh, cached per patch and per vertex (see `surface_inside`).
+struct Classifier<'a> {
+    own: &'a MeshShape,
+    other: &'a MeshShape,
+    own_to_other: &'a Isometry,
+    crossed: &'a [bool],
+    patches: Option<&'a Patches>,
+    patch_status: Vec<Option<bool>>,
+    vertex_status: Vec<Option<bool>>,
+}
+
+impl Classifier<'_> {
+    /// The status of uncut triangle ti's patch; None without patches, or when it is unknown
+    /// and ti has no area to decide it by.
+    fn patch(&mut self, ti: u32) -> Option<bool> {
+        let p = self.patches?;
+        let root = p.root(ti) as usize;
+        if self.patch_status[root].is_none() {
+            self.patch_status[root] = if p.leaves_box[root] {
+                Some(false)
+            } else {
+                tri_inside(&self.own.triangle(ti), self.other, self.own_to_other)
+            };
+        }
+        self.patch_status[root]
+    }
+
+    /// Whether vertex vi is inside: from an uncut triangle at it (its own one, or the one
+    /// across an edge at it), else its own winding number. Cached with patches.
+    fn vertex(&mut self, vi: u32) -> bool {
+        if let Some(known) = self.vertex_status.get(vi as usize).copied().flatten() {
+            return known;
+        }
+        let ti = self.own.vertex_triangle(vi);
+        let from_patch = if ti == u32::MAX || self.patches.is_none() {
+            None
+        } else if !self.crossed[ti as usize] {
+            self.patch(ti)
+        } else {
+            let tri = self.own.triangles()[ti as usize];
+            let k = (0..3).find(|&k| tri[k] == vi).unwrap_or(0);
+            let nbs = self.own.neighbors(ti);
+            [nbs[k], nbs[(k + 2) % 3]]
+                .into_iter()
+                .filter(|&nb| nb != u32::MAX && !self.crossed[nb as usize])
+                .find_map(|nb| self.patch(nb))
+        };
+        let v = self.own.vertices()[vi as usize];
+        let is_inside =
+            from_patch.unwrap_or_else(|| self.other.contains_point(&(self.own_to_other * v)));
+        if let Some(slot) = self.vertex_status.get_mut(vi as usize) {
+            *slot = Some(is_inside);
+        }
+        is_inside
+    }
+}
+
+/// The own triangles no crossing touches, joined across shared edges (union-find), and for
+/// each patch root whether the patch reaches out of the other mesh's box.
+struct Patches {
+    parent: Vec<u32>,
+    leaves_box: Vec<bool>,
+}
+
+impl Patches {
+    fn new(own: &MeshShape, crossed: &[bool], in_box: &impl Fn(u32) -> bool) -> Patches {
+        let n = crossed.len();
+        let mut parent: Vec<u32> = (0..n as u32).collect();
+        fn find(parent: &mut [u32], mut x: u32) -> u32 {
+            while parent[x as usize] != x {
+                parent[x as usize] = parent[parent[x as usize] as usize];
+                x = parent[x as usize];
+            }
+            x
+        }
+        for &(a, b) in own.edge_pairs() {
+            if crossed[a as usize] || crossed[b as usize] {
+                continue;
+            }
+            let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+            if ra != rb {
+                let (lo, hi) = (ra.min(rb), ra.max(rb));
+                parent[hi as usize] = lo;
+            }
+        }
+        for i in 0..n as u32 {
+            let r = find(&mut parent, i);
+            parent[i as usize] = r;
+        }
+        let mut leaves_box = vec![false; n];
+        for i in 0..n as u32 {
+            if !crossed[i as usize] && !in_box(i) {
+                leaves_box[parent[i as usize] as usize] = true;
+            }
+        }
+        Patches { parent, leaves_box }
+    }
+
+    #[inline]
+    fn root(&self, t: u32) -> u32 {
+        self.parent[t as usize]
+    }
+}
+
+/// Whether an uncrossed triangle lies inside `other`: its centroid nudged into the triangle's
+/// own solid (see `inside_vector_area`).
+/// None for a triangle without area.
+fn tri_inside(t: &Tri, other: &MeshShape, to_other: &Isometry) -> Option<bool> {
+    let n = scaled_normal(t);
+    let full = n.norm();
+    if full == 0.0 {
+        return None;
+    }
+    let c = Point::from((t[0].coords + t[1].coords + t[2].coords) / 3.0);
+    let q = c - (n / full) * (NUDGE * full.sqrt());
+    Some(other.contains_point(&(to_other * q)))
 }
 
 /// The overlap region S of two posed meshes and their inside vector areas.
@@ -356,6 +575,18 @@ pub fn overlap_region(
     pose1: &Isometry,
     s2: &MeshShape,
     pose2: &Isometry,
+) -> OverlapRegion {
+    overlap_region_with(s1, pose1, s2, pose2, true)
+}
+
+/// [`overlap_region`], deciding inside and outside per patch (`use_patches`, for closed
+/// meshes) or per triangle and vertex (the reference the patches are tested against).
+fn overlap_region_with(
+    s1: &MeshShape,
+    pose1: &Isometry,
+    s2: &MeshShape,
+    pose2: &Isometry,
+    use_patches: bool,
 ) -> OverlapRegion {
     let pose12 = pose1.inv_mul(pose2);
     let pose21 = pose12.inverse();
@@ -399,6 +630,7 @@ pub fn overlap_region(
         &by_1,
         |o| transform_tri(&s2.triangle(o), &pose12),
         &mut inside1,
+        use_patches,
     );
     // Mesh 2's side, in frame 2: its triangles' segments run the other way (n2 x n1).
     let mut by_2: Vec<Crossing> = segs
@@ -414,6 +646,7 @@ pub fn overlap_region(
         &by_2,
         |o| transform_tri(&s1.triangle(o), &pose21),
         &mut inside2,
+        use_patches,
     );
     region.inside_vertex_count = inside1.len() + inside2.len();
     region.points.extend(inside1.iter().map(|p| pose1 * p));
@@ -534,5 +767,67 @@ mod tests {
             assert!((lo.y + 0.85).abs() < 1e-12 && (hi.y - 0.85).abs() < 1e-12);
             assert!((lo.x + 2.1).abs() < 1e-12 && (hi.x + 1.8).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn patch_classification_equals_the_per_triangle_one() {
+        // Closed meshes (a subdivided box and a tilted, subdivided box) at random poses: the
+        // region decided per patch must equal the one decided per triangle and vertex.
+        use rand::rngs::SmallRng;
+        use rand::{Rng, SeedableRng};
+        let refine = |m: &MeshShape, times: usize| -> MeshShape {
+            let (mut v, mut t) = (m.vertices().to_vec(), m.triangles().to_vec());
+            for _ in 0..times {
+                let mut mid = std::collections::HashMap::new();
+                let mut nt = Vec::new();
+                let mut midpoint = |a: u32, b: u32, v: &mut Vec<Point>| -> u32 {
+                    *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                        v.push(nalgebra::center(&v[a as usize], &v[b as usize]));
+                        (v.len() - 1) as u32
+                    })
+                };
+                for tri in &t {
+                    let [a, b, c] = *tri;
+                    let (ab, bc, ca) = (
+                        midpoint(a, b, &mut v),
+                        midpoint(b, c, &mut v),
+                        midpoint(c, a, &mut v),
+                    );
+                    nt.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+                }
+                t = nt;
+            }
+            MeshShape::new(v, t).unwrap()
+        };
+        let car = refine(&box_mesh(Vector::zeros(), Vector::new(2.25, 0.9, 0.7)), 3);
+        let other = refine(&box_mesh(Vector::zeros(), Vector::new(2.0, 0.85, 0.6)), 2);
+        assert!(car.is_closed() && other.is_closed());
+        let mut rng = SmallRng::seed_from_u64(3);
+        let mut overlapping = 0;
+        for _ in 0..60 {
+            let pose2 = Isometry::from_parts(
+                nalgebra::Translation3::new(
+                    rng.random_range(-4.0..4.0),
+                    rng.random_range(-1.5..1.5),
+                    rng.random_range(-0.5..0.5),
+                ),
+                Rotation::from_euler_angles(
+                    rng.random_range(-0.3..0.3),
+                    rng.random_range(-0.3..0.3),
+                    rng.random_range(-3.1..3.1),
+                ),
+            );
+            let id = Isometry::identity();
+            let a = overlap_region_with(&car, &id, &other, &pose2, true);
+            let b = overlap_region_with(&car, &id, &other, &pose2, false);
+            assert_eq!(a.points.len(), b.points.len());
+            for (p, q) in a.points.iter().zip(&b.points) {
+                assert_eq!(p, q);
+            }
+            assert!((a.area_normal_1_in_2 - b.area_normal_1_in_2).norm() < 1e-12);
+            assert!((a.area_normal_2_in_1 - b.area_normal_2_in_1).norm() < 1e-12);
+            overlapping += usize::from(!a.points.is_empty());
+        }
+        assert!(overlapping > 20, "{overlapping}");
     }
 }

@@ -44,6 +44,69 @@ pub struct MeshShape {
     dipoles: Vec<Dipole>,
     shells: Vec<Shell>,
     radius: Real,
+    topology: Topology,
+}
+
+/// Which triangles share an edge, one triangle at each vertex, and whether the mesh is
+/// closed (every directed edge met once by its reverse): inside and outside then change
+/// only across the surface, so a patch of triangles no other surface cuts is wholly inside or
+/// wholly outside (the overlap region classifies such patches once).
+#[derive(Clone, Debug)]
+struct Topology {
+    /// Pairs of triangles sharing an edge (for an edge of k > 2 triangles, a chain of k - 1).
+    edge_pairs: Vec<(u32, u32)>,
+    /// One triangle having the vertex, or u32::MAX for an unused vertex.
+    vertex_triangle: Vec<u32>,
+    /// The triangle across edge k (vertex k to vertex k + 1) of each triangle, or u32::MAX
+    /// when the edge has no other triangle or more than one.
+    neighbors: Vec<[u32; 3]>,
+    closed: bool,
+}
+
+fn build_topology(n_vertices: usize, triangles: &[[u32; 3]]) -> Topology {
+    // Directed edges (from, to, triangle, edge slot), sorted by their undirected key and then
+    // triangle: deterministic.
+    let mut edges: Vec<(u32, u32, u32, u8)> = Vec::with_capacity(3 * triangles.len());
+    let mut vertex_triangle = vec![u32::MAX; n_vertices];
+    for (ti, t) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.push((a, b, ti as u32, k as u8));
+            let slot = &mut vertex_triangle[a as usize];
+            if *slot == u32::MAX {
+                *slot = ti as u32;
+            }
+        }
+    }
+    let key = |e: &(u32, u32, u32, u8)| (e.0.min(e.1), e.0.max(e.1));
+    edges.sort_unstable_by_key(|e| (key(e), e.2, e.3));
+    let mut edge_pairs = Vec::new();
+    let mut neighbors = vec![[u32::MAX; 3]; triangles.len()];
+    let mut closed = true;
+    let mut i = 0;
+    while i < edges.len() {
+        let mut j = i + 1;
+        while j < edges.len() && key(&edges[j]) == key(&edges[i]) {
+            edge_pairs.push((edges[j - 1].2, edges[j].2));
+            j += 1;
+        }
+        if j - i == 2 {
+            let (e0, e1) = (edges[i], edges[i + 1]);
+            neighbors[e0.2 as usize][e0.3 as usize] = e1.2;
+            neighbors[e1.2 as usize][e1.3 as usize] = e0.2;
+        }
+        // Closed: exactly two uses, in opposite directions.
+        if j - i != 2 || edges[i].0 == edges[i + 1].0 || edges[i].0 == edges[i].1 {
+            closed = false;
+        }
+        i = j;
+    }
+    Topology {
+        edge_pairs,
+        vertex_triangle,
+        neighbors,
+        closed,
+    }
 }
 
 impl MeshShape {
@@ -100,6 +163,7 @@ impl MeshShape {
         let bvh = Bvh::build(&boxes);
         let dipoles = build_dipoles(&bvh, &vertices, &triangles);
         let shells = find_shells(&vertices, &triangles);
+        let topology = build_topology(vertices.len(), &triangles);
         let radius = vertices
             .iter()
             .map(|v| v.coords.norm())
@@ -111,6 +175,7 @@ impl MeshShape {
             dipoles,
             shells,
             radius,
+            topology,
         })
     }
 
@@ -182,6 +247,32 @@ impl MeshShape {
     #[inline]
     pub fn radius(&self) -> Real {
         self.radius
+    }
+
+    /// True when every edge is shared by exactly two triangles in opposite directions (a
+    /// closed, consistently wound surface).
+    #[inline]
+    pub fn is_closed(&self) -> bool {
+        self.topology.closed
+    }
+
+    /// Pairs of triangles sharing an edge.
+    #[inline]
+    pub fn edge_pairs(&self) -> &[(u32, u32)] {
+        &self.topology.edge_pairs
+    }
+
+    /// The triangles across the edges of triangle `t` (edge k runs from its vertex k to
+    /// vertex k + 1); u32::MAX where an edge has no other triangle or more than one.
+    #[inline]
+    pub fn neighbors(&self, t: u32) -> [u32; 3] {
+        self.topology.neighbors[t as usize]
+    }
+
+    /// One triangle having vertex `v` (u32::MAX when no triangle uses it).
+    #[inline]
+    pub fn vertex_triangle(&self, v: u32) -> u32 {
+        self.topology.vertex_triangle[v as usize]
     }
 
     /// Connected shells (by shared vertices).

@@ -626,10 +626,11 @@ impl World {
     fn early_normal(&self, pi: usize, started: Real, cap: Real) -> Option<(Vector, Real)> {
         let pair = &self.pairs[pi];
         let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
-        // An upper bound on the approach speed of any two surface points (m/s).
+        // The fastest two surface points can approach now (m/s): over the few ms this covers
+        // the overlap grows by at most about NORMAL_DEPTH.
         let speed = (wb1.body.velocity() - wb2.body.velocity()).norm()
-            + wb1.body.angular_speed_bound() * wb1.shape.radius()
-            + wb2.body.angular_speed_bound() * wb2.shape.radius();
+            + wb1.body.angular_velocity().norm() * wb1.shape.radius()
+            + wb2.body.angular_velocity().norm() * wb2.shape.radius();
         let dt = if speed > 0.0 {
             (NORMAL_DEPTH / speed).min(cap)
         } else {
