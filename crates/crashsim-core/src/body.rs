@@ -223,9 +223,9 @@ impl RigidBody {
         let two_t = self.angular_velocity().dot(&self.angular_momentum).max(0.0);
         let plain = (l2.sqrt() / p[0]).min((two_t / p[0]).sqrt());
         let mut best: Real = -1.0;
-        for i in 0..3 {
-            let x = l2 / (p[i] * p[i]);
-            if (p[i] * x - two_t).abs() <= 1e-9 * two_t {
+        for &moment in &p {
+            let x = l2 / (moment * moment);
+            if (moment * x - two_t).abs() <= 1e-9 * two_t {
                 best = best.max(x);
             }
         }
