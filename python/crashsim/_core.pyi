@@ -7,12 +7,27 @@ Users should not need this module: the public API is ``crashsim.Scene``.
 """
 
 from collections.abc import Callable
-from typing import Any
+from typing import Any, final
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __version__: str
+__all__ = [
+    "CrashsimError",
+    "InitialOverlapError",
+    "InputError",
+    "MeshError",
+    "ParameterError",
+    "Shape",
+    "SimulationError",
+    "World",
+    "__version__",
+    "free_motion",
+    "overlap_region",
+    "shapes_overlap",
+    "solid_properties",
+]
 
 class CrashsimError(Exception):
     """Root of every error the engine raises."""
@@ -32,10 +47,11 @@ class InitialOverlapError(InputError):
 class SimulationError(CrashsimError, RuntimeError):
     """The engine could not complete a run (an internal limit was hit)."""
 
+@final
 class Shape:
     """An immutable triangle mesh in a body frame (m) with its bounding-volume hierarchy."""
 
-    def __init__(self, vertices: ArrayLike, triangles: ArrayLike) -> None:
+    def __new__(cls, vertices: ArrayLike, triangles: ArrayLike) -> Shape:
         """vertices: (n, 3) float64 in the body frame; triangles: (m, 3) integer indices."""
     @property
     def n_vertices(self) -> int: ...
@@ -101,10 +117,11 @@ def free_motion(
     """A body's state after dt s of torque-free motion (negative dt runs it back):
     (position, orientation (w, x, y, z), velocity, angular_velocity), world frame."""
 
+@final
 class World:
     """A set of rigid bodies with meshes and the contact parameters of each pair."""
 
-    def __init__(self) -> None: ...
+    def __new__(cls) -> World: ...
     @property
     def time(self) -> float: ...
     @property

@@ -16,7 +16,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use convert::{matrix3, pose, rotation, triangles, vector3, vertices};
+use convert::{matrix3, pose, rotation, triangles as to_triangles, vector3, vertices as to_points};
 
 /// Runs engine code, turning a panic into a SimulationError instead of letting it cross.
 fn guarded<T>(f: impl FnOnce() -> core::Result<T>) -> core::Result<T> {
@@ -41,9 +41,9 @@ struct Shape {
 #[pymethods]
 impl Shape {
     #[new]
-    fn new(vertices_in: &Bound<'_, PyAny>, triangles_in: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let v = vertices(vertices_in)?;
-        let t = triangles(triangles_in)?;
+    fn new(vertices: &Bound<'_, PyAny>, triangles: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let v = to_points(vertices)?;
+        let t = to_triangles(triangles)?;
         let inner = core::MeshShape::new(v, t).map_err(errors::to_py)?;
         Ok(Shape {
             inner: Arc::new(inner),
@@ -121,7 +121,7 @@ impl Shape {
         py: Python<'py>,
         points: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let pts = vertices(points)?;
+        let pts = to_points(points)?;
         let shape = self.inner.clone();
         let w: Vec<f64> = py.detach(move || shape.winding_numbers(&pts));
         Ok(w.into_pyarray(py))
@@ -430,11 +430,11 @@ fn run_output_to_dict<'py>(
 #[pyfunction]
 fn solid_properties<'py>(
     py: Python<'py>,
-    vertices_in: &Bound<'py, PyAny>,
-    triangles_in: &Bound<'py, PyAny>,
+    vertices: &Bound<'py, PyAny>,
+    triangles: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let v = vertices(vertices_in)?;
-    let t = triangles(triangles_in)?;
+    let v = to_points(vertices)?;
+    let t = to_triangles(triangles)?;
     if t.is_empty() {
         return Err(errors::mesh("the mesh has no triangles".into()));
     }
