@@ -21,8 +21,8 @@ import pytest
 
 fcl = pytest.importorskip("fcl", reason="python-fcl is not installed (pip install python-fcl)")
 
-APPROACHES_VS_BOX = 10  # per real mesh: 60 against the box in all
-APPROACHES_VS_MESH = 4  # per pair of real meshes: 60 mesh-mesh approaches in all
+APPROACHES_VS_BOX = 50  # per real mesh: 300 against the box in all
+APPROACHES_VS_MESH = 50  # per pair of real meshes: 750 mesh-mesh approaches in all
 BRACKET = 1e-3  # s either side of the engine's first-overlap instant
 MIN_CONTACT_SHARE = 0.7  # of the approaches must make contact (the rest are near misses)
 START_GAP = 1.0  # m of travel along the approach direction before the meshes touch
