@@ -361,6 +361,9 @@ def test_ctrl_c_exits_130(tmp_path: Path) -> None:
         stderr=subprocess.PIPE,
         env=env,
         bufsize=0,  # read(1) takes one byte: communicate() gets all the rest
+        # A shell starting a job in the background (as a CI runner may) ignores SIGINT in it,
+        # and Python leaves an ignored SIGINT ignored: restore the default for the child.
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     try:
         assert proc.stderr is not None
