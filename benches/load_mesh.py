@@ -3,7 +3,7 @@
 Two shared meshes are subdivided (each triangle into four, trimesh's ``subdivide``) and
 written to a temporary PLY: the sedan three times (watertight, 189,056 triangles; its mass
 properties come from the mesh volume) and the hatchback four times (open, 201,728 triangles;
-mass properties from its convex hull). Each run times ``Vehicle.from_mesh(path, mass=...)``
+mass properties from its winding-number solid, the default for open meshes). Each run times ``Vehicle.from_mesh(path, mass=...)``
 (read, checks, vertex merge, mass properties) and then ``vehicle.shape`` (the engine's
 body-frame mesh, BVH and winding-number dipoles), in a fresh process state for the shape (a new
 Vehicle each run). The quality report (computed on first use, not part of loading) is timed
