@@ -3,10 +3,10 @@
 Two shared meshes are subdivided (each triangle into four, trimesh's ``subdivide``) and
 written to a temporary PLY: the sedan three times (watertight, 189,056 triangles; its mass
 properties come from the mesh volume) and the hatchback four times (open, 201,728 triangles;
-mass properties from its winding-number solid, the default for open meshes). Each run times ``Vehicle.from_mesh(path, mass=...)``
-(read, checks, vertex merge, mass properties) and then ``vehicle.shape`` (the engine's
-body-frame mesh, BVH and winding-number dipoles), in a fresh process state for the shape (a new
-Vehicle each run). The quality report (computed on first use, not part of loading) is timed
+mass properties from its winding-number solid, the default for open meshes). Each run times
+``Vehicle.from_mesh(path, mass=...)`` (read, checks, vertex merge, mass properties) and then
+``vehicle.shape`` (the engine's body-frame mesh, BVH and winding-number dipoles), in a fresh
+process state for the shape (a new Vehicle each run). The quality report (computed on first use, not part of loading) is timed
 separately. Prints the median of the runs and the machine. Target: under 1 s.
 
     python3 benches/load_mesh.py [--runs 5] [--profile]

@@ -35,6 +35,7 @@ class DepthOfPenetrationWarning(UserWarning):
     """An automatic depth of penetration outside the seed's typical 10-60 ms (or clamped to
     the accepted 60 ms): the report of that impact says so too."""
 
+
 Array = NDArray[np.float64]
 VehicleRef: TypeAlias = Vehicle | str
 # None: horizontal part of the volume normal tilted by pitch; "volume": the full 3-D one;
@@ -141,8 +142,7 @@ def _stiffness_of(vehicle: Vehicle) -> Stiffness:
 
 def _needs_stiffness(params: dict[str, Any]) -> bool:
     return (
-        isinstance(params["depth_of_penetration"], str)
-        and params["depth_of_penetration"] == "auto"
+        isinstance(params["depth_of_penetration"], str) and params["depth_of_penetration"] == "auto"
     ) or (isinstance(params["centroid"], str) and params["centroid"] == "stiffness")
 
 
