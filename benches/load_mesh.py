@@ -6,8 +6,9 @@ properties come from the mesh volume) and the hatchback four times (open, 201,72
 mass properties from its winding-number solid, the default for open meshes). Each run times
 ``Vehicle.from_mesh(path, mass=...)`` (read, checks, vertex merge, mass properties) and then
 ``vehicle.shape`` (the engine's body-frame mesh, BVH and winding-number dipoles), in a fresh
-process state for the shape (a new Vehicle each run). The quality report (computed on first use, not part of loading) is timed
-separately. Prints the median of the runs and the machine. Target: under 1 s.
+process state for the shape (a new Vehicle each run). The quality report (computed on first
+use, not part of loading) is timed separately. Prints the median of the runs and the machine.
+Target: under 1 s.
 
     python3 benches/load_mesh.py [--runs 5] [--profile]
 """
