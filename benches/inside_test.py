@@ -45,8 +45,6 @@ horizontal and one vertical slice per method.
 from __future__ import annotations
 
 import argparse
-import os
-import platform
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -58,6 +56,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import trimesh  # noqa: E402
 from crashsim import _core, meshio  # noqa: E402
+from machine import describe  # noqa: E402 - benches/machine.py (this folder is on sys.path)
 from scipy.spatial import ConvexHull  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[1]
@@ -347,21 +346,6 @@ def draw(name: str, mesh: trimesh.Trimesh, classifiers: dict[str, Classifier], o
 # -- main -----------------------------------------------------------------------------------------
 
 
-def machine() -> str:
-    cpu = platform.processor() or platform.machine()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return (
-        f"{cpu}, {os.cpu_count()} cores, Python {platform.python_version()}, "
-        f"numpy {np.__version__}, trimesh {trimesh.__version__}"
-    )
-
-
 SETS = ["in, near closed", "in, near open", "out, near surface", "cabin", "gaps"]
 
 
@@ -450,7 +434,7 @@ def main() -> None:
         raise SystemExit(f"no meshes in {args.meshes}")
     if args.mass_properties:
         print("\n".join(mass_properties_table(paths)))
-        print(f"machine: {machine()}")
+        print(f"machine: {describe()}")
         return
     print("Fraction of each labelled set classified as expected; grid points on which the")
     print("method disagrees with the winding number; build time (s); time per 10k queries (s);")
@@ -461,7 +445,7 @@ def main() -> None:
         images = None if args.no_images else args.images
         print("\n".join(study(path, SEED + i, images)), flush=True)
     print(f"\nsurface offsets EPS = {EPS} m, {SAMPLES} samples per surface set, seed {SEED}")
-    print(f"machine: {machine()}")
+    print(f"machine: {describe()}")
 
 
 if __name__ == "__main__":

@@ -17,8 +17,6 @@ from __future__ import annotations
 
 import argparse
 import cProfile
-import os
-import platform
 import pstats
 import statistics
 import tempfile
@@ -26,28 +24,12 @@ import time
 from pathlib import Path
 
 import crashsim as cs
-import numpy as np
-import trimesh
 from crashsim import meshio
+from machine import describe  # benches/machine.py (this folder is on sys.path)
 
 REPO = Path(__file__).resolve().parents[1]
 MESHES = REPO.parent / "shared" / "meshes"
 CASES = {"sedan_quaternius_normalcar1": 3, "hatchback_gazebo": 4}
-
-
-def machine() -> str:
-    cpu = platform.processor() or platform.machine()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return (
-        f"{cpu}, {os.cpu_count()} cores, Python {platform.python_version()}, "
-        f"numpy {np.__version__}, trimesh {trimesh.__version__}, crashsim {cs.__version__}"
-    )
 
 
 def write_subdivided(name: str, times: int, folder: Path) -> Path:
@@ -101,7 +83,7 @@ def main() -> None:
                 _ = cs.Vehicle.from_mesh(path, mass=1500.0).shape
                 profiler.disable()
                 pstats.Stats(profiler).sort_stats("cumulative").print_stats(18)
-    print(f"machine: {machine()}")
+    print(f"machine: {describe()}")
 
 
 if __name__ == "__main__":
