@@ -7,8 +7,10 @@ A test that takes a ``mesh_path`` argument runs once per shared mesh; one that t
 from __future__ import annotations
 
 import itertools
+import math
 from pathlib import Path
 
+import crashsim as cs
 import pytest
 
 REPO = Path(__file__).resolve().parents[1]
@@ -36,3 +38,23 @@ def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
             metafunc.parametrize("mesh_pair", pairs, ids=ids)
         else:
             metafunc.parametrize("mesh_pair", skipped)
+
+
+def seed_side_impact(
+    speed: float,
+    heading: float,
+    start: tuple[float, float],
+    dt: float = 1e-3,
+    duration: float = 0.3,
+) -> cs.Result:
+    """The seed's worked example with box vehicles: red (4.5 x 1.8 x 1.4 m, 1450 kg) at
+    `speed` m/s along `heading` rad into the left side of blue (4.6 x 1.8 x 1.45 m, 1500 kg, at
+    rest, heading +90 deg: its left side is the plane x = -0.9 m, facing -x); `start` is red's
+    CG (x, y), m; depth of penetration 30 ms."""
+    red = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red")
+    blue = cs.Vehicle.box(4.6, 1.8, 1.45, mass=1500.0, name="blue")
+    scene = cs.Scene(depth_of_penetration=0.030)
+    velocity = (speed * math.cos(heading), speed * math.sin(heading), 0.0)
+    scene.add(red, position=(*start, 0.7), heading=heading, velocity=velocity)
+    scene.add(blue, position=(0.0, 0.0, 0.725), heading=cs.deg(90.0))
+    return scene.run(duration=duration, dt=dt)

@@ -4,7 +4,6 @@ messages, the CSV against the run's own trajectories and a closed form."""
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import math
 import os
@@ -16,8 +15,10 @@ from io import StringIO
 from pathlib import Path
 
 import crashsim as cs
+import matplotlib.image
 import numpy as np
 import pytest
+import trimesh
 from conftest import REPO
 from crashsim import cli
 from crashsim.cli import main, write_csv
@@ -26,10 +27,6 @@ from crashsim.scenefile import load_scene, loads_scene
 EXAMPLES = REPO / "examples"
 SEED = EXAMPLES / "seed-90deg.toml"
 PER_VEHICLE = 14  # CSV columns per vehicle: x y z, heading, 4 quaternion, 3 velocity, 3 spin
-
-
-def has(module: str) -> bool:
-    return importlib.util.find_spec(module) is not None
 
 
 def crashsim(*args: str, cwd: Path, timeout: float = 300.0) -> subprocess.CompletedProcess[str]:
@@ -74,30 +71,17 @@ def test_run_writes_every_output_and_each_reopens(tmp_path: Path) -> None:
     assert table[0, 4 + PER_VEHICLE] == pytest.approx(math.pi / 2, rel=1e-14)  # blue's heading
 
     # the report
-    if has("crashsim.report"):
-        report = json.loads((out / "report.json").read_text(encoding="utf-8"))
-        assert isinstance(report, dict) and report
-        from crashsim.report import build_report
-
-        assert report == json.loads(build_report(want).to_json())
+    report = json.loads((out / "report.json").read_text(encoding="utf-8"))
+    assert report == json.loads(cs.build_report(want).to_json())
     # the pictures
-    if has("crashsim.plots"):
-        import matplotlib.image
-
-        for name in ("trajectories.png", "impact-1.png"):
-            img = matplotlib.image.imread(out / name)
-            assert img.ndim == 3 and img.shape[0] > 200 and img.shape[1] > 200, name
-            assert float(np.ptp(img[..., :3])) > 0.5  # not a blank picture
-        assert not (out / "impact-2.png").exists()  # one impact, one picture
+    for name in ("trajectories.png", "impact-1.png"):
+        img = matplotlib.image.imread(out / name)
+        assert img.ndim == 3 and img.shape[0] > 200 and img.shape[1] > 200, name
+        assert float(np.ptp(img[..., :3])) > 0.5  # not a blank picture
+    assert not (out / "impact-2.png").exists()  # one impact, one picture
     # the 3-D motion
-    if has("crashsim.export"):
-        import trimesh
-
-        glb = trimesh.load(out / "motion.glb")
-        assert isinstance(glb, trimesh.Scene) and len(glb.geometry) >= 2
-    missing = [m for m in ("report", "plots", "export") if not has(f"crashsim.{m}")]
-    if missing:
-        pytest.skip(f"crashsim.{', crashsim.'.join(missing)} not written yet: not checked")
+    glb = trimesh.load(out / "motion.glb")
+    assert isinstance(glb, trimesh.Scene) and len(glb.geometry) >= 2
 
 
 def test_run_default_folder_overrides_and_no_pictures(
@@ -127,18 +111,6 @@ def test_the_files_output_settings(tmp_path: Path, capsys: pytest.CaptureFixture
     path.write_text(text, encoding="utf-8")
     assert main(["run", str(path)]) == 0
     assert [p.name for p in (tmp_path / "results").iterdir()] == ["report.json"]
-
-
-def test_run_without_the_report_module_still_writes(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
-) -> None:
-    monkeypatch.setitem(sys.modules, "crashsim.report", None)  # as if it did not exist
-    assert main(["run", str(SEED), "--out", str(tmp_path), "--no-pictures"]) == 0
-    text = capsys.readouterr()
-    assert "crashsim.report is not available" in text.err
-    raw = json.loads((tmp_path / "report.json").read_text(encoding="utf-8"))
-    assert raw["vehicles"] == ["red", "blue"] and len(raw["impacts"]) == 1
-    assert "red - blue" in text.out  # the minimal table
 
 
 def test_csv_heading_is_the_closed_form_of_a_spin(tmp_path: Path) -> None:
@@ -208,26 +180,22 @@ def test_progress_flag_draws_the_bar(tmp_path: Path) -> None:
 # -- check ---------------------------------------------------------------------------------
 
 
-@pytest.mark.skipif(not has("crashsim.crosscheck"), reason="crashsim.crosscheck not written yet")
 def test_check_passes_on_the_seed_example(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["check", str(SEED)]) == 0
     out = capsys.readouterr().out
     assert "first_overlap" in out and "pass" in out
 
 
-@pytest.mark.skipif(not has("crashsim.crosscheck"), reason="crashsim.crosscheck not written yet")
 def test_check_fails_with_exit_1_when_fcl_disagrees(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    import crashsim.crosscheck
-
     class Disagrees:
         ok = False
 
         def __str__(self) -> str:
             return "first_overlap red - blue FAIL"
 
-    monkeypatch.setattr(crashsim.crosscheck, "cross_check", lambda result: Disagrees())
+    monkeypatch.setattr(cli, "cross_check", lambda result: Disagrees())
     assert main(["check", str(SEED)]) == 1
     assert "FAIL" in capsys.readouterr().out
 

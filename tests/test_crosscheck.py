@@ -29,6 +29,7 @@ import crashsim as cs
 import numpy as np
 import pytest
 import trimesh
+from conftest import seed_side_impact
 from crashsim import _core, crosscheck
 from crashsim.crosscheck import CrossCheck, cross_check, crossing_points
 from crashsim.result import rotation_matrix
@@ -143,17 +144,6 @@ def run_approaches(a: cs.Vehicle, b: cs.Vehicle, n: int) -> None:
     assert made >= 0.7 * n, f"only {made} of {n} approaches made contact"
 
 
-def seed_side_impact(speed: float, heading: float, start: tuple[float, float], dt: float):
-    """The seed's box scene (tests/test_seed_examples.py): red into blue's left side."""
-    red = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red")
-    blue = cs.Vehicle.box(4.6, 1.8, 1.45, mass=1500.0, name="blue")
-    scene = cs.Scene(depth_of_penetration=DEPTH_OF_PENETRATION)
-    velocity = (speed * math.cos(heading), speed * math.sin(heading), 0.0)
-    scene.add(red, position=(*start, 0.7), heading=heading, velocity=velocity)
-    scene.add(blue, position=(0.0, 0.0, 0.725), heading=cs.deg(90.0))
-    return scene.run(duration=0.1, dt=dt)
-
-
 SEED_CASES = {
     "30 mph at 90 deg": (cs.mph(30.0), 0.0, (-3.65, 0.3)),
     "60 mph at 45 deg": (cs.mph(60.0), cs.deg(45.0), (-4.0, -3.0)),
@@ -162,7 +152,7 @@ SEED_CASES = {
 
 @pytest.fixture
 def seed_result() -> cs.Result:
-    return seed_side_impact(*SEED_CASES["30 mph at 90 deg"], dt=DT)
+    return seed_side_impact(*SEED_CASES["30 mph at 90 deg"], dt=DT, duration=0.1)
 
 
 # -- acceptance ------------------------------------------------------------------------------
@@ -171,7 +161,7 @@ def seed_result() -> cs.Result:
 @pytest.mark.parametrize("dt", [1e-3, 7e-3, DT], ids=["dt=1ms", "dt=7ms", "dt=10ms"])
 @pytest.mark.parametrize("case", list(SEED_CASES))
 def test_seed_box_scenes_pass(case: str, dt: float) -> None:
-    result = seed_side_impact(*SEED_CASES[case], dt=dt)
+    result = seed_side_impact(*SEED_CASES[case], dt=dt, duration=0.1)
     cc = cross_check(result)
     assert [c.kind for c in cc.checks] == ["first_overlap", "region"]
     assert_all_pass(cc, case)

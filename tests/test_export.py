@@ -20,6 +20,7 @@ import crashsim as cs
 import numpy as np
 import pytest
 import trimesh
+from conftest import seed_side_impact
 from crashsim.export import GROUND_Z, Z_UP_TO_Y_UP, export_frames, export_glb, key_times
 
 COMPONENTS = {5126: "<f4", 5125: "<u4", 5123: "<u2", 5121: "u1"}
@@ -27,20 +28,9 @@ WIDTH = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
 POSITION_TOL = 1e-6  # m: float32 rounds by at most 4.8e-7 m at coordinates below 16 m
 
 
-def seed_case(speed: float, heading: float, start: tuple[float, float]) -> cs.Result:
-    """The seed's side impact (tests/test_seed_examples.py): red into blue's left side."""
-    red = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red")
-    blue = cs.Vehicle.box(4.6, 1.8, 1.45, mass=1500.0, name="blue")
-    scene = cs.Scene(depth_of_penetration=0.030)
-    velocity = (speed * math.cos(heading), speed * math.sin(heading), 0.0)
-    scene.add(red, position=(*start, 0.7), heading=heading, velocity=velocity)
-    scene.add(blue, position=(0.0, 0.0, 0.725), heading=cs.deg(90.0))
-    return scene.run(duration=0.3, dt=1e-3)
-
-
 @pytest.fixture(scope="module")
 def seed45() -> cs.Result:
-    return seed_case(cs.mph(60.0), cs.deg(45.0), (-4.0, -3.0))
+    return seed_side_impact(cs.mph(60.0), cs.deg(45.0), (-4.0, -3.0))
 
 
 @pytest.fixture(scope="module")
@@ -260,7 +250,7 @@ def test_quaternions_are_in_gltf_order(seed45: cs.Result, tmp_path: Path) -> Non
 
 
 def test_key_times() -> None:
-    result = seed_case(cs.mph(30.0), 0.0, (-3.65, 0.3))
+    result = seed_side_impact(cs.mph(30.0), 0.0, (-3.65, 0.3))
     imp = result.impacts[0]
     t = key_times(result, 10.0)
     frames = [0.0, 0.1, 0.2, 0.3]
@@ -299,7 +289,7 @@ def test_frames_pose_the_vehicles(seed45: cs.Result, tmp_path: Path) -> None:
             assert np.allclose(transform, turn @ pose, rtol=0, atol=1e-9)
     with pytest.raises(cs.ParameterError, match="outside the run"):
         export_frames(seed45, tmp_path / "bad", [0.5])
-    bare = seed_case(cs.mph(30.0), 0.0, (-3.65, 0.3))
+    bare = seed_side_impact(cs.mph(30.0), 0.0, (-3.65, 0.3))
     bare.scene = None
     with pytest.raises(cs.SceneError, match="no scene"):
         export_glb(bare, tmp_path / "x.glb")

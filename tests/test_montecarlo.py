@@ -315,7 +315,8 @@ def test_cli_unparsable_arguments_exit_2(argv: list[str]) -> None:
 
 
 def test_real_vehicle_classes_run() -> None:
-    vehicle_data = pytest.importorskip("crashsim.vehicle_data")
+    from crashsim import vehicle_data
+
     classes = vehicle_data.vehicle_classes()
     r = dtp_montecarlo(20_000, seed=0)
     assert r.class_names == tuple(classes)

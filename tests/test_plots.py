@@ -18,6 +18,7 @@ import matplotlib.image as mpimg
 import numpy as np
 import pytest
 import shapely
+from conftest import seed_side_impact
 from crashsim.plots import (
     DPI,
     IMPACT_FIGSIZE,
@@ -33,25 +34,14 @@ RED = (4.5, 1.8, 1.4)  # m, the seed's bullet vehicle
 BLUE = (4.6, 1.8, 1.45)  # m, the struck vehicle
 
 
-def seed_case(speed: float, heading: float, start: tuple[float, float]) -> cs.Result:
-    """The seed's side impact (tests/test_seed_examples.py): red into blue's left side."""
-    red = cs.Vehicle.box(*RED, mass=1450.0, name="red")
-    blue = cs.Vehicle.box(*BLUE, mass=1500.0, name="blue")
-    scene = cs.Scene(depth_of_penetration=0.030)
-    velocity = (speed * math.cos(heading), speed * math.sin(heading), 0.0)
-    scene.add(red, position=(*start, 0.7), heading=heading, velocity=velocity)
-    scene.add(blue, position=(0.0, 0.0, 0.725), heading=cs.deg(90.0))
-    return scene.run(duration=0.3, dt=1e-3)
-
-
 @pytest.fixture(scope="module")
 def seed90() -> cs.Result:
-    return seed_case(cs.mph(30.0), 0.0, (-3.65, 0.3))
+    return seed_side_impact(cs.mph(30.0), 0.0, (-3.65, 0.3))
 
 
 @pytest.fixture(scope="module")
 def seed45() -> cs.Result:
-    return seed_case(cs.mph(60.0), cs.deg(45.0), (-4.0, -3.0))
+    return seed_side_impact(cs.mph(60.0), cs.deg(45.0), (-4.0, -3.0))
 
 
 def rotation(yaw: float = 0.0, pitch: float = 0.0, roll: float = 0.0) -> np.ndarray:
@@ -301,7 +291,7 @@ def test_impact_errors(seed90: cs.Result) -> None:
     miss.add(cs.Vehicle.box(*RED, mass=1450.0, name="b"), position=(0, 5, 0.7))
     with pytest.raises(cs.SceneError, match="no impacts"):
         plot_impact(miss.run(duration=0.01))
-    bare = seed_case(cs.mph(30.0), 0.0, (-3.65, 0.3))
+    bare = seed_side_impact(cs.mph(30.0), 0.0, (-3.65, 0.3))
     bare.scene = None
     with pytest.raises(cs.SceneError, match="no scene"):
         plot_impact(bare)

@@ -177,8 +177,6 @@ def _needs(text: str) -> str | None:
     """Why an example cannot load here (None when it can)."""
     if "shared/meshes" in text and not SHARED_MESHES.is_dir():
         return MISSING
-    if "generate =" in text and not hasattr(cs.Vehicle, "generate"):
-        return "Vehicle.generate (the body generator) is not wired into crashsim yet"
     return None
 
 
@@ -457,7 +455,6 @@ def test_generate_gets_the_preset_and_the_dimensions_in_si(monkeypatch: pytest.M
     assert case.scene.vehicles[0].extents[0] == cs.ft(18.0)
 
 
-@pytest.mark.skipif(not hasattr(cs.Vehicle, "generate"), reason="Vehicle.generate not wired yet")
 def test_the_generated_example_has_its_dimensions() -> None:
     suv, sedan = load_scene(EXAMPLES / "generated-offset-frontal.toml").scene.vehicles
     assert np.allclose(suv.extents[:2], [4.75, 1.90], rtol=0, atol=1e-9)

@@ -5,26 +5,12 @@ whatever the time step."""
 
 from __future__ import annotations
 
-import math
-
 import crashsim as cs
 import numpy as np
 import pytest
+from conftest import seed_side_impact
 
 DEPTH_OF_PENETRATION = 0.030  # s
-
-
-def side_impact(speed: float, heading: float, start: tuple[float, float], dt: float) -> cs.Result:
-    """Red (4.5 x 1.8 x 1.4 m, 1450 kg) at `speed` m/s along `heading` rad into the left side
-    of blue (4.6 x 1.8 x 1.45 m, 1500 kg, at rest, heading +90 deg: its left side is the plane
-    x = -0.9 m, facing -x). `start` is red's CG (x, y), m."""
-    red = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red")
-    blue = cs.Vehicle.box(4.6, 1.8, 1.45, mass=1500.0, name="blue")
-    scene = cs.Scene(depth_of_penetration=DEPTH_OF_PENETRATION)
-    velocity = (speed * math.cos(heading), speed * math.sin(heading), 0.0)
-    scene.add(red, position=(*start, 0.7), heading=heading, velocity=velocity)
-    scene.add(blue, position=(0.0, 0.0, 0.725), heading=cs.deg(90.0))
-    return scene.run(duration=0.3, dt=dt)
 
 
 CASES = {
@@ -39,7 +25,7 @@ CASES = {
 @pytest.mark.parametrize("case", list(CASES))
 def test_travel_past_first_overlap(case: str, dt: float) -> None:
     speed, heading, start, published = CASES[case]
-    result = side_impact(speed, heading, start, dt)
+    result = seed_side_impact(speed, heading, start, dt)
     assert len(result.impacts) >= 1
     imp = result.impacts[0]
     assert imp.vehicles == ("red", "blue") and not imp.secondary
@@ -61,13 +47,13 @@ def test_travel_past_first_overlap(case: str, dt: float) -> None:
 def test_first_overlap_instant_is_where_the_boxes_meet() -> None:
     # 90 deg: red's front (CG + 2.25 m) meets blue's side (x = -0.9 m) after 0.5 m of travel
     for dt in (1e-3, 7e-3):
-        imp = side_impact(cs.mph(30.0), 0.0, (-3.65, 0.3), dt).impacts[0]
+        imp = seed_side_impact(cs.mph(30.0), 0.0, (-3.65, 0.3), dt).impacts[0]
         assert imp.first_contact_time == pytest.approx(0.5 / cs.mph(30.0), abs=1e-6)
 
 
 def test_centroid_is_mid_crush_with_each_box_deformed_half_the_travel() -> None:
     # reference-cases.md: with boxes each bounding-box deformation is half of 0.4023 m
-    result = side_impact(cs.mph(30.0), 0.0, (-3.65, 0.3), 1e-3)
+    result = seed_side_impact(cs.mph(30.0), 0.0, (-3.65, 0.3), 1e-3)
     imp = result.impacts[0]
     half = cs.mph(30.0) * DEPTH_OF_PENETRATION / 2.0
     # blue's side is at x = -0.9 m; red's front is 2 * half past it at the exchange. The

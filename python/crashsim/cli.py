@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import argparse
 import csv
-import importlib
 import json
 import os
 import sys
@@ -35,12 +34,16 @@ from typing import IO, Any, NoReturn
 import numpy as np
 
 from crashsim._core import __version__
+from crashsim.crosscheck import cross_check
 from crashsim.errors import CrashsimError, InputError, ParameterError, SimulationError
+from crashsim.export import export_glb
 from crashsim.montecarlo import PERCENTILES, dtp_montecarlo, plot_dtp_histogram
+from crashsim.plots import plot_impact, plot_trajectories
+from crashsim.report import build_report
 from crashsim.result import Result
 from crashsim.scene import Scene
 from crashsim.scenefile import SceneFile, load_scene, parse_quantity
-from crashsim.units import deg, mph, to_ft, to_kmh, to_mph
+from crashsim.units import deg, mph, to_ft, to_mph
 from crashsim.vehicle import Vehicle
 
 __all__ = ["EXIT_FAILED", "EXIT_INPUT", "EXIT_INTERRUPTED", "demo_scene", "main", "write_csv"]
@@ -177,26 +180,6 @@ def _dtp_montecarlo(args: argparse.Namespace) -> int:
 # -- scene files ---------------------------------------------------------------------------
 
 
-class _Unavailable(Exception):
-    """An optional output module (report, plots, export, cross-check) is not installed."""
-
-
-def _optional(module: str, name: str) -> Any:
-    """``module.name``, or _Unavailable when the module does not exist (an error inside an
-    existing module propagates)."""
-    try:
-        mod = importlib.import_module(module)
-    except ModuleNotFoundError as e:
-        if e.name != module:
-            raise
-        raise _Unavailable(f"{module} is not available in this crashsim") from None
-    return getattr(mod, name)
-
-
-def _note(message: str) -> None:
-    print(f"crashsim: note: {message}", file=sys.stderr)
-
-
 class ProgressBar:
     """A one-line progress bar on a stream, driven by Scene.run's progress callback (the
     simulated time reached, s)."""
@@ -289,37 +272,8 @@ def write_csv(result: Result, path: str | Path) -> list[str]:
     return header
 
 
-def _fallback_summary(result: Result) -> str:
-    """A short table of the exchanges (used only while crashsim.report is missing)."""
-    lines = [
-        f"{'#':>3} {'vehicles':<24}{'t0 ms':>9}{'t ms':>9}{'dt_p ms':>9}  "
-        f"{'kind':<8}{'|dV| km/h (mph)':>30}{'energy kJ':>11}"
-    ]
-    for k, imp in enumerate(result.impacts, 1):
-        dv = "  ".join(
-            f"{to_kmh(imp.speed_change(n)):.1f} ({to_mph(imp.speed_change(n)):.1f})"
-            for n in imp.vehicles
-        )
-        kind = ("sliding" if imp.sliding else "full") + ("*" if imp.secondary else "")
-        lines.append(
-            f"{k:>3} {' - '.join(imp.vehicles):<24}{imp.first_contact_time * 1e3:9.2f}"
-            f"{imp.time * 1e3:9.2f}{imp.depth_of_penetration * 1e3:9.2f}  {kind:<8}{dv:>30}"
-            f"{imp.energy_dissipated / 1e3:11.2f}"
-        )
-    if any(imp.secondary for imp in result.impacts):
-        lines.append("  * a secondary exchange of an engaged pair")
-    return "\n".join(lines)
-
-
 def _summary_and_json(result: Result, json_path: Path | None) -> str:
     """The report's summary table, writing report.json when a path is given."""
-    try:
-        build_report = _optional("crashsim.report", "build_report")
-    except _Unavailable as e:
-        _note(f"{e}: a minimal summary and the raw result instead of the report")
-        if json_path is not None:
-            json_path.write_text(json.dumps(result.to_dict(), indent=2), encoding="utf-8")
-        return _fallback_summary(result)
     report = build_report(result)
     if json_path is not None:
         report.write_json(json_path)
@@ -397,12 +351,6 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _pictures(result: Result, out: Path) -> list[Path]:
-    try:
-        plot_impact = _optional("crashsim.plots", "plot_impact")
-    except _Unavailable as e:
-        _note(f"{e}: no pictures")
-        return []
-    plot_trajectories = _optional("crashsim.plots", "plot_trajectories")
     plot_trajectories(result, out / TRAJECTORIES_FILE)
     paths = [out / TRAJECTORIES_FILE]
     for k in range(len(result.impacts)):
@@ -413,11 +361,6 @@ def _pictures(result: Result, out: Path) -> list[Path]:
 
 
 def _glb(result: Result, out: Path) -> list[Path]:
-    try:
-        export_glb = _optional("crashsim.export", "export_glb")
-    except _Unavailable as e:
-        _note(f"{e}: no 3-D motion file")
-        return []
     path = out / GLB_FILE
     export_glb(result, path)
     return [path]
@@ -425,11 +368,6 @@ def _glb(result: Result, out: Path) -> list[Path]:
 
 def _check(args: argparse.Namespace) -> int:
     case = load_scene(args.scene)
-    try:
-        cross_check = _optional("crashsim.crosscheck", "cross_check")
-    except _Unavailable as e:
-        print(f"crashsim: error: cannot check: {e}", file=sys.stderr)
-        return EXIT_FAILED
     print(_header(case))
     result = _simulate(args, case)
     check = cross_check(result)

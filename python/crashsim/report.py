@@ -650,7 +650,7 @@ def _scene_record(result: Result, include_meshes: bool) -> dict[str, Any]:
             {
                 "name": name,
                 "mass": float(v.mass),
-                "mass_source": str(getattr(v, "mass_source", "user")),
+                "mass_source": str(v.mass_source),
                 "cg_model": _vec(v.cg),
                 "inertia": _mat(v.inertia),
                 "sources": {str(a): str(b) for a, b in v.sources.items()},
@@ -658,7 +658,7 @@ def _scene_record(result: Result, include_meshes: bool) -> dict[str, Any]:
                 "summary": v.summary(),
                 "mesh": _mesh_record(v, include_meshes),
                 "generator": None
-                if getattr(v, "generator_params", None) is None
+                if v.generator_params is None
                 else _plain(v.generator_params.as_dict()),
                 "initial_state": {
                     "time": float(tr.t[0]),

@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim import _core
 from crashsim.errors import InitialOverlapError, ParameterError, SceneError
 from crashsim.result import Result
-from crashsim.stiffness import FACES, Stiffness
+from crashsim.stiffness import FACES
 from crashsim.vehicle import Vehicle, _as_float, _probe_shape
 
 __all__ = ["DepthOfPenetrationWarning", "Scene"]
@@ -135,11 +135,6 @@ def _check_contact(kwargs: dict[str, Any]) -> None:
     world.set_contact(0, 1, **kwargs)
 
 
-def _stiffness_of(vehicle: Vehicle) -> Stiffness:
-    """The vehicle's face stiffness (none when it has no such attribute)."""
-    return Stiffness.coerce(getattr(vehicle, "stiffness", None))
-
-
 def _needs_stiffness(params: dict[str, Any]) -> bool:
     return (
         isinstance(params["depth_of_penetration"], str) and params["depth_of_penetration"] == "auto"
@@ -151,7 +146,7 @@ def _check_stiffness(params: dict[str, Any], vehicles: tuple[Vehicle, Vehicle]) 
     if not _needs_stiffness(params):
         return
     for v in vehicles:
-        missing = [f for f in FACES if _stiffness_of(v).face(f) is None]
+        missing = [f for f in FACES if v.stiffness.face(f) is None]
         if missing:
             raise ParameterError(
                 f"vehicle {v.name!r} has no stiffness on its {', '.join(missing)} face(s): "
@@ -424,7 +419,7 @@ class Scene:
                 p.velocity,
                 p.angular_velocity,
             )
-            faces = _stiffness_of(v)
+            faces = v.stiffness
             world.set_stiffness(
                 i,
                 **{f: None if (s := faces.face(f)) is None else (s.A, s.B) for f in FACES},

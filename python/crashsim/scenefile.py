@@ -782,11 +782,10 @@ def _vehicle(t: _Table, base: Path) -> Vehicle:
         else:
             g.taken.add(k)
     g.finish()
-    generate = getattr(Vehicle, "generate", None)
-    if generate is None:
-        t.fail("generate", "this crashsim has no body generator (Vehicle.generate) yet")
     return _wrap(
-        t, "generate", lambda: generate(preset, name=name, stiffness=stiffness, **mass, **dims)
+        t,
+        "generate",
+        lambda: Vehicle.generate(preset, name=name, stiffness=stiffness, **mass, **dims),
     )
 
 
