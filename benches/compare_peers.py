@@ -31,7 +31,7 @@ medians over repeats, with the machine it ran on. Four comparisons (crashsim iss
    0.0.18 needs pandas < 3, so it cannot share an environment with pandas 3; set it up with
    ``python3 -m venv /tmp/pycrash-venv && /tmp/pycrash-venv/bin/pip install pycrash==0.0.18``.
 
-Meshes (ours, no third-party data): the sedan preset's body (``crashsim.generator``,
+Meshes (ours, no third-party data): the sedan preset's body (``crashsim.vehicles.generator``,
 ``body_params("sedan", **default_dims("sedan"))``), closed and single-shell, at a
 resolution, then trimesh ``subdivide()`` (x4 triangles per call): "2.5k" = resolution 0.5
 (the generator's smallest, 2,464 triangles), "20k" = resolution 1.0 (= meshes/sedan.ply,
@@ -283,7 +283,7 @@ def _class_vehicle() -> Any:
 
 def make_mesh(label: str) -> Any:
     """The sedan body of a size label (model frame), see SIZES."""
-    from crashsim.generator import body_params, default_dims, generate_body
+    from crashsim.vehicles.generator import body_params, default_dims, generate_body
 
     resolution, subdivisions = SIZES[label]
     mesh = generate_body(body_params(PRESET, **default_dims(PRESET)), resolution)
@@ -933,7 +933,7 @@ def main(argv: list[str] | None = None) -> int:
     print()
 
     bodies = {s: make_body(s) for s in sizes}
-    print("meshes: generated sedan body (crashsim.generator), closed single shell")
+    print("meshes: generated sedan body (crashsim.vehicles.generator), closed single shell")
     for s, b in bodies.items():
         res, sub = SIZES[s]
         print(

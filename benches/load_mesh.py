@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 
 import crashsim as cs
-from crashsim import meshio
+from crashsim.vehicles import meshio
 from machine import describe  # benches/machine.py (this folder is on sys.path)
 
 REPO = Path(__file__).resolve().parents[1]

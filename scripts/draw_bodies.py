@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Draw the five preset bodies of crashsim.generator into docs/img/bodies.png.
+"""Draw the five preset bodies of crashsim.vehicles.generator into docs/img/bodies.png.
 
     python3 scripts/draw_bodies.py [--out docs/img/bodies.png]
 
@@ -7,7 +7,8 @@ One row per preset: a shaded 3-D view, then a side view (from the right, -y) and
 (from above), both orthographic; the four light vehicles share one scale, so they compare in
 size, and the bus (2.4 times as long) has its own, smaller one (its title says so). Dashed
 circles show where the wheels would stand (the body itself has no wheels).
-Uses each preset's class dimensions (crashsim.generator.default_dims, from crashsim.vehicle_data)
+Uses each preset's class dimensions (crashsim.vehicles.generator.default_dims, from
+crashsim.vehicles.vehicle_data)
 and the presets' default shapes.
 """
 
@@ -22,7 +23,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import trimesh  # noqa: E402
-from crashsim.generator import (  # noqa: E402
+from crashsim.vehicles.generator import (  # noqa: E402
     PRESETS,
     BodyParams,
     body_params,
@@ -171,7 +172,7 @@ def main(argv: list[str] | None = None) -> int:
         bottom=0.035,
     )
     fig.suptitle(
-        "crashsim.generator: the five preset bodies (one closed shell each; dimensions of "
+        "crashsim.vehicles.generator: the five preset bodies (one closed shell each; dimensions of "
         "the built-in vehicle classes)",
         fontsize=13,
         y=0.985,

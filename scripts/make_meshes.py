@@ -4,9 +4,9 @@
     python3 scripts/make_meshes.py           # write the files
     python3 scripts/make_meshes.py --check   # compare with the files, exit 1 on a difference
 
-Each body is crashsim.generator.generate_body(body_params(preset, **default_dims(preset)))
+Each body is crashsim.vehicles.generator.generate_body(body_params(preset, **default_dims(preset)))
 at the default resolution, written as binary little-endian PLY (float64 vertices, int32
-indices) by crashsim.generator.ply_bytes, bit for bit the same on every run
+indices) by crashsim.vehicles.generator.ply_bytes, bit for bit the same on every run
 (tests/test_generator.py regenerates them and compares the bytes).
 """
 
@@ -17,7 +17,7 @@ import hashlib
 import sys
 from pathlib import Path
 
-from crashsim.generator import (
+from crashsim.vehicles.generator import (
     PRESETS,
     SHAPE_PARAMETERS,
     body_params,
@@ -34,7 +34,7 @@ COMMAND = "python3 scripts/make_meshes.py"
 def build(preset: str) -> bytes:
     """The reference body of a preset as PLY bytes (its parameters in the header comments)."""
     p = body_params(preset, **default_dims(preset))
-    comments = {"generator": "crashsim.generator (scripts/make_meshes.py)", **p.as_dict()}
+    comments = {"generator": "crashsim.vehicles.generator (scripts/make_meshes.py)", **p.as_dict()}
     return ply_bytes(generate_body(p), comments)
 
 
@@ -44,7 +44,7 @@ def readme(files: dict[str, bytes]) -> str:
     lines = [
         "# Generated vehicle bodies",
         "",
-        "Our own meshes, made by `crashsim.generator` (no third-party data): one closed,",
+        "Our own meshes, made by `crashsim.vehicles.generator` (no third-party data): one closed,",
         "watertight, single-shell body per preset, in the model frame (m; x forward, y left,",
         "z up; ground at z = 0; bounding box centred in x and y, from ground_clearance to the",
         "roof height in z). Binary little-endian PLY, float64 vertices; the parameters are",
@@ -53,7 +53,7 @@ def readme(files: dict[str, bytes]) -> str:
         f"Made by `{COMMAND}` (check with `{COMMAND} --check`), which calls",
         "`generate_body(body_params(preset, **default_dims(preset)))` at the default",
         "resolution. The dimensions are those of each preset's vehicle class in the built-in",
-        "table (`crashsim.vehicle_data`, sources in `docs/vehicle-data.md`); the shape",
+        "table (`crashsim.vehicles.vehicle_data`, sources in `docs/vehicle-data.md`); the shape",
         "parameters are the presets' defaults.",
         "`tests/test_generator.py` regenerates every file and compares the bytes.",
         "The picture `docs/img/bodies.png` of these bodies is drawn by",

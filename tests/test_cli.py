@@ -22,7 +22,7 @@ import trimesh
 from conftest import REPO
 from crashsim import cli
 from crashsim.cli import main, write_csv
-from crashsim.scenefile import load_scene, loads_scene
+from crashsim.io.scenefile import load_scene, loads_scene
 
 EXAMPLES = REPO / "examples"
 SEED = EXAMPLES / "seed-90deg.toml"

@@ -1,4 +1,4 @@
-"""crashsim.crosscheck: the user-facing python-fcl cross-check of a run's contacts.
+"""crashsim.analysis.crosscheck: the user-facing python-fcl cross-check of a run's contacts.
 
 What is shown here:
 - the seed's box scenes and random approaches of the shared real meshes (each against a box
@@ -30,8 +30,9 @@ import numpy as np
 import pytest
 import trimesh
 from conftest import seed_side_impact
-from crashsim import _core, crosscheck
-from crashsim.crosscheck import CrossCheck, cross_check, crossing_points
+from crashsim import _core
+from crashsim.analysis import crosscheck
+from crashsim.analysis.crosscheck import CrossCheck, cross_check, crossing_points
 from crashsim.result import rotation_matrix
 
 fcl = pytest.importorskip("fcl", reason="python-fcl is not installed (pip install python-fcl)")

@@ -1,4 +1,4 @@
-"""3-D export (crashsim.export): the GLB's structure is what glTF 2.0 requires, trimesh reads
+"""3-D export (crashsim.io.export): the GLB's structure is what glTF 2.0 requires, trimesh reads
 the vehicles back with their meshes, and the animation reproduces the run.
 
 The files are parsed here with struct and json, independently of the writer: the 12-byte
@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 import trimesh
 from conftest import seed_side_impact
-from crashsim.export import GROUND_Z, Z_UP_TO_Y_UP, export_frames, export_glb, key_times
+from crashsim.io.export import GROUND_Z, Z_UP_TO_Y_UP, export_frames, export_glb, key_times
 
 COMPONENTS = {5126: "<f4", 5125: "<u4", 5123: "<u2", 5121: "u1"}
 WIDTH = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}

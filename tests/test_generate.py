@@ -15,9 +15,9 @@ import crashsim as cs
 import numpy as np
 import pytest
 import trimesh
-from crashsim.generator import PRESETS, body_params, generate_body
-from crashsim.vehicle import empirical_inertia
-from crashsim.vehicle_data import vehicle_class
+from crashsim.vehicles.generator import PRESETS, body_params, generate_body
+from crashsim.vehicles.vehicle import empirical_inertia
+from crashsim.vehicles.vehicle_data import vehicle_class
 
 CLASS_FIELDS = ("length", "width", "height", "wheelbase")
 
@@ -72,7 +72,7 @@ def test_default_vehicle_takes_every_number_from_the_class(default_vehicle) -> N
     }
     assert v.mass_source == table
     text = v.summary()
-    assert f"[{table}]" in text and f"crashsim.generator {preset}" in text
+    assert f"[{table}]" in text and f"crashsim.vehicles.generator {preset}" in text
     assert "Ixz = Iyz = 0" in text
 
 

@@ -1,4 +1,4 @@
-"""The parametric vehicle body generator (crashsim.generator).
+"""The parametric vehicle body generator (crashsim.vehicles.generator).
 
 Every preset and 200 random valid parameter sets give closed, watertight, single-shell,
 outward-wound bodies with the asked extents, no degenerate faces and no self-intersections.
@@ -30,7 +30,7 @@ import pytest
 import trimesh
 from crashsim import _core
 from crashsim.errors import MeshError, ParameterError
-from crashsim.generator import (
+from crashsim.vehicles.generator import (
     _ARCH_BUMPER,
     _ARCH_CLEARANCE,
     _CORNER_SHARE,
@@ -45,7 +45,7 @@ from crashsim.generator import (
     loft,
     ply_bytes,
 )
-from crashsim.vehicle_data import vehicle_class
+from crashsim.vehicles.vehicle_data import vehicle_class
 from numpy.polynomial import Polynomial
 
 REPO = Path(__file__).resolve().parents[1]
@@ -764,7 +764,7 @@ def test_generation_does_not_depend_on_hash_seeds() -> None:
     the bytes made here."""
     code = (
         "import hashlib, sys\n"
-        "from crashsim.generator import *\n"
+        "from crashsim.vehicles.generator import *\n"
         "p = body_params('pickup', **default_dims('pickup'), tumblehome=0.07)\n"
         "sys.stdout.write(hashlib.sha256(ply_bytes(generate_body(p, 0.7))).hexdigest())\n"
     )

@@ -12,7 +12,7 @@ import crashsim as cs
 import numpy as np
 import pytest
 import trimesh
-from crashsim import meshio
+from crashsim.vehicles import meshio
 
 # From ../shared/meshes/README.md: watertight as a whole, shells, closed shells.
 README_SHELLS = {

@@ -1,6 +1,7 @@
-"""The vehicle-class Monte Carlo of the depth of penetration (crashsim.montecarlo) and its
+"""The vehicle-class Monte Carlo of the depth of penetration (crashsim.analysis.montecarlo) and its
 command (``crashsim dtp-montecarlo``), on small stand-in classes with the shape of
-crashsim.vehicle_data (Figure(value, sd, source); classes with mass, width, front/rear/side.B).
+crashsim.vehicles.vehicle_data (Figure(value, sd, source); classes with mass, width,
+front/rear/side.B).
 The stand-in numbers are invented test inputs, not vehicle data."""
 
 from __future__ import annotations
@@ -14,16 +15,16 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from crashsim import penetration as pen
-from crashsim.cli import main
-from crashsim.errors import ParameterError
-from crashsim.montecarlo import (
+from crashsim.analysis import penetration as pen
+from crashsim.analysis.montecarlo import (
     CONFIGURATIONS,
     PERCENTILES,
     dtp_montecarlo,
     plot_dtp_histogram,
     summarize,
 )
+from crashsim.cli import main
+from crashsim.errors import ParameterError
 from scipy import stats
 
 
@@ -257,10 +258,10 @@ def test_histogram_picture(tmp_path: Path) -> None:
 
 @pytest.fixture
 def stand_in_data(monkeypatch: pytest.MonkeyPatch) -> None:
-    """crashsim.vehicle_data replaced by the stand-in classes for this test."""
-    module = types.ModuleType("crashsim.vehicle_data")
+    """crashsim.vehicles.vehicle_data replaced by the stand-in classes for this test."""
+    module = types.ModuleType("crashsim.vehicles.vehicle_data")
     module.vehicle_classes = lambda: dict(CLASSES)  # type: ignore[attr-defined]
-    monkeypatch.setitem(sys.modules, "crashsim.vehicle_data", module)
+    monkeypatch.setitem(sys.modules, "crashsim.vehicles.vehicle_data", module)
 
 
 @pytest.mark.usefixtures("stand_in_data")
@@ -315,7 +316,7 @@ def test_cli_unparsable_arguments_exit_2(argv: list[str]) -> None:
 
 
 def test_real_vehicle_classes_run() -> None:
-    from crashsim import vehicle_data
+    from crashsim.vehicles import vehicle_data
 
     classes = vehicle_data.vehicle_classes()
     r = dtp_montecarlo(20_000, seed=0)

@@ -1,4 +1,5 @@
-"""The depth-of-penetration toolkit (crashsim.penetration) against closed forms, a numerical
+"""The depth-of-penetration toolkit (crashsim.analysis.penetration) against closed forms, a
+numerical
 integration of the two-mass spring equations of motion, direct quadrature of the CRASH3
 energy density, and the collision matrix of DESIGN.md.
 
@@ -11,7 +12,7 @@ import math
 
 import numpy as np
 import pytest
-from crashsim import penetration as pen
+from crashsim.analysis import penetration as pen
 from crashsim.errors import ParameterError
 from crashsim.units import deg, ft, mph
 from scipy.integrate import quad, solve_ivp

@@ -1,4 +1,5 @@
-"""The reconstruction report (crashsim.report): deformation figures against the seed's worked
+"""The reconstruction report (crashsim.analysis.report): deformation figures against the seed's
+worked
 example and closed forms, PDOF and clock direction in every quadrant, the published barrier
 case, the energy split and EES, the JSON report against its schema, and the text table.
 
@@ -19,8 +20,7 @@ import numpy as np
 import pytest
 import trimesh
 from conftest import SHARED_MESHES
-from crashsim.errors import SceneError
-from crashsim.report import (
+from crashsim.analysis.report import (
     SCHEMA_VERSION,
     Report,
     build_report,
@@ -28,6 +28,7 @@ from crashsim.report import (
     pdof,
     report_schema,
 )
+from crashsim.errors import SceneError
 
 DTP = 0.030  # s, the seed's default depth of penetration
 SAE_880223_INTERCEPT = 3.5 * 0.0254  # m, 3.5 in (exact)
@@ -108,12 +109,12 @@ def barrier_report() -> Report:
         centroid=(car, FUSION_POINT),
         normal=(math.cos(NORMAL_ANGLE), math.sin(NORMAL_ANGLE), 0.0),
     )
-    return scene.run(duration=0.05, dt=1e-3).report()
+    return cs.report(scene.run(duration=0.05, dt=1e-3))
 
 
 @pytest.fixture(scope="module")
 def seed_report() -> Report:
-    return seed_side_impact().report()
+    return cs.report(seed_side_impact())
 
 
 STIFF = {"front": (35000.0, 1.0e6), "rear": (35000.0, 0.8e6), "side": (20000.0, 0.5e6)}
@@ -128,7 +129,7 @@ def stiff_report() -> Report:
     scene = cs.Scene(depth_of_penetration=DTP)
     scene.add(red, position=(-3.65, 0.0, 0.7), velocity=(cs.mph(30.0), 0.0, 0.0))
     scene.add(blue, position=(0.0, 0.0, 0.7), heading=cs.deg(90.0))
-    return scene.run(duration=0.3, dt=1e-3).report()
+    return cs.report(scene.run(duration=0.3, dt=1e-3))
 
 
 # -- deformation ------------------------------------------------------------------------------
@@ -168,7 +169,7 @@ def test_seed_example_spring_model_and_residual_crush(seed_report: Report) -> No
 
 
 def test_residual_crush_below_three_and_a_half_inches_is_zero() -> None:
-    imp = seed_side_impact(speed=2.0).report().impacts[0]
+    imp = cs.report(seed_side_impact(speed=2.0)).impacts[0]
     for p in imp.parties:
         d = p.deformation
         assert d.max_crush == pytest.approx(0.5 * 2.0 * DTP, rel=1e-12)  # 0.03 m < 0.0889 m
@@ -196,7 +197,7 @@ def test_mesh_deformation_follows_the_surface_not_the_box() -> None:
     scene = cs.Scene(centroid=(red, (1.9, 0.65, 0.0)))
     scene.add(red, position=(-3.25, 0.0, 0.7), velocity=(cs.mph(30.0), 0.0, 0.0))
     scene.add(blue, position=(0.0, 0.0, 0.7), heading=cs.deg(90.0))
-    imp = scene.run(duration=0.2, dt=1e-3).report().impacts[0]
+    imp = cs.report(scene.run(duration=0.2, dt=1e-3)).impacts[0]
     r, b = imp.parties
     assert np.allclose(imp.normal, [1.0, 0.0, 0.0], rtol=0.0, atol=1e-12)
     assert np.allclose(r.centroid_body, [1.9, 0.65, 0.0], rtol=0.0, atol=1e-12)
@@ -215,7 +216,7 @@ def test_mesh_deformation_is_none_when_the_ray_misses() -> None:
     scene = cs.Scene(centroid=(red, (1.9, 1.5, 0.0)))
     scene.add(red, position=(-3.25, 0.0, 0.7), velocity=(cs.mph(30.0), 0.0, 0.0))
     scene.add(blue, position=(0.0, 0.0, 0.7), heading=cs.deg(90.0))
-    report = scene.run(duration=0.2, dt=1e-3).report()
+    report = cs.report(scene.run(duration=0.2, dt=1e-3))
     r = report.impacts[0].vehicle("red")
     assert r.deformation.mesh is None and r.deformation.mesh_crossings == 0
     assert any("no mesh deformation" in n for n in r.deformation.notes)
@@ -233,7 +234,7 @@ def test_mesh_deformation_of_a_real_mesh_lies_within_its_box() -> None:
     front = float(sedan.shape.aabb()[1][0])
     scene.add(sedan, position=(-0.9 - front - 0.05, 0.0, sedan.cg[2]), velocity=(13.0, 0, 0))
     scene.add(box, position=(0.0, 0.0, 0.725), heading=cs.deg(90.0))
-    report = scene.run(duration=0.2, dt=1e-3).report()
+    report = cs.report(scene.run(duration=0.2, dt=1e-3))
     assert report.impacts
     for imp in report.impacts:
         for p in imp.parties:
@@ -250,7 +251,7 @@ def test_mesh_deformation_of_a_real_mesh_lies_within_its_box() -> None:
 @pytest.mark.parametrize("bullet_first", [True, False], ids=["bullet-first", "target-first"])
 @pytest.mark.parametrize("face", ["front", "right", "rear", "left"])
 def test_pdof_and_clock_in_every_quadrant(face: str, bullet_first: bool, yaw_deg: float) -> None:
-    report = struck_on(face, bullet_first, yaw_deg).report()
+    report = cs.report(struck_on(face, bullet_first, yaw_deg))
     assert len(report.impacts) == 1
     imp = report.impacts[0]
     assert imp.vehicles == (("bullet", "target") if bullet_first else ("target", "bullet"))
@@ -366,7 +367,7 @@ def test_stiffness_placed_centroid_makes_box_deformation_the_spring_model_crush(
     scene = cs.Scene(depth_of_penetration=DTP, centroid="stiffness")
     scene.add(red, position=(-3.65, 0.0, 0.7), velocity=(cs.mph(30.0), 0.0, 0.0))
     scene.add(blue, position=(0.0, 0.0, 0.7), heading=cs.deg(90.0))
-    imp = scene.run(duration=0.3, dt=1e-3).report().impacts[0]
+    imp = cs.report(scene.run(duration=0.3, dt=1e-3)).impacts[0]
     red_part, blue_part = imp.parties
     assert red_part.deformation.max_crush == pytest.approx(cs.mph(30.0) * DTP / 3.0, rel=1e-12)
     for p in imp.parties:
@@ -375,7 +376,7 @@ def test_stiffness_placed_centroid_makes_box_deformation_the_spring_model_crush(
 
 def test_equal_stiffness_splits_equally() -> None:
     same = {"front": (35000.0, 0.7e6), "rear": (35000.0, 0.7e6), "side": (35000.0, 0.7e6)}
-    imp = seed_side_impact(stiffness=same).report().impacts[0]
+    imp = cs.report(seed_side_impact(stiffness=same)).impacts[0]
     red, blue = imp.parties
     assert red.spring_rate == blue.spring_rate
     assert red.energy == blue.energy == pytest.approx(imp.energy_dissipated / 2.0, rel=1e-15)
@@ -401,7 +402,7 @@ def test_dissipated_energy_is_the_kinetic_energy_lost(seed_report: Report) -> No
 
 
 def test_automatic_depth_of_penetration_is_reported() -> None:
-    imp = seed_side_impact(stiffness=STIFF, depth_of_penetration="auto").report().impacts[0]
+    imp = cs.report(seed_side_impact(stiffness=STIFF, depth_of_penetration="auto")).impacts[0]
     assert imp.depth_of_penetration_mode == "auto"
     assert "sqrt(m'/k')" in imp.how_depth_of_penetration
     # the engine lands the exchange to 1e-9 s; its dt_p is sqrt(m'/k') at that instant
@@ -490,7 +491,7 @@ def test_the_json_inputs_reproduce_the_run(barrier_report: Report) -> None:
         )
     for pair in d["scene"]["contact"]["pairs"]:
         scene.contact(*pair["vehicles"], **pair["parameters"])
-    again = scene.run(duration=d["run"]["end_time"], dt=1e-3).report()
+    again = cs.report(scene.run(duration=d["run"]["end_time"], dt=1e-3))
     assert len(again.impacts) == len(barrier_report.impacts) == 1
     a, b = again.impacts[0], barrier_report.impacts[0]
     assert a.exchange_time == pytest.approx(b.exchange_time, abs=1e-12)
@@ -566,6 +567,6 @@ def test_a_run_without_impacts_reports_none() -> None:
     scene = cs.Scene()
     scene.add(a, position=(0.0, 0.0, 0.7), velocity=(1.0, 0.0, 0.0))
     scene.add(b, position=(0.0, 10.0, 0.7))
-    report = scene.run(duration=0.1, dt=1e-2).report()
+    report = cs.report(scene.run(duration=0.1, dt=1e-2))
     assert report.impacts == [] and "No impulse exchange" in str(report)
     jsonschema.validate(report.to_dict(), report_schema(), cls=jsonschema.Draft202012Validator)

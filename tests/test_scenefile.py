@@ -1,4 +1,4 @@
-"""Scene files (crashsim.scenefile): the unit parser against the exact definitions, every
+"""Scene files (crashsim.io.scenefile): the unit parser against the exact definitions, every
 example scene, the seed's examples end to end, the loader against the Python API (same
 trajectories bit for bit) and one-line errors that name the file and the key."""
 
@@ -11,10 +11,10 @@ import crashsim as cs
 import numpy as np
 import pytest
 from conftest import MISSING, REPO, SHARED_MESHES
-from crashsim import scenefile as sf
-from crashsim.generator import SHAPE_PARAMETERS
-from crashsim.scenefile import SceneFileError, load_scene, loads_scene, parse_quantity
-from crashsim.vehicle_data import vehicle_class
+from crashsim.io import scenefile as sf
+from crashsim.io.scenefile import SceneFileError, load_scene, loads_scene, parse_quantity
+from crashsim.vehicles.generator import SHAPE_PARAMETERS
+from crashsim.vehicles.vehicle_data import vehicle_class
 
 EXAMPLES = REPO / "examples"
 DOCS = REPO / "docs" / "scene-format.md"

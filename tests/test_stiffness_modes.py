@@ -1,12 +1,12 @@
 """Face stiffness in the engine: depth_of_penetration="auto" (dt_p = sqrt(m'/k')) and
 centroid="stiffness" (C1 : C2 = k2 : k1), against the seed's spring model computed here
-independently (crashsim.penetration), and their errors and warnings."""
+independently (crashsim.analysis.penetration), and their errors and warnings."""
 
 from __future__ import annotations
 
 import crashsim as cs
 import pytest
-from crashsim import penetration
+from crashsim.analysis import penetration
 from crashsim.scene import DepthOfPenetrationWarning
 
 A = 35_000.0  # N/m, any pre-load: dt_p depends on B only

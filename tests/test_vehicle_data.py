@@ -1,4 +1,4 @@
-"""Tests of the built-in vehicle-class table (crashsim.vehicle_data).
+"""Tests of the built-in vehicle-class table (crashsim.vehicles.vehicle_data).
 
 Unit factors are written here from their exact definitions, independently of the module:
 1 lb (mass) = 0.45359237 kg, 1 lbf = 4.4482216152605 N, 1 in = 0.0254 m, 1 ft = 0.3048 m.
@@ -10,10 +10,10 @@ import math
 import tomllib
 from importlib import resources
 
-import crashsim.vehicle_data as vd
+import crashsim.vehicles.vehicle_data as vd
 import pytest
 from crashsim.errors import ParameterError
-from crashsim.stiffness import FaceStiffness, Stiffness
+from crashsim.vehicles.stiffness import FaceStiffness, Stiffness
 
 LBF = 4.4482216152605
 LBM = 0.45359237
@@ -45,7 +45,7 @@ DIMS = ("mass", "length", "width", "height", "wheelbase")
 
 
 def _raw() -> dict:
-    path = resources.files("crashsim").joinpath("data", "vehicle_classes.toml")
+    path = resources.files("crashsim.vehicles").joinpath("data", "vehicle_classes.toml")
     return tomllib.loads(path.read_text(encoding="utf-8"))
 
 

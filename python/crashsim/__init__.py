@@ -11,20 +11,13 @@ frame right-handed with z up; vehicle body frame ISO 8855 (x forward, y left, z 
     result = scene.run(duration=1.0, dt=1e-3)
 """
 
-from crashsim import (
-    crosscheck,
-    export,
-    generator,
-    meshio,
-    montecarlo,
-    penetration,
-    plots,
-    report,
-    units,
-    vehicle_data,
-)
+from crashsim import plots, units
 from crashsim._core import __version__
-from crashsim.crosscheck import CrossCheck, cross_check
+from crashsim.analysis import crosscheck, montecarlo, penetration
+from crashsim.analysis.crosscheck import CrossCheck, cross_check
+from crashsim.analysis.montecarlo import dtp_montecarlo
+from crashsim.analysis.report import Report, build_report
+from crashsim.analysis.report import build_report as report
 from crashsim.errors import (
     CrashsimError,
     InitialOverlapError,
@@ -34,14 +27,11 @@ from crashsim.errors import (
     SceneError,
     SimulationError,
 )
-from crashsim.export import export_frames, export_glb
-from crashsim.meshio import MeshQuality, load_mesh, mesh_quality
-from crashsim.montecarlo import dtp_montecarlo
+from crashsim.io import export, scenefile
+from crashsim.io.export import export_frames, export_glb
 from crashsim.plots import plot_impact, plot_trajectories
-from crashsim.report import Report, build_report
 from crashsim.result import ContactEvent, Impact, Result, Trajectory
 from crashsim.scene import DepthOfPenetrationWarning, Scene
-from crashsim.stiffness import FaceStiffness, Stiffness
 from crashsim.units import (
     deg,
     ft,
@@ -56,8 +46,11 @@ from crashsim.units import (
     to_lb,
     to_mph,
 )
-from crashsim.vehicle import Vehicle
-from crashsim.vehicle_data import VehicleClass, vehicle_class, vehicle_classes
+from crashsim.vehicles import generator, meshio, vehicle_data
+from crashsim.vehicles.meshio import MeshQuality, load_mesh, mesh_quality
+from crashsim.vehicles.stiffness import FaceStiffness, Stiffness
+from crashsim.vehicles.vehicle import Vehicle
+from crashsim.vehicles.vehicle_data import VehicleClass, vehicle_class, vehicle_classes
 
 __all__ = [
     "__version__",
@@ -77,6 +70,7 @@ __all__ = [
     "load_mesh",
     "mesh_quality",
     "Report",
+    "report",
     "build_report",
     "plot_impact",
     "plot_trajectories",
@@ -92,7 +86,7 @@ __all__ = [
     "montecarlo",
     "penetration",
     "plots",
-    "report",
+    "scenefile",
     "units",
     "vehicle_data",
     "mph",

@@ -1,6 +1,6 @@
 """The ``crashsim`` command line.
 
-``crashsim run case.toml`` loads a scene file (crashsim.scenefile; docs/scene-format.md), runs
+``crashsim run case.toml`` loads a scene file (crashsim.io.scenefile; docs/scene-format.md), runs
 it, prints the report's summary table and writes report.json, the time histories (CSV), the
 top-down pictures (PNG) and the 3-D motion (GLB) into a folder.
 
@@ -12,7 +12,7 @@ car at 30 mph square into the driver (left) side of a stationary blue box car, w
 default contact parameters (depth of penetration 30 ms, restitution 0.1, friction 0.6).
 
 ``crashsim dtp-montecarlo`` samples the depth of penetration dt_p = sqrt(m'/k') over pairs of
-the built-in vehicle classes (crashsim.montecarlo) and prints its percentiles in ms.
+the built-in vehicle classes (crashsim.analysis.montecarlo) and prints its percentiles in ms.
 
 Exit codes: 0 success; 1 the run or the check failed (or an output could not be written);
 2 bad input (a malformed scene file, bad arguments, vehicles overlapping at t = 0); 130
@@ -34,17 +34,17 @@ from typing import IO, Any, NoReturn
 import numpy as np
 
 from crashsim._core import __version__
-from crashsim.crosscheck import cross_check
+from crashsim.analysis.crosscheck import cross_check
+from crashsim.analysis.montecarlo import PERCENTILES, dtp_montecarlo, plot_dtp_histogram
+from crashsim.analysis.report import build_report
 from crashsim.errors import CrashsimError, InputError, ParameterError, SimulationError
-from crashsim.export import export_glb
-from crashsim.montecarlo import PERCENTILES, dtp_montecarlo, plot_dtp_histogram
+from crashsim.io.export import export_glb
+from crashsim.io.scenefile import SceneFile, load_scene, parse_quantity
 from crashsim.plots import plot_impact, plot_trajectories
-from crashsim.report import build_report
 from crashsim.result import Result
 from crashsim.scene import Scene
-from crashsim.scenefile import SceneFile, load_scene, parse_quantity
 from crashsim.units import deg, mph, to_ft, to_mph
-from crashsim.vehicle import Vehicle
+from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = ["EXIT_FAILED", "EXIT_INPUT", "EXIT_INTERRUPTED", "demo_scene", "main", "write_csv"]
 
@@ -151,7 +151,7 @@ def _dtp_montecarlo(args: argparse.Namespace) -> int:
     summary = result.summary()
     pairing = {c: len(p) for c, p in result.pairs.items()}
     if plot is not None:
-        plot_dtp_histogram(result, plot, source="crashsim.vehicle_data")
+        plot_dtp_histogram(result, plot, source="crashsim.vehicles.vehicle_data")
     if args.json:
         out = {
             "units": "s",

@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from crashsim.result import Impact, Result
-    from crashsim.vehicle import Vehicle
+    from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = [
     "VEHICLE_COLOURS",
@@ -43,7 +43,7 @@ __all__ = [
 
 Array = NDArray[np.float64]
 
-# One colour per vehicle, by its order in the scene (also used by crashsim.export).
+# One colour per vehicle, by its order in the scene (also used by crashsim.io.export).
 VEHICLE_COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b")
 
 IMPACT_FIGSIZE = (15.0, 8.2)  # inches: plot_impact's figure

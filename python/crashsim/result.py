@@ -17,10 +17,7 @@ from crashsim import _core
 from crashsim.errors import SceneError
 
 if TYPE_CHECKING:
-    from crashsim.crosscheck import CrossCheck
-    from crashsim.report import Report
-    from crashsim.scene import Scene
-    from crashsim.vehicle import Vehicle
+    from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = ["ContactEvent", "Impact", "Result", "Trajectory"]
 
@@ -234,7 +231,7 @@ class Result:
         self,
         raw: dict[str, Any],
         names: list[str],
-        scene: Scene | None = None,
+        scene: Any = None,  # the Scene that ran (not imported: a scene imports this module)
         duration: float | None = None,
         dt: float | None = None,
     ) -> None:
@@ -359,13 +356,6 @@ class Result:
         q = self.state_at(name, impact.time)["orientation"]
         return _frozen(rotation_matrix(q).T @ impact.delta_v[name])
 
-    def cross_check(self, **kwargs: Any) -> CrossCheck:
-        """Re-test every first-overlap instant and overlap region with python-fcl on the same
-        poses (crashsim.crosscheck.cross_check; keyword arguments go there)."""
-        from crashsim.crosscheck import cross_check  # crosscheck imports this module
-
-        return cross_check(self, **kwargs)
-
     def to_dict(self, trajectories: bool = False) -> dict[str, Any]:
         """A JSON-friendly copy: vehicles, impacts, contacts and, when asked, trajectories
         ({name: {"t": [...], "position": [...], ...}})."""
@@ -380,14 +370,6 @@ class Result:
                 for name in self.vehicles
             }
         return out
-
-    def report(self) -> Report:
-        """The reconstruction report of this run (crashsim.report.build_report): per exchange
-        delta-V, PDOF, clock, energy, EES and deformation; ``str()`` of it is a text table,
-        ``to_dict()`` / ``write_json()`` the versioned JSON (docs/report.md)."""
-        from crashsim.report import build_report  # imported on first use
-
-        return build_report(self)
 
     def __repr__(self) -> str:
         return (

@@ -25,8 +25,8 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim import _core
 from crashsim.errors import InitialOverlapError, ParameterError, SceneError
 from crashsim.result import Result
-from crashsim.stiffness import FACES
-from crashsim.vehicle import Vehicle, _as_float, _probe_shape
+from crashsim.vehicles.stiffness import FACES
+from crashsim.vehicles.vehicle import Vehicle, _as_float, _probe_shape
 
 __all__ = ["DepthOfPenetrationWarning", "Scene"]
 

@@ -41,8 +41,8 @@ from typing import Any
 import crashsim as cs
 import numpy as np
 import trimesh
-from crashsim.meshio import load_mesh
-from crashsim.scenefile import SceneFile, load_scene, loads_scene, parse_quantity
+from crashsim.io.scenefile import SceneFile, load_scene, loads_scene, parse_quantity
+from crashsim.vehicles.meshio import load_mesh
 
 HERE = Path(__file__).resolve().parent
 SCENES = HERE / "scenes"
@@ -204,7 +204,7 @@ def figures(result: cs.Result) -> dict[str, Any]:
       mesh None when its ray misses) and travel (|CG displacement| from the timer's start to
       the exchange, m).
     """
-    report = result.report()
+    report = cs.report(result)
     impacts = []
     for imp, rep in zip(result.impacts, report.impacts, strict=True):
         parties = {}

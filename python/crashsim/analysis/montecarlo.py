@@ -25,7 +25,7 @@ The seed note's study, made precise:
 * Random numbers: ``numpy.random.default_rng(seed)``, one draw of a (6, samples) block of
   uniforms; the same seed and inputs give the same bits.
 
-The vehicle classes come from ``crashsim.vehicle_data.vehicle_classes()`` unless given: a
+The vehicle classes come from ``crashsim.vehicles.vehicle_data.vehicle_classes()`` unless given: a
 mapping name -> class (or a sequence of classes, named by their ``name`` attribute) where a
 class has ``mass``, ``width`` and faces ``front``, ``rear``, ``side``, each face with ``B``;
 mass, width and B are figures with ``value`` and ``sd`` (SI: kg, m, N/m^2; sd may be None).
@@ -179,10 +179,10 @@ def _face_b(cls: Any, face: str) -> Any:
 def _class_list(classes: Any) -> list[tuple[str, Any]]:
     if classes is None:
         try:
-            from crashsim.vehicle_data import vehicle_classes
+            from crashsim.vehicles.vehicle_data import vehicle_classes
         except ImportError as e:
             raise ParameterError(
-                "no vehicle classes given and crashsim.vehicle_data is not available; "
+                "no vehicle classes given and crashsim.vehicles.vehicle_data is not available; "
                 "pass classes={name: class, ...}"
             ) from e
         classes = vehicle_classes()
@@ -217,7 +217,7 @@ def dtp_montecarlo(
 
     samples: total number of samples (int); it must give every pair of every configuration
     at least one. seed: an int for reproducible bits (None: fresh entropy). classes: as the
-    module docstring says (default ``crashsim.vehicle_data.vehicle_classes()``).
+    module docstring says (default ``crashsim.vehicles.vehicle_data.vehicle_classes()``).
     configurations: a subset of CONFIGURATIONS, in the order wanted."""
     if isinstance(samples, bool) or not isinstance(samples, numbers.Integral):
         raise ParameterError(f"samples must be a whole number, got {samples!r}")

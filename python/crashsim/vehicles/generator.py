@@ -7,7 +7,7 @@ four other parameters adapt to the dimensions, so any dimensions a vehicle of th
 give a valid body: see :func:`body_params`). ``crashsim.Vehicle.generate`` makes a whole
 vehicle (mass, CG, inertia, stiffness from the class table) on such a body::
 
-    from crashsim.generator import body_params, generate_body
+    from crashsim.vehicles.generator import body_params, generate_body
     p = body_params("sedan", length=4.8, width=1.82, height=1.45, wheelbase=2.75)
     mesh = generate_body(p)          # trimesh.Trimesh, model frame
 
@@ -61,8 +61,9 @@ PRESETS = ("sedan", "suv", "pickup", "van", "bus")
 
 def default_dims(preset: str) -> dict[str, float]:
     """length, width, height (roof above the ground) and wheelbase (m) of the preset's vehicle
-    class in the built-in table (crashsim.vehicle_data; sources in docs/vehicle-data.md)."""
-    from crashsim.vehicle_data import vehicle_class  # a data module: no import cycle
+    class in the built-in table (crashsim.vehicles.vehicle_data; sources in
+    docs/vehicle-data.md)."""
+    from crashsim.vehicles.vehicle_data import vehicle_class  # a data module: no import cycle
 
     if preset not in PRESETS:
         _fail(f"preset = {preset!r} is unknown: use one of {', '.join(PRESETS)}")

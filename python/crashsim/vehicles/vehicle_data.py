@@ -1,7 +1,8 @@
 """Built-in generic vehicle classes: mass, dimensions, inertia and CRASH3 crush stiffness.
 
 Reconstructionists often know only a vehicle's class. This module loads, once, the table in
-``crashsim/data/vehicle_classes.toml``: for each class, every number in SI (kg, m, kg m^2, N/m,
+``crashsim/vehicles/data/vehicle_classes.toml``: for each class, every number in SI (kg, m, kg
+m^2, N/m,
 N/m^2) with one standard deviation where one is published (or derived from a published sample),
 and its source: a key of :data:`SOURCES` or a sentence "derived: <how>". The published value and
 unit are kept beside each converted number. ``docs/vehicle-data.md`` shows the table, every
@@ -12,7 +13,7 @@ Lengths follow the vehicle body frame (ISO 8855: x forward, y left, z up): ``len
 ``width`` along y, ``height`` along z, ``cg_to_front_axle`` along x from the centre of mass to the
 front axle, ``cg_height`` above the ground. ``yaw_inertia`` is about the vertical axis through the
 centre of mass. Crush stiffness per face: force per unit width F/W = A + B C (see
-:mod:`crashsim.stiffness`); the "side" face gives both "left" and "right".
+:mod:`crashsim.vehicles.stiffness`); the "side" face gives both "left" and "right".
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from importlib import resources
 from typing import Any
 
 from crashsim.errors import ParameterError
-from crashsim.stiffness import FaceStiffness, Stiffness
+from crashsim.vehicles.stiffness import FaceStiffness, Stiffness
 
 __all__ = [
     "ALIASES",
@@ -88,7 +89,7 @@ class FaceData:
     B: Figure
 
     def to_stiffness(self) -> FaceStiffness:
-        """The face as a :class:`crashsim.stiffness.FaceStiffness` (values only)."""
+        """The face as a :class:`crashsim.vehicles.stiffness.FaceStiffness` (values only)."""
         return FaceStiffness(A=self.A.value, B=self.B.value)
 
 
@@ -112,7 +113,8 @@ class VehicleClass:
 
     @property
     def stiffness(self) -> Stiffness:
-        """The class's mean coefficients as a :class:`crashsim.stiffness.Stiffness`; the side
+        """The class's mean coefficients as a :class:`crashsim.vehicles.stiffness.Stiffness`;
+        the side
         face gives both left and right."""
         side = self.side.to_stiffness()
         return Stiffness(
@@ -152,7 +154,7 @@ def _figure(raw: Mapping[str, Any], where: str) -> Figure:
 
 @cache
 def _load() -> tuple[dict[str, VehicleClass], dict[str, str], dict[str, str]]:
-    path = resources.files("crashsim").joinpath(*_DATA)
+    path = resources.files("crashsim.vehicles").joinpath(*_DATA)
     table = tomllib.loads(path.read_text(encoding="utf-8"))
     sources = {k: str(v["citation"]) for k, v in table["sources"].items()}
     aliases = {str(k): str(v) for k, v in table.get("aliases", {}).items()}

@@ -2,9 +2,10 @@
 clock direction, yaw-rate change, energy and its split, EES) and the deformation report
 (bounding-box and mesh deformation, overlap depth, spring-model maximum and residual crush),
 as a text table and as versioned JSON (schema ``crashsim-report`` version 1,
-``crashsim/schema/report-1.schema.json``; every field, unit, frame and sign: docs/report.md).
+``crashsim/analysis/schema/report-1.schema.json``; every field, unit, frame and sign:
+docs/report.md).
 
-    report = result.report()            # or crashsim.report.build_report(result)
+    report = crashsim.report(result)    # = crashsim.analysis.report.build_report(result)
     print(report)                       # the text table
     report.write_json("case.json")      # the JSON report
 
@@ -33,14 +34,15 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from crashsim import _core, penetration
+from crashsim import _core
+from crashsim.analysis import penetration
 from crashsim.errors import ParameterError, SceneError
 from crashsim.units import to_kmh, to_mph
 
 if TYPE_CHECKING:
     from crashsim.result import Impact, Result
     from crashsim.scene import Scene
-    from crashsim.vehicle import Vehicle
+    from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = [
     "SCHEMA_NAME",
@@ -922,5 +924,5 @@ class Report:
 
 def report_schema() -> dict[str, Any]:
     """The JSON Schema (draft 2020-12) of the report, version SCHEMA_VERSION."""
-    text = resources.files("crashsim").joinpath(*_SCHEMA_FILE).read_text(encoding="utf-8")
+    text = resources.files("crashsim.analysis").joinpath(*_SCHEMA_FILE).read_text(encoding="utf-8")
     return dict(json.loads(text))

@@ -1,7 +1,7 @@
 """Vehicles: a triangle mesh, a mass, a centre of gravity, an inertia tensor and face stiffness.
 
 Frames: the *model frame* is the vehicle's own (m; x forward, y left, z up; ground at z = 0 for
-the usual vehicle mesh); :func:`crashsim.meshio.load_mesh` brings a file in other units and
+the usual vehicle mesh); :func:`crashsim.vehicles.meshio.load_mesh` brings a file in other units and
 axes into it. The *body frame* is the model frame shifted so the CG is the origin (ISO 8855):
 body vertices = model vertices - cg. The inertia tensor is about the CG in body axes (kg m^2).
 
@@ -12,8 +12,8 @@ its mass; the solid is the mesh itself when it is a closed volume, else a docume
 generalized winding number > 1/2). See docs/meshes.md.
 
 :meth:`Vehicle.generate` builds a vehicle without a mesh file: a body from
-:mod:`crashsim.generator` and every number from the built-in class table
-(:mod:`crashsim.vehicle_data`), scaled to the dimensions given; see docs/generator.md.
+:mod:`crashsim.vehicles.generator` and every number from the built-in class table
+(:mod:`crashsim.vehicles.vehicle_data`), scaled to the dimensions given; see docs/generator.md.
 
 Mass and inertia are validated by the engine itself (`_check_mass_properties`), so the
 accepted ranges and their messages live in one place (crates/crashsim-core).
@@ -32,8 +32,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import MeshError, ParameterError
-from crashsim.generator import PRESETS, BodyParams, body_params, generate_body
-from crashsim.meshio import (
+from crashsim.units import POUND
+from crashsim.vehicles.generator import PRESETS, BodyParams, body_params, generate_body
+from crashsim.vehicles.meshio import (
     MeshQuality,
     MeshSource,
     check_mesh,
@@ -43,9 +44,8 @@ from crashsim.meshio import (
     mesh_quality,
     shell_labels,
 )
-from crashsim.stiffness import FACES, Stiffness
-from crashsim.units import POUND
-from crashsim.vehicle_data import ALIASES, VehicleClass, vehicle_class
+from crashsim.vehicles.stiffness import FACES, Stiffness
+from crashsim.vehicles.vehicle_data import ALIASES, VehicleClass, vehicle_class
 
 __all__ = ["Vehicle", "solid_properties"]
 
@@ -288,9 +288,10 @@ class Vehicle:
     point, m); ``inertia`` ((3, 3) about the CG in body axes, kg m^2); ``sources`` ({"cg": ...,
     "inertia": ...}: "user", "mesh volume", "closed shells", "convex hull",
     "winding-number solid", "uniform box" or "empirical"); ``mass_source`` ("user" or
-    "weight in lb (... lb)"); ``stiffness`` (a crashsim.stiffness.Stiffness); ``quality`` (the
-    mesh's :class:`crashsim.meshio.MeshQuality`); ``generator_params`` (the
-    :class:`crashsim.generator.BodyParams` of a generated body, else None).
+    "weight in lb (... lb)"); ``stiffness`` (a crashsim.vehicles.stiffness.Stiffness);
+    ``quality`` (the
+    mesh's :class:`crashsim.vehicles.meshio.MeshQuality`); ``generator_params`` (the
+    :class:`crashsim.vehicles.generator.BodyParams` of a generated body, else None).
 
     Build one with :meth:`from_mesh`, :meth:`box` or :meth:`generate`.
     """
@@ -350,7 +351,7 @@ class Vehicle:
         """A vehicle from a mesh file (any format trimesh reads; a scene is flattened with
         its node transforms) or a trimesh.Trimesh / trimesh.Scene.
 
-        Geometry (see crashsim.meshio.load_mesh): units = metres per file unit ("m", "cm",
+        Geometry (see crashsim.vehicles.meshio.load_mesh): units = metres per file unit ("m", "cm",
         "mm", "in", "ft" or a number; default "m"); up, forward = the file axes pointing up
         and to the front (default "z", "x": the file is already in the model frame);
         ground = True puts the lowest point at z = 0, center = True centres the box at
@@ -368,7 +369,7 @@ class Vehicle:
         docs/meshes.md found it right where the alternatives were not), "convex hull" (fills
         wheel gaps, the underbody and a pickup's bed) or "closed shells" (union of the closed
         shells; open shells ignored, overlaps counted twice).
-        stiffness: face stiffness, see crashsim.stiffness.Stiffness.coerce.
+        stiffness: face stiffness, see crashsim.vehicles.stiffness.Stiffness.coerce.
         """
         mass_kg, mass_source = _mass(mass, weight_lb)
         stiff = Stiffness.coerce(stiffness)
@@ -445,7 +446,7 @@ class Vehicle:
         inertia: None / "mesh" (default): the uniform solid box's about its centre
         (m/12 (W^2 + H^2), ...), moved to the CG by the parallel-axis theorem when cg_height
         is given; "empirical": :func:`empirical_inertia` with ``wheelbase`` (m); or (3, 3).
-        stiffness: face stiffness, see crashsim.stiffness.Stiffness.coerce.
+        stiffness: face stiffness, see crashsim.vehicles.stiffness.Stiffness.coerce.
         """
         named = {"length": length, "width": width, "height": height}
         dims = np.array([_as_float(v, k, "m") for k, v in named.items()])
@@ -515,15 +516,17 @@ class Vehicle:
     ) -> Vehicle:
         """A vehicle of a built-in class on a generated body: ``cs.Vehicle.generate("sedan")``
         needs nothing else; every number not given comes from the class table
-        (:func:`crashsim.vehicle_data.vehicle_class`), scaled to the dimensions given.
+        (:func:`crashsim.vehicles.vehicle_data.vehicle_class`), scaled to the dimensions given.
 
-        preset: one of crashsim.generator.PRESETS ("sedan", "suv", "pickup", "van", "bus"; an
+        preset: one of crashsim.vehicles.generator.PRESETS ("sedan", "suv", "pickup", "van",
+        "bus"; an
         alias of the table such as "mid_car" is accepted). name: defaults to the preset.
 
-        Body (crashsim.generator.body_params and generate_body; model frame, m: x forward,
+        Body (crashsim.vehicles.generator.body_params and generate_body; model frame, m: x forward,
         y left, z up, ground z = 0, box centred in x and y): length, width, height (roof above
         the ground) and wheelbase (m) default to the class's; the shape parameters of
-        crashsim.generator.SHAPE_PARAMETERS (front_overhang, bumper_radius, ...) pass through.
+        crashsim.vehicles.generator.SHAPE_PARAMETERS (front_overhang, bumper_radius, ...) pass
+        through.
         resolution: the mesh's (1 = a few thousand triangles).
 
         Mass: exactly one of ``mass`` (kg) and ``weight_lb`` (lb), else the class's.
@@ -542,7 +545,7 @@ class Vehicle:
         "empirical": :func:`empirical_inertia` with the body's wheelbase and extents.
 
         stiffness: the class's CRASH3 A and B (front, rear, side -> left and right) unless
-        given; a given value replaces all of them (see crashsim.stiffness.Stiffness.coerce;
+        given; a given value replaces all of them (see crashsim.vehicles.stiffness.Stiffness.coerce;
         to change one face, start from ``vehicle_class(preset).stiffness.to_dict()``).
 
         ``sources`` names the origin of every number ("cg", "inertia", "mass", "dimensions",
@@ -681,7 +684,7 @@ class Vehicle:
 
     @property
     def generator_params(self) -> BodyParams | None:
-        """The crashsim.generator.BodyParams the body was made from (:meth:`generate`), or
+        """The crashsim.vehicles.generator.BodyParams the body was made from (:meth:`generate`), or
         None for a vehicle from a mesh or a box."""
         return self._generator_params
 
@@ -761,7 +764,8 @@ class Vehicle:
         p = self._generator_params
         if p is not None:
             lines.append(
-                f"  body: crashsim.generator {p.preset}, L {p.length:.3f} x W {p.width:.3f} x "
+                f"  body: crashsim.vehicles.generator {p.preset}, "
+                f"L {p.length:.3f} x W {p.width:.3f} x "
                 f"H {p.height:.3f} m (roof above the ground), wheelbase {p.wheelbase:.3f} m, "
                 f"front overhang {p.front_overhang:.3f} m, wheel radius {p.wheel_radius:.3f} m"
                 f"  [dimensions: {self._sources.get('dimensions', USER)}; shape: "

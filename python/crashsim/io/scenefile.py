@@ -45,14 +45,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from crashsim.errors import CrashsimError, ParameterError, SceneError
-from crashsim.generator import PRESETS, SHAPE_PARAMETERS
-from crashsim.meshio import axes_rotation, unit_scale
 from crashsim.result import Result
 from crashsim.scene import Scene
-from crashsim.stiffness import FACES
 from crashsim.units import FOOT, MILE_PER_HOUR, POUND
-from crashsim.vehicle import SOLIDS, Vehicle
-from crashsim.vehicle_data import vehicle_class
+from crashsim.vehicles.generator import PRESETS, SHAPE_PARAMETERS
+from crashsim.vehicles.meshio import axes_rotation, unit_scale
+from crashsim.vehicles.stiffness import FACES
+from crashsim.vehicles.vehicle import SOLIDS, Vehicle
+from crashsim.vehicles.vehicle_data import vehicle_class
 
 __all__ = [
     "DIMENSIONS",

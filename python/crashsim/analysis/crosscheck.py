@@ -37,7 +37,7 @@ from crashsim.errors import ParameterError, SceneError
 from crashsim.result import Impact, Result, rotation_matrix
 
 if TYPE_CHECKING:
-    from crashsim.vehicle import Vehicle
+    from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = ["Check", "CrossCheck", "cross_check"]
 
