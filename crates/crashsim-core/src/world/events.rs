@@ -1,0 +1,107 @@
+//! What a run returns: impulse exchanges, the contact log and the sampled states.
+
+use crate::body::BodyState;
+use crate::contact::DepthOfPenetration;
+use crate::math::{Matrix, Point, Real, Vector};
+use crate::stiffness::Face;
+
+/// What happened to a pair, besides impulse exchanges.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ContactEventKind {
+    /// The meshes first overlap; a timer starts.
+    FirstOverlap,
+    /// The relative velocity at the centroid turned closing while engaged; a timer starts.
+    ClosingAgain,
+    /// The meshes no longer overlap.
+    Separation,
+    /// The timer expired but no impulse was exchanged (the reason says why).
+    NoExchange(String),
+}
+
+/// One entry of the contact log.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactEvent {
+    /// World index of body 1 of the pair.
+    pub body1: usize,
+    /// World index of body 2.
+    pub body2: usize,
+    /// When (s).
+    pub time: Real,
+    /// What.
+    pub kind: ContactEventKind,
+}
+
+/// One impulse exchange, world frame, SI.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Impact {
+    /// World index of body 1 (the normal points from it into body 2).
+    pub body1: usize,
+    /// World index of body 2.
+    pub body2: usize,
+    /// When the timer started (s): the first overlap, or the closing-again instant.
+    pub first_contact_time: Real,
+    /// The exchange instant (s).
+    pub time: Real,
+    /// The depth-of-penetration time used (s): exchange time minus timer start.
+    pub depth_of_penetration: Real,
+    /// How it was chosen: the pair's fixed value, or automatic (sqrt(m'/k')).
+    pub depth_of_penetration_mode: DepthOfPenetration,
+    /// True for an exchange after the first one of an engagement.
+    pub secondary: bool,
+    /// Impulse centroid P (m).
+    pub centroid: Point,
+    /// Unit normal from body 1 into body 2.
+    pub normal: Vector,
+    /// Impulse on body 2 (N s); body 1 receives its negative.
+    pub impulse: Vector,
+    /// True for a sliding impact.
+    pub sliding: bool,
+    /// CG velocities of bodies 1 and 2 before and after (m/s).
+    pub velocity_before: [Vector; 2],
+    /// See `velocity_before`.
+    pub velocity_after: [Vector; 2],
+    /// Angular velocities before and after (rad/s).
+    pub angular_velocity_before: [Vector; 2],
+    /// See `angular_velocity_before`.
+    pub angular_velocity_after: [Vector; 2],
+    /// u at P before: body 1's point velocity minus body 2's (m/s).
+    pub relative_velocity_before: Vector,
+    /// u at P after (m/s).
+    pub relative_velocity_after: Vector,
+    /// Kinetic energy lost (J).
+    pub energy_dissipated: Real,
+    /// The overlap region S (m).
+    pub region_points: Vec<Point>,
+    /// Contact frame: rows n, t (horizontal tangent), b = n x t.
+    pub contact_frame: Matrix,
+    /// Extent of S in the contact frame: minimum (m).
+    pub region_min: Vector,
+    /// Extent of S in the contact frame: maximum (m).
+    pub region_max: Vector,
+    /// The struck face of body 1 (facing +n) and of body 2 (facing -n).
+    pub struck_faces: [Face; 2],
+    /// Overlap width W: extent of S along the contact tangent t (m).
+    pub overlap_width: Real,
+    /// Spring rates k_i = B_i W of the struck faces (N/m), when both have stiffness data.
+    pub spring_rates: Option<[Real; 2]>,
+    /// Effective masses of bodies 1 and 2 along n at the centroid (kg).
+    pub effective_mass: [Real; 2],
+    /// When the overlap's volume normal behind `normal` was taken (s): early in the timer
+    /// for a first exchange (overlap at most [`NORMAL_DEPTH`](super::NORMAL_DEPTH) deep), else the exchange.
+    pub normal_time: Real,
+    /// Remarks on this exchange (e.g. an automatic dt_p outside the typical 10-60 ms).
+    pub notes: Vec<String>,
+}
+
+/// What a run returns: samples of every body's state and the logs.
+#[derive(Clone, Debug, Default)]
+pub struct RunOutput {
+    /// Sample times (s): every grid step end, every first overlap and every exchange.
+    pub times: Vec<Real>,
+    /// `states[k][i]`: body i at `times[k]` (after any exchange at that instant).
+    pub states: Vec<Vec<BodyState>>,
+    /// Impulse exchanges in time order.
+    pub impacts: Vec<Impact>,
+    /// First overlaps, separations, closings and skipped exchanges in time order.
+    pub contacts: Vec<ContactEvent>,
+}

@@ -1,0 +1,267 @@
+//! Contact geometry of an overlapping pair: the overlap region, the automatic normal (taken
+//! early for a first exchange), the contact frame, the centroid, the struck faces, the overlap
+//! width and the automatic depth of penetration sqrt(m'/k').
+
+use super::{Pair, World, NORMAL_DEPTH, TIME_TOLERANCE};
+use crate::body::RigidBody;
+use crate::contact::{
+    CentroidMode, NormalMode, MAX_DEPTH_OF_PENETRATION, TYPICAL_DEPTH_OF_PENETRATION,
+};
+use crate::math::{Matrix, Point, Real, Vector};
+use crate::overlap::{overlap_region, OverlapRegion};
+use crate::stiffness::{effective_mass, Face};
+
+/// Where and how a pair touches at one instant (world frame, SI).
+#[derive(Clone, Debug)]
+pub(super) struct ContactGeometry {
+    pub(super) region: OverlapRegion,
+    pub(super) normal: Vector,
+    /// Rows n, t, b.
+    pub(super) frame: Matrix,
+    pub(super) region_min: Vector,
+    pub(super) region_max: Vector,
+    pub(super) centroid: Point,
+    pub(super) faces: [Face; 2],
+    pub(super) width: Real,
+    pub(super) spring_rates: Option<[Real; 2]>,
+    pub(super) effective_mass: [Real; 2],
+    /// When the volume normal was taken, if not at these states.
+    pub(super) normal_time: Option<Real>,
+}
+
+impl ContactGeometry {
+    /// sqrt(m'/k') (s) from the reduced effective mass and the series spring rate; infinite
+    /// without stiffness data or contact width.
+    fn spring_time(&self) -> Real {
+        let Some([k1, k2]) = self.spring_rates else {
+            return Real::INFINITY;
+        };
+        let [m1, m2] = self.effective_mass;
+        let k = k1 * k2 / (k1 + k2);
+        let m = m1 * m2 / (m1 + m2);
+        if k > 0.0 && m.is_finite() {
+            (m / k).sqrt()
+        } else {
+            Real::INFINITY
+        }
+    }
+}
+
+impl World {
+    /// The volume normal (body 1's frame) of pair `pi`'s overlap once it is at most
+    /// NORMAL_DEPTH deep (no later than `cap` s after `started`), and its time; None when
+    /// the meshes no longer overlap then or the normal vanishes.
+    pub(super) fn early_normal(
+        &self,
+        pi: usize,
+        started: Real,
+        cap: Real,
+    ) -> Option<(Vector, Real)> {
+        let pair = &self.pairs[pi];
+        let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
+        // The fastest two surface points can approach now (m/s): over the few ms this covers
+        // the overlap grows by at most about NORMAL_DEPTH.
+        let speed = (wb1.body.velocity() - wb2.body.velocity()).norm()
+            + wb1.body.angular_velocity().norm() * wb1.shape.radius()
+            + wb2.body.angular_velocity().norm() * wb2.shape.radius();
+        let dt = if speed > 0.0 {
+            (NORMAL_DEPTH / speed).min(cap)
+        } else {
+            cap
+        };
+        let offset = started - self.time + dt;
+        let (b1, b2) = (wb1.body.advanced(offset), wb2.body.advanced(offset));
+        let (pose1, pose2) = (b1.pose(), b2.pose());
+        let n = overlap_region(&wb1.shape, &pose1, &wb2.shape, &pose2).volume_normal()?;
+        Some((pose1.inverse_transform_vector(&n), started + dt))
+    }
+
+    /// The automatic dt_p of pair `pi` whose timer starts at `started`: the dt in
+    /// (0, 0.060] s with dt = sqrt(m'/k') evaluated at started + dt, where the bodies will be
+    /// (they move freely while the timer runs). Bisection to `TIME_TOLERANCE`; clamped to
+    /// 0.060 s, with a note, when sqrt(m'/k') is still longer there.
+    pub(super) fn auto_depth_of_penetration(
+        &self,
+        pi: usize,
+        started: Real,
+        early_normal: Option<(Vector, Real)>,
+    ) -> (Real, Vec<String>) {
+        let pair = &self.pairs[pi];
+        let offset = started - self.time;
+        let spring_time = |dt: Real| -> Real {
+            let b1 = self.bodies[pair.body1].body.advanced(offset + dt);
+            let b2 = self.bodies[pair.body2].body.advanced(offset + dt);
+            // Before the early normal's instant the overlap's own normal is used.
+            let normal = early_normal
+                .filter(|(_, t)| *t <= started + dt)
+                .map(|(n, t)| (b1.pose() * n, t));
+            self.contact_geometry(pair, &b1, &b2, normal)
+                .map_or(Real::INFINITY, |g| g.spring_time())
+        };
+        let max = MAX_DEPTH_OF_PENETRATION;
+        let at_max = spring_time(max);
+        if at_max >= max {
+            return (
+                max,
+                vec![format!(
+                    "automatic depth of penetration: sqrt(m'/k') = {:.1} ms at 60 ms after the \
+                     first overlap, longer than the accepted 60 ms; clamped to 60 ms",
+                    at_max * 1e3
+                )],
+            );
+        }
+        let (mut lo, mut hi) = (0.0, max);
+        while hi - lo > TIME_TOLERANCE {
+            let mid = 0.5 * (lo + hi);
+            if mid < spring_time(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let mut notes = Vec::new();
+        let (typical_lo, typical_hi) = TYPICAL_DEPTH_OF_PENETRATION;
+        if hi < typical_lo || hi > typical_hi {
+            notes.push(format!(
+                "automatic depth of penetration {:.2} ms lies outside the typical 10-60 ms",
+                hi * 1e3
+            ));
+        }
+        (hi, notes)
+    }
+
+    /// The pair's contact geometry with its bodies at the given states (world frame): the
+    /// overlap region, normal, contact frame, centroid, struck faces, width, spring rates and
+    /// effective masses. `volume_normal` replaces the region's own volume normal (world frame,
+    /// with the time it was taken). None when the meshes do not overlap.
+    pub(super) fn contact_geometry(
+        &self,
+        pair: &Pair,
+        b1: &RigidBody,
+        b2: &RigidBody,
+        volume_normal: Option<(Vector, Real)>,
+    ) -> Option<ContactGeometry> {
+        let (w1, w2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
+        let (pose1, pose2) = (b1.pose(), b2.pose());
+        let region = overlap_region(&w1.shape, &pose1, &w2.shape, &pose2);
+        if region.is_empty() {
+            return None;
+        }
+        let bbox_center = {
+            let (mut lo, mut hi) = (region.points[0], region.points[0]);
+            for p in &region.points {
+                lo = lo.inf(p);
+                hi = hi.sup(p);
+            }
+            nalgebra::center(&lo, &hi)
+        };
+        let (volume_normal, normal_time) = volume_normal.map_or_else(
+            || {
+                let n = region.volume_normal().unwrap_or_else(|| {
+                    // No usable inside area (e.g. open meshes): fall back on the approach direction.
+                    let u = b1.point_velocity(&bbox_center) - b2.point_velocity(&bbox_center);
+                    if u.norm() > 0.0 {
+                        u.normalize()
+                    } else {
+                        (b2.position() - b1.position()).normalize()
+                    }
+                });
+                (n, None)
+            },
+            |(n, t)| (n, Some(t)),
+        );
+        let normal = match &pair.params.normal {
+            NormalMode::Volume => volume_normal,
+            NormalMode::Fixed(v) => v.normalize(),
+            NormalMode::Horizontal { pitch } => {
+                let h = Vector::new(volume_normal.x, volume_normal.y, 0.0);
+                if h.norm() < 1e-9 {
+                    volume_normal
+                } else {
+                    h.normalize() * pitch.cos() + Vector::z() * pitch.sin()
+                }
+            }
+        };
+        let tangent = {
+            let t = Vector::z().cross(&normal);
+            if t.norm() > 1e-9 {
+                t.normalize()
+            } else {
+                Vector::x().cross(&normal).normalize()
+            }
+        };
+        let binormal = normal.cross(&tangent);
+        let frame = Matrix::from_rows(&[
+            normal.transpose(),
+            tangent.transpose(),
+            binormal.transpose(),
+        ]);
+        let (mut rmin, mut rmax) = (
+            frame * region.points[0].coords,
+            frame * region.points[0].coords,
+        );
+        for p in &region.points {
+            let c = frame * p.coords;
+            rmin = rmin.inf(&c);
+            rmax = rmax.sup(&c);
+        }
+        let faces = [
+            Face::facing(&pose1.inverse_transform_vector(&normal)),
+            Face::facing(&pose2.inverse_transform_vector(&-normal)),
+        ];
+        let width = rmax.y - rmin.y;
+        let spring_rates = match (w1.stiffness.face(faces[0]), w2.stiffness.face(faces[1])) {
+            (Some(s1), Some(s2)) => Some([s1.spring_rate(width), s2.spring_rate(width)]),
+            _ => None,
+        };
+        let centroid = match &pair.params.centroid {
+            CentroidMode::Auto => Point::from(frame.transpose() * ((rmin + rmax) * 0.5)),
+            CentroidMode::Stiffness => {
+                // Body 1's undeformed surface is at the region's far end along +n, body 2's at
+                // the near end: C1 = rmax.n - P.n, C2 = P.n - rmin.n, C1 : C2 = k2 : k1.
+                let mut c = (rmin + rmax) * 0.5;
+                if let Some([k1, k2]) = spring_rates {
+                    if k1 + k2 > 0.0 {
+                        c.x = rmax.x - k2 / (k1 + k2) * (rmax.x - rmin.x);
+                    }
+                }
+                Point::from(frame.transpose() * c)
+            }
+            CentroidMode::World(p) => *p,
+            CentroidMode::Body { body, point } => {
+                if *body == pair.body1 {
+                    pose1 * point
+                } else {
+                    pose2 * point
+                }
+            }
+        };
+        let effective_mass = [
+            effective_mass(
+                b1.props().mass(),
+                &b1.world_inverse_inertia(),
+                &(centroid - b1.position()),
+                &normal,
+            ),
+            effective_mass(
+                b2.props().mass(),
+                &b2.world_inverse_inertia(),
+                &(centroid - b2.position()),
+                &normal,
+            ),
+        ];
+        Some(ContactGeometry {
+            region,
+            normal,
+            frame,
+            region_min: rmin,
+            region_max: rmax,
+            centroid,
+            faces,
+            width,
+            spring_rates,
+            effective_mass,
+            normal_time,
+        })
+    }
+}
