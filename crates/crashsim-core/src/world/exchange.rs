@@ -3,6 +3,7 @@
 //! followed until it separates or closes again.
 
 use super::{Pair, Phase, World, TIME_TOLERANCE};
+use crate::bisect::bisect;
 use crate::contact::{DepthOfPenetration, MAX_DEPTH_OF_PENETRATION};
 use crate::impulse::ImpulseProblem;
 use crate::math::{Point, Real, Vector};
@@ -204,20 +205,13 @@ impl World {
             &mut self.ws,
         ) {
             // Bisect the separation instant backwards from now (bodies move freely here).
-            let (mut lo, mut hi) = (t_prev - self.time, 0.0);
-            while hi - lo > SEPARATION_TOLERANCE {
-                let mid = 0.5 * (lo + hi);
-                let (p1, p2) = (
-                    self.bodies[i1].body.advanced(mid).pose(),
-                    self.bodies[i2].body.advanced(mid).pose(),
-                );
-                let (s1, s2) = (self.bodies[i1].shape.clone(), self.bodies[i2].shape.clone());
-                if shapes_overlap(&s1, &p1, &s2, &p2, &mut self.ws) {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
+            let (s1, s2) = (self.bodies[i1].shape.clone(), self.bodies[i2].shape.clone());
+            let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+            let ws = &mut self.ws;
+            let hi = bisect(t_prev - self.time, 0.0, SEPARATION_TOLERANCE, |dt| {
+                let (p1, p2) = (b1.advanced(dt).pose(), b2.advanced(dt).pose());
+                !shapes_overlap(&s1, &p1, &s2, &p2, ws)
+            });
             out.contacts.push(ContactEvent {
                 body1: i1,
                 body2: i2,
@@ -229,22 +223,9 @@ impl World {
         }
         if self.closing_speed(&pair, &centroid_in, &normal_in_1, 0.0) > CLOSING_TOLERANCE {
             // Find when it turned closing inside the step (s is smooth: bisection).
-            let (mut lo, mut hi) = (t_prev - self.time, 0.0);
-            while hi - lo > TIME_TOLERANCE {
-                let mid = 0.5 * (lo + hi);
-                let s = {
-                    let b1 = self.bodies[i1].body.advanced(mid);
-                    let b2 = self.bodies[i2].body.advanced(mid);
-                    let (p1, p2) = (b1.pose(), b2.pose());
-                    let c = nalgebra::center(&(p1 * centroid_in[0]), &(p2 * centroid_in[1]));
-                    (b1.point_velocity(&c) - b2.point_velocity(&c)).dot(&(p1 * normal_in_1))
-                };
-                if s > CLOSING_TOLERANCE {
-                    hi = mid;
-                } else {
-                    lo = mid;
-                }
-            }
+            let hi = bisect(t_prev - self.time, 0.0, TIME_TOLERANCE, |dt| {
+                self.closing_speed(&pair, &centroid_in, &normal_in_1, dt) > CLOSING_TOLERANCE
+            });
             let started = self.time + hi;
             out.contacts.push(ContactEvent {
                 body1: i1,

@@ -5,6 +5,7 @@
 use parry3d_f64::bounding_volume::BoundingVolume;
 
 use super::{Pair, World, TIME_TOLERANCE};
+use crate::bisect::bisect;
 use crate::error::{Error, Result};
 use crate::math::{Aabb, Isometry, Point, Real, Vector};
 use crate::overlap::{shapes_overlap, surface_distance, surfaces_intersect};
@@ -100,16 +101,12 @@ impl World {
                 if t == 0.0 {
                     return Ok(Some(self.time));
                 }
-                let mut hi = t;
-                while hi - lo > TIME_TOLERANCE {
-                    let mid = 0.5 * (lo + hi);
-                    let (p1, p2) = self.poses_after(&pair, mid);
-                    if surfaces_intersect(&s1, &p1, &s2, &p2, &mut self.ws) {
-                        hi = mid;
-                    } else {
-                        lo = mid;
-                    }
-                }
+                let (b1, b2) = (&self.bodies[pair.body1].body, &self.bodies[pair.body2].body);
+                let ws = &mut self.ws;
+                let hi = bisect(lo, t, TIME_TOLERANCE, |dt| {
+                    let (p1, p2) = (b1.advanced(dt).pose(), b2.advanced(dt).pose());
+                    surfaces_intersect(&s1, &p1, &s2, &p2, ws)
+                });
                 return Ok(Some(self.time + hi));
             }
             if t >= span || t + d / speed > span {

@@ -3,6 +3,7 @@
 //! width and the automatic depth of penetration sqrt(m'/k').
 
 use super::{Pair, World, NORMAL_DEPTH, TIME_TOLERANCE};
+use crate::bisect::bisect;
 use crate::body::RigidBody;
 use crate::contact::{
     CentroidMode, NormalMode, MAX_DEPTH_OF_PENETRATION, TYPICAL_DEPTH_OF_PENETRATION,
@@ -110,15 +111,7 @@ impl World {
                 )],
             );
         }
-        let (mut lo, mut hi) = (0.0, max);
-        while hi - lo > TIME_TOLERANCE {
-            let mid = 0.5 * (lo + hi);
-            if mid < spring_time(mid) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
+        let hi = bisect(0.0, max, TIME_TOLERANCE, |dt| dt >= spring_time(dt));
         let mut notes = Vec::new();
         let (typical_lo, typical_hi) = TYPICAL_DEPTH_OF_PENETRATION;
         if hi < typical_lo || hi > typical_hi {
