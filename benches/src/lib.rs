@@ -632,7 +632,7 @@ impl Placement {
             .position(|&t| t == impact.time)
             .ok_or("the exchange instant is not sampled")?;
         let pose = |i: usize| {
-            let s = &out.states[k][i];
+            let s = &out.sample(k)[i];
             Isometry::from_parts(s.position.coords.into(), s.orientation)
         };
         let exchange_poses = [pose(0), pose(1)];
@@ -1020,7 +1020,7 @@ mod tests {
             assert!(s.timeline.approach.start + w.time() <= s.timeline.first_contact - DT);
             let mut ws = QueryWorkspace::default();
             let [a, b] = s.vehicles();
-            for (t, st) in out.times.iter().zip(&out.states) {
+            for (t, st) in out.times.iter().zip(out.states.chunks(out.body_count)) {
                 // The boxes at each step's start meet, so the engine's swept boxes do too and
                 // the first-contact search runs its distance query (A moves, speed > 0).
                 let [ba, bb] = world_boxes(s, st);
@@ -1086,7 +1086,7 @@ mod tests {
                 s.size.label()
             );
             let mut ws = QueryWorkspace::default();
-            for (t, st) in out.times.iter().zip(&out.states) {
+            for (t, st) in out.times.iter().zip(out.states.chunks(out.body_count)) {
                 assert!(meshes_overlap(s, st, &mut ws), "{} t {t}", s.size.label());
             }
         }

@@ -180,14 +180,23 @@ class World:
     ) -> None:
         """A body's face stiffness: each face (A, B) in (N/m, N/m^2), or None without data."""
     def run(
-        self, duration: float, dt: float, progress: Callable[[float], object] | None = None
+        self,
+        duration: float,
+        dt: float,
+        progress: Callable[[float], object] | None = None,
+        record_interval: float | None = None,
+        max_history_bytes: int | None = None,
     ) -> dict[str, Any]:
         """Advance the world by duration (s) with steps of at most dt (s). progress, if given,
         is called with the current time (s) at most every 0.1 s of wall time (Ctrl-C is
         honoured then); an exception it raises stops the run and propagates.
+        record_interval (s; None: every step for runs of at most 100,000 steps, else about
+        100,000 samples) spaces the kept samples; a run whose history would exceed
+        max_history_bytes (None: 2**30) is refused with a ParameterError.
 
-        Returns a dict: ``t`` (k,) sample times (every step end, every first overlap and
-        every exchange; the state at an exchange is the one after it); ``position``,
+        Returns a dict: ``t`` (k,) sample times (the kept step ends, every first overlap and
+        every exchange; the state at an exchange is the one after it); ``record_interval``
+        the spacing of the kept step ends (s); ``position``,
         ``velocity``, ``angular_velocity`` (n_bodies, k, 3); ``orientation`` (n_bodies, k, 4);
         ``impacts``: a list of dicts, one per impulse exchange, with keys
         ``body1``, ``body2``, ``first_contact_time``, ``time``, ``depth_of_penetration``,

@@ -287,7 +287,12 @@ def _simulate(args: argparse.Namespace, case: SceneFile) -> Result:
     done = False
     try:
         # always a callback: the engine honours Ctrl-C when it calls back into Python
-        result = case.simulate(duration=duration, dt=dt, progress=bar or _no_progress)
+        result = case.simulate(
+            duration=duration,
+            dt=dt,
+            progress=bar or _no_progress,
+            record_interval=args.record_interval,
+        )
         done = True
     except InputError as e:  # e.g. vehicles overlapping at t = 0: name the file
         raise type(e)(f"{case.path}: {e}") from e
@@ -396,6 +401,13 @@ def _scene_arguments(p: argparse.ArgumentParser) -> None:
         "--duration",
         type=_time,
         help='simulated time ("0.5 s" or seconds), overriding the file\'s run.duration',
+    )
+    p.add_argument(
+        "--record-interval",
+        type=_time,
+        help='keep a sample of the states every so often ("10 ms" or seconds), overriding the '
+        "file's run.record_interval (default: every step, or about 100,000 samples in all for "
+        "longer runs; first overlaps and exchanges are always kept)",
     )
     p.add_argument(
         "--progress",

@@ -224,8 +224,9 @@ class Impact:
 class Result:
     """What a run returns: ``impacts`` (Impact list, in time order), ``contacts`` (the
     ContactEvent log), ``vehicles`` (names in the order added), ``t`` (sample times, s),
-    per-vehicle trajectories, ``scene`` (the Scene that ran, None for a bare result) and the
-    run's ``duration`` and largest step ``dt`` (s; None when not known)."""
+    per-vehicle trajectories, ``scene`` (the Scene that ran, None for a bare result), the
+    run's ``duration``, largest step ``dt`` and ``record_interval`` (the spacing of the kept
+    step samples) (s; None when not known)."""
 
     def __init__(
         self,
@@ -234,11 +235,14 @@ class Result:
         scene: Any = None,  # the Scene that ran (not imported: a scene imports this module)
         duration: float | None = None,
         dt: float | None = None,
+        record_interval: float | None = None,
     ) -> None:
         self.vehicles: list[str] = list(names)
         self.scene = scene
         self.duration = duration
         self.dt = dt
+        # Interval between kept step samples (s); events are always kept.
+        self.record_interval = record_interval
         self.t: Array = _frozen(raw["t"])
         self._position = _frozen(raw["position"])  # (n_vehicles, k, 3)
         self._orientation = _frozen(raw["orientation"])  # (n_vehicles, k, 4)

@@ -435,22 +435,47 @@ class Scene:
         duration: float = 1.0,
         dt: float = 1e-3,
         progress: Callable[[float], object] | None = None,
+        record_interval: float | None = None,
+        max_history_bytes: int | None = None,
     ) -> Result:
         """Run the scene from t = 0 for ``duration`` s with steps of at most ``dt`` s.
 
         Every call starts afresh from the initial states (a new engine world). Raises
         InitialOverlapError when two vehicles already overlap at t = 0. ``progress``, if
         given, is called with the simulated time reached (s) about every 0.1 s of wall time;
-        it cannot change the results (an exception it raises stops the run)."""
+        it cannot change the results (an exception it raises stops the run).
+
+        The result keeps every step's states unless the run is long: ``record_interval`` (s,
+        rounded down to whole steps) spaces the kept samples (default: every step for runs
+        of at most 100,000 steps, else about 100,000 samples); the start, the end, every
+        first overlap and every exchange are kept whatever the interval. A run whose history
+        would exceed ``max_history_bytes`` (default 2**30, 1 GiB) is refused before it starts
+        with a ParameterError that gives the interval that fits."""
         duration = _as_float(duration, "duration", "s")
         dt = _as_float(dt, "dt", "s")
+        if record_interval is not None:
+            record_interval = _as_float(record_interval, "record_interval", "s")
+        if max_history_bytes is not None and (
+            isinstance(max_history_bytes, bool)
+            or not isinstance(max_history_bytes, int | np.integer)
+            or max_history_bytes < 1
+        ):
+            raise ParameterError(
+                f"max_history_bytes = {max_history_bytes!r} is invalid: give a positive whole "
+                "number of bytes (e.g. 2**30)"
+            )
         world = self.build_world()
         try:
-            raw = world.run(duration, dt, progress)
+            raw = world.run(duration, dt, progress, record_interval, max_history_bytes)
         except InitialOverlapError as e:
             raise self._named_overlap_error(e) from e
         result = Result(
-            raw, [p.vehicle.name for p in self._placements], scene=self, duration=duration, dt=dt
+            raw,
+            [p.vehicle.name for p in self._placements],
+            scene=self,
+            duration=duration,
+            dt=dt,
+            record_interval=float(raw["record_interval"]),
         )
         for imp in result.impacts:
             for note in imp.notes:

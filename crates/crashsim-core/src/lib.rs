@@ -27,4 +27,6 @@ pub use impulse::RestitutionMode;
 pub use mass::SolidProperties;
 pub use shape::MeshShape;
 pub use stiffness::{Face, FaceStiffness, Stiffness};
-pub use world::{ContactEvent, ContactEventKind, Impact, RunOutput, World};
+pub use world::{
+    ContactEvent, ContactEventKind, Impact, Recording, RunOutput, World, DEFAULT_MAX_HISTORY_BYTES,
+};

@@ -74,7 +74,7 @@ fn travel_past_first_overlap(w: &mut World, dt: Real) -> (Real, Real, Real) {
         .position(|&t| t == imp.first_contact_time)
         .unwrap();
     let k1 = out.times.iter().position(|&t| t == imp.time).unwrap();
-    let travel = (out.states[k1][0].position - out.states[k0][0].position).norm();
+    let travel = (out.sample(k1)[0].position - out.sample(k0)[0].position).norm();
     (travel, imp.first_contact_time, imp.time)
 }
 
@@ -667,7 +667,7 @@ fn automatic_depth_of_penetration_is_sqrt_of_reduced_mass_over_series_stiffness(
         // The bullet travels v dt_p past the first overlap (1 um).
         let x_at = |t: Real| {
             let k = out.times.iter().rposition(|&s| s == t).unwrap();
-            out.states[k][0].position.x
+            out.sample(k)[0].position.x
         };
         let travel = x_at(imp.time) - x_at(imp.first_contact_time);
         assert!((travel - v * expected).abs() < 1e-6, "travel {travel}");
@@ -705,7 +705,7 @@ fn stiffness_centroid_splits_the_crush_as_k2_to_k1() {
         let (k1, k2) = (b1 * width, b2 * width);
         // Bullet front at the exchange: its CG x + 2.25; struck rear face at -2.1.
         let k = out.times.iter().rposition(|&s| s == imp.time).unwrap();
-        let front1 = out.states[k][0].position.x + 2.25;
+        let front1 = out.sample(k)[0].position.x + 2.25;
         let rear2 = -2.1;
         let total = front1 - rear2;
         assert!((total - v * dtp).abs() < 1e-6, "total crush {total}");

@@ -327,14 +327,23 @@ impl World {
     /// Advances the world by `duration` s with steps of at most `dt` s. `progress`, if given,
     /// is called with the current time (s) at most every 0.1 s of wall time (and Ctrl-C is
     /// honoured then); an exception it raises stops the run and propagates.
-    #[pyo3(signature = (duration, dt, progress = None))]
+    /// `record_interval` (s; None: the core's default) spaces the kept samples;
+    /// `max_history_bytes` (None: the core's default, 1 GiB) refuses runs whose history would
+    /// be larger.
+    #[pyo3(signature = (duration, dt, progress = None, record_interval = None, max_history_bytes = None))]
     fn run<'py>(
         &mut self,
         py: Python<'py>,
         duration: f64,
         dt: f64,
         progress: Option<Py<PyAny>>,
+        record_interval: Option<f64>,
+        max_history_bytes: Option<u64>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let recording = core::Recording {
+            interval: record_interval,
+            max_bytes: max_history_bytes.unwrap_or(core::DEFAULT_MAX_HISTORY_BYTES),
+        };
         let world = &mut self.inner;
         let mut failure: Option<PyErr> = None;
         let out = py.detach(|| {
@@ -358,7 +367,7 @@ impl World {
                     }
                 })
             };
-            guarded(|| world.run_with_progress(duration, dt, &mut hook))
+            guarded(|| world.run_recorded(duration, dt, &recording, &mut hook))
         });
         if let Some(e) = failure {
             return Err(e);
@@ -376,13 +385,27 @@ fn run_output_to_dict<'py>(
     let k = out.times.len();
     let d = PyDict::new(py);
     d.set_item("t", out.times.clone().into_pyarray(py))?;
-    let field = |f: &dyn Fn(&core::BodyState) -> [f64; 4], width: usize| {
-        Array3::from_shape_fn((n_bodies, k, width), |(i, s, c)| f(&out.states[s][i])[c])
+    d.set_item("record_interval", out.record_interval)?;
+    // Allocated fallibly: a history too large for memory is a MemoryError, never an abort.
+    let field = |f: &dyn Fn(&core::BodyState) -> [f64; 4], width: usize| -> PyResult<Array3<f64>> {
+        let mut data = Vec::new();
+        data.try_reserve_exact(n_bodies * k * width).map_err(|_| {
+            pyo3::exceptions::PyMemoryError::new_err(format!(
+                "no memory for the run's history ({n_bodies} bodies x {k} samples): record less \
+                 often (record_interval)"
+            ))
+        })?;
+        for i in 0..n_bodies {
+            for s in 0..k {
+                data.extend_from_slice(&f(&out.sample(s)[i])[..width]);
+            }
+        }
+        Ok(Array3::from_shape_vec((n_bodies, k, width), data).expect("the shape fits the data"))
     };
     let v3 = |v: &core::math::Vector| [v.x, v.y, v.z, 0.0];
     d.set_item(
         "position",
-        field(&|s| v3(&s.position.coords), 3).into_pyarray(py),
+        field(&|s| v3(&s.position.coords), 3)?.into_pyarray(py),
     )?;
     d.set_item(
         "orientation",
@@ -392,13 +415,13 @@ fn run_output_to_dict<'py>(
                 [q.w, q.i, q.j, q.k]
             },
             4,
-        )
+        )?
         .into_pyarray(py),
     )?;
-    d.set_item("velocity", field(&|s| v3(&s.velocity), 3).into_pyarray(py))?;
+    d.set_item("velocity", field(&|s| v3(&s.velocity), 3)?.into_pyarray(py))?;
     d.set_item(
         "angular_velocity",
-        field(&|s| v3(&s.angular_velocity), 3).into_pyarray(py),
+        field(&|s| v3(&s.angular_velocity), 3)?.into_pyarray(py),
     )?;
     let impacts = PyList::empty(py);
     for imp in &out.impacts {

@@ -302,10 +302,13 @@ def parse_quantity(value: Any, dimension: str) -> float:
 
 @dataclass(frozen=True)
 class RunSettings:
-    """The run: ``duration`` (s) simulated from t = 0 with steps of at most ``dt`` (s)."""
+    """The run: ``duration`` (s) simulated from t = 0 with steps of at most ``dt`` (s), keeping
+    a sample every ``record_interval`` (s; None: the engine's default, every step for runs of
+    at most 100,000 steps)."""
 
     duration: float = 1.0
     dt: float = 1e-3
+    record_interval: float | None = None
 
 
 @dataclass(frozen=True)
@@ -342,12 +345,17 @@ class SceneFile:
         duration: float | None = None,
         dt: float | None = None,
         progress: Callable[[float], object] | None = None,
+        record_interval: float | None = None,
     ) -> Result:
-        """Run the scene with the file's settings (``duration``, ``dt`` in s override them)."""
+        """Run the scene with the file's settings (``duration``, ``dt``, ``record_interval`` in
+        s override them)."""
         return self.scene.run(
             duration=self.run.duration if duration is None else duration,
             dt=self.run.dt if dt is None else dt,
             progress=progress,
+            record_interval=self.run.record_interval
+            if record_interval is None
+            else record_interval,
         )
 
 
@@ -579,7 +587,7 @@ TOP_KEYS = (
     "vehicles",
     "output",
 )
-RUN_KEYS = ("duration", "dt")
+RUN_KEYS = ("duration", "dt", "record_interval")
 OUTPUT_KEYS = ("dir", "report", "csv", "pictures", "glb")
 CONTACT_KEYS = (
     "depth_of_penetration",
@@ -977,6 +985,7 @@ def _run(t: _Table | None) -> RunSettings:
     run = RunSettings(
         duration=t.quantity("duration", "time", default.duration, low="> 0"),
         dt=t.quantity("dt", "time", default.dt, low="> 0"),
+        record_interval=t.quantity("record_interval", "time", None, low="> 0"),
     )
     t.finish()
     return run

@@ -94,14 +94,39 @@ pub struct Impact {
 }
 
 /// What a run returns: samples of every body's state and the logs.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct RunOutput {
-    /// Sample times (s): every grid step end, every first overlap and every exchange.
+    /// Sample times (s): the start, every kept grid step end (see [`Recording`]), every first
+    /// overlap, every exchange and the end.
+    ///
+    /// [`Recording`]: super::Recording
     pub times: Vec<Real>,
-    /// `states[k][i]`: body i at `times[k]` (after any exchange at that instant).
-    pub states: Vec<Vec<BodyState>>,
+    /// Bodies per sample.
+    pub body_count: usize,
+    /// The interval between kept grid samples (s): a whole number of steps.
+    pub record_interval: Real,
+    /// The states, sample after sample: body i at `times[k]` is `states[k * body_count + i]`
+    /// (after any exchange at that instant). One flat vector: no allocation per sample.
+    pub states: Vec<BodyState>,
     /// Impulse exchanges in time order.
     pub impacts: Vec<Impact>,
     /// First overlaps, separations, closings and skipped exchanges in time order.
     pub contacts: Vec<ContactEvent>,
+}
+
+impl RunOutput {
+    /// The states of every body at sample `k`.
+    pub fn sample(&self, k: usize) -> &[BodyState] {
+        &self.states[k * self.body_count..(k + 1) * self.body_count]
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.times.len()
+    }
+
+    /// True when nothing was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.times.is_empty()
+    }
 }

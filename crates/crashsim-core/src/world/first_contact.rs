@@ -4,11 +4,12 @@
 
 use parry3d_f64::bounding_volume::BoundingVolume;
 
+use super::stepper::interrupted;
 use super::{Pair, World, TIME_TOLERANCE};
 use crate::bisect::bisect;
 use crate::error::{Error, Result};
 use crate::math::{Aabb, Isometry, Point, Real, Vector};
-use crate::overlap::{shapes_overlap, surface_distance, surfaces_intersect};
+use crate::overlap::{overlap_region, shapes_overlap, surface_distance, surfaces_intersect};
 
 /// Smallest conservative-advancement step (s), and as a fraction of the step searched:
 /// a graze shorter than this may be skipped (surfaces within speed x this of each other).
@@ -66,10 +67,21 @@ impl World {
         }
     }
 
-    /// The first instant in (time, horizon] at which the apart pair's surfaces meet.
-    pub(super) fn first_contact(&mut self, pi: usize, horizon: Real) -> Result<Option<Real>> {
+    /// The first instant at which the apart pair `pi` overlaps, as an offset (s) in
+    /// [0, span] from now; None when it does not within `span`.
+    ///
+    /// The instant is one where the overlap region is not empty at the poses the bodies will
+    /// have there (`RigidBody::advanced(offset)`, which [`World::advance_by`] repeats bit for
+    /// bit): surfaces that only touch (faces or edges meeting exactly, e.g. when the
+    /// advancement lands on the gap) bound no overlap, and the search steps past them.
+    /// `poll` is asked on every iteration (false: the run was interrupted).
+    pub(super) fn first_contact(
+        &mut self,
+        pi: usize,
+        span: Real,
+        poll: &mut dyn FnMut(Real) -> bool,
+    ) -> Result<Option<Real>> {
         let pair = self.pairs[pi].clone();
-        let span = horizon - self.time;
         if span <= 0.0 {
             return Ok(None);
         }
@@ -92,22 +104,42 @@ impl World {
         let mut t = 0.0;
         let min_advance = MIN_ADVANCE.max(MIN_ADVANCE_FRACTION * span);
         for _ in 0..MAX_ADVANCE_ITERATIONS {
+            if !poll(self.time) {
+                return Err(interrupted(self.time));
+            }
             let (p1, p2) = self.poses_after(&pair, t);
             let cap = (span - t) * speed * (1.0 + 1e-9) + 1e-12;
             let d = surface_distance(&s1, &p1, &s2, &p2, cap, &mut self.ws);
             // Zero distance without a crossing is a touch (e.g. coplanar faces on the ground):
             // not an overlap, so keep advancing by the smallest step.
             if d == 0.0 && surfaces_intersect(&s1, &p1, &s2, &p2, &mut self.ws) {
-                if t == 0.0 {
-                    return Ok(Some(self.time));
-                }
                 let (b1, b2) = (&self.bodies[pair.body1].body, &self.bodies[pair.body2].body);
                 let ws = &mut self.ws;
-                let hi = bisect(lo, t, TIME_TOLERANCE, |dt| {
+                let hi = if t == 0.0 {
+                    0.0
+                } else {
+                    bisect(lo, t, TIME_TOLERANCE, |dt| {
+                        let (p1, p2) = (b1.advanced(dt).pose(), b2.advanced(dt).pose());
+                        surfaces_intersect(&s1, &p1, &s2, &p2, ws)
+                    })
+                };
+                let overlaps = |dt: Real| {
                     let (p1, p2) = (b1.advanced(dt).pose(), b2.advanced(dt).pose());
-                    surfaces_intersect(&s1, &p1, &s2, &p2, ws)
-                });
-                return Ok(Some(self.time + hi));
+                    !overlap_region(&s1, &p1, &s2, &p2).is_empty()
+                };
+                if overlaps(hi) {
+                    return Ok(Some(hi));
+                }
+                // The surfaces only touch at hi; the overlap starts later, if at all.
+                if hi < t && overlaps(t) {
+                    return Ok(Some(bisect(hi, t, TIME_TOLERANCE, overlaps)));
+                }
+                if t >= span {
+                    return Ok(None);
+                }
+                lo = t;
+                t = (t + min_advance).min(span);
+                continue;
             }
             if t >= span || t + d / speed > span {
                 return Ok(None);
@@ -116,7 +148,8 @@ impl World {
             t = (t + (d / speed).max(min_advance)).min(span);
         }
         Err(Error::Simulation(format!(
-            "the first-contact search for bodies {} and {} did not converge near t = {} s",
+            "the first-contact search for bodies {} and {} did not converge within \
+             {MAX_ADVANCE_ITERATIONS} iterations near t = {} s (please report the scene)",
             pair.body1, pair.body2, self.time
         )))
     }

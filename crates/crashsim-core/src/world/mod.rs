@@ -29,6 +29,7 @@ use crate::shape::MeshShape;
 use crate::stiffness::{Face, Stiffness};
 
 pub use events::{ContactEvent, ContactEventKind, Impact, RunOutput};
+pub use stepper::{Recording, DEFAULT_MAX_HISTORY_BYTES, DEFAULT_SAMPLES};
 
 /// First-overlap instants are resolved to this (s).
 pub const TIME_TOLERANCE: Real = 1e-9;
