@@ -1,7 +1,6 @@
 """`python -m crashsim ...` runs the command line (see crashsim.cli)."""
 
-import sys
 
-from crashsim.cli import main
+from crashsim.cli import console_main
 
-sys.exit(main())
+console_main()
