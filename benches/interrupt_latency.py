@@ -98,7 +98,8 @@ def main() -> None:
                 codes.add(code)
             print(
                 f"{label}: median {statistics.median(latencies) * 1e3:.0f} ms, largest "
-                f"{max(latencies) * 1e3:.0f} ms over {args.trials} trials; exit codes {sorted(codes)}"
+                f"{max(latencies) * 1e3:.0f} ms over {args.trials} trials; "
+                f"exit codes {sorted(codes)}"
             )
 
 
