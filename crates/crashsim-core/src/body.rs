@@ -68,6 +68,23 @@ impl MassProperties {
         })
     }
 
+    /// The mass properties of an immovable body (a fixed obstacle): infinite mass and
+    /// inertia, so 1/m = 0 and I^-1 = 0 in the collision matrix.
+    pub fn immovable() -> MassProperties {
+        MassProperties {
+            mass: Real::INFINITY,
+            inertia: Matrix::from_diagonal_element(Real::INFINITY),
+            inverse_inertia: Matrix::zeros(),
+            principal: [Real::INFINITY; 3],
+        }
+    }
+
+    /// True for an immovable body (infinite mass).
+    #[inline]
+    pub fn is_immovable(&self) -> bool {
+        self.mass == Real::INFINITY
+    }
+
     /// Mass (kg).
     #[inline]
     pub fn mass(&self) -> Real {
@@ -140,6 +157,35 @@ impl RigidBody {
         };
         body.angular_momentum = body.world_inertia() * state.angular_velocity;
         Ok(body)
+    }
+
+    /// A body from its state with the angular momentum given directly (world, about the CG,
+    /// kg m^2/s), as an integrator holds it.
+    pub(crate) fn from_momentum(
+        props: MassProperties,
+        position: Point,
+        orientation: Rotation,
+        velocity: Vector,
+        angular_momentum: Vector,
+    ) -> RigidBody {
+        RigidBody {
+            props,
+            position,
+            orientation,
+            velocity,
+            angular_momentum,
+        }
+    }
+
+    /// An immovable body (a fixed obstacle) at `pose`: at rest for ever, unmoved by impulses.
+    pub fn immovable(position: Point, orientation: Rotation) -> RigidBody {
+        RigidBody {
+            props: MassProperties::immovable(),
+            position,
+            orientation,
+            velocity: Vector::zeros(),
+            angular_momentum: Vector::zeros(),
+        }
     }
 
     /// Mass properties.
@@ -216,7 +262,7 @@ impl RigidBody {
     /// is the yaw rate itself, where |L| / I_min (the plain bound) overstates it about five-fold.
     pub fn angular_speed_bound(&self) -> Real {
         let l2 = self.angular_momentum.norm_squared();
-        if l2 == 0.0 {
+        if l2 == 0.0 || self.props.is_immovable() {
             return 0.0;
         }
         let p = self.props.principal;
@@ -250,6 +296,9 @@ impl RigidBody {
 
     /// Kinetic energy, translational plus rotational (J).
     pub fn kinetic_energy(&self) -> Real {
+        if self.props.is_immovable() {
+            return 0.0;
+        }
         let w = self.angular_velocity();
         0.5 * self.props.mass * self.velocity.norm_squared() + 0.5 * w.dot(&self.angular_momentum)
     }
@@ -260,8 +309,11 @@ impl RigidBody {
         self.velocity + self.angular_velocity().cross(&(p - self.position))
     }
 
-    /// Applies the world impulse `j` (N s) at world point `p`.
+    /// Applies the world impulse `j` (N s) at world point `p` (nothing for an immovable body).
     pub fn apply_impulse(&mut self, j: &Vector, p: &Point) {
+        if self.props.is_immovable() {
+            return;
+        }
         self.velocity += j / self.props.mass;
         self.angular_momentum += (p - self.position).cross(j);
     }

@@ -11,13 +11,16 @@ pub mod body;
 pub mod bvh;
 pub mod contact;
 pub mod error;
+pub mod ground;
 pub mod impulse;
 pub mod mass;
 pub mod math;
+pub mod motion;
 pub mod overlap;
 pub mod shape;
 pub mod stiffness;
 pub mod triangle;
+pub mod vehicle;
 pub mod world;
 
 pub use body::{BodyState, MassProperties, RigidBody};
@@ -28,5 +31,5 @@ pub use mass::SolidProperties;
 pub use shape::MeshShape;
 pub use stiffness::{Face, FaceStiffness, Stiffness};
 pub use world::{
-    ContactEvent, ContactEventKind, Impact, Recording, RunOutput, World, DEFAULT_MAX_HISTORY_BYTES,
+    ContactEvent, ContactEventKind, Impact, RunOptions, RunOutput, World, DEFAULT_MAX_HISTORY_BYTES,
 };

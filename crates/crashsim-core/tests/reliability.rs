@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
 use crashsim_core::{
-    BodyState, ContactParams, DepthOfPenetration, Error, MassProperties, MeshShape, Recording,
+    BodyState, ContactParams, DepthOfPenetration, Error, MassProperties, MeshShape, RunOptions,
     World,
 };
 
@@ -150,12 +150,13 @@ fn a_long_run_keeps_about_a_hundred_thousand_samples_by_default() {
 #[test]
 fn a_history_above_the_limit_is_refused_before_the_run_with_the_interval_that_fits() {
     let mut w = passing_boxes();
-    let every_step = Recording {
-        interval: Some(1e-3),
-        max_bytes: 1 << 20,
+    let every_step = RunOptions {
+        record_interval: Some(1e-3),
+        max_history_bytes: 1 << 20,
+        until_rest: false,
     };
     let err = w
-        .run_recorded(100.0, 1e-3, &every_step, &mut |_| true)
+        .run_with_options(100.0, 1e-3, &every_step, &mut |_| true)
         .unwrap_err();
     let Error::Parameter(msg) = &err else {
         panic!("{err:?}")
@@ -175,20 +176,21 @@ fn a_history_above_the_limit_is_refused_before_the_run_with_the_interval_that_fi
         .unwrap()
         .parse()
         .unwrap();
-    let ok = Recording {
-        interval: Some(fits),
-        max_bytes: 1 << 20,
+    let ok = RunOptions {
+        record_interval: Some(fits),
+        max_history_bytes: 1 << 20,
+        until_rest: false,
     };
-    let out = w.run_recorded(100.0, 1e-3, &ok, &mut |_| true).unwrap();
+    let out = w.run_with_options(100.0, 1e-3, &ok, &mut |_| true).unwrap();
     assert!((out.len() * (8 + 2 * 104)) as u64 <= 1 << 20);
     // A recording interval must be a positive time.
     for bad in [0.0, -1e-3, f64::NAN] {
-        let r = Recording {
-            interval: Some(bad),
-            ..Recording::default()
+        let r = RunOptions {
+            record_interval: Some(bad),
+            ..RunOptions::default()
         };
         assert!(matches!(
-            passing_boxes().run_recorded(1.0, 1e-3, &r, &mut |_| true),
+            passing_boxes().run_with_options(1.0, 1e-3, &r, &mut |_| true),
             Err(Error::Parameter(_))
         ));
     }

@@ -340,9 +340,10 @@ impl World {
         record_interval: Option<f64>,
         max_history_bytes: Option<u64>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let recording = core::Recording {
-            interval: record_interval,
-            max_bytes: max_history_bytes.unwrap_or(core::DEFAULT_MAX_HISTORY_BYTES),
+        let options = core::RunOptions {
+            record_interval,
+            max_history_bytes: max_history_bytes.unwrap_or(core::DEFAULT_MAX_HISTORY_BYTES),
+            until_rest: false,
         };
         let world = &mut self.inner;
         let mut failure: Option<PyErr> = None;
@@ -367,7 +368,7 @@ impl World {
                     }
                 })
             };
-            guarded(|| world.run_recorded(duration, dt, &recording, &mut hook))
+            guarded(|| world.run_with_options(duration, dt, &options, &mut hook))
         });
         if let Some(e) = failure {
             return Err(e);

@@ -3,6 +3,7 @@
 use crate::body::BodyState;
 use crate::contact::DepthOfPenetration;
 use crate::math::{Matrix, Point, Real, Vector};
+use crate::motion::WheelSample;
 use crate::stiffness::Face;
 
 /// What happened to a pair, besides impulse exchanges.
@@ -96,10 +97,10 @@ pub struct Impact {
 /// What a run returns: samples of every body's state and the logs.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RunOutput {
-    /// Sample times (s): the start, every kept grid step end (see [`Recording`]), every first
+    /// Sample times (s): the start, every kept grid step end (see [`RunOptions`]), every first
     /// overlap, every exchange and the end.
     ///
-    /// [`Recording`]: super::Recording
+    /// [`RunOptions`]: super::RunOptions
     pub times: Vec<Real>,
     /// Bodies per sample.
     pub body_count: usize,
@@ -108,6 +109,14 @@ pub struct RunOutput {
     /// The states, sample after sample: body i at `times[k]` is `states[k * body_count + i]`
     /// (after any exchange at that instant). One flat vector: no allocation per sample.
     pub states: Vec<BodyState>,
+    /// Wheels per body that run on the ground (0 for the others), in body order.
+    pub wheel_counts: Vec<usize>,
+    /// The wheels, sample after sample: every body's wheels in body order (see
+    /// `wheel_counts`), at the same samples as `states`.
+    pub wheels: Vec<WheelSample>,
+    /// Per body on the ground, when it came to rest (s: the start of the final stretch in
+    /// which it stayed slow), or None when it was still moving at the end.
+    pub rest: Vec<Option<Real>>,
     /// Impulse exchanges in time order.
     pub impacts: Vec<Impact>,
     /// First overlaps, separations, closings and skipped exchanges in time order.
@@ -118,6 +127,12 @@ impl RunOutput {
     /// The states of every body at sample `k`.
     pub fn sample(&self, k: usize) -> &[BodyState] {
         &self.states[k * self.body_count..(k + 1) * self.body_count]
+    }
+
+    /// The wheels of every body at sample `k` (see `wheel_counts`).
+    pub fn wheels_at(&self, k: usize) -> &[WheelSample] {
+        let n: usize = self.wheel_counts.iter().sum();
+        &self.wheels[k * n..(k + 1) * n]
     }
 
     /// Number of samples.

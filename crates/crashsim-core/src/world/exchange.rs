@@ -2,7 +2,7 @@
 //! turns closing again), the impulse is exchanged when it expires, and an engaged pair is
 //! followed until it separates or closes again.
 
-use super::{Pair, Phase, World, TIME_TOLERANCE};
+use super::{Motion, Pair, Phase, World, TIME_TOLERANCE};
 use crate::bisect::bisect;
 use crate::contact::{DepthOfPenetration, MAX_DEPTH_OF_PENETRATION};
 use crate::impulse::ImpulseProblem;
@@ -131,6 +131,11 @@ impl World {
         let j = solution.impulse;
         self.bodies[i1].body.apply_impulse(&(-j), &centroid);
         self.bodies[i2].body.apply_impulse(&j, &centroid);
+        for i in [i1, i2] {
+            if let Motion::OnGround(g) = &mut self.bodies[i].motion {
+                g.exchanges += 1; // wheel states may switch at an exchange
+            }
+        }
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
         let after = [b1.state(), b2.state()];
         let energy_after = b1.kinetic_energy() + b2.kinetic_energy();
@@ -177,8 +182,8 @@ impl World {
         normal_in_1: &Vector,
         dt: Real,
     ) -> Real {
-        let b1 = self.bodies[pair.body1].body.advanced(dt);
-        let b2 = self.bodies[pair.body2].body.advanced(dt);
+        let b1 = self.predicted(pair.body1, dt);
+        let b2 = self.predicted(pair.body2, dt);
         let (p1, p2) = (b1.pose(), b2.pose());
         let c = nalgebra::center(&(p1 * centroid_in[0]), &(p2 * centroid_in[1]));
         let n = p1 * normal_in_1;
@@ -206,12 +211,12 @@ impl World {
         ) {
             // Bisect the separation instant backwards from now (bodies move freely here).
             let (s1, s2) = (self.bodies[i1].shape.clone(), self.bodies[i2].shape.clone());
-            let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
-            let ws = &mut self.ws;
+            let mut ws = std::mem::take(&mut self.ws);
             let hi = bisect(t_prev - self.time, 0.0, SEPARATION_TOLERANCE, |dt| {
-                let (p1, p2) = (b1.advanced(dt).pose(), b2.advanced(dt).pose());
-                !shapes_overlap(&s1, &p1, &s2, &p2, ws)
+                let (p1, p2) = (self.predicted(i1, dt).pose(), self.predicted(i2, dt).pose());
+                !shapes_overlap(&s1, &p1, &s2, &p2, &mut ws)
             });
+            self.ws = ws;
             out.contacts.push(ContactEvent {
                 body1: i1,
                 body2: i2,

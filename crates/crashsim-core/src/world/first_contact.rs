@@ -5,16 +5,22 @@
 use parry3d_f64::bounding_volume::BoundingVolume;
 
 use super::stepper::interrupted;
-use super::{Pair, World, TIME_TOLERANCE};
+use super::{Motion, Pair, World, TIME_TOLERANCE};
 use crate::bisect::bisect;
 use crate::error::{Error, Result};
 use crate::math::{Aabb, Isometry, Point, Real, Vector};
-use crate::overlap::{overlap_region, shapes_overlap, surface_distance, surfaces_intersect};
+use crate::motion::MAX_SUBSTEP;
+use crate::overlap::{
+    overlap_region, shapes_overlap, surface_distance, surfaces_intersect, QueryWorkspace,
+};
 
 /// Smallest conservative-advancement step (s), and as a fraction of the step searched:
 /// a graze shorter than this may be skipped (surfaces within speed x this of each other).
 const MIN_ADVANCE: Real = 1e-6;
 const MIN_ADVANCE_FRACTION: Real = 1e-3;
+/// A bound on a body's acceleration on the ground (m/s^2) for how far its path bends away
+/// from its chord within a step: tyre friction and gravity give at most a few g.
+const CHORD_ACCELERATION: Real = 100.0;
 /// Most conservative-advancement iterations in one step before giving up.
 const MAX_ADVANCE_ITERATIONS: usize = 100_000;
 
@@ -39,11 +45,42 @@ impl World {
         Ok(())
     }
 
+    /// How much body `i`'s CG velocity can change (m/s) and its largest angular speed
+    /// (rad/s) over the next `span` s. Torque-free: no change and the exact bound of
+    /// [`RigidBody::angular_speed_bound`]. On the ground: from the predicted states at
+    /// sub-step nodes, each grown by the largest change between neighbouring nodes (the
+    /// motion within a sub-step stays within it).
+    ///
+    /// [`RigidBody::angular_speed_bound`]: crate::body::RigidBody::angular_speed_bound
+    fn motion_bound(&self, i: usize, span: Real) -> (Real, Real) {
+        let wb = &self.bodies[i];
+        match wb.motion {
+            Motion::Free => (0.0, wb.body.angular_speed_bound()),
+            Motion::Fixed => (0.0, 0.0),
+            Motion::OnGround(_) => {
+                let n = (span / MAX_SUBSTEP).ceil().max(1.0) as usize;
+                let (v0, w0) = (wb.body.velocity(), wb.body.angular_velocity());
+                let (mut dv, mut w, mut step_v, mut step_w) = (0.0, w0.norm(), 0.0, 0.0);
+                let (mut prev_v, mut prev_w) = (v0, w0);
+                for k in 1..=n {
+                    let b = self.predicted(i, span * k as Real / n as Real);
+                    let (v, wk) = (b.velocity(), b.angular_velocity());
+                    dv = Real::max(dv, (v - v0).norm());
+                    w = w.max(wk.norm());
+                    step_v = Real::max(step_v, (v - prev_v).norm());
+                    step_w = Real::max(step_w, (wk - prev_w).norm());
+                    (prev_v, prev_w) = (v, wk);
+                }
+                (dv + step_v, w + step_w)
+            }
+        }
+    }
+
     /// Poses of the pair's bodies `dt` s after the current time.
     pub(super) fn poses_after(&self, pair: &Pair, dt: Real) -> (Isometry, Isometry) {
         (
-            self.bodies[pair.body1].body.advanced(dt).pose(),
-            self.bodies[pair.body2].body.advanced(dt).pose(),
+            self.predicted(pair.body1, dt).pose(),
+            self.predicted(pair.body2, dt).pose(),
         )
     }
 
@@ -51,7 +88,17 @@ impl World {
     pub(super) fn swept_box(&self, i: usize, dt: Real) -> Aabb {
         let wb = &self.bodies[i];
         let b0 = wb.body.pose();
-        let b1 = wb.body.advanced(dt).pose();
+        let b1 = self.predicted(i, dt).pose();
+        if let Motion::OnGround(_) = wb.motion {
+            // Under forces the path bends: the chord's spheres grown by how far the path can
+            // leave its chord, A dt^2 / 8 with A a generous bound on the acceleration.
+            let r = Vector::repeat(wb.shape.radius() + CHORD_ACCELERATION * dt * dt / 8.0);
+            let (c0, c1) = (
+                Point::from(b0.translation.vector),
+                Point::from(b1.translation.vector),
+            );
+            return Aabb::new(c0.inf(&c1) - r, c0.sup(&c1) + r);
+        }
         if wb.body.angular_speed_bound() == 0.0 {
             wb.shape
                 .aabb()
@@ -81,6 +128,20 @@ impl World {
         span: Real,
         poll: &mut dyn FnMut(Real) -> bool,
     ) -> Result<Option<Real>> {
+        let mut ws = std::mem::take(&mut self.ws);
+        let found = self.first_contact_with(pi, span, poll, &mut ws);
+        self.ws = ws;
+        found
+    }
+
+    /// [`World::first_contact`] with a query workspace of its own.
+    fn first_contact_with(
+        &self,
+        pi: usize,
+        span: Real,
+        poll: &mut dyn FnMut(Real) -> bool,
+        ws: &mut QueryWorkspace,
+    ) -> Result<Option<Real>> {
         let pair = self.pairs[pi].clone();
         if span <= 0.0 {
             return Ok(None);
@@ -93,10 +154,16 @@ impl World {
         }
         let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
         let (s1, s2) = (wb1.shape.clone(), wb2.shape.clone());
-        // Bound on how fast any point of one surface can approach the other (m/s).
+        // Bound on how fast any point of one surface can approach the other (m/s) over the
+        // span: the relative CG speed now, how much each CG velocity can change, and each
+        // body's largest angular speed times its reach.
+        let (dv1, w1) = self.motion_bound(pair.body1, span);
+        let (dv2, w2) = self.motion_bound(pair.body2, span);
         let speed = (wb1.body.velocity() - wb2.body.velocity()).norm()
-            + wb1.body.angular_speed_bound() * s1.radius()
-            + wb2.body.angular_speed_bound() * s2.radius();
+            + dv1
+            + dv2
+            + w1 * s1.radius()
+            + w2 * s2.radius();
         if speed == 0.0 {
             return Ok(None);
         }
@@ -109,22 +176,20 @@ impl World {
             }
             let (p1, p2) = self.poses_after(&pair, t);
             let cap = (span - t) * speed * (1.0 + 1e-9) + 1e-12;
-            let d = surface_distance(&s1, &p1, &s2, &p2, cap, &mut self.ws);
+            let d = surface_distance(&s1, &p1, &s2, &p2, cap, ws);
             // Zero distance without a crossing is a touch (e.g. coplanar faces on the ground):
             // not an overlap, so keep advancing by the smallest step.
-            if d == 0.0 && surfaces_intersect(&s1, &p1, &s2, &p2, &mut self.ws) {
-                let (b1, b2) = (&self.bodies[pair.body1].body, &self.bodies[pair.body2].body);
-                let ws = &mut self.ws;
+            if d == 0.0 && surfaces_intersect(&s1, &p1, &s2, &p2, ws) {
                 let hi = if t == 0.0 {
                     0.0
                 } else {
                     bisect(lo, t, TIME_TOLERANCE, |dt| {
-                        let (p1, p2) = (b1.advanced(dt).pose(), b2.advanced(dt).pose());
+                        let (p1, p2) = self.poses_after(&pair, dt);
                         surfaces_intersect(&s1, &p1, &s2, &p2, ws)
                     })
                 };
                 let overlaps = |dt: Real| {
-                    let (p1, p2) = (b1.advanced(dt).pose(), b2.advanced(dt).pose());
+                    let (p1, p2) = self.poses_after(&pair, dt);
                     !overlap_region(&s1, &p1, &s2, &p2).is_empty()
                 };
                 if overlaps(hi) {

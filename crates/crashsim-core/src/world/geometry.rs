@@ -39,7 +39,13 @@ impl ContactGeometry {
         };
         let [m1, m2] = self.effective_mass;
         let k = k1 * k2 / (k1 + k2);
-        let m = m1 * m2 / (m1 + m2);
+        // The reduced mass; against an immovable obstacle (infinite mass), the other's.
+        let m = match (m1.is_infinite(), m2.is_infinite()) {
+            (false, false) => m1 * m2 / (m1 + m2),
+            (true, false) => m2,
+            (false, true) => m1,
+            (true, true) => Real::INFINITY,
+        };
         if k > 0.0 && m.is_finite() {
             (m / k).sqrt()
         } else {
@@ -71,7 +77,10 @@ impl World {
             cap
         };
         let offset = started - self.time + dt;
-        let (b1, b2) = (wb1.body.advanced(offset), wb2.body.advanced(offset));
+        let (b1, b2) = (
+            self.predicted(pair.body1, offset),
+            self.predicted(pair.body2, offset),
+        );
         let (pose1, pose2) = (b1.pose(), b2.pose());
         let n = overlap_region(&wb1.shape, &pose1, &wb2.shape, &pose2).volume_normal()?;
         Some((pose1.inverse_transform_vector(&n), started + dt))
@@ -90,8 +99,8 @@ impl World {
         let pair = &self.pairs[pi];
         let offset = started - self.time;
         let spring_time = |dt: Real| -> Real {
-            let b1 = self.bodies[pair.body1].body.advanced(offset + dt);
-            let b2 = self.bodies[pair.body2].body.advanced(offset + dt);
+            let b1 = self.predicted(pair.body1, offset + dt);
+            let b2 = self.predicted(pair.body2, offset + dt);
             // Before the early normal's instant the overlap's own normal is used.
             let normal = early_normal
                 .filter(|(_, t)| *t <= started + dt)

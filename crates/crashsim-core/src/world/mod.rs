@@ -18,18 +18,23 @@ mod first_contact;
 mod geometry;
 mod stepper;
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use crate::body::{BodyState, MassProperties, RigidBody};
 use crate::contact::{CentroidMode, ContactParams};
 use crate::error::{Error, Result};
-use crate::math::{Point, Real, Vector};
+use crate::ground::Ground;
+use crate::math::{Isometry, Point, Real, Vector};
+use crate::motion::{BodyContact, OnGround};
 use crate::overlap::QueryWorkspace;
 use crate::shape::MeshShape;
 use crate::stiffness::{Face, Stiffness};
+use crate::vehicle::VehicleSpec;
 
 pub use events::{ContactEvent, ContactEventKind, Impact, RunOutput};
-pub use stepper::{Recording, DEFAULT_MAX_HISTORY_BYTES, DEFAULT_SAMPLES};
+pub use stepper::{
+    RunOptions, DEFAULT_MAX_HISTORY_BYTES, DEFAULT_SAMPLES, REST_SPEED, REST_TIME, REST_YAW_RATE,
+};
 
 /// First-overlap instants are resolved to this (s).
 pub const TIME_TOLERANCE: Real = 1e-9;
@@ -67,14 +72,28 @@ struct Pair {
     exchanges: usize,
 }
 
+/// How a body moves between exchanges.
+#[derive(Clone, Debug)]
+enum Motion {
+    /// Torque-free, exactly (a world without ground).
+    Free,
+    /// Under gravity on the ground: wheels, tyres, the body's contact with the ground.
+    OnGround(Box<OnGround>),
+    /// Fixed in the world (an obstacle): never moves, infinite mass in the exchange.
+    Fixed,
+}
+
 #[derive(Clone, Debug)]
 struct WorldBody {
     shape: Arc<MeshShape>,
     body: RigidBody,
     stiffness: Stiffness,
+    /// Wheels, tyre and inputs, used when the world has a ground.
+    vehicle: Option<Arc<VehicleSpec>>,
+    motion: Motion,
 }
 
-/// Bodies, pairs and the clock.
+/// Bodies, pairs, the ground and the clock.
 #[derive(Debug, Default)]
 pub struct World {
     bodies: Vec<WorldBody>,
@@ -82,6 +101,13 @@ pub struct World {
     time: Real,
     started: bool,
     ws: QueryWorkspace,
+    ground: Option<Ground>,
+    /// The bodies at the start of the current step (time, states), from which a body on the
+    /// ground is predicted at an instant before now (bisections run backwards in a step).
+    step_start: Option<(Real, Vec<(RigidBody, Motion)>)>,
+    /// An error met inside a prediction that cannot return one (a wheel off the terrain in a
+    /// bisection); the stepper returns it after the step.
+    deferred: Mutex<Option<Error>>,
 }
 
 impl World {
@@ -118,8 +144,37 @@ impl World {
             ));
         }
         let body = RigidBody::new(props, state)?;
+        Ok(self.push_body(shape, body, Motion::Free))
+    }
+
+    /// Adds a fixed obstacle (a wall, pole, barrier, kerb, tree) with its mesh (its frame, m)
+    /// at `pose` (world): it takes part in first overlaps, timers and exchanges like a
+    /// vehicle, with infinite mass and inertia, and never moves. Obstacles form no pair with
+    /// each other. Returns its index.
+    pub fn add_obstacle(&mut self, shape: Arc<MeshShape>, pose: &Isometry) -> Result<usize> {
+        if self.started {
+            return Err(Error::Parameter(
+                "obstacles must be added before the first run".into(),
+            ));
+        }
+        let t = pose.translation.vector;
+        let q = pose.rotation.coords;
+        if !(t.iter().all(|x| x.is_finite()) && q.iter().all(|x| x.is_finite())) {
+            return Err(Error::Parameter(
+                "an obstacle's pose has a non-finite number".into(),
+            ));
+        }
+        let body = RigidBody::immovable(Point::from(t), pose.rotation);
+        Ok(self.push_body(shape, body, Motion::Fixed))
+    }
+
+    fn push_body(&mut self, shape: Arc<MeshShape>, body: RigidBody, motion: Motion) -> usize {
         let index = self.bodies.len();
+        let fixed = matches!(motion, Motion::Fixed);
         for other in 0..index {
+            if fixed && matches!(self.bodies[other].motion, Motion::Fixed) {
+                continue; // two obstacles never meet
+            }
             self.pairs.push(Pair {
                 body1: other,
                 body2: index,
@@ -132,8 +187,117 @@ impl World {
             shape,
             body,
             stiffness: Stiffness::none(),
+            vehicle: None,
+            motion,
         });
-        Ok(index)
+        index
+    }
+
+    /// True when body `i` is a fixed obstacle.
+    pub fn is_obstacle(&self, i: usize) -> bool {
+        matches!(self.bodies[i].motion, Motion::Fixed)
+    }
+
+    /// Gives body `i` wheels, a tyre and driver inputs (used when the world has a ground).
+    pub fn set_vehicle(&mut self, i: usize, spec: VehicleSpec) -> Result<()> {
+        if self.started {
+            return Err(Error::Parameter(
+                "wheels must be given before the first run".into(),
+            ));
+        }
+        let n = self.bodies.len();
+        let wb = self.bodies.get_mut(i).ok_or_else(|| {
+            Error::Parameter(format!(
+                "body {i} does not exist (the world has {n} bodies)"
+            ))
+        })?;
+        if matches!(wb.motion, Motion::Fixed) {
+            return Err(Error::Parameter(format!(
+                "body {i} is a fixed obstacle: it has no wheels"
+            )));
+        }
+        spec.validate(wb.shape.aabb(), wb.body.props().mass())?;
+        wb.vehicle = Some(Arc::new(spec));
+        Ok(())
+    }
+
+    /// Puts the world on the ground (gravity along -z, the bodies on their wheels or their
+    /// bodies); without it every body moves torque-free.
+    pub fn set_ground(&mut self, ground: Ground) -> Result<()> {
+        if self.started {
+            return Err(Error::Parameter(
+                "the ground must be set before the first run".into(),
+            ));
+        }
+        self.ground = Some(ground);
+        Ok(())
+    }
+
+    /// The ground, if any.
+    pub fn ground(&self) -> Option<&Ground> {
+        self.ground.as_ref()
+    }
+
+    /// Number of wheels of body `i` that run on the ground (0 without ground or wheels).
+    pub fn wheel_count(&self, i: usize) -> usize {
+        match &self.bodies[i].motion {
+            Motion::OnGround(g) => g.deflections.len(),
+            _ => 0,
+        }
+    }
+
+    /// Sets up every body's motion for the first run: on the ground when the world has one.
+    fn start_motion(&mut self) -> Result<()> {
+        if self.ground.is_none() {
+            return Ok(());
+        }
+        for wb in &mut self.bodies {
+            if matches!(wb.motion, Motion::Fixed) {
+                continue;
+            }
+            let contact =
+                BodyContact::new(&wb.shape, wb.body.props().mass(), wb.vehicle.as_deref())?;
+            wb.motion = Motion::OnGround(Box::new(OnGround::new(
+                wb.vehicle.clone(),
+                Arc::new(contact),
+            )));
+        }
+        Ok(())
+    }
+
+    /// Body `i` as it will be `dt` s from now (or was, for dt < 0, within the current step),
+    /// moving as the run moves it. For a body on the ground an error (a wheel off the
+    /// terrain) is kept for the stepper and the torque-free prediction returned meanwhile.
+    fn predicted(&self, i: usize, dt: Real) -> RigidBody {
+        let wb = &self.bodies[i];
+        match &wb.motion {
+            Motion::Free => wb.body.advanced(dt),
+            Motion::Fixed => wb.body.clone(),
+            Motion::OnGround(g) => {
+                let ground = self
+                    .ground
+                    .as_ref()
+                    .expect("a body on the ground has a ground");
+                let (mut body, mut motion, from, span) = if dt >= 0.0 {
+                    (wb.body.clone(), g.as_ref().clone(), self.time, dt)
+                } else {
+                    let (t0, states) = self
+                        .step_start
+                        .as_ref()
+                        .expect("a step is under way when predicting backwards");
+                    let (b, m) = &states[i];
+                    let Motion::OnGround(g0) = m else {
+                        unreachable!("motions do not change kind during a run")
+                    };
+                    (b.clone(), g0.as_ref().clone(), *t0, self.time + dt - t0)
+                };
+                if let Err(e) = motion.advance(&mut body, ground, from, span.max(0.0)) {
+                    self.deferred.lock().expect("not poisoned").get_or_insert(e);
+                    return wb.body.advanced(dt);
+                }
+                body
+            }
+        }
     }
 
     /// Sets body `i`'s face stiffness (used by automatic dt_p, the stiffness centroid and

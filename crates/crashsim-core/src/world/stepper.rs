@@ -7,10 +7,11 @@
 //! the time. The caller's hook is asked after every step and inside the first-contact search,
 //! so an interrupt (Ctrl-C from Python) is honoured within the hook's own polling interval.
 
-use super::{Phase, World};
+use super::{Motion, Phase, World};
 use crate::body::BodyState;
 use crate::error::{require_finite, Error, Result};
 use crate::math::Real;
+use crate::motion::WheelSample;
 
 use super::events::{ContactEvent, ContactEventKind, RunOutput};
 
@@ -26,31 +27,45 @@ pub const DEFAULT_SAMPLES: usize = 100_000;
 /// same size while it is built, so a run's peak is about twice this.
 pub const DEFAULT_MAX_HISTORY_BYTES: u64 = 1 << 30;
 
-/// How a run keeps its history of states.
+/// A vehicle is at rest once its CG speed stays below this (m/s) ...
+pub const REST_SPEED: Real = 0.05;
+/// ... and its yaw rate below this (rad/s, 0.5 deg/s) ...
+pub const REST_YAW_RATE: Real = 0.5 * std::f64::consts::PI / 180.0;
+/// ... for this long (s) (DESIGN.md section 5).
+pub const REST_TIME: Real = 0.2;
+
+/// How a run stops and keeps its history of states.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Recording {
+pub struct RunOptions {
     /// Interval between kept samples (s), rounded down to a whole number of steps (at least
     /// one). None: every step for runs of at most [`DEFAULT_SAMPLES`] steps, else about
     /// [`DEFAULT_SAMPLES`] evenly spaced samples. The start, the end, every first overlap and
     /// every exchange are kept whatever the interval.
-    pub interval: Option<Real>,
+    pub record_interval: Option<Real>,
     /// Largest history a run may keep (bytes, default [`DEFAULT_MAX_HISTORY_BYTES`]): a run
     /// whose estimate is larger is refused before it starts, with the interval that fits.
-    pub max_bytes: u64,
+    pub max_history_bytes: u64,
+    /// Stop as soon as every body on the ground is at rest (speed below [`REST_SPEED`] and
+    /// yaw rate below [`REST_YAW_RATE`] for [`REST_TIME`]); the duration is then the
+    /// longest the run may take. Needs a ground.
+    pub until_rest: bool,
 }
 
-impl Default for Recording {
+impl Default for RunOptions {
     fn default() -> Self {
-        Recording {
-            interval: None,
-            max_bytes: DEFAULT_MAX_HISTORY_BYTES,
+        RunOptions {
+            record_interval: None,
+            max_history_bytes: DEFAULT_MAX_HISTORY_BYTES,
+            until_rest: false,
         }
     }
 }
 
-/// Bytes one sample takes: its time and every body's state.
-fn sample_bytes(bodies: usize) -> u64 {
-    (std::mem::size_of::<Real>() + bodies * std::mem::size_of::<BodyState>()) as u64
+/// Bytes one sample takes: its time, every body's state and every wheel's.
+fn sample_bytes(bodies: usize, wheels: usize) -> u64 {
+    (std::mem::size_of::<Real>()
+        + bodies * std::mem::size_of::<BodyState>()
+        + wheels * std::mem::size_of::<WheelSample>()) as u64
 }
 
 /// Human-readable bytes (binary units, as the 1 GiB default).
@@ -65,10 +80,10 @@ fn show_bytes(b: u64) -> String {
     }
 }
 
-impl Recording {
+impl RunOptions {
     /// Steps between kept samples for a run of `steps` steps of `dt` s.
     fn stride(&self, steps: usize, dt: Real) -> Result<usize> {
-        match self.interval {
+        match self.record_interval {
             None => Ok(steps.div_ceil(DEFAULT_SAMPLES).max(1)),
             Some(interval) => {
                 require_finite("record_interval", interval)?;
@@ -87,14 +102,21 @@ impl Recording {
 
     /// Checks that a run of `steps` steps of `dt` s keeping a sample every `stride` steps fits
     /// in `max_bytes`, else says which interval would.
-    fn check_size(&self, steps: usize, stride: usize, dt: Real, bodies: usize) -> Result<()> {
+    fn check_size(
+        &self,
+        steps: usize,
+        stride: usize,
+        dt: Real,
+        bodies: usize,
+        wheels: usize,
+    ) -> Result<()> {
         // The start, the kept steps, the end; events come on top (a few per contact).
         let samples = (steps / stride + 2) as u64;
-        let need = samples.saturating_mul(sample_bytes(bodies));
-        if need <= self.max_bytes {
+        let need = samples.saturating_mul(sample_bytes(bodies, wheels));
+        if need <= self.max_history_bytes {
             return Ok(());
         }
-        let fits = (self.max_bytes / sample_bytes(bodies))
+        let fits = (self.max_history_bytes / sample_bytes(bodies, wheels))
             .saturating_sub(2)
             .max(1);
         let interval = dt * steps.div_ceil(fits as usize) as Real;
@@ -103,7 +125,7 @@ impl Recording {
              history limit of {}: record less often (record_interval = {interval:.3e} s or \
              more fits), shorten the run, or raise the limit (max_history_bytes)",
             show_bytes(need),
-            show_bytes(self.max_bytes)
+            show_bytes(self.max_history_bytes)
         )))
     }
 }
@@ -119,15 +141,15 @@ impl World {
         dt: Real,
         progress: &mut dyn FnMut(Real) -> bool,
     ) -> Result<RunOutput> {
-        self.run_recorded(duration, dt, &Recording::default(), progress)
+        self.run_with_options(duration, dt, &RunOptions::default(), progress)
     }
 
-    /// [`World::run_with_progress`] keeping the history as `recording` says.
-    pub fn run_recorded(
+    /// [`World::run_with_progress`] stopping and keeping the history as `options` say.
+    pub fn run_with_options(
         &mut self,
         duration: Real,
         dt: Real,
-        recording: &Recording,
+        options: &RunOptions,
         progress: &mut dyn FnMut(Real) -> bool,
     ) -> Result<RunOutput> {
         require_finite("duration", duration)?;
@@ -145,20 +167,32 @@ impl World {
                 "duration / dt exceeds 1e8 steps: use a larger step",
             ));
         }
+        if options.until_rest && self.ground.is_none() {
+            return Err(Error::Parameter(
+                "a run until rest needs a ground (without one nothing slows the vehicles)".into(),
+            ));
+        }
         let steps = (duration / dt).ceil() as usize;
-        let stride = recording.stride(steps, dt)?;
-        recording.check_size(steps, stride, dt, self.bodies.len())?;
+        let stride = options.stride(steps, dt)?;
         if !self.started {
             for p in &self.pairs {
                 self.check_stiffness(p.body1, p.body2, &p.params)?;
             }
             self.check_initial_overlaps()?;
+            self.start_motion()?;
             self.started = true;
         }
+        let wheel_counts: Vec<usize> = (0..self.bodies.len())
+            .map(|i| self.wheel_count(i))
+            .collect();
+        let wheels: usize = wheel_counts.iter().sum();
+        options.check_size(steps, stride, dt, self.bodies.len(), wheels)?;
         let t_start = self.time;
         let t_end = t_start + duration;
         let mut out = RunOutput {
             body_count: self.bodies.len(),
+            wheel_counts,
+            rest: vec![None; self.bodies.len()],
             record_interval: stride as Real * dt,
             ..RunOutput::default()
         };
@@ -169,11 +203,26 @@ impl World {
         out.states
             .try_reserve_exact(samples * self.bodies.len())
             .map_err(|_| out_of_memory(self.time))?;
+        out.wheels
+            .try_reserve_exact(samples * wheels)
+            .map_err(|_| out_of_memory(self.time))?;
         self.record(&mut out)?;
         // Events at the current instant per pair, to stop a pair that makes no progress.
         let mut at_instant = (self.time, vec![0usize; self.pairs.len()]);
         let mut k = 1usize;
+        // Since when each body has been slow enough to be at rest (s), if it is.
+        let mut slow_since: Vec<Option<Real>> = vec![None; self.bodies.len()];
         while self.time < t_end {
+            if options.until_rest && self.all_at_rest(&slow_since) {
+                break;
+            }
+            if self.ground.is_some() {
+                let snapshot = self
+                    .bodies
+                    .iter()
+                    .map(|b| (b.body.clone(), b.motion.clone()));
+                self.step_start = Some((self.time, snapshot.collect()));
+            }
             let grid = if k >= steps {
                 t_end
             } else {
@@ -201,7 +250,7 @@ impl World {
                 }
             }
             if let Some((offset, pi)) = earliest {
-                self.advance_by(offset);
+                self.advance_by(offset)?;
                 self.count_event(&mut at_instant, pi)?;
                 let (b1, b2) = (self.pairs[pi].body1, self.pairs[pi].body2);
                 out.contacts.push(ContactEvent {
@@ -217,7 +266,7 @@ impl World {
             }
             let t_prev = self.time;
             let (impacts, contacts) = (out.impacts.len(), out.contacts.len());
-            self.advance_to(target);
+            self.advance_to(target)?;
             for pi in 0..self.pairs.len() {
                 match self.pairs[pi].phase {
                     Phase::Timer { exchange_at, .. } if exchange_at <= self.time => {
@@ -228,6 +277,10 @@ impl World {
                     _ => {}
                 }
             }
+            if let Some(e) = self.deferred.lock().expect("not poisoned").take() {
+                return Err(e);
+            }
+            self.track_rest(&mut slow_since);
             let on_grid = target == grid;
             let event = out.impacts.len() > impacts || out.contacts.len() > contacts;
             if !on_grid || event || k % stride == 0 || k >= steps {
@@ -240,7 +293,40 @@ impl World {
                 return Err(interrupted(self.time));
             }
         }
+        self.record(&mut out)?;
+        for (i, since) in slow_since.iter().enumerate() {
+            if matches!(self.bodies[i].motion, Motion::OnGround(_))
+                && since.is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12)
+            {
+                out.rest[i] = *since;
+            }
+        }
+        self.step_start = None;
         Ok(out)
+    }
+
+    /// Updates since when each body on the ground has been slow enough to be at rest.
+    fn track_rest(&self, slow_since: &mut [Option<Real>]) {
+        for (i, wb) in self.bodies.iter().enumerate() {
+            if !matches!(wb.motion, Motion::OnGround(_)) {
+                continue;
+            }
+            let slow = wb.body.velocity().norm() < REST_SPEED
+                && wb.body.angular_velocity().z.abs() < REST_YAW_RATE;
+            slow_since[i] = if slow {
+                slow_since[i].or(Some(self.time))
+            } else {
+                None
+            };
+        }
+    }
+
+    /// True when every body on the ground has been slow for [`REST_TIME`].
+    fn all_at_rest(&self, slow_since: &[Option<Real>]) -> bool {
+        self.bodies.iter().enumerate().all(|(i, wb)| {
+            !matches!(wb.motion, Motion::OnGround(_))
+                || slow_since[i].is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12)
+        })
     }
 
     /// Counts an event of pair `pi` now; an error when the pair keeps having events at the
@@ -265,42 +351,65 @@ impl World {
     /// Appends the current states (replacing a sample already taken at this instant).
     pub(super) fn record(&self, out: &mut RunOutput) -> Result<()> {
         let n = self.bodies.len();
+        let wheels: usize = out.wheel_counts.iter().sum();
         if out.times.last() == Some(&self.time) {
             out.times.pop();
             out.states.truncate(out.states.len() - n);
+            out.wheels.truncate(out.wheels.len() - wheels);
         }
-        out.times
-            .try_reserve(1)
-            .map_err(|_| out_of_memory(self.time))?;
-        out.states
-            .try_reserve(n)
-            .map_err(|_| out_of_memory(self.time))?;
+        let oom = |_| out_of_memory(self.time);
+        out.times.try_reserve(1).map_err(oom)?;
+        out.states.try_reserve(n).map_err(oom)?;
+        out.wheels.try_reserve(wheels).map_err(oom)?;
+        for wb in &self.bodies {
+            if let (Motion::OnGround(g), Some(ground)) = (&wb.motion, &self.ground) {
+                out.wheels
+                    .extend(g.wheel_samples(&wb.body, ground, self.time)?);
+            }
+        }
         out.times.push(self.time);
         out.states
             .extend(self.bodies.iter().map(|b| b.body.state()));
         Ok(())
     }
 
-    /// Moves every body and the clock to `t` (s).
-    pub(super) fn advance_to(&mut self, t: Real) {
-        let dt = t - self.time;
-        if dt > 0.0 {
-            for b in &mut self.bodies {
-                b.body.advance(dt);
+    /// Moves every body on by `dt` s from now (> 0), as [`World::predicted`] does.
+    fn move_bodies(&mut self, dt: Real) -> Result<()> {
+        let time = self.time;
+        for wb in &mut self.bodies {
+            match &mut wb.motion {
+                Motion::Free => wb.body.advance(dt),
+                Motion::Fixed => {}
+                Motion::OnGround(g) => {
+                    let ground = self
+                        .ground
+                        .as_ref()
+                        .expect("a body on the ground has a ground");
+                    g.advance(&mut wb.body, ground, time, dt)?;
+                }
             }
         }
+        Ok(())
+    }
+
+    /// Moves every body and the clock to `t` (s).
+    pub(super) fn advance_to(&mut self, t: Real) -> Result<()> {
+        let dt = t - self.time;
+        if dt > 0.0 {
+            self.move_bodies(dt)?;
+        }
         self.time = t;
+        Ok(())
     }
 
     /// Moves every body and the clock on by `dt` s: the same motion as the predictions
-    /// `RigidBody::advanced(dt)` that found the instant, bit for bit.
-    pub(super) fn advance_by(&mut self, dt: Real) {
+    /// [`World::predicted`] that found the instant, bit for bit.
+    pub(super) fn advance_by(&mut self, dt: Real) -> Result<()> {
         if dt > 0.0 {
-            for b in &mut self.bodies {
-                b.body.advance(dt);
-            }
+            self.move_bodies(dt)?;
             self.time += dt;
         }
+        Ok(())
     }
 }
 

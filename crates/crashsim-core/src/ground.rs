@@ -1,0 +1,438 @@
+//! The ground: the plane z = h or a terrain mesh, with friction zones.
+//!
+//! The ground answers, for a world point, the ground point straight below it (or above it,
+//! when the point is underground), the ground's upward unit normal there and the tyre-road
+//! friction. Gravity (9.80665 m/s^2 along -z) acts in a world that has a ground.
+
+use std::sync::Arc;
+
+use crate::bvh::MAX_DEPTH;
+use crate::error::{require_finite, Error, Result};
+use crate::math::{Point, Real, Vector};
+use crate::shape::MeshShape;
+
+/// Default tyre-road friction outside every zone: 0.8, dry asphalt (DESIGN.md section 5;
+/// the sourced table of surfaces is the Python package's `ground_surfaces`).
+pub const DEFAULT_TYRE_FRICTION: Real = 0.8;
+/// Default friction of a vehicle's body sliding on the road (roof, side, underbody): 0.45,
+/// inside the 0.4-0.5 of DESIGN.md section 5.
+pub const DEFAULT_BODY_FRICTION: Real = 0.45;
+/// Largest friction coefficient accepted for a surface.
+const MAX_FRICTION: Real = 2.0;
+
+/// What the ground is made of.
+#[derive(Clone, Debug)]
+pub enum Surface {
+    /// The horizontal plane z = height (m).
+    Plane {
+        /// Height of the plane (m).
+        height: Real,
+    },
+    /// A terrain mesh in world coordinates (m): its upper surface, seen from above, is the
+    /// ground. A point with no terrain straight above or below it is off the terrain.
+    Terrain(Arc<MeshShape>),
+}
+
+/// A ground polygon (seen from above) with its own tyre-road friction.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrictionZone {
+    /// The polygon's corners (x, y) in order (m, world), at least 3, not self-crossing.
+    pub polygon: Vec<[Real; 2]>,
+    /// Tyre-road friction inside it, in (0, 2].
+    pub friction: Real,
+}
+
+/// The ground point under (or over) a world point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GroundPoint {
+    /// The point on the ground (m, world).
+    pub point: Point,
+    /// The ground's upward unit normal there.
+    pub normal: Vector,
+}
+
+/// The ground of a world.
+#[derive(Clone, Debug)]
+pub struct Ground {
+    surface: Surface,
+    zones: Vec<FrictionZone>,
+    tyre_friction: Real,
+    body_friction: Real,
+}
+
+impl Default for Ground {
+    fn default() -> Self {
+        Ground::plane(0.0).expect("the plane z = 0 is valid")
+    }
+}
+
+fn check_friction(name: &str, mu: Real) -> Result<()> {
+    require_finite(name, mu)?;
+    if !(mu > 0.0 && mu <= MAX_FRICTION) {
+        return Err(Error::parameter(
+            name,
+            mu,
+            "a friction coefficient must lie in (0, 2] (dry asphalt about 0.8)",
+        ));
+    }
+    Ok(())
+}
+
+impl Ground {
+    /// The plane z = `height` (m) with the default frictions.
+    pub fn plane(height: Real) -> Result<Ground> {
+        require_finite("ground height", height)?;
+        Ok(Ground {
+            surface: Surface::Plane { height },
+            zones: Vec::new(),
+            tyre_friction: DEFAULT_TYRE_FRICTION,
+            body_friction: DEFAULT_BODY_FRICTION,
+        })
+    }
+
+    /// A terrain mesh (world coordinates, m) with the default frictions.
+    pub fn terrain(mesh: Arc<MeshShape>) -> Result<Ground> {
+        let b = mesh.aabb();
+        if b.maxs.x - b.mins.x <= 0.0 || b.maxs.y - b.mins.y <= 0.0 {
+            return Err(Error::Mesh(
+                "the terrain mesh has no extent seen from above: give a surface spread in x and y"
+                    .into(),
+            ));
+        }
+        Ok(Ground {
+            surface: Surface::Terrain(mesh),
+            zones: Vec::new(),
+            tyre_friction: DEFAULT_TYRE_FRICTION,
+            body_friction: DEFAULT_BODY_FRICTION,
+        })
+    }
+
+    /// Sets the tyre-road friction outside every zone and the body-ground friction.
+    pub fn with_friction(mut self, tyre: Real, body: Real) -> Result<Ground> {
+        check_friction("tyre-road friction", tyre)?;
+        check_friction("body-ground friction", body)?;
+        self.tyre_friction = tyre;
+        self.body_friction = body;
+        Ok(self)
+    }
+
+    /// Adds friction zones: each a simple polygon; zones may share edges but not overlap.
+    pub fn with_zones(mut self, zones: Vec<FrictionZone>) -> Result<Ground> {
+        for (k, z) in zones.iter().enumerate() {
+            check_friction(&format!("friction zone {k} friction"), z.friction)?;
+            check_polygon(k, &z.polygon)?;
+        }
+        for i in 0..zones.len() {
+            for j in 0..i {
+                if polygons_overlap(&zones[i].polygon, &zones[j].polygon) {
+                    return Err(Error::Parameter(format!(
+                        "friction zones {j} and {i} overlap: a point of the road must have one \
+                         friction (split them so they only share edges)"
+                    )));
+                }
+            }
+        }
+        self.zones = zones;
+        Ok(self)
+    }
+
+    /// The surface.
+    pub fn surface(&self) -> &Surface {
+        &self.surface
+    }
+
+    /// The friction zones.
+    pub fn zones(&self) -> &[FrictionZone] {
+        &self.zones
+    }
+
+    /// Body-ground friction.
+    pub fn body_friction(&self) -> Real {
+        self.body_friction
+    }
+
+    /// Tyre-road friction at (x, y): the zone's that holds the point (the first one for a
+    /// point on a shared edge), else the default.
+    pub fn tyre_friction_at(&self, x: Real, y: Real) -> Real {
+        self.zones
+            .iter()
+            .find(|z| point_in_polygon(x, y, &z.polygon))
+            .map_or(self.tyre_friction, |z| z.friction)
+    }
+
+    /// The ground point straight below (or above) world point `p`; None off the terrain.
+    pub fn below(&self, p: &Point) -> Option<GroundPoint> {
+        match &self.surface {
+            Surface::Plane { height } => Some(GroundPoint {
+                point: Point::new(p.x, p.y, *height),
+                normal: Vector::z(),
+            }),
+            Surface::Terrain(mesh) => terrain_below(mesh, p),
+        }
+    }
+
+    /// Height of the ground at (x, y) (m); None off the terrain.
+    pub fn height_at(&self, x: Real, y: Real) -> Option<Real> {
+        self.below(&Point::new(x, y, 0.0)).map(|g| g.point.z)
+    }
+}
+
+/// The highest terrain point straight above or below `p` (a ray cast down from above the
+/// terrain's box), with the upward normal of its triangle.
+fn terrain_below(mesh: &MeshShape, p: &Point) -> Option<GroundPoint> {
+    use parry3d_f64::query::{Ray, RayCast};
+    use parry3d_f64::shape::Triangle;
+    let top = mesh.aabb().maxs.z + 1.0;
+    let depth = top - mesh.aabb().mins.z + 1.0;
+    let ray = Ray::new(Point::new(p.x, p.y, top), -Vector::z());
+    let nodes = mesh.bvh().nodes();
+    let mut stack = [0u32; MAX_DEPTH];
+    let mut n = 1;
+    let mut best: Option<(Real, u32)> = None;
+    while n > 0 {
+        n -= 1;
+        let node = &nodes[stack[n] as usize];
+        let reach = best.map_or(depth, |(d, _)| d);
+        if !node.aabb.intersects_local_ray(&ray, reach) {
+            continue;
+        }
+        if node.is_leaf() {
+            for &t in mesh.bvh().leaf_primitives(node) {
+                let [a, b, c] = mesh.triangle(t);
+                if let Some(toi) = Triangle::new(a, b, c).cast_local_ray(&ray, reach, false) {
+                    // Ties (a shared edge) go to the lower triangle index: deterministic.
+                    if best.is_none_or(|(d, bt)| toi < d || (toi == d && t < bt)) {
+                        best = Some((toi, t));
+                    }
+                }
+            }
+        } else {
+            let (l, r) = mesh.bvh().children(stack[n]);
+            stack[n] = l;
+            stack[n + 1] = r;
+            n += 2;
+        }
+    }
+    let (toi, t) = best?;
+    let [a, b, c] = mesh.triangle(t);
+    let mut normal = (b - a).cross(&(c - a));
+    let len = normal.norm();
+    if len == 0.0 || !len.is_finite() {
+        return None;
+    }
+    normal /= len;
+    if normal.z < 0.0 {
+        normal = -normal;
+    }
+    Some(GroundPoint {
+        point: Point::new(p.x, p.y, top - toi),
+        normal,
+    })
+}
+
+/// Crossing-number test; points on an edge count as inside.
+pub fn point_in_polygon(x: Real, y: Real, poly: &[[Real; 2]]) -> bool {
+    let n = poly.len();
+    let mut inside = false;
+    for i in 0..n {
+        let [x1, y1] = poly[i];
+        let [x2, y2] = poly[(i + 1) % n];
+        // On the edge?
+        let cross = (x2 - x1) * (y - y1) - (y2 - y1) * (x - x1);
+        if cross == 0.0 && x >= x1.min(x2) && x <= x1.max(x2) && y >= y1.min(y2) && y <= y1.max(y2)
+        {
+            return true;
+        }
+        if (y1 > y) != (y2 > y) && x < x1 + (y - y1) * (x2 - x1) / (y2 - y1) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// Orientation of the triangle (a, b, c): > 0 counter-clockwise.
+fn orient(a: [Real; 2], b: [Real; 2], c: [Real; 2]) -> Real {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// True when the segments cross at a point inside both (not at an end, not collinear).
+fn segments_cross(a: [Real; 2], b: [Real; 2], c: [Real; 2], d: [Real; 2]) -> bool {
+    let (o1, o2) = (orient(a, b, c), orient(a, b, d));
+    let (o3, o4) = (orient(c, d, a), orient(c, d, b));
+    o1 * o2 < 0.0 && o3 * o4 < 0.0
+}
+
+fn check_polygon(k: usize, poly: &[[Real; 2]]) -> Result<()> {
+    if poly.len() < 3 {
+        return Err(Error::Parameter(format!(
+            "friction zone {k} has {} corners: a polygon needs at least 3",
+            poly.len()
+        )));
+    }
+    if poly.iter().flatten().any(|v| !v.is_finite()) {
+        return Err(Error::Parameter(format!(
+            "friction zone {k} has a corner that is not a finite number"
+        )));
+    }
+    let n = poly.len();
+    let area: Real = (0..n)
+        .map(|i| orient([0.0, 0.0], poly[i], poly[(i + 1) % n]))
+        .sum();
+    if area == 0.0 {
+        return Err(Error::Parameter(format!(
+            "friction zone {k} encloses no area (its corners are in a line)"
+        )));
+    }
+    for i in 0..n {
+        for j in i + 1..n {
+            if j == i + 1 || (i == 0 && j == n - 1) {
+                continue;
+            }
+            let (a, b) = (poly[i], poly[(i + 1) % n]);
+            let (c, d) = (poly[j], poly[(j + 1) % n]);
+            if segments_cross(a, b, c, d) {
+                return Err(Error::Parameter(format!(
+                    "friction zone {k} crosses itself (edges {i} and {j}): give its corners in \
+                     order around it"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A point strictly inside a simple polygon: the midpoint of an edge moved a hair inward.
+fn interior_point(poly: &[[Real; 2]]) -> [Real; 2] {
+    let n = poly.len();
+    let area: Real = (0..n)
+        .map(|i| orient([0.0, 0.0], poly[i], poly[(i + 1) % n]))
+        .sum();
+    let (a, b) = (poly[0], poly[1]);
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len = (dx * dx + dy * dy).sqrt();
+    // The inward normal: left of the edge for a counter-clockwise polygon.
+    let s = if area > 0.0 { 1.0 } else { -1.0 };
+    let h = 1e-6 * len;
+    [
+        0.5 * (a[0] + b[0]) - s * dy / len * h,
+        0.5 * (a[1] + b[1]) + s * dx / len * h,
+    ]
+}
+
+/// True when two simple polygons share interior points.
+fn polygons_overlap(p: &[[Real; 2]], q: &[[Real; 2]]) -> bool {
+    let strictly_inside = |x: [Real; 2], poly: &[[Real; 2]]| {
+        point_in_polygon(x[0], x[1], poly) && {
+            // not on an edge of poly
+            let n = poly.len();
+            (0..n).all(|i| {
+                let (a, b) = (poly[i], poly[(i + 1) % n]);
+                orient(a, b, x) != 0.0
+                    || x[0] < a[0].min(b[0])
+                    || x[0] > a[0].max(b[0])
+                    || x[1] < a[1].min(b[1])
+                    || x[1] > a[1].max(b[1])
+            })
+        }
+    };
+    for i in 0..p.len() {
+        for j in 0..q.len() {
+            let (a, b) = (p[i], p[(i + 1) % p.len()]);
+            let (c, d) = (q[j], q[(j + 1) % q.len()]);
+            if segments_cross(a, b, c, d) {
+                return true;
+            }
+        }
+    }
+    p.iter().any(|&v| strictly_inside(v, q))
+        || q.iter().any(|&v| strictly_inside(v, p))
+        || strictly_inside(interior_point(p), q)
+        || strictly_inside(interior_point(q), p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x0: Real, y0: Real, s: Real) -> Vec<[Real; 2]> {
+        vec![[x0, y0], [x0 + s, y0], [x0 + s, y0 + s], [x0, y0 + s]]
+    }
+
+    #[test]
+    fn zones_give_their_friction_and_must_not_overlap() {
+        let wet = FrictionZone {
+            polygon: square(0.0, 0.0, 10.0),
+            friction: 0.5,
+        };
+        let grass = FrictionZone {
+            polygon: square(10.0, 0.0, 10.0), // shares an edge with the wet square
+            friction: 0.35,
+        };
+        let g = Ground::plane(0.0)
+            .unwrap()
+            .with_zones(vec![wet.clone(), grass.clone()])
+            .unwrap();
+        assert_eq!(g.tyre_friction_at(5.0, 5.0), 0.5);
+        assert_eq!(g.tyre_friction_at(15.0, 5.0), 0.35);
+        assert_eq!(g.tyre_friction_at(25.0, 5.0), DEFAULT_TYRE_FRICTION);
+        let overlapping = FrictionZone {
+            polygon: square(5.0, 5.0, 10.0),
+            friction: 0.55,
+        };
+        let err = Ground::plane(0.0)
+            .unwrap()
+            .with_zones(vec![wet.clone(), overlapping])
+            .unwrap_err();
+        assert!(err.to_string().contains("overlap"), "{err}");
+        let same = Ground::plane(0.0)
+            .unwrap()
+            .with_zones(vec![wet.clone(), wet.clone()]);
+        assert!(same.is_err());
+        let inner = FrictionZone {
+            polygon: square(2.0, 2.0, 1.0),
+            friction: 0.3,
+        };
+        assert!(Ground::plane(0.0)
+            .unwrap()
+            .with_zones(vec![wet, inner])
+            .is_err());
+        let bowtie = FrictionZone {
+            polygon: vec![[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]],
+            friction: 0.5,
+        };
+        assert!(Ground::plane(0.0)
+            .unwrap()
+            .with_zones(vec![bowtie])
+            .is_err());
+        let bad_mu = FrictionZone {
+            polygon: square(0.0, 0.0, 1.0),
+            friction: -0.5,
+        };
+        assert!(Ground::plane(0.0)
+            .unwrap()
+            .with_zones(vec![bad_mu])
+            .is_err());
+    }
+
+    #[test]
+    fn a_terrain_gives_its_height_and_normal_and_nothing_off_its_edge() {
+        // A ramp: z = 0.1 x over 0 <= x, y <= 10.
+        let v = vec![
+            Point::new(0.0, 0.0, 0.0),
+            Point::new(10.0, 0.0, 1.0),
+            Point::new(10.0, 10.0, 1.0),
+            Point::new(0.0, 10.0, 0.0),
+        ];
+        let mesh = MeshShape::new(v, vec![[0, 1, 2], [0, 2, 3]]).unwrap();
+        let g = Ground::terrain(Arc::new(mesh)).unwrap();
+        let p = g.below(&Point::new(4.0, 3.0, 5.0)).unwrap();
+        assert!((p.point.z - 0.4).abs() < 1e-12);
+        let n = Vector::new(-0.1, 0.0, 1.0).normalize();
+        assert!((p.normal - n).norm() < 1e-12);
+        assert!(g.below(&Point::new(-1.0, 3.0, 0.0)).is_none());
+        assert!(
+            g.below(&Point::new(4.0, 3.0, -2.0)).is_some(),
+            "below the terrain too"
+        );
+    }
+}

@@ -1,0 +1,417 @@
+//! Motion between exchanges on the ground: gravity, each wheel's spring-damper and tyre, and
+//! the body's own contact with the ground, integrated together.
+//!
+//! The state is the rigid body's (CG position, orientation, velocity, world angular momentum
+//! about the CG) plus each tyre's tread deflection. Over a span `dt` the state is advanced by
+//! classical Runge-Kutta in `n` equal sub-steps, n the smallest count that keeps each at most
+//! [`MAX_SUBSTEP`] s and at most [`MAX_SUBSTEP_ANGLE`] rad of rotation: the same start state and
+//! span give the same bits, so a prediction (`advanced`) and the run's own advance agree
+//! exactly. Without ground a body keeps the exact torque-free motion of [`crate::body`].
+//!
+//! The body's contact with the ground (a rollover, a vehicle pushed onto its side, a body
+//! without wheels) is a stiff spring-damper per point of the mesh's convex hull (the only
+//! points of a solid that can touch a plane first), weighted by the hull area around each,
+//! with Coulomb friction regularised below [`BODY_SLIP_SPEED`]; the points inside the
+//! wheels are left to the wheels.
+
+use std::sync::Arc;
+
+use crate::body::{MassProperties, RigidBody};
+use crate::error::{Error, Result};
+use crate::ground::Ground;
+use crate::math::{Point, Real, Rotation, Vector};
+use crate::shape::MeshShape;
+use crate::vehicle::{Braking, VehicleSpec, WheelAction, WheelState, GRAVITY};
+
+/// Longest integration sub-step (s).
+pub const MAX_SUBSTEP: Real = 1e-3;
+/// Largest rotation (rad) in one sub-step.
+pub const MAX_SUBSTEP_ANGLE: Real = 0.02;
+/// Natural frequency (Hz) of a body resting on its whole footprint on the ground: 10 Hz, so
+/// it sinks g / (2 pi 10)^2 = 2.5 mm under its weight.
+const BODY_CONTACT_FREQUENCY: Real = 10.0;
+/// Damping ratio of the body-ground contact.
+const BODY_CONTACT_DAMPING: Real = 0.5;
+/// Below this sliding speed (m/s) body-ground friction fades linearly (no chatter at rest).
+pub const BODY_SLIP_SPEED: Real = 0.05;
+/// Points of the hull within this distance (m) of a wheel's tyre (radially) count as the
+/// wheel's, and this far to either side of its mid-plane.
+const WHEEL_CLEARANCE: Real = 0.05;
+const WHEEL_HALF_WIDTH: Real = 0.15;
+
+/// The points by which a body's mesh can touch the ground, body frame.
+#[derive(Clone, Debug)]
+pub struct BodyContact {
+    /// Convex-hull vertices not inside a wheel (m, body frame).
+    points: Vec<Point>,
+    /// Stiffness of each point (N/m).
+    stiffness: Vec<Real>,
+    /// Damping of each point (N s/m).
+    damping: Vec<Real>,
+    /// Largest distance of a point from the CG (m).
+    reach: Real,
+}
+
+impl BodyContact {
+    /// The contact points of a mesh (body frame, origin at the CG) of mass `mass` (kg) whose
+    /// wheels (if any) carry it. The stiffness per unit hull area makes a body resting on its
+    /// footprint (the box's x-y area) sink 2.5 mm.
+    pub fn new(shape: &MeshShape, mass: Real, wheels: Option<&VehicleSpec>) -> Result<BodyContact> {
+        let (vertices, triangles) = parry3d_f64::transformation::try_convex_hull(shape.vertices())
+            .map_err(|e| {
+                Error::Mesh(format!(
+                    "the body's convex hull (its contact with the ground) failed: {e:?}; the \
+                     mesh may be flat or degenerate"
+                ))
+            })?;
+        let mut area = vec![0.0; vertices.len()];
+        for t in &triangles {
+            let [a, b, c] = t.map(|i| vertices[i as usize]);
+            let third = (b - a).cross(&(c - a)).norm() / 6.0;
+            for &i in t {
+                area[i as usize] += third;
+            }
+        }
+        let b = shape.aabb();
+        let footprint = ((b.maxs.x - b.mins.x) * (b.maxs.y - b.mins.y)).max(1e-6);
+        let omega = 2.0 * std::f64::consts::PI * BODY_CONTACT_FREQUENCY;
+        let per_area = mass * omega * omega / footprint;
+        let damping_per_area = 2.0 * BODY_CONTACT_DAMPING * mass * omega / footprint;
+        let in_wheel = |p: &Point| {
+            wheels.is_some_and(|spec| {
+                spec.wheels.iter().any(|w| {
+                    let d = p - w.center;
+                    d.y.abs() <= WHEEL_HALF_WIDTH
+                        && (d.x * d.x + d.z * d.z).sqrt() <= w.radius + WHEEL_CLEARANCE
+                })
+            })
+        };
+        let mut out = BodyContact {
+            points: Vec::new(),
+            stiffness: Vec::new(),
+            damping: Vec::new(),
+            reach: 0.0,
+        };
+        for (p, a) in vertices.iter().zip(&area) {
+            if *a > 0.0 && !in_wheel(p) {
+                out.points.push(*p);
+                out.stiffness.push(per_area * a);
+                out.damping.push(damping_per_area * a);
+                out.reach = out.reach.max(p.coords.norm());
+            }
+        }
+        Ok(out)
+    }
+
+    /// Number of contact points.
+    pub fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    /// True without contact points.
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+}
+
+/// What one wheel does at an instant (world frame, SI), for the record.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WheelSample {
+    /// Where the tyre meets the ground (m); the point below the wheel centre when airborne.
+    pub contact: Point,
+    /// Normal load (N, >= 0).
+    pub load: Real,
+    /// The ground's force on the tyre (N): normal plus tyre forces.
+    pub force: Vector,
+    /// True when the patch slides at the friction limit (a tyre mark).
+    pub sliding: bool,
+}
+
+/// A body on the ground: its wheels (if any), its contact points and the tyres' state.
+#[derive(Clone, Debug)]
+pub struct OnGround {
+    /// Wheels, tyre and inputs; None for a body without wheels.
+    pub vehicle: Option<Arc<VehicleSpec>>,
+    /// The body's contact points with the ground.
+    pub contact: Arc<BodyContact>,
+    /// Tread deflection per wheel (m, wheel axes).
+    pub deflections: Vec<[Real; 2]>,
+    /// The vehicle's impulse exchanges so far (wheel-state switches at exchanges).
+    pub exchanges: usize,
+}
+
+/// A body state during integration (the quaternion unnormalised inside a step).
+#[derive(Clone, Debug)]
+struct Stage {
+    x: Vector,
+    q: nalgebra::Quaternion<Real>,
+    v: Vector,
+    l: Vector,
+    u: Vec<[Real; 2]>,
+}
+
+impl Stage {
+    fn axpy(&self, h: Real, d: &Stage) -> Stage {
+        Stage {
+            x: self.x + d.x * h,
+            q: self.q + d.q * h,
+            v: self.v + d.v * h,
+            l: self.l + d.l * h,
+            u: self
+                .u
+                .iter()
+                .zip(&d.u)
+                .map(|(a, b)| [a[0] + b[0] * h, a[1] + b[1] * h])
+                .collect(),
+        }
+    }
+}
+
+/// Forces of one evaluation: the stage's rate, and per wheel what the record needs.
+struct Evaluation {
+    rate: Stage,
+    wheels: Vec<WheelSample>,
+}
+
+impl OnGround {
+    /// A body on the ground with its wheels (if any) at rest (no tread deflection).
+    pub fn new(vehicle: Option<Arc<VehicleSpec>>, contact: Arc<BodyContact>) -> OnGround {
+        let n = vehicle.as_ref().map_or(0, |v| v.wheels.len());
+        OnGround {
+            vehicle,
+            contact,
+            deflections: vec![[0.0; 2]; n],
+            exchanges: 0,
+        }
+    }
+
+    /// How wheel `k` turns at time `t` with normal load `fz` (N) and friction `mu`.
+    fn action(&self, spec: &VehicleSpec, k: usize, t: Real, fz: Real, mu: Real) -> WheelAction {
+        match spec.inputs.wheel_state(k, t, self.exchanges) {
+            WheelState::Locked => WheelAction {
+                locked: true,
+                brake_capacity: 0.0,
+                drive: 0.0,
+            },
+            WheelState::Braked(f) => WheelAction {
+                locked: false,
+                brake_capacity: f * mu * fz,
+                drive: 0.0,
+            },
+            WheelState::Free => {
+                let capacity = match spec.inputs.brake.get(k).and_then(|b| b.as_ref()) {
+                    Some(Braking::Fraction(table)) => table.at(t) * mu * fz,
+                    Some(Braking::Deceleration(table)) => table.at(t) / GRAVITY * fz,
+                    None => 0.0,
+                };
+                WheelAction {
+                    locked: false,
+                    brake_capacity: capacity,
+                    drive: spec.inputs.drive_at(k, t),
+                }
+            }
+        }
+    }
+
+    /// The rates of a stage at time `t`, and the wheels' samples.
+    fn evaluate(
+        &self,
+        props: &MassProperties,
+        ground: &Ground,
+        t: Real,
+        s: &Stage,
+    ) -> Result<Evaluation> {
+        let q = Rotation::new_normalize(s.q);
+        let rot = q.to_rotation_matrix();
+        let r = rot.matrix();
+        let inv_i = r * props.inverse_inertia() * r.transpose();
+        let w = inv_i * s.l;
+        let x = Point::from(s.x);
+        let m = props.mass();
+        let mut force = Vector::new(0.0, 0.0, -m * GRAVITY);
+        let mut torque = Vector::zeros();
+        let mut du = vec![[0.0; 2]; s.u.len()];
+        let mut wheels = Vec::with_capacity(s.u.len());
+        if let Some(spec) = &self.vehicle {
+            let steer = spec.inputs.steer_at(t);
+            let (sin, cos) = steer.sin_cos();
+            for (k, wheel) in spec.wheels.iter().enumerate() {
+                let c = x + r * wheel.center.coords;
+                let g = ground.below(&c).ok_or_else(|| {
+                    Error::Simulation(format!(
+                        "wheel {k} left the terrain at ({:.2}, {:.2}) m, t = {t:.4} s: the \
+                         terrain mesh has no surface there (extend it or add ground under the \
+                         vehicle's path)",
+                        c.x, c.y
+                    ))
+                })?;
+                let n = g.normal;
+                let h = (c - g.point).dot(&n);
+                let contact = c - n * h;
+                let vc = s.v + w.cross(&(c - x));
+                let fz = wheel.normal_load(wheel.radius - h, -vc.dot(&n));
+                let heading = if wheel.steerable {
+                    r * Vector::new(cos, sin, 0.0)
+                } else {
+                    r * Vector::x()
+                };
+                let along = heading - n * heading.dot(&n);
+                let ex = if along.norm() > 1e-9 {
+                    along.normalize()
+                } else {
+                    // The wheel points straight up or down: no rolling direction.
+                    n.cross(&(r * Vector::y())).normalize()
+                };
+                let ey = n.cross(&ex);
+                let vp = s.v + w.cross(&(contact - x));
+                let mu = ground.tyre_friction_at(contact.x, contact.y);
+                let action = self.action(spec, k, t, fz, mu);
+                let tf = spec
+                    .tyre
+                    .force(fz, mu, vp.dot(&ex), vp.dot(&ey), s.u[k], &action);
+                let f = n * fz + ex * tf.force[0] + ey * tf.force[1];
+                force += f;
+                torque += (contact - x).cross(&f);
+                du[k] = tf.deflection_rate;
+                wheels.push(WheelSample {
+                    contact,
+                    load: fz,
+                    force: f,
+                    sliding: tf.sliding,
+                });
+            }
+        }
+        self.body_contact(ground, &x, r, &s.v, &w, &mut force, &mut torque);
+        let wq = nalgebra::Quaternion::from_parts(0.0, w);
+        Ok(Evaluation {
+            rate: Stage {
+                x: s.v,
+                q: wq * s.q * 0.5,
+                v: force / m,
+                l: torque,
+                u: du,
+            },
+            wheels,
+        })
+    }
+
+    /// Adds the ground's forces on the body's contact points.
+    #[allow(clippy::too_many_arguments)]
+    fn body_contact(
+        &self,
+        ground: &Ground,
+        x: &Point,
+        r: &nalgebra::Matrix3<Real>,
+        v: &Vector,
+        w: &Vector,
+        force: &mut Vector,
+        torque: &mut Vector,
+    ) {
+        let c = &self.contact;
+        if c.is_empty() {
+            return;
+        }
+        let highest_ground = match ground.surface() {
+            crate::ground::Surface::Plane { height } => *height,
+            crate::ground::Surface::Terrain(mesh) => mesh.aabb().maxs.z,
+        };
+        if x.z - c.reach > highest_ground {
+            return;
+        }
+        let mu = ground.body_friction();
+        for k in 0..c.points.len() {
+            let p = x + r * c.points[k].coords;
+            if p.z > highest_ground {
+                continue;
+            }
+            let Some(g) = ground.below(&p) else {
+                continue; // off the terrain: nothing to touch
+            };
+            let depth = (g.point - p).dot(&g.normal);
+            if depth <= 0.0 {
+                continue;
+            }
+            let vp = v + w.cross(&(p - x));
+            let vn = vp.dot(&g.normal);
+            let fn_ = (c.stiffness[k] * depth - c.damping[k] * vn).max(0.0);
+            let vt = vp - g.normal * vn;
+            let slip = vt.norm();
+            let ft = -vt * (mu * fn_ / slip.max(BODY_SLIP_SPEED));
+            let f = g.normal * fn_ + ft;
+            *force += f;
+            *torque += (p - x).cross(&f);
+        }
+    }
+
+    fn stage_of(&self, body: &RigidBody) -> Stage {
+        Stage {
+            x: body.position().coords,
+            q: *body.orientation().quaternion(),
+            v: body.velocity(),
+            l: body.angular_momentum(),
+            u: self.deflections.clone(),
+        }
+    }
+
+    /// Sub-steps for a span of `dt` s from `body`'s state.
+    fn substeps(body: &RigidBody, dt: Real) -> usize {
+        let w = body.angular_velocity().norm();
+        let by_time = (dt / MAX_SUBSTEP).ceil();
+        let by_angle = (w * dt / MAX_SUBSTEP_ANGLE).ceil();
+        by_time.max(by_angle).max(1.0) as usize
+    }
+
+    /// Advances the body and the treads by `dt` s (> 0) from time `t0` (s).
+    pub fn advance(
+        &mut self,
+        body: &mut RigidBody,
+        ground: &Ground,
+        t0: Real,
+        dt: Real,
+    ) -> Result<()> {
+        if dt <= 0.0 {
+            return Ok(());
+        }
+        let n = Self::substeps(body, dt);
+        let h = dt / n as Real;
+        let props = body.props().clone();
+        let mut s = self.stage_of(body);
+        for i in 0..n {
+            let t = t0 + i as Real * h;
+            let k1 = self.evaluate(&props, ground, t, &s)?.rate;
+            let k2 = self
+                .evaluate(&props, ground, t + 0.5 * h, &s.axpy(0.5 * h, &k1))?
+                .rate;
+            let k3 = self
+                .evaluate(&props, ground, t + 0.5 * h, &s.axpy(0.5 * h, &k2))?
+                .rate;
+            let k4 = self.evaluate(&props, ground, t + h, &s.axpy(h, &k3))?.rate;
+            let mut next = s.axpy(h / 6.0, &k1);
+            next = next.axpy(h / 3.0, &k2);
+            next = next.axpy(h / 3.0, &k3);
+            next = next.axpy(h / 6.0, &k4);
+            next.q = *Rotation::new_normalize(next.q).quaternion();
+            s = next;
+        }
+        *body = RigidBody::from_momentum(
+            props,
+            Point::from(s.x),
+            Rotation::new_normalize(s.q),
+            s.v,
+            s.l,
+        );
+        self.deflections = s.u;
+        Ok(())
+    }
+
+    /// What every wheel does at `body`'s state at time `t`.
+    pub fn wheel_samples(
+        &self,
+        body: &RigidBody,
+        ground: &Ground,
+        t: Real,
+    ) -> Result<Vec<WheelSample>> {
+        let s = self.stage_of(body);
+        Ok(self.evaluate(body.props(), ground, t, &s)?.wheels)
+    }
+}

@@ -1,0 +1,283 @@
+//! Driver inputs and wheel states as functions of time: steering, braking, drive force, and
+//! the switches of a wheel's state (free, locked, braked) at a time or at an exchange.
+
+use crate::error::{require_finite, Error, Result};
+use crate::math::Real;
+
+/// A quantity given as a time table, linear between its points and held beyond its ends.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Table {
+    times: Vec<Real>,
+    values: Vec<Real>,
+}
+
+impl Table {
+    /// A table from (time s, value) points: at least one, every number finite, times strictly
+    /// increasing. `what` names the quantity in errors.
+    pub fn new(what: &str, points: &[(Real, Real)]) -> Result<Table> {
+        if points.is_empty() {
+            return Err(Error::Parameter(format!(
+                "the {what} table is empty: give at least one (time, value) point"
+            )));
+        }
+        for (k, &(t, v)) in points.iter().enumerate() {
+            require_finite(&format!("{what} table time at row {k}"), t)?;
+            require_finite(&format!("{what} table value at row {k}"), v)?;
+            if k > 0 && t <= points[k - 1].0 {
+                return Err(Error::Parameter(format!(
+                    "the {what} table's times must increase: row {k} has t = {t} s after \
+                     t = {} s (sort the rows and drop duplicates)",
+                    points[k - 1].0
+                )));
+            }
+        }
+        Ok(Table {
+            times: points.iter().map(|p| p.0).collect(),
+            values: points.iter().map(|p| p.1).collect(),
+        })
+    }
+
+    /// A constant.
+    pub fn constant(value: Real) -> Table {
+        Table {
+            times: vec![0.0],
+            values: vec![value],
+        }
+    }
+
+    /// The value at time `t` (s): linear between points, held beyond the ends.
+    pub fn at(&self, t: Real) -> Real {
+        let n = self.times.len();
+        if t <= self.times[0] {
+            return self.values[0];
+        }
+        if t >= self.times[n - 1] {
+            return self.values[n - 1];
+        }
+        // The last point at or before t (times increase, so the search is exact).
+        let k = self.times.partition_point(|&x| x <= t) - 1;
+        let (t0, t1) = (self.times[k], self.times[k + 1]);
+        let (v0, v1) = (self.values[k], self.values[k + 1]);
+        v0 + (v1 - v0) * ((t - t0) / (t1 - t0))
+    }
+
+    /// Smallest and largest value.
+    pub fn range(&self) -> (Real, Real) {
+        let lo = self.values.iter().copied().fold(Real::INFINITY, Real::min);
+        let hi = self
+            .values
+            .iter()
+            .copied()
+            .fold(Real::NEG_INFINITY, Real::max);
+        (lo, hi)
+    }
+
+    /// The points (time s, value).
+    pub fn points(&self) -> impl Iterator<Item = (Real, Real)> + '_ {
+        self.times.iter().copied().zip(self.values.iter().copied())
+    }
+}
+
+/// What a wheel's brake does.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Braking {
+    /// A fraction of the friction available at the wheel (0 = none, 1 = at the limit without
+    /// locking), as a time table.
+    Fraction(Table),
+    /// A deceleration demand (m/s^2, >= 0) as a time table: the wheel's longitudinal force is
+    /// at most its load times demand / g (so a vehicle braked this way on every wheel
+    /// decelerates at the demand while the friction allows it).
+    Deceleration(Table),
+}
+
+/// A wheel's state: how it turns.
+#[derive(Clone, Debug, PartialEq)]
+pub enum WheelState {
+    /// Rolls freely (the driver's braking and drive apply).
+    Free,
+    /// Does not turn: the tyre slides against its patch velocity at the full friction.
+    Locked,
+    /// Braked at this fraction of the available friction (0-1), whatever the driver does
+    /// (e.g. a wheel jammed by the crush).
+    Braked(Real),
+}
+
+/// When a wheel's state switches.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Trigger {
+    /// At this time (s).
+    Time(Real),
+    /// At this vehicle's n-th impulse exchange (1 = its first), whichever pair.
+    Exchange(usize),
+}
+
+/// One switch of a wheel's state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WheelSwitch {
+    /// The wheel (index into the vehicle's wheels).
+    pub wheel: usize,
+    /// When.
+    pub at: Trigger,
+    /// The state from then on.
+    pub state: WheelState,
+}
+
+/// A vehicle's driver inputs and wheel-state switches.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DriverInputs {
+    /// Road-wheel steering angle of the steerable wheels (rad, + to the left), or None.
+    pub steer: Option<Table>,
+    /// Braking per wheel (None: no braking on that wheel); empty: none anywhere.
+    pub brake: Vec<Option<Braking>>,
+    /// Drive force per wheel (N, + forward along the wheel), None: none; empty: none.
+    pub drive: Vec<Option<Table>>,
+    /// Wheel-state switches (initially every wheel is free).
+    pub switches: Vec<WheelSwitch>,
+}
+
+impl DriverInputs {
+    /// Checks the inputs against a vehicle with `wheels` wheels.
+    pub fn validate(&self, wheels: usize) -> Result<()> {
+        if !self.brake.is_empty() && self.brake.len() != wheels {
+            return Err(Error::Parameter(format!(
+                "braking is given for {} wheels but the vehicle has {wheels}",
+                self.brake.len()
+            )));
+        }
+        if !self.drive.is_empty() && self.drive.len() != wheels {
+            return Err(Error::Parameter(format!(
+                "drive force is given for {} wheels but the vehicle has {wheels}",
+                self.drive.len()
+            )));
+        }
+        if let Some(steer) = &self.steer {
+            let (lo, hi) = steer.range();
+            let limit = 60f64.to_radians();
+            if lo < -limit || hi > limit {
+                return Err(Error::Parameter(format!(
+                    "the road-wheel steering angle reaches {:.1} deg: road wheels turn at most \
+                     60 deg (give the steering-wheel angle with the steering ratio instead)",
+                    if hi > limit { hi } else { lo }.to_degrees()
+                )));
+            }
+        }
+        for (k, b) in self.brake.iter().enumerate() {
+            match b {
+                Some(Braking::Fraction(t)) => {
+                    let (lo, hi) = t.range();
+                    if lo < 0.0 || hi > 1.0 {
+                        return Err(Error::Parameter(format!(
+                            "wheel {k}: a braking fraction must lie in [0, 1] (got {lo} to {hi})"
+                        )));
+                    }
+                }
+                Some(Braking::Deceleration(t)) if t.range().0 < 0.0 => {
+                    return Err(Error::Parameter(format!(
+                        "wheel {k}: a braking deceleration must be >= 0 m/s^2"
+                    )));
+                }
+                Some(Braking::Deceleration(_)) => {}
+                None => {}
+            }
+        }
+        for s in &self.switches {
+            if s.wheel >= wheels {
+                return Err(Error::Parameter(format!(
+                    "a wheel-state switch names wheel {} but the vehicle has {wheels} wheels",
+                    s.wheel
+                )));
+            }
+            match s.at {
+                Trigger::Time(t) => require_finite("wheel-state switch time", t)?,
+                Trigger::Exchange(0) => {
+                    return Err(Error::Parameter(
+                        "a wheel-state switch at exchange 0: exchanges count from 1".into(),
+                    ))
+                }
+                Trigger::Exchange(_) => {}
+            }
+            if let WheelState::Braked(f) = s.state {
+                if !(0.0..=1.0).contains(&f) {
+                    return Err(Error::parameter(
+                        "braked wheel fraction",
+                        f,
+                        "it must lie in [0, 1]",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Road-wheel steering angle at `t` (rad).
+    pub fn steer_at(&self, t: Real) -> Real {
+        self.steer.as_ref().map_or(0.0, |s| s.at(t))
+    }
+
+    /// Drive force of wheel `k` at `t` (N).
+    pub fn drive_at(&self, k: usize, t: Real) -> Real {
+        self.drive
+            .get(k)
+            .and_then(|d| d.as_ref())
+            .map_or(0.0, |d| d.at(t))
+    }
+
+    /// The state of wheel `k` at time `t` after the vehicle's `exchanges` exchanges: the last
+    /// switch that has fired (in the order given), else free.
+    pub fn wheel_state(&self, k: usize, t: Real, exchanges: usize) -> &WheelState {
+        let mut state = &WheelState::Free;
+        for s in &self.switches {
+            let fired = match s.at {
+                Trigger::Time(ts) => t >= ts,
+                Trigger::Exchange(n) => exchanges >= n,
+            };
+            if s.wheel == k && fired {
+                state = &s.state;
+            }
+        }
+        state
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tables_interpolate_hold_and_refuse_bad_rows() {
+        let t = Table::new("steer", &[(0.0, 0.0), (1.0, 2.0), (3.0, 2.0)]).unwrap();
+        assert_eq!(t.at(-1.0), 0.0);
+        assert_eq!(t.at(0.5), 1.0);
+        assert_eq!(t.at(2.0), 2.0);
+        assert_eq!(t.at(10.0), 2.0);
+        assert!(Table::new("x", &[]).is_err());
+        assert!(Table::new("x", &[(0.0, 1.0), (0.0, 2.0)]).is_err());
+        assert!(Table::new("x", &[(1.0, 1.0), (0.5, 2.0)]).is_err());
+        assert!(Table::new("x", &[(0.0, Real::NAN)]).is_err());
+    }
+
+    #[test]
+    fn wheel_states_switch_at_times_and_exchanges() {
+        let inputs = DriverInputs {
+            switches: vec![
+                WheelSwitch {
+                    wheel: 0,
+                    at: Trigger::Exchange(1),
+                    state: WheelState::Locked,
+                },
+                WheelSwitch {
+                    wheel: 1,
+                    at: Trigger::Time(2.0),
+                    state: WheelState::Braked(0.5),
+                },
+            ],
+            ..DriverInputs::default()
+        };
+        inputs.validate(4).unwrap();
+        assert_eq!(inputs.wheel_state(0, 5.0, 0), &WheelState::Free);
+        assert_eq!(inputs.wheel_state(0, 0.0, 1), &WheelState::Locked);
+        assert_eq!(inputs.wheel_state(1, 1.9, 3), &WheelState::Free);
+        assert_eq!(inputs.wheel_state(1, 2.0, 0), &WheelState::Braked(0.5));
+        assert!(inputs.validate(1).is_err());
+    }
+}

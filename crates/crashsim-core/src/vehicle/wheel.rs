@@ -1,0 +1,219 @@
+//! Wheels: where they sit on the body and how they are sprung.
+//!
+//! Each wheel is a vertical spring-damper between the body and a massless wheel whose tyre
+//! touches the ground below its centre. The wheel's centre is a point fixed in the body frame
+//! (its position at static ride height); the tyre's normal load is
+//!
+//! `Fz = max(0, F0 + k (R - h) + c d(R - h)/dt)`,
+//!
+//! with `h` the centre's height above the ground along the ground normal, `R` the tyre
+//! radius, `F0` the static load (the spring's preload at static ride height), `k` the wheel
+//! rate and `c` the damping. A wheel whose centre is higher than `R + F0 / k` carries nothing.
+//! Load transfer, roll and pitch then follow from the 3-D body.
+
+use crate::error::{require_finite, Error, Result};
+use crate::math::{Point, Real};
+
+/// Standard gravity (m/s^2), ISO 80000-3.
+pub const GRAVITY: Real = 9.80665;
+
+/// Default natural frequency of a wheel's spring with its share of the sprung mass (Hz):
+/// 1.3 Hz, inside the 1.0-1.5 Hz of passenger-car ride frequencies (Gillespie, Fundamentals
+/// of Vehicle Dynamics, SAE 1992, ch. 5).
+pub const DEFAULT_NATURAL_FREQUENCY: Real = 1.3;
+/// Default damping ratio of a wheel's spring-damper: 0.3, inside the 0.2-0.4 of passenger
+/// cars (Gillespie, ch. 5).
+pub const DEFAULT_DAMPING_RATIO: Real = 0.3;
+
+/// One wheel of a vehicle.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WheelSpec {
+    /// Wheel centre at static ride height, body frame (m from the CG; x forward, y left, z up).
+    pub center: Point,
+    /// Tyre radius (m), > 0.
+    pub radius: Real,
+    /// Whether the steering input turns it.
+    pub steerable: bool,
+    /// Normal load at static ride height (N), > 0: the spring's preload there.
+    pub static_load: Real,
+    /// Wheel rate (N/m), > 0.
+    pub spring_rate: Real,
+    /// Damping (N s/m), >= 0.
+    pub damping: Real,
+}
+
+impl WheelSpec {
+    /// A wheel whose spring and damper come from its static load: the sprung mass on it,
+    /// m = static_load / g, oscillates at `natural_frequency` Hz with `damping_ratio`:
+    /// k = m (2 pi f)^2, c = 2 zeta sqrt(k m).
+    pub fn sprung(
+        center: Point,
+        radius: Real,
+        steerable: bool,
+        static_load: Real,
+        natural_frequency: Real,
+        damping_ratio: Real,
+    ) -> Result<WheelSpec> {
+        require_finite("natural_frequency", natural_frequency)?;
+        require_finite("damping_ratio", damping_ratio)?;
+        if natural_frequency <= 0.0 {
+            return Err(Error::parameter(
+                "natural_frequency",
+                natural_frequency,
+                "a wheel's natural frequency must be > 0 Hz (about 1.3 Hz for a car)",
+            ));
+        }
+        if damping_ratio < 0.0 {
+            return Err(Error::parameter(
+                "damping_ratio",
+                damping_ratio,
+                "a damping ratio must be >= 0 (about 0.3 for a car)",
+            ));
+        }
+        let m = static_load / GRAVITY;
+        let omega = 2.0 * std::f64::consts::PI * natural_frequency;
+        let k = m * omega * omega;
+        let spec = WheelSpec {
+            center,
+            radius,
+            steerable,
+            static_load,
+            spring_rate: k,
+            damping: 2.0 * damping_ratio * (k * m).sqrt(),
+        };
+        spec.validate(0)?;
+        Ok(spec)
+    }
+
+    /// Checks the numbers; `index` names the wheel in errors.
+    pub fn validate(&self, index: usize) -> Result<()> {
+        let name = |what: &str| format!("wheel {index} {what}");
+        for (what, v) in [
+            ("centre x", self.center.x),
+            ("centre y", self.center.y),
+            ("centre z", self.center.z),
+            ("radius", self.radius),
+            ("static_load", self.static_load),
+            ("spring_rate", self.spring_rate),
+            ("damping", self.damping),
+        ] {
+            require_finite(&name(what), v)?;
+        }
+        if self.radius <= 0.0 {
+            return Err(Error::parameter(
+                &name("radius"),
+                self.radius,
+                "a tyre radius must be > 0 m",
+            ));
+        }
+        if self.static_load <= 0.0 {
+            return Err(Error::parameter(
+                &name("static_load"),
+                self.static_load,
+                "a wheel's static load must be > 0 N",
+            ));
+        }
+        if self.spring_rate <= 0.0 {
+            return Err(Error::parameter(
+                &name("spring_rate"),
+                self.spring_rate,
+                "a spring rate must be > 0 N/m",
+            ));
+        }
+        if self.damping < 0.0 {
+            return Err(Error::parameter(
+                &name("damping"),
+                self.damping,
+                "a damping coefficient must be >= 0 N s/m",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The spring-damper's normal load (N, >= 0) at compression `compression` = R - h (m) and
+    /// compression rate (m/s).
+    #[inline]
+    pub fn normal_load(&self, compression: Real, rate: Real) -> Real {
+        (self.static_load + self.spring_rate * compression + self.damping * rate).max(0.0)
+    }
+}
+
+/// Static loads (N) of wheels at body-frame positions `xy` (m from the CG) carrying `weight`
+/// (N) on level ground: the least-squares solution of the three equilibrium equations (total
+/// load, moments about x and y), which for two axles gives each axle its share
+/// `weight * (distance of the other axle from the CG) / wheelbase`, split by the lateral
+/// lever. An error when the CG is not over the wheels (a load would be negative).
+pub fn static_loads(xy: &[[Real; 2]], weight: Real) -> Result<Vec<Real>> {
+    use nalgebra::{Matrix3, Vector3};
+    if xy.len() < 3 {
+        return Err(Error::Parameter(format!(
+            "a vehicle on the ground needs at least 3 wheels (got {})",
+            xy.len()
+        )));
+    }
+    // F_i = a + b x_i + c y_i minimises |F| subject to sum F = W, sum F x = 0, sum F y = 0.
+    let mut m = Matrix3::zeros();
+    for p in xy {
+        let row = Vector3::new(1.0, p[0], p[1]);
+        m += row * row.transpose();
+    }
+    let coef = m.try_inverse().ok_or_else(|| {
+        Error::Parameter(
+            "the wheels are in a line: they cannot carry a vehicle (check their positions)".into(),
+        )
+    })? * Vector3::new(weight, 0.0, 0.0);
+    let loads: Vec<Real> = xy
+        .iter()
+        .map(|p| coef.x + coef.y * p[0] + coef.z * p[1])
+        .collect();
+    if let Some((k, f)) = loads.iter().enumerate().find(|(_, f)| **f <= 0.0) {
+        return Err(Error::Parameter(format!(
+            "the centre of gravity is not over the wheels: wheel {k} would carry {f:.1} N (check \
+             the wheel positions, which are measured from the CG)"
+        )));
+    }
+    Ok(loads)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn static_loads_are_the_axle_shares() {
+        // CG 1.1 m behind the front axle, 1.6 m ahead of the rear axle, track 1.5 m.
+        let (a, b, t) = (1.1, 1.6, 1.5);
+        let xy = [[a, t / 2.0], [a, -t / 2.0], [-b, t / 2.0], [-b, -t / 2.0]];
+        let w = 1500.0 * GRAVITY;
+        let f = static_loads(&xy, w).unwrap();
+        let front = w * b / (a + b) / 2.0;
+        let rear = w * a / (a + b) / 2.0;
+        for (k, expected) in [front, front, rear, rear].iter().enumerate() {
+            assert!(
+                (f[k] - expected).abs() < 1e-9 * w,
+                "{k}: {} vs {expected}",
+                f[k]
+            );
+        }
+        assert!(static_loads(&[[2.0, 0.5], [2.0, -0.5], [1.0, 0.0]], w).is_err());
+        assert!(static_loads(&[[1.0, 0.0], [0.0, 0.0], [-1.0, 0.0]], w).is_err());
+    }
+
+    #[test]
+    fn sprung_wheels_have_the_natural_frequency_and_damping_ratio() {
+        let w =
+            WheelSpec::sprung(Point::new(1.0, 0.7, -0.25), 0.3, true, 4000.0, 1.3, 0.3).unwrap();
+        let m = 4000.0 / GRAVITY;
+        let f = (w.spring_rate / m).sqrt() / (2.0 * std::f64::consts::PI);
+        assert!((f - 1.3).abs() < 1e-12);
+        assert!((w.damping / (2.0 * (w.spring_rate * m).sqrt()) - 0.3).abs() < 1e-12);
+        assert!(WheelSpec::sprung(Point::origin(), 0.3, true, 4000.0, -1.0, 0.3).is_err());
+        let mut bad = w.clone();
+        bad.spring_rate = -5.0;
+        assert!(bad
+            .validate(2)
+            .unwrap_err()
+            .to_string()
+            .contains("wheel 2 spring_rate"));
+    }
+}

@@ -1,0 +1,298 @@
+//! The whole event on the ground (DESIGN.md section 5) against closed forms: static wheel
+//! loads, a locked-wheel skid, steady cornering, a braked vehicle on a slope, energy at rest.
+//! Tolerances are stated at each assertion.
+
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+use crashsim_core::ground::Ground;
+use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
+use crashsim_core::vehicle::{
+    static_loads, Braking, DriverInputs, Table, Trigger, Tyre, VehicleSpec, WheelSpec, WheelState,
+    WheelSwitch, GRAVITY,
+};
+use crashsim_core::{BodyState, MassProperties, MeshShape, RunOptions, RunOutput, World};
+
+const MASS: Real = 1500.0;
+/// CG 1.1 m behind the front axle and 1.6 m ahead of the rear one, track 1.55 m, CG 0.55 m
+/// above the ground, tyre radius 0.3 m: a mid-size car on a 4.6 x 1.8 x 1.4 m box.
+const A: Real = 1.1;
+const B: Real = 1.6;
+const TRACK: Real = 1.55;
+const CG_HEIGHT: Real = 0.55;
+const RADIUS: Real = 0.3;
+
+fn car_shape() -> Arc<MeshShape> {
+    // The box reaches 0.15 m above the ground; its centre is 0.25 m above the CG.
+    Arc::new(MeshShape::cuboid(
+        Vector::new(0.0, 0.0, 0.15 + 0.7 - CG_HEIGHT),
+        Vector::new(2.3, 0.9, 0.7),
+    ))
+}
+
+fn car_props() -> MassProperties {
+    // Yaw radius of gyration 0.5 WB; roll and pitch from a 4.6 x 1.8 x 1.4 m box.
+    let wb = A + B;
+    MassProperties::new(
+        MASS,
+        Matrix::from_diagonal(&Vector::new(
+            MASS / 12.0 * (1.8f64.powi(2) + 1.4f64.powi(2)),
+            MASS / 12.0 * (4.6f64.powi(2) + 1.4f64.powi(2)),
+            MASS * (0.5 * wb).powi(2),
+        )),
+    )
+    .unwrap()
+}
+
+fn car_spec(tyre: Tyre, inputs: DriverInputs) -> VehicleSpec {
+    let xy = [
+        [A, TRACK / 2.0],
+        [A, -TRACK / 2.0],
+        [-B, TRACK / 2.0],
+        [-B, -TRACK / 2.0],
+    ];
+    let loads = static_loads(&xy, MASS * GRAVITY).unwrap();
+    let wheels = xy
+        .iter()
+        .zip(&loads)
+        .enumerate()
+        .map(|(k, (p, f))| {
+            let center = Point::new(p[0], p[1], RADIUS - CG_HEIGHT);
+            WheelSpec::sprung(center, RADIUS, k < 2, *f, 1.3, 0.3).unwrap()
+        })
+        .collect();
+    VehicleSpec {
+        wheels,
+        tyre,
+        inputs,
+    }
+}
+
+fn car_world(ground: Ground, v: Real, yaw: Real, inputs: DriverInputs) -> World {
+    let mut w = World::new();
+    let h = ground.height_at(0.0, 0.0).unwrap();
+    let state = BodyState {
+        position: Point::new(0.0, 0.0, h + CG_HEIGHT),
+        orientation: Rotation::from_axis_angle(&Vector::z_axis(), yaw),
+        velocity: Vector::new(yaw.cos(), yaw.sin(), 0.0) * v,
+        angular_velocity: Vector::zeros(),
+    };
+    let i = w.add_body(car_shape(), car_props(), &state).unwrap();
+    w.set_vehicle(i, car_spec(Tyre::default(), inputs)).unwrap();
+    w.set_ground(ground).unwrap();
+    w
+}
+
+fn locked_from_start() -> DriverInputs {
+    DriverInputs {
+        switches: (0..4)
+            .map(|wheel| WheelSwitch {
+                wheel,
+                at: Trigger::Time(0.0),
+                state: WheelState::Locked,
+            })
+            .collect(),
+        ..DriverInputs::default()
+    }
+}
+
+fn until_rest(w: &mut World, max: Real) -> RunOutput {
+    let options = RunOptions {
+        until_rest: true,
+        ..RunOptions::default()
+    };
+    w.run_with_options(max, 1e-3, &options, &mut |_| true)
+        .unwrap()
+}
+
+#[test]
+fn static_wheel_loads_are_the_axle_shares() {
+    let mut w = car_world(Ground::default(), 0.0, 0.3, DriverInputs::default());
+    let out = w.run(2.0, 1e-3).unwrap();
+    let last = out.len() - 1;
+    let weight = MASS * GRAVITY;
+    let front = weight * B / (A + B) / 2.0;
+    let rear = weight * A / (A + B) / 2.0;
+    for (k, wheel) in out.wheels_at(last).iter().enumerate() {
+        let expected = if k < 2 { front } else { rear };
+        // 0.5 % (the tolerance); in fact the design pose is the equilibrium.
+        assert!(
+            (wheel.load - expected).abs() < 0.005 * expected,
+            "wheel {k}: {} N vs {expected} N",
+            wheel.load
+        );
+    }
+    let s = &out.sample(last)[0];
+    assert!(
+        s.velocity.norm() < 1e-6 && (s.position.z - CG_HEIGHT).abs() < 1e-6,
+        "{s:?}"
+    );
+}
+
+#[test]
+fn a_locked_wheel_skid_stops_after_v_squared_over_two_mu_g() {
+    for v in [10.0, 20.0, 30.0] {
+        let mut w = car_world(Ground::default(), v, 0.0, locked_from_start());
+        let out = until_rest(&mut w, 20.0);
+        let rest = out.rest[0].expect("at rest");
+        let k = out.times.iter().position(|&t| t >= rest).unwrap();
+        let travel = out.sample(k)[0].position.x;
+        let expected = v * v / (2.0 * 0.8 * GRAVITY);
+        eprintln!("v {v}: {travel} m vs {expected} m, rest at {rest} s");
+        assert!(
+            (travel - expected).abs() < 0.01 * expected,
+            "v {v}: {travel} vs {expected}"
+        );
+        // At rest all the kinetic energy has been dissipated (1 %).
+        let end = &out.sample(out.len() - 1)[0];
+        let ke = 0.5 * MASS * end.velocity.norm_squared();
+        assert!(ke < 0.01 * 0.5 * MASS * v * v, "{ke}");
+    }
+}
+
+/// A plane through the origin rising along +x at `slope` rad, 200 m square, as a terrain mesh.
+fn slope(slope: Real) -> Ground {
+    let z = |x: Real| x * slope.tan();
+    let v = vec![
+        Point::new(-100.0, -100.0, z(-100.0)),
+        Point::new(100.0, -100.0, z(100.0)),
+        Point::new(100.0, 100.0, z(100.0)),
+        Point::new(-100.0, 100.0, z(-100.0)),
+    ];
+    Ground::terrain(Arc::new(
+        MeshShape::new(v, vec![[0, 1, 2], [0, 2, 3]]).unwrap(),
+    ))
+    .unwrap()
+}
+
+/// The car at rest on `ground`'s slope (rising along +x), facing up it, every wheel braked at
+/// the full friction.
+fn braked_on_slope(theta: Real) -> World {
+    let ground = slope(theta);
+    let mut w = World::new();
+    let n = Vector::new(-theta.sin(), 0.0, theta.cos());
+    // Raised along the normal so the springs carry m g cos(theta) instead of m g (their
+    // static compression is g / omega^2): placed near its equilibrium, not dropped.
+    let omega = 2.0 * PI * 1.3;
+    let raise = GRAVITY / (omega * omega) * (1.0 - theta.cos());
+    let state = BodyState {
+        position: Point::from(n * (CG_HEIGHT + raise)),
+        orientation: Rotation::from_axis_angle(&Vector::y_axis(), -theta),
+        velocity: Vector::zeros(),
+        angular_velocity: Vector::zeros(),
+    };
+    let i = w.add_body(car_shape(), car_props(), &state).unwrap();
+    let inputs = DriverInputs {
+        brake: (0..4)
+            .map(|_| Some(Braking::Fraction(Table::constant(1.0))))
+            .collect(),
+        ..DriverInputs::default()
+    };
+    w.set_vehicle(i, car_spec(Tyre::default(), inputs)).unwrap();
+    w.set_ground(ground).unwrap();
+    w
+}
+
+#[test]
+fn a_braked_vehicle_stays_on_a_slope_below_atan_mu_and_slides_above_it() {
+    let limit = 0.8f64.atan(); // 38.66 deg
+    for (delta_deg, slides) in [(-5.0, false), (-1.0, false), (1.0, true), (5.0, true)] {
+        let theta = limit + (delta_deg as Real).to_radians();
+        let mut w = braked_on_slope(theta);
+        let out = w.run(3.0, 1e-3).unwrap();
+        let at = |t: Real| &out.sample(out.times.iter().position(|&x| x >= t).unwrap())[0];
+        let end = at(3.0);
+        if slides {
+            // Sliding down at a = g (sin - mu cos) along the slope (0.1 %, measured over the
+            // third second, after the treads have loaded).
+            let a = GRAVITY * (theta.sin() - 0.8 * theta.cos());
+            let measured = end.velocity.norm() - at(2.0).velocity.norm();
+            assert!(end.velocity.x < 0.0, "{delta_deg}: {end:?}");
+            assert!(
+                (measured / a - 1.0).abs() < 1e-3,
+                "{delta_deg}: {measured} vs {a}"
+            );
+        } else {
+            // It stays: the treads' springs hold it after a few cm of elastic give (most near
+            // the limit) and it does not move in the last second.
+            let moved = (end.position - at(2.0).position).norm();
+            let give = (end.position.coords
+                - Vector::new(-theta.sin(), 0.0, theta.cos()) * CG_HEIGHT)
+                .norm();
+            // (The suspension still settles by a fraction of a mm.)
+            assert!(
+                moved < 2e-3 && end.velocity.norm() < 1e-3,
+                "{delta_deg}: {moved} m"
+            );
+            assert!(give < 0.1, "{delta_deg}: {give} m");
+        }
+    }
+}
+
+#[test]
+fn steady_cornering_follows_the_single_track_yaw_rate_gain() {
+    // 20 m/s on the radius of 0.2 g. The linear single-track model: r / delta =
+    // V / (L + K V^2), understeer gradient K = m / L (b / C_f - a / C_r) with the axle
+    // cornering stiffnesses C = mu Fz / alpha_sat of the axle loads in the turn. The
+    // reconstruction tyre's stiffness is load-proportional, so K = 0 (neutral steer) unless a
+    // force moves load between the axles: a rear drive, whose pitch moment moves
+    // F h / L = 39 N rearward (less the front tyres' drag's), gives K = 2.2e-4 rad s^2/m and
+    // 3.5 % less yaw at 20 m/s.
+    // (Rolling resistance, heavier on the outer wheels, makes an understeering yaw moment of
+    // about 19 N m here: -3 %; it is switched off to compare with the closed form.)
+    let v = 20.0;
+    let wb = A + B;
+    let delta = wb / (v * v / (0.2 * GRAVITY));
+    for drive in [0.0, 95.0] {
+        let inputs = DriverInputs {
+            steer: Some(Table::new("steer", &[(0.0, 0.0), (0.5, delta)]).unwrap()),
+            drive: vec![
+                None,
+                None,
+                Some(Table::constant(drive)),
+                Some(Table::constant(drive)),
+            ],
+            ..DriverInputs::default()
+        };
+        let mut w = World::new();
+        let state = BodyState {
+            position: Point::new(0.0, 0.0, CG_HEIGHT),
+            orientation: Rotation::identity(),
+            velocity: Vector::new(v, 0.0, 0.0),
+            angular_velocity: Vector::zeros(),
+        };
+        let i = w.add_body(car_shape(), car_props(), &state).unwrap();
+        let tyre = Tyre {
+            rolling_resistance: 0.0,
+            ..Tyre::default()
+        };
+        w.set_vehicle(i, car_spec(tyre, inputs)).unwrap();
+        w.set_ground(Ground::default()).unwrap();
+        let out = w.run(6.0, 1e-3).unwrap();
+        let last = out.len() - 1;
+        let end = &out.sample(last)[0];
+        let u = (end.orientation.inverse() * end.velocity).x; // forward speed
+        let r = end.angular_velocity.z;
+        let loads: Vec<Real> = out.wheels_at(last).iter().map(|w| w.load).collect();
+        let c = |fz: Real| 0.8 * fz / 10f64.to_radians();
+        let (cf, cr) = (c(loads[0] + loads[1]), c(loads[2] + loads[3]));
+        let k = MASS / wb * (B / cf - A / cr);
+        let expected = u / (wb + k * u * u);
+        let gain = r / delta;
+        // 3 % is the tolerance; the agreement is within 1 %.
+        assert!(
+            (gain / expected - 1.0).abs() < 0.01,
+            "drive {drive}: {gain} vs {expected}"
+        );
+        assert!(
+            (u * r / GRAVITY - 0.2).abs() < 0.02,
+            "drive {drive}: {} g",
+            u * r / GRAVITY
+        );
+        if drive == 0.0 {
+            assert!(k.abs() < 5e-5, "{k}"); // the front tyres' drag moves a little load forward
+        } else {
+            assert!(k > 1.8e-4 && k < 2.8e-4, "{k}");
+        }
+    }
+}
