@@ -100,6 +100,24 @@ def test_from_mesh_of_a_closed_mesh_uses_its_volume() -> None:
     assert np.allclose(v.mesh.bounds[0], [-1.7, -1.2, 0.0], atol=1e-12)
 
 
+def test_from_mesh_quality_report_is_kept_not_printed(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # The README said from_mesh prints a quality report: a library function prints nothing;
+    # vehicle.quality holds the report and print(vehicle.quality) shows it.
+    path = tmp_path / "car.ply"
+    trimesh.creation.box(extents=(4.0, 2.0, 1.0)).export(path)
+    v = cs.Vehicle.from_mesh(path, mass=1000.0)
+    assert capsys.readouterr() == ("", "")
+    assert isinstance(v.quality, cs.MeshQuality) and v.quality.watertight
+    print(v.quality)
+    out = capsys.readouterr().out
+    assert out.startswith("12 triangles, 8 vertices, 4.000 x 2.000 x 1.000 m\n")
+    assert "watertight: yes" in out and "volume: 8 m^3" in out
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    assert "print(vehicle.quality)" in readme and "prints a mesh-quality report" not in readme
+
+
 def test_from_mesh_of_an_open_mesh_uses_its_winding_solid_or_its_convex_hull() -> None:
     mesh = trimesh.creation.box(extents=(4.0, 2.0, 1.0))
     open_mesh = trimesh.Trimesh(mesh.vertices, mesh.faces[:-2])  # one side left open
