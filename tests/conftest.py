@@ -18,6 +18,23 @@ SHARED_MESHES = REPO.parent / "shared" / "meshes"
 MISSING = f"the shared meshes are not at {SHARED_MESHES} (../shared/meshes from the repository)"
 
 
+# Kerb masses of the shared meshes' vehicles (kg), typical of their kinds, so that each is a
+# plausible vehicle (a 1500 kg bus is 15 kg/m^3 and gets a PlausibilityWarning).
+MESH_MASS = {
+    "sedan_quaternius_normalcar1": 1450.0,
+    "suv_quaternius_suv": 1900.0,
+    "hatchback_gazebo": 1200.0,
+    "pickup_gazebo": 2200.0,
+    "van_gazebo_ambulance": 4500.0,
+    "bus_gazebo": 12000.0,
+}
+
+
+def mesh_mass(path: Path) -> float:
+    """The kerb mass (kg) of a shared mesh's vehicle."""
+    return MESH_MASS[Path(path).stem]
+
+
 def shared_mesh_paths() -> list[Path]:
     """The shared .ply meshes, sorted by name (empty when the folder is absent)."""
     return sorted(SHARED_MESHES.glob("*.ply"))

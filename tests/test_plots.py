@@ -18,7 +18,7 @@ import matplotlib.image as mpimg
 import numpy as np
 import pytest
 import shapely
-from conftest import seed_side_impact
+from conftest import mesh_mass, seed_side_impact
 from crashsim.plots import (
     DPI,
     IMPACT_FIGSIZE,
@@ -178,7 +178,7 @@ def check_against_raster(sil: shapely.Geometry, xy: np.ndarray, faces: np.ndarra
 
 
 def test_real_mesh_silhouette_is_its_projection_not_its_hull(mesh_path: Path) -> None:
-    v = cs.Vehicle.from_mesh(mesh_path, mass=1500.0)
+    v = cs.Vehicle.from_mesh(mesh_path, mass=mesh_mass(mesh_path))
     sil = silhouette(v)
     xy = v.body_vertices[:, :2]
     hull = shapely.convex_hull(shapely.multipoints(xy))

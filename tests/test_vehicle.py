@@ -10,6 +10,7 @@ import crashsim as cs
 import numpy as np
 import pytest
 import trimesh
+from conftest import mesh_mass
 from crashsim.vehicles.stiffness import FaceStiffness, Stiffness
 
 # From ../shared/meshes/README.md: triangles and L x W x H (m), published to 1 cm.
@@ -180,7 +181,7 @@ def test_an_stl_soup_is_merged_as_trimesh_would(tmp_path: Path) -> None:
 
 def test_shared_mesh_loads_with_the_published_size(mesh_path: Path) -> None:
     triangles, extents = PUBLISHED[mesh_path.stem]
-    v = cs.Vehicle.from_mesh(mesh_path, mass=1500.0)
+    v = cs.Vehicle.from_mesh(mesh_path, mass=mesh_mass(mesh_path))
     assert v.name == mesh_path.stem
     assert len(v.mesh.faces) == triangles
     assert np.allclose(v.extents, extents, rtol=0, atol=0.01), v.extents
@@ -380,8 +381,9 @@ def boxes_and_a_sheet() -> trimesh.Trimesh:
 
 
 def test_the_union_of_closed_shells_ignores_the_open_ones() -> None:
-    mesh = boxes_and_a_sheet()
-    v = cs.Vehicle.from_mesh(mesh, mass=300.0, solid="closed shells")
+    mesh = boxes_and_a_sheet()  # 4.5 m long (x), 6 m wide (y): no vehicle, it warns
+    with pytest.warns(cs.PlausibilityWarning, match="longest extent .* is across"):
+        v = cs.Vehicle.from_mesh(mesh, mass=300.0, solid="closed shells")
     assert v.sources == {"cg": "closed shells", "inertia": "closed shells"}
     # volumes 2 and 1 m^3, centroids (0, 0, 0) and (3, 0, 0.5): mass 200 and 100 kg
     cg = np.array([1.0, 0.0, 1.0 / 6.0])
@@ -393,7 +395,8 @@ def test_the_union_of_closed_shells_ignores_the_open_ones() -> None:
     assert np.allclose(v.inertia, expected, rtol=1e-12, atol=1e-9)
     assert "closed shells: 2 of 3" in v.summary()
     # the convex hull takes the sheet in
-    hull = cs.Vehicle.from_mesh(mesh, mass=300.0, solid="convex hull")
+    with pytest.warns(cs.PlausibilityWarning, match="longest extent .* is across"):
+        hull = cs.Vehicle.from_mesh(mesh, mass=300.0, solid="convex hull")
     assert hull.sources["inertia"] == "convex hull" and hull.cg[1] > 1.0
 
 
@@ -438,10 +441,12 @@ def test_mass_properties_of_a_mesh_without_volume_are_a_mesh_error(solid: str) -
     assert isinstance(error.value, ValueError)
     with pytest.raises(cs.MeshError, match="volume"):
         cs.Vehicle.from_mesh(sheet, mass=1.0, solid=solid, inertia=np.eye(3))  # cg "mesh"
-    # the user's numbers or the empirical rule need no volume
-    v = cs.Vehicle.from_mesh(
-        sheet, mass=1.0, solid=solid, cg=(1, 0.5, 0.5), inertia="empirical", wheelbase=1.5
-    )
+    # the user's numbers or the empirical rule need no volume (a flat sheet is no vehicle:
+    # it warns; a wheelbase of 1.2 m keeps the rule's tensor possible on this 2 x 1 m sheet)
+    with pytest.warns(cs.PlausibilityWarning, match="height 0 m outside"):
+        v = cs.Vehicle.from_mesh(
+            sheet, mass=1.0, solid=solid, cg=(1, 0.5, 0.5), inertia="empirical", wheelbase=1.2
+        )
     assert v.sources == {"cg": "user", "inertia": "empirical"}
 
 
@@ -468,11 +473,11 @@ def test_a_closed_mesh_with_inward_faces_is_refused() -> None:
 
 
 def test_from_mesh_converts_units_and_axes(tmp_path: Path) -> None:
-    mesh = trimesh.creation.box(extents=(400.0, 180.0, 140.0))  # cm, z up, -y forward
+    mesh = trimesh.creation.box(extents=(180.0, 400.0, 140.0))  # cm, z up, -y forward
     path = tmp_path / "car_cm.obj"
     mesh.export(path)
     v = cs.Vehicle.from_mesh(path, mass=1500.0, units="cm", forward="-y", ground=True)
-    assert np.allclose(v.extents, [1.8, 4.0, 1.4], atol=1e-9)  # the file's x is 1.8 m wide
+    assert np.allclose(v.extents, [4.0, 1.8, 1.4], atol=1e-9)  # the file's x is 1.8 m wide
     assert v.mesh.bounds[0, 2] == pytest.approx(0.0, abs=1e-12)
     assert np.allclose(v.cg, [0.0, 0.0, 0.7], atol=1e-9)
     with pytest.raises(cs.ParameterError, match="same axis"):
@@ -492,7 +497,7 @@ def test_stiffness_is_kept_shown_and_checked() -> None:
     assert v.stiffness.rear is None
     assert "front A = 5e+04 N/m, B = 1.2e+06 N/m^2" in v.summary()
     assert v.renamed("b").stiffness is v.stiffness
-    m = cs.Vehicle.from_mesh(trimesh.creation.box(), mass=1.0, stiffness=v.stiffness)
+    m = cs.Vehicle.from_mesh(trimesh.creation.box(), mass=500.0, stiffness=v.stiffness)
     assert m.stiffness is v.stiffness
     assert cs.Vehicle.box(1, 1, 1, mass=1.0).stiffness == Stiffness()
     assert "stiffness: no data" in cs.Vehicle.box(1, 1, 1, mass=1.0).summary()
@@ -512,7 +517,7 @@ def test_renamed_keeps_every_source_and_the_quality() -> None:
 
 
 def test_the_summary_names_every_source(mesh_path: Path) -> None:
-    v = cs.Vehicle.from_mesh(mesh_path, mass=1500.0)
+    v = cs.Vehicle.from_mesh(mesh_path, mass=mesh_mass(mesh_path))
     text = v.summary()
     q = v.quality
     assert f"{q.shells} shells ({q.closed_shells} closed)" in text

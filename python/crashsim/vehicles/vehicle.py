@@ -21,8 +21,10 @@ accepted ranges and their messages live in one place (crates/crashsim-core).
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -33,16 +35,19 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim import _core
 from crashsim.errors import MeshError, ParameterError
 from crashsim.units import POUND
+from crashsim.vehicles import plausibility
 from crashsim.vehicles.generator import PRESETS, BodyParams, body_params, generate_body
 from crashsim.vehicles.meshio import (
     MeshQuality,
     MeshSource,
+    axes_rotation,
     check_mesh,
     closed_shells,
     describe,
     load_mesh,
     mesh_quality,
     shell_labels,
+    unit_scale,
 )
 from crashsim.vehicles.stiffness import FACES, Stiffness
 from crashsim.vehicles.vehicle_data import ALIASES, VehicleClass, vehicle_class
@@ -141,6 +146,51 @@ def _box_inertia(mass: float, length: float, width: float, height: float) -> Arr
     return (mass / 12.0) * np.diag(
         [width**2 + height**2, length**2 + height**2, length**2 + width**2]
     )
+
+
+# The empirical rule's yaw moment m (WB/2)^2 stays below the box's Ixx + Iyy only while
+# 3 WB^2 <= L^2 + W^2 + 2 H^2 (a wheelbase up to about 0.7 of a car's length).
+_EMPIRICAL_FIX = (
+    "a shorter wheelbase (the rule needs 3 WB^2 <= L^2 + W^2 + 2 H^2), inertia='mesh', or "
+    "the inertia"
+)
+
+
+@contextlib.contextmanager
+def _rule_hint(mode: str, fix: str) -> Iterator[None]:
+    """Adds to an impossible-inertia ParameterError that a rule ("class", "empirical") made
+    the tensor and what to give instead (``fix``)."""
+    try:
+        yield
+    except ParameterError as e:
+        if mode in ("class", "empirical") and "is impossible" in str(e):
+            raise ParameterError(
+                f"{e}. The {mode!r} rule gave this tensor for these dimensions: give {fix}"
+            ) from e
+        raise
+
+
+def _dims(extents: ArrayLike) -> str:
+    """'4.22 x 1.81 x 1.18 m' (length x width x height)."""
+    return " x ".join(f"{float(x):.3g}" for x in np.asarray(extents)) + " m"
+
+
+def _volume_estimate(mesh: trimesh.Trimesh) -> tuple[float | None, str]:
+    """(m^3, what it is) of the solid a mesh stands for when its mass properties were not
+    needed (cg and inertia given): the mesh's own volume when it is closed, else its convex
+    hull's (at least the solid's: the density from it is low by up to 1.8x on the shared
+    meshes, well inside the plausible range's margin); None when it has none (flat)."""
+    if mesh.is_watertight and mesh.is_winding_consistent:
+        volume = solid_properties(mesh)[0]
+        if volume > 0.0:
+            return volume, "the mesh volume"
+    try:
+        with np.errstate(all="ignore"):
+            hull = mesh.convex_hull
+            volume = float(hull.volume)
+    except Exception:  # qhull refuses flat or degenerate point sets: nothing to judge
+        return None, ""
+    return (volume, "its convex hull") if volume > 0.0 else (None, "")
 
 
 def _wheelbase(wheelbase: Any, length: float) -> float:
@@ -314,6 +364,8 @@ class Vehicle:
         mass = _as_float(mass, "mass", "kg")
         cg_v = _point(cg, "cg")
         _check_mass_properties(mass, inertia)
+        source = (sources or {}).get("inertia", USER)
+        plausibility.check_inertia(inertia, None if source == USER else source)
         self._name = name
         self._mass = mass
         self._mesh = mesh
@@ -385,6 +437,8 @@ class Vehicle:
             raise ParameterError('inertia="empirical" needs the wheelbase (m): give wheelbase=')
         what = describe(source)
         mesh = load_mesh(source, units=units, up=up, forward=forward, ground=ground, center=center)
+        scale = unit_scale(units)
+        units_name = units.strip().lower() if isinstance(units, str) else f"{scale:g} m per unit"
         if name is None:
             if isinstance(source, trimesh.Trimesh | trimesh.Scene):
                 name = "vehicle"
@@ -418,8 +472,20 @@ class Vehicle:
             )
         else:
             inertia_v, sources["inertia"] = np.asarray(inertia, dtype=np.float64), USER
-        vehicle = cls(mesh, mass_kg, cg_v, inertia_v, name=name, sources=sources, stiffness=stiff)
+        with _rule_hint(inertia_mode, _EMPIRICAL_FIX):
+            vehicle = cls(
+                mesh, mass_kg, cg_v, inertia_v, name=name, sources=sources, stiffness=stiff
+            )
         vehicle._mass_source, vehicle._details = mass_source, details
+        findings = plausibility.size_findings(
+            mesh.extents, scale, units_name, axes_rotation(up, forward)
+        )
+        if solid_props is not None:
+            volume, label = solid_props[0], f"the {kind}"
+        else:
+            volume, label = _volume_estimate(mesh)
+        findings += plausibility.check_density(mass_kg, volume, label, findings)
+        plausibility.warn(f"{what} ({name!r}, {_dims(mesh.extents)})", findings, stacklevel=3)
         return vehicle
 
     @classmethod
@@ -490,9 +556,10 @@ class Vehicle:
             )
         else:
             inertia_v, sources["inertia"] = np.asarray(inertia, dtype=np.float64), USER
-        vehicle = cls(
-            mesh, mass_kg, cg, inertia_v, name=name or "box", sources=sources, stiffness=stiff
-        )
+        with _rule_hint(inertia_mode, _EMPIRICAL_FIX):
+            vehicle = cls(
+                mesh, mass_kg, cg, inertia_v, name=name or "box", sources=sources, stiffness=stiff
+            )
         vehicle._mass_source, vehicle._details = mass_source, details
         return vehicle
 
@@ -629,17 +696,30 @@ class Vehicle:
         defaults = f"generator defaults ({key})"
         sources["body"] = f"{USER} ({', '.join(sorted(shape))}); {defaults}" if shape else defaults
         sources["stiffness"] = stiffness_source
-        vehicle = cls(
-            mesh,
-            mass_kg,
-            cg_v,
-            inertia_v,
-            name=key if name is None else name,
-            sources=sources,
-            stiffness=stiff,
+        fix = (
+            "a wheelbase in proportion to the length (the class's yaw moment scales with the "
+            "wheelbase squared, the body's pitch moment with its length), inertia='mesh', or "
+            "the inertia"
         )
+        with _rule_hint(inertia_mode, fix):
+            vehicle = cls(
+                mesh,
+                mass_kg,
+                cg_v,
+                inertia_v,
+                name=key if name is None else name,
+                sources=sources,
+                stiffness=stiff,
+            )
         vehicle._mass_source, vehicle._details = mass_source, details
         vehicle._generator_params = params
+        findings = plausibility.size_findings(mesh.extents)
+        findings += plausibility.check_density(
+            mass_kg, volume, "the generated body's solid", findings
+        )
+        plausibility.warn(
+            f"the generated {key} ({vehicle.name!r}, {_dims(mesh.extents)})", findings, stacklevel=3
+        )
         return vehicle
 
     # -- properties ----------------------------------------------------------------------
