@@ -8,10 +8,33 @@ from __future__ import annotations
 
 import itertools
 import math
+import os
 from pathlib import Path
 
 import crashsim as cs
 import pytest
+from hypothesis import HealthCheck, settings
+
+# Property-based tests (hypothesis; tests/test_fuzz_*.py). "ci", the default: a bounded,
+# reproducible run (fixed seed, no example database written) that keeps every fuzz test
+# within a few seconds; "long": many more random examples, as a habit before a release:
+#   HYPOTHESIS_PROFILE=long python -m pytest -q -p no:cacheprovider test_fuzz_*.py
+# (from tests/; a failing example is printed, and kept in tests/.hypothesis to be replayed).
+settings.register_profile(
+    "ci",
+    max_examples=60,
+    deadline=2000,  # ms per example: a slower one is a hang to look at
+    derandomize=True,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.register_profile(
+    "long",
+    max_examples=2000,
+    deadline=10_000,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 REPO = Path(__file__).resolve().parents[1]
 SHARED_MESHES = REPO.parent / "shared" / "meshes"

@@ -160,12 +160,27 @@ def _flatten(loaded: Any, what: str) -> trimesh.Trimesh:
 
 
 def check_mesh(mesh: trimesh.Trimesh, what: str) -> None:
-    """MeshError unless the mesh has triangles and finite vertices no farther than
-    MAX_COORDINATE from the origin (the engine checks the indices when it builds its
-    shape)."""
+    """MeshError unless the mesh has triangles whose indices name its vertices, and finite
+    vertices no farther than MAX_COORDINATE from the origin."""
     if len(mesh.faces) == 0:
         raise MeshError(f"{what} has no triangles: a vehicle needs a surface mesh")
     vertices = np.asarray(mesh.vertices, dtype=np.float64)
+    if vertices.ndim != 2 or vertices.shape[1] != 3:
+        raise MeshError(
+            f"{what} has vertices of {vertices.shape[1] if vertices.ndim == 2 else '?'} "
+            "coordinates: a vehicle mesh needs x, y, z (the file is damaged or not 3-D)"
+        )
+    faces = np.asarray(mesh.faces)
+    if faces.ndim != 2 or faces.shape[1] != 3:
+        raise MeshError(f"{what} has faces of shape {faces.shape}: a vehicle needs triangles")
+    outside = (faces < 0) | (faces >= len(vertices))
+    if np.any(outside):
+        k = int(np.flatnonzero(np.any(outside, axis=1))[0])
+        raise MeshError(
+            f"{what} has {int(np.any(outside, axis=1).sum())} faces naming vertices it does not "
+            f"have (it has {len(vertices)}), the first is face {k} = {faces[k].tolist()}: the "
+            "file is damaged or truncated"
+        )
     bad = ~np.all(np.isfinite(vertices), axis=1)
     if np.any(bad):
         i = int(np.flatnonzero(bad)[0])
@@ -378,7 +393,10 @@ def mesh_quality(mesh: trimesh.Trimesh) -> MeshQuality:
     duplicates = _duplicates(faces)
     watertight = bool(np.all(counts == 2))
     winding = bool(mesh.is_winding_consistent)
-    volume = float(mesh.volume) if watertight and winding else None
+    volume = None
+    if watertight and winding:
+        with np.errstate(invalid="ignore", divide="ignore"):  # trimesh's centroid of volume 0
+            volume = float(mesh.volume)
     extents = vertices.max(axis=0) - vertices.min(axis=0)
     return MeshQuality(
         triangles=len(faces),

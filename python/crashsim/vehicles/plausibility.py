@@ -256,9 +256,14 @@ def check_inertia(inertia: ArrayLike, source: str | None = None) -> None:
     in principal axes (equal only for a flat body), so no body has such a tensor.
     ``source`` (where the tensor came from) is named in the message."""
     tensor = np.asarray(inertia, dtype=np.float64).reshape(3, 3)
-    values, vectors = np.linalg.eigh(0.5 * (tensor + tensor.T))  # ascending
-    small, middle, big = (float(v) for v in values)
-    if big - (small + middle) <= INERTIA_TOLERANCE * abs(big):
+    # scaled to its largest entry: moments near 1e308 must not overflow (the engine has
+    # already refused a non-finite or non-positive-definite tensor)
+    scale = float(np.max(np.abs(tensor)))
+    if not (np.isfinite(scale) and scale > 0.0):
+        return
+    values, vectors = np.linalg.eigh(0.5 * (tensor / scale + (tensor / scale).T))  # ascending
+    small, middle, big = (float(v) * scale for v in values)
+    if values[2] - (values[0] + values[1]) <= INERTIA_TOLERANCE * abs(values[2]):
         return
     axis = vectors[:, 2]
     k = int(np.argmax(np.abs(axis)))
@@ -273,8 +278,9 @@ def check_inertia(inertia: ArrayLike, source: str | None = None) -> None:
     raise ParameterError(
         f"the inertia tensor{origin} is impossible: its principal moment {about}, "
         f"{big:.6g} kg m^2, exceeds the sum of the other two, {small:.6g} + {middle:.6g} = "
-        f"{small + middle:.6g} kg m^2; no body has that (each principal moment is at most the "
-        f"sum of the other two, equal only for a flat body). Check the values and their axes "
+        f"{(values[0] + values[1]) * scale:.6g} kg m^2; no body has that (each principal "
+        "moment is at most the sum of the other two, equal only for a flat body). Check the "
+        "values and their axes "
         f"(given: Ixx, Iyy, Izz = {', '.join(f'{d:.6g}' for d in diagonal)} kg m^2; "
         f"{others} may be too small or {names[k]} too large)"
     )

@@ -72,6 +72,8 @@ SOLIDS = ("auto", "convex hull", "closed shells", "winding number")
 
 # Cells of the grid over the mesh's box on which the winding-number solid is integrated.
 WINDING_GRID_CELLS = 50_000
+# A mesh whose smallest extent is at most this fraction of its largest is flat: no solid.
+FLAT_RATIO = 1e-9
 
 _ZERO3 = (0.0, 0.0, 0.0)
 _IDENTITY = (1.0, 0.0, 0.0, 0.0)  # quaternion (w, x, y, z)
@@ -137,15 +139,30 @@ def _mass(mass: Any, weight_lb: Any) -> tuple[float, str]:
 
 
 def _parallel_axis(inertia_cm: Array, mass: float, d: Array) -> Array:
-    """Inertia about a point displaced by d (m) from the centre of mass (kg m^2)."""
-    return inertia_cm + mass * (float(d @ d) * np.eye(3) - np.outer(d, d))
+    """Inertia about a point displaced by d (m) from the centre of mass (kg m^2).
+    ParameterError when it overflows (a CG absurdly far from the body)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = inertia_cm + mass * (float(d @ d) * np.eye(3) - np.outer(d, d))
+    if not np.all(np.isfinite(inertia_cm)):
+        raise ParameterError(
+            f"the inertia of a {mass:g} kg body is not finite: give the mass in kg"
+        )
+    if not np.all(np.isfinite(out)):
+        raise ParameterError(
+            f"the CG is {float(np.linalg.norm(d)):.3g} m from the centre of the body's solid: "
+            "the inertia about it is not finite; give a CG on the vehicle (m, model frame) and "
+            "its dimensions in metres"
+        )
+    return out
 
 
 def _box_inertia(mass: float, length: float, width: float, height: float) -> Array:
-    """Uniform solid box about its centre, axes along its edges (kg m^2)."""
-    return (mass / 12.0) * np.diag(
-        [width**2 + height**2, length**2 + height**2, length**2 + width**2]
-    )
+    """Uniform solid box about its centre, axes along its edges (kg m^2); an absurd mass
+    overflows to inf without a warning, and the engine's check refuses it."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        return (mass / 12.0) * np.diag(
+            [width**2 + height**2, length**2 + height**2, length**2 + width**2]
+        )
 
 
 # The empirical rule's yaw moment m (WB/2)^2 stays below the box's Ixx + Iyy only while
@@ -245,19 +262,38 @@ def _combine(parts: list[tuple[float, Array, Array]]) -> tuple[float, Array, Arr
     return float(volume), np.asarray(centroid), np.asarray(inertia)
 
 
+def _grid_counts(ext: Array, cells: int) -> NDArray[np.int64]:
+    """Cells per axis of a grid of about ``cells`` near-cubic cells over a box of extents
+    ``ext`` (m). An axis thinner than one cell gets a single cell and the others share the
+    budget (a bare cube root would give a thin box millions of cells along its long sides:
+    a 1 x 2e-16 x 1 m mesh asked for 3.7e13 of them and ran out of memory)."""
+    counts = np.ones(3, dtype=np.int64)
+    free = np.ones(3, dtype=bool)
+    for _ in range(3):
+        budget = cells / float(np.prod(counts[~free]))
+        side = (float(np.prod(ext[free])) / budget) ** (1.0 / int(free.sum()))
+        wanted = np.ceil(ext / side)
+        thin = free & (wanted <= 1.0)
+        counts[free] = np.maximum(1, wanted[free]).astype(np.int64)
+        if not thin.any() or thin.all():
+            break
+        free &= ~thin
+        counts[thin] = 1
+    return counts
+
+
 def _winding_solid(mesh: trimesh.Trimesh, what: str) -> tuple[float, Array, Array]:
     """Mass properties (unit density) of the region where the engine's generalized winding
     number exceeds 1/2, integrated on a grid of about WINDING_GRID_CELLS cells over the mesh's
     box (each inside cell a uniform small box)."""
     lo, hi = mesh.bounds
     ext = hi - lo
-    side = (float(np.prod(ext)) / WINDING_GRID_CELLS) ** (1.0 / 3.0)
-    if side <= 0.0:
+    if not float(ext.min()) > FLAT_RATIO * float(ext.max()):
         raise MeshError(
-            f"{what} encloses no volume (it is flat): give cg and inertia explicitly, or "
-            'use inertia="empirical" with a wheelbase'
+            f"{what} encloses no volume (it is flat: {_dims(ext)}): give cg and inertia "
+            'explicitly, or use inertia="empirical" with a wheelbase'
         )
-    counts = np.maximum(1, np.ceil(ext / side)).astype(int)
+    counts = _grid_counts(ext, WINDING_GRID_CELLS)
     cell = ext / counts
     axes = [lo[i] + (np.arange(counts[i]) + 0.5) * cell[i] for i in range(3)]
     grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
@@ -521,6 +557,13 @@ class Vehicle:
                 f"box dimensions (length, width, height) = {dims.tolist()} are invalid: "
                 "each must be a finite, positive number of metres"
             )
+        lo, hi = plausibility.SIZE_IMPOSSIBLE
+        if not lo <= float(dims.max()) <= hi:  # also keeps m L^2 / 12 from overflowing
+            raise ParameterError(
+                f"box dimensions (length, width, height) = {dims.tolist()} m: no vehicle is "
+                f"{'shorter than 1 mm' if dims.max() < lo else 'longer than 10 km'}; give "
+                "metres"
+            )
         clearance = _as_float(ground_clearance, "ground_clearance", "m")
         if not math.isfinite(clearance) or clearance < 0.0:
             raise ParameterError(
@@ -634,6 +677,12 @@ class Vehicle:
         inertia_mode = "class" if inertia is None else _mode(inertia, "inertia", _INERTIA_WORDS)
         asked = {"length": length, "width": width, "height": height, "wheelbase": wheelbase}
         dims = {k: getattr(vc, k).value if v is None else v for k, v in asked.items()}
+        for k, v in {**dims, **shape}.items():  # the generator's geometry fails beyond it
+            if isinstance(v, int | float) and not isinstance(v, bool):
+                if math.isfinite(v) and abs(v) > plausibility.SIZE_IMPOSSIBLE[1]:
+                    raise ParameterError(
+                        f"{k} = {v:g} m: no vehicle is longer than 10 km; give metres"
+                    )
         params = body_params(key, **dims, **shape)
         mesh = generate_body(params, resolution)
         # Ratios to the class (exactly 1.0 for the class's own numbers).
