@@ -8,14 +8,54 @@ from __future__ import annotations
 
 import itertools
 import math
+import os
 from pathlib import Path
 
 import crashsim as cs
 import pytest
+from hypothesis import HealthCheck, settings
+
+# Property-based tests (hypothesis; tests/test_fuzz_*.py). "ci", the default: a bounded,
+# reproducible run (fixed seed, no example database written) that keeps every fuzz test
+# within a few seconds; "long": many more random examples, as a habit before a release:
+#   HYPOTHESIS_PROFILE=long python -m pytest -q -p no:cacheprovider test_fuzz_*.py
+# (from tests/; a failing example is printed, and kept in tests/.hypothesis to be replayed).
+settings.register_profile(
+    "ci",
+    max_examples=60,
+    deadline=2000,  # ms per example: a slower one is a hang to look at
+    derandomize=True,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.register_profile(
+    "long",
+    max_examples=2000,
+    deadline=10_000,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 REPO = Path(__file__).resolve().parents[1]
 SHARED_MESHES = REPO.parent / "shared" / "meshes"
 MISSING = f"the shared meshes are not at {SHARED_MESHES} (../shared/meshes from the repository)"
+
+
+# Kerb masses of the shared meshes' vehicles (kg), typical of their kinds, so that each is a
+# plausible vehicle (a 1500 kg bus is 15 kg/m^3 and gets a PlausibilityWarning).
+MESH_MASS = {
+    "sedan_quaternius_normalcar1": 1450.0,
+    "suv_quaternius_suv": 1900.0,
+    "hatchback_gazebo": 1200.0,
+    "pickup_gazebo": 2200.0,
+    "van_gazebo_ambulance": 4500.0,
+    "bus_gazebo": 12000.0,
+}
+
+
+def mesh_mass(path: Path) -> float:
+    """The kerb mass (kg) of a shared mesh's vehicle."""
+    return MESH_MASS[Path(path).stem]
 
 
 def shared_mesh_paths() -> list[Path]:

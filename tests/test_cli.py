@@ -302,7 +302,7 @@ def test_a_simulation_error_exits_1(
     "argv, words",
     [
         (["run", str(SEED), "--dt", "3 mph"], '"3 mph" is a speed, not a time'),
-        (["run", str(SEED), "--duration", "-1"], "'-1' must be positive"),
+        (["run", str(SEED), "--duration", "-1"], "the simulated time must be > 0"),
         (["run"], "the following arguments are required: scene"),
         (["frobnicate"], "invalid choice: 'frobnicate'"),
     ],
@@ -315,6 +315,94 @@ def test_bad_arguments_exit_2_with_one_line(
     assert done.value.code == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and words in err and err.startswith("crashsim")
+
+
+def test_out_on_unwritable_folder_exits_2(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # An output folder that cannot be made or written is bad input given on the command
+    # line: exit 2 before the run (nothing simulated, nothing created). Run as root (as CI
+    # is), a chmod does not stop a write: a folder under a file, and one under /proc (which
+    # takes no new folders, even from root), cannot be made by anyone.
+    (tmp_path / "a-file").write_text("", encoding="utf-8")
+    ran = []
+    monkeypatch.setattr(cli.SceneFile, "simulate", lambda *a, **k: ran.append(1))
+    for out, words in [
+        (tmp_path / "a-file" / "out", f"{tmp_path / 'a-file'} is a file, not a folder"),
+        (Path("/proc/crashsim-test/out"), "cannot create the output folder /proc/crashsim-test"),
+    ]:
+        assert main(["run", str(SEED), "--out", str(out)]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and err.startswith("crashsim: error: ") and words in err
+        assert "give" in err  # how to fix it
+        assert not out.exists()
+    assert ran == []
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into any folder whatever its mode")
+def test_out_on_read_only_folder_exits_2(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    locked = tmp_path / "locked"
+    locked.mkdir(mode=0o555)
+    monkeypatch.setattr(cli.SceneFile, "simulate", lambda *a, **k: pytest.fail("it ran"))
+    assert main(["run", str(SEED), "--out", str(locked)]) == 2
+    assert "cannot write into the output folder" in capsys.readouterr().err
+
+
+def test_demo_speed_negative_exits_2_with_prefix(capsys: pytest.CaptureFixture[str]) -> None:
+    # Was: exit 1 and "no impulse exchange happened within the run" without the prefix.
+    for argv in (["demo", "--speed", "-5"], ["demo", "--speed=-5"], ["demo", "--speed", "0"]):
+        with pytest.raises(SystemExit) as done:
+            main(argv)
+        assert done.value.code == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and err.startswith("crashsim: error: argument --speed: ")
+        assert "speed > 0" in err
+
+
+def test_demo_without_an_exchange_exits_1_with_prefix(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["demo", "--duration", "10 ms"]) == 1
+    out, err = capsys.readouterr()
+    assert out == ""
+    assert err.startswith("crashsim: error: no impulse exchange happened within the 0.01 s run")
+    assert err.count("\n") == 1 and "--duration" in err
+
+
+@pytest.mark.parametrize(
+    "argv, words",
+    [
+        (["run", str(SEED), "--dt", "-1ms"], "argument --dt: '-1ms' is -0.001 s: the time step"),
+        (["run", str(SEED), "--dt=-1ms"], "argument --dt: '-1ms' is -0.001 s: the time step"),
+        (["check", str(SEED), "--duration", "-2 s"], "the simulated time must be > 0"),
+        (["demo", "--dt", "-1"], "argument --dt: '-1' is -1 s: the time step must be > 0"),
+        (["dtp-montecarlo", "--seed", "-1"], "seed must be >= 0"),
+    ],
+)
+def test_dt_negative_parses_and_gets_our_message(
+    argv: list[str], words: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Was: argparse's "expected one argument" ("-1ms" looked like an option).
+    try:
+        code = main(argv)
+    except SystemExit as e:
+        code = e.code
+    assert code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("crashsim: error: ") and words in err
+    assert "expected one argument" not in err
+
+
+def test_an_option_after_a_value_option_is_still_an_option(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # The "-x" joining must not swallow a real option: --dt is still missing its value.
+    with pytest.raises(SystemExit) as done:
+        main(["run", str(SEED), "--dt", "--progress"])
+    assert done.value.code == 2
+    assert "argument --dt: expected one argument" in capsys.readouterr().err
+    args = cli._parser().parse_args(["run", str(SEED), "--dt", "2 ms"])
+    assert args.dt == pytest.approx(0.002) and args.scene == SEED
 
 
 def test_ctrl_c_exits_130(tmp_path: Path) -> None:

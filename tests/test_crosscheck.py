@@ -29,7 +29,7 @@ import crashsim as cs
 import numpy as np
 import pytest
 import trimesh
-from conftest import seed_side_impact
+from conftest import mesh_mass, seed_side_impact
 from crashsim import _core
 from crashsim.analysis import crosscheck
 from crashsim.analysis.crosscheck import CrossCheck, cross_check, crossing_points
@@ -176,12 +176,12 @@ def test_seed_box_scenes_pass(case: str, dt: float) -> None:
 
 def test_real_mesh_against_a_box(mesh_path) -> None:
     box = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1500.0, name="box")
-    mesh = cs.Vehicle.from_mesh(mesh_path, mass=1500.0, name=mesh_path.stem)
+    mesh = cs.Vehicle.from_mesh(mesh_path, mass=mesh_mass(mesh_path), name=mesh_path.stem)
     run_approaches(mesh, box, APPROACHES_VS_BOX)
 
 
 def test_two_real_meshes(mesh_pair) -> None:
-    a, b = (cs.Vehicle.from_mesh(p, mass=1500.0, name=p.stem) for p in mesh_pair)
+    a, b = (cs.Vehicle.from_mesh(p, mass=mesh_mass(p), name=p.stem) for p in mesh_pair)
     run_approaches(a, b, APPROACHES_VS_MESH)
 
 

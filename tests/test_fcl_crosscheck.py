@@ -18,6 +18,7 @@ from typing import Any
 import crashsim as cs
 import numpy as np
 import pytest
+from conftest import mesh_mass
 
 fcl = pytest.importorskip("fcl", reason="python-fcl is not installed (pip install python-fcl)")
 
@@ -108,7 +109,7 @@ def run_approaches(a: cs.Vehicle, b: cs.Vehicle, n: int) -> None:
 
 
 def vehicle(path: Path) -> cs.Vehicle:
-    return cs.Vehicle.from_mesh(path, mass=1500.0, name=path.stem)
+    return cs.Vehicle.from_mesh(path, mass=mesh_mass(path), name=path.stem)
 
 
 def test_fcl_agrees_on_first_overlap_of_a_real_mesh_and_a_box(mesh_path: Path) -> None:

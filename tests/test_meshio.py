@@ -12,6 +12,7 @@ import crashsim as cs
 import numpy as np
 import pytest
 import trimesh
+from conftest import mesh_mass
 from crashsim.vehicles import meshio
 
 # From ../shared/meshes/README.md: watertight as a whole, shells, closed shells.
@@ -216,7 +217,7 @@ def test_shared_mesh_quality_matches_the_readme(mesh_path: Path) -> None:
     assert q.closed_shells <= q.closed_shells_filled <= q.shells
     assert q.winding_consistent  # all six are consistently wound
     assert (q.volume is not None) is watertight
-    v = cs.Vehicle.from_mesh(mesh_path, mass=1500.0)
+    v = cs.Vehicle.from_mesh(mesh_path, mass=mesh_mass(mesh_path))
     assert v.quality == q
 
 

@@ -18,7 +18,8 @@ import matplotlib.image as mpimg
 import numpy as np
 import pytest
 import shapely
-from conftest import seed_side_impact
+from conftest import mesh_mass, seed_side_impact
+from crashsim import _core, plots
 from crashsim.plots import (
     DPI,
     IMPACT_FIGSIZE,
@@ -178,7 +179,7 @@ def check_against_raster(sil: shapely.Geometry, xy: np.ndarray, faces: np.ndarra
 
 
 def test_real_mesh_silhouette_is_its_projection_not_its_hull(mesh_path: Path) -> None:
-    v = cs.Vehicle.from_mesh(mesh_path, mass=1500.0)
+    v = cs.Vehicle.from_mesh(mesh_path, mass=mesh_mass(mesh_path))
     sil = silhouette(v)
     xy = v.body_vertices[:, :2]
     hull = shapely.convex_hull(shapely.multipoints(xy))
@@ -214,7 +215,7 @@ def test_impact_png_reopens_with_its_size_and_two_panels(seed90: cs.Result, tmp_
     assert image.shape == (round(h * DPI), round(w * DPI), 4)
     assert len(fig.axes) == 2
     first, exchange = fig.axes
-    assert first.get_title().startswith("First contact, t = 0.0373 s")
+    assert first.get_title().startswith("First overlap, t = 0.0373 s")
     assert exchange.get_title().startswith("Impulse exchange, t = 0.0673 s (30.0 ms")
     for ax in fig.axes:  # metres on both axes, the same view in both panels
         assert ax.get_aspect() == 1.0
@@ -233,7 +234,7 @@ def test_arrows_are_the_impacts_numbers_at_the_stated_scales(case: str, request)
     imp = result.impacts[0]
     fig = plot_impact(result)
     v_unit = legend_scale(fig, "delta-V of the CG")  # m/s per m of arrow
-    assert legend_scale(fig, "velocity at first contact") == v_unit
+    assert legend_scale(fig, "velocity at first overlap") == v_unit
     j_unit = legend_scale(fig, "impulse on the vehicle") * 1e3  # N s per m of arrow
     for name, colour in (("red", "#d62728"), ("blue", "#1f77b4")):
         drawn = {tuple(np.round(a[0], 9)): a[1] - a[0] for a in arrows(fig, colour)}
@@ -317,3 +318,74 @@ def test_trajectory_png_reopens_with_its_size(seed45: cs.Result, tmp_path: Path)
     assert stamps.count("0.00 s") == 2 and stamps.count("0.30 s") == 2
     with pytest.raises(cs.ParameterError, match="count"):
         plot_trajectories(seed45, count=1)
+
+
+# -- several impacts: captions and labels ---------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def three() -> cs.Result:
+    from conftest import REPO
+    from crashsim.io.scenefile import load_scene
+
+    return load_scene(REPO / "examples" / "three-vehicles.toml").simulate()
+
+
+def test_trajectories_title_fully_visible_and_numbers_do_not_overlap(three: cs.Result) -> None:
+    # Was: the second title line (all impacts on one line) was cut at both edges, and the
+    # "impact N, t s" labels of six exchanges piled over each other.
+    fig = plot_trajectories(three)
+    renderer = fig.canvas.get_renderer()
+    fig.canvas.draw()
+    page = fig.bbox
+    title = fig._suptitle.get_window_extent(renderer)
+    assert page.x0 <= title.x0 and title.x1 <= page.x1 and title.y1 <= page.y1
+    caption = fig.get_suptitle().splitlines()
+    assert all(len(line) <= plots.CAPTION_CHARS for line in caption)
+    for k, imp in enumerate(three.impacts, start=1):
+        assert f"{k} at {imp.time:.3f} s {imp.vehicles[0]}-{imp.vehicles[1]}" in " ".join(caption)
+    (ax,) = fig.axes
+    numbers = [t for t in ax.texts if (t.get_gid() or "").startswith("impact-number:")]
+    assert sorted(t.get_text() for t in numbers) == ["1", "2", "3", "4", "5", "6"]
+    boxes = [t.get_bbox_patch().get_window_extent(renderer) for t in numbers]
+    for i, a in enumerate(boxes):
+        for b in boxes[i + 1 :]:
+            assert not a.overlaps(b)
+    marks = ax.transData.transform([imp.centroid[:2] for imp in three.impacts])
+    for box in boxes:  # no number covers a centroid marker
+        assert not any(box.contains(x, y) for x, y in marks)
+    assert not [t for t in ax.texts if t.get_text().startswith("impact ")]
+
+
+def test_secondary_exchange_picture_says_so_and_how_deep(three: cs.Result) -> None:
+    # Was: "the meshes touch" over a secondary exchange whose meshes were 0.65 m inside
+    # each other when its timer started.
+    first = plot_impact(three, impact=0)
+    assert first.axes[0].get_title().startswith("First overlap, t = 0.0420 s")
+    assert "the meshes first touch" in first.axes[0].get_title()
+    assert "secondary" not in first.get_suptitle()
+    imp = three.impacts[2]
+    assert imp.secondary
+    fig = plot_impact(three, impact=2)
+    left, right = (ax.get_title() for ax in fig.axes)
+    assert left.startswith("Closing again (secondary exchange), t = 0.1489 s")
+    assert "touch" not in left
+    depth = float(left.split("the meshes ")[1].split(" m inside")[0])
+    region = _core.overlap_region(
+        *[
+            x
+            for name in imp.vehicles
+            for x in (
+                three.vehicle(name).shape,
+                three.state(name, imp.first_contact_time)["position"],
+                three.state(name, imp.first_contact_time)["orientation"],
+            )
+        ]
+    )
+    along = np.asarray(region["points"]) @ imp.normal
+    assert depth == pytest.approx(float(np.ptp(along)), abs=0.005) and depth > 0.5
+    assert right.startswith("Impulse exchange, t = 0.1789 s (30.0 ms after closing again)")
+    caption = fig.get_suptitle()
+    assert "secondary exchange: the pair stayed engaged after the exchange of impact 1" in caption
+    assert "impact 2 (blue-green) at 0.148892 s changed blue's velocity" in caption
+    assert legend_scale(fig, "velocity at closing again") > 0

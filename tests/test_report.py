@@ -570,3 +570,106 @@ def test_a_run_without_impacts_reports_none() -> None:
     report = cs.report(scene.run(duration=0.1, dt=1e-2))
     assert report.impacts == [] and "No impulse exchange" in str(report)
     jsonschema.validate(report.to_dict(), report_schema(), cls=jsonschema.Draft202012Validator)
+
+
+# -- engagements: secondary exchanges grouped, overlaps without an exchange stated -------------
+
+
+@pytest.fixture(scope="module")
+def three_vehicles() -> Report:
+    from conftest import REPO
+    from crashsim.io.scenefile import load_scene
+
+    return cs.report(load_scene(REPO / "examples" / "three-vehicles.toml").simulate())
+
+
+def test_three_vehicles_secondary_exchanges_grouped_with_summed_delta_v(
+    three_vehicles: Report,
+) -> None:
+    # Was: six exchanges listed one after another, four of them small re-contacts, unexplained.
+    report = three_vehicles
+    impacts = report.result.impacts
+    assert len(impacts) == 6 and sum(i.secondary for i in impacts) == 4
+    groups = {e.vehicles: e for e in report.engagements}
+    assert set(groups) == {("red", "blue"), ("blue", "green")}
+    red_blue = groups[("red", "blue")]
+    assert (red_blue.primary, red_blue.secondary) == (0, (2, 4))
+    assert groups[("blue", "green")].exchanges == (1, 3, 5)
+    for e in report.engagements:
+        for name in e.vehicles:
+            total = sum(impacts[i].delta_v[name] for i in e.exchanges)
+            assert np.allclose(e.delta_v[name], total, rtol=0, atol=1e-12)
+        assert e.energy_dissipated == pytest.approx(
+            sum(impacts[i].energy_dissipated for i in e.exchanges), rel=1e-12
+        )
+    # impact 3 (red-blue) closed again at the instant impact 2 (blue-green) changed blue
+    assert abs(impacts[2].first_contact_time - impacts[1].time) < 1e-6
+    assert red_blue.causes[2].startswith("impact 2 (blue-green) at 0.148892 s changed blue's")
+    # impact 4 (blue-green) closed again at no other exchange: the rotation
+    assert all(abs(impacts[3].first_contact_time - o.time) > 1e-6 for o in impacts)
+    assert "rotated" in groups[("blue", "green")].causes[3]
+    text = str(report)
+    assert "Contacts by pair" in text and "Why secondary exchanges:" in text
+    assert "impact 1 (primary) and secondary 3 and 5" in text
+    assert "Impact 3: red (1) -> blue (2) [secondary to impact 1], full impact" in text
+    dv = float(np.linalg.norm(red_blue.delta_v["red"]))
+    assert f"summed delta-V (vector sum over its 3 exchange(s)): red {dv:.3f} m/s" in text
+    data = report.to_dict()
+    jsonschema.validate(data, report_schema(), cls=jsonschema.Draft202012Validator)
+    first = data["engagements"][0]
+    assert (first["vehicles"], first["primary"], first["secondary"]) == (["red", "blue"], 1, [3, 5])
+    assert first["secondary_causes"][0]["impact"] == 3 and first["exchanged"] is True
+    assert first["delta_v"]["magnitude"]["red"] == pytest.approx(dv, rel=1e-12)
+    assert "secondary exchange" in data["conventions"]["engagements"]
+
+
+def graze(speed: float = 80.0) -> cs.Result:
+    """Red passes blue's rear 1 cm deep at ``speed`` m/s: the overlap lasts 45 ms, shorter
+    than the 60 ms depth of penetration, so the timer expires with the meshes apart."""
+    red = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red")
+    blue = cs.Vehicle.box(4.6, 1.8, 1.45, mass=1500.0, name="blue")
+    scene = cs.Scene(depth_of_penetration=0.060)
+    scene.add(red, position=(-2.3 - 2.25 + 0.01, -3.0, 0.7), velocity=(0.0, speed, 0.0))
+    scene.add(blue, position=(0.0, 0.0, 0.725))
+    return scene.run(duration=0.3, dt=1e-3)
+
+
+def test_first_overlap_without_an_exchange_is_stated_in_text_and_json() -> None:
+    result = graze()
+    assert [c.kind for c in result.contacts] == ["first_overlap", "no_exchange"]
+    report = cs.report(result)
+    (e,) = report.engagements
+    assert not e.exchanged and e.primary is None and e.separation_time is None
+    text = str(report)
+    assert "No impulse exchange in this run." in text
+    assert "red-blue: first overlap at 0.015000 s, found apart when its timer expired at" in text
+    assert (
+        "NO EXCHANGE: the overlap that began at 0.015000 s ended without an impulse (timer end "
+        "0.075000 s: the meshes no longer overlap at the exchange instant)"
+    ) in text
+    data = report.to_dict()
+    jsonschema.validate(data, report_schema(), cls=jsonschema.Draft202012Validator)
+    (record,) = data["engagements"]
+    assert record["exchanged"] is False and record["primary"] is None
+    assert record["no_exchange"] == [
+        {
+            "time": pytest.approx(0.075),
+            "reason": "the meshes no longer overlap at the exchange instant",
+        }
+    ]
+    assert record["delta_v"]["magnitude"] == {"red": 0.0, "blue": 0.0}
+
+
+def test_a_single_exchange_keeps_the_short_text_and_gets_one_engagement(
+    seed_report: Report,
+) -> None:
+    assert "Contacts by pair" not in str(seed_report)
+    (record,) = seed_report.to_dict()["engagements"]
+    assert (record["primary"], record["secondary"], record["exchanged"]) == (1, [], True)
+
+
+def test_a_report_without_engagements_still_validates(seed_report: Report) -> None:
+    # the field is optional: reports written before it existed stay valid
+    data = seed_report.to_dict()
+    del data["engagements"]
+    jsonschema.validate(data, report_schema(), cls=jsonschema.Draft202012Validator)

@@ -320,7 +320,7 @@ def test_cg_inertia_and_stiffness() -> None:
         scene_text(
             first='cg_height = "0.55 m"\ninertia = "empirical"\nwheelbase = "2.7 m"\n'
             'stiffness = "sedan"',
-            second='inertia = { Ixx = "500 kg m^2", Iyy = 2500, Izz = "2336.3 lb ft s^2" }\n'
+            second='inertia = { Ixx = "600 kg m^2", Iyy = 2900, Izz = "2336.3 lb ft s^2" }\n'
             'stiffness = { front = { A = "356 lb/in", B = "34 lb/in^2" }, '
             'side = { A = "143 lb/in", B = "50 psi" } }',
         )
@@ -332,7 +332,7 @@ def test_cg_inertia_and_stiffness() -> None:
     # reference case 2's yaw inertia: 2336.3 lb ft s^2, given there as 3167.5 kg m^2
     assert blue.inertia[2, 2] == pytest.approx(2336.3 * LBF * cs.ft(1.0), rel=1e-15)
     assert blue.inertia[2, 2] == pytest.approx(3167.5, abs=0.1)
-    assert np.array_equal(np.diag(blue.inertia)[:2], [500.0, 2500.0])
+    assert np.array_equal(np.diag(blue.inertia)[:2], [600.0, 2900.0])
     assert np.count_nonzero(blue.inertia - np.diag(np.diag(blue.inertia))) == 0
     s = blue.stiffness
     assert s.front.A == pytest.approx(356.0 * LBF / INCH, rel=1e-15)

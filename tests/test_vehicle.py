@@ -10,6 +10,7 @@ import crashsim as cs
 import numpy as np
 import pytest
 import trimesh
+from conftest import mesh_mass
 from crashsim.vehicles.stiffness import FaceStiffness, Stiffness
 
 # From ../shared/meshes/README.md: triangles and L x W x H (m), published to 1 cm.
@@ -100,6 +101,24 @@ def test_from_mesh_of_a_closed_mesh_uses_its_volume() -> None:
     assert np.allclose(v.mesh.bounds[0], [-1.7, -1.2, 0.0], atol=1e-12)
 
 
+def test_from_mesh_quality_report_is_kept_not_printed(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # The README said from_mesh prints a quality report: a library function prints nothing;
+    # vehicle.quality holds the report and print(vehicle.quality) shows it.
+    path = tmp_path / "car.ply"
+    trimesh.creation.box(extents=(4.0, 2.0, 1.0)).export(path)
+    v = cs.Vehicle.from_mesh(path, mass=1000.0)
+    assert capsys.readouterr() == ("", "")
+    assert isinstance(v.quality, cs.MeshQuality) and v.quality.watertight
+    print(v.quality)
+    out = capsys.readouterr().out
+    assert out.startswith("12 triangles, 8 vertices, 4.000 x 2.000 x 1.000 m\n")
+    assert "watertight: yes" in out and "volume: 8 m^3" in out
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    assert "print(vehicle.quality)" in readme and "prints a mesh-quality report" not in readme
+
+
 def test_from_mesh_of_an_open_mesh_uses_its_winding_solid_or_its_convex_hull() -> None:
     mesh = trimesh.creation.box(extents=(4.0, 2.0, 1.0))
     open_mesh = trimesh.Trimesh(mesh.vertices, mesh.faces[:-2])  # one side left open
@@ -162,7 +181,7 @@ def test_an_stl_soup_is_merged_as_trimesh_would(tmp_path: Path) -> None:
 
 def test_shared_mesh_loads_with_the_published_size(mesh_path: Path) -> None:
     triangles, extents = PUBLISHED[mesh_path.stem]
-    v = cs.Vehicle.from_mesh(mesh_path, mass=1500.0)
+    v = cs.Vehicle.from_mesh(mesh_path, mass=mesh_mass(mesh_path))
     assert v.name == mesh_path.stem
     assert len(v.mesh.faces) == triangles
     assert np.allclose(v.extents, extents, rtol=0, atol=0.01), v.extents
@@ -253,9 +272,12 @@ def test_unreadable_files_are_mesh_errors_naming_the_path(tmp_path: Path) -> Non
 
 def test_the_engine_refuses_broken_index_arrays() -> None:
     mesh = trimesh.Trimesh(np.eye(3), [[0, 1, 5]], process=False, validate=False)
-    v = cs.Vehicle(mesh, mass=1.0, cg=(0, 0, 0), inertia=np.eye(3), name="broken")
+    # the vehicle's mesh check refuses it first (its message names the face) ...
+    with pytest.raises(cs.MeshError, match=r"face 0 = \[0, 1, 5\]"):
+        cs.Vehicle(mesh, mass=1.0, cg=(0, 0, 0), inertia=np.eye(3), name="broken")
+    # ... and the engine on its own still does
     with pytest.raises(cs.MeshError, match="only 3 vertices"):
-        _ = v.shape
+        cs._core.Shape(np.eye(3), np.array([[0, 1, 5]]))
 
 
 # -- mass: kg or lb ---------------------------------------------------------------------------
@@ -362,8 +384,9 @@ def boxes_and_a_sheet() -> trimesh.Trimesh:
 
 
 def test_the_union_of_closed_shells_ignores_the_open_ones() -> None:
-    mesh = boxes_and_a_sheet()
-    v = cs.Vehicle.from_mesh(mesh, mass=300.0, solid="closed shells")
+    mesh = boxes_and_a_sheet()  # 4.5 m long (x), 6 m wide (y): no vehicle, it warns
+    with pytest.warns(cs.PlausibilityWarning, match="longest extent .* is across"):
+        v = cs.Vehicle.from_mesh(mesh, mass=300.0, solid="closed shells")
     assert v.sources == {"cg": "closed shells", "inertia": "closed shells"}
     # volumes 2 and 1 m^3, centroids (0, 0, 0) and (3, 0, 0.5): mass 200 and 100 kg
     cg = np.array([1.0, 0.0, 1.0 / 6.0])
@@ -375,7 +398,8 @@ def test_the_union_of_closed_shells_ignores_the_open_ones() -> None:
     assert np.allclose(v.inertia, expected, rtol=1e-12, atol=1e-9)
     assert "closed shells: 2 of 3" in v.summary()
     # the convex hull takes the sheet in
-    hull = cs.Vehicle.from_mesh(mesh, mass=300.0, solid="convex hull")
+    with pytest.warns(cs.PlausibilityWarning, match="longest extent .* is across"):
+        hull = cs.Vehicle.from_mesh(mesh, mass=300.0, solid="convex hull")
     assert hull.sources["inertia"] == "convex hull" and hull.cg[1] > 1.0
 
 
@@ -420,10 +444,12 @@ def test_mass_properties_of_a_mesh_without_volume_are_a_mesh_error(solid: str) -
     assert isinstance(error.value, ValueError)
     with pytest.raises(cs.MeshError, match="volume"):
         cs.Vehicle.from_mesh(sheet, mass=1.0, solid=solid, inertia=np.eye(3))  # cg "mesh"
-    # the user's numbers or the empirical rule need no volume
-    v = cs.Vehicle.from_mesh(
-        sheet, mass=1.0, solid=solid, cg=(1, 0.5, 0.5), inertia="empirical", wheelbase=1.5
-    )
+    # the user's numbers or the empirical rule need no volume (a flat sheet is no vehicle:
+    # it warns; a wheelbase of 1.2 m keeps the rule's tensor possible on this 2 x 1 m sheet)
+    with pytest.warns(cs.PlausibilityWarning, match="height 0 m outside"):
+        v = cs.Vehicle.from_mesh(
+            sheet, mass=1.0, solid=solid, cg=(1, 0.5, 0.5), inertia="empirical", wheelbase=1.2
+        )
     assert v.sources == {"cg": "user", "inertia": "empirical"}
 
 
@@ -450,11 +476,11 @@ def test_a_closed_mesh_with_inward_faces_is_refused() -> None:
 
 
 def test_from_mesh_converts_units_and_axes(tmp_path: Path) -> None:
-    mesh = trimesh.creation.box(extents=(400.0, 180.0, 140.0))  # cm, z up, -y forward
+    mesh = trimesh.creation.box(extents=(180.0, 400.0, 140.0))  # cm, z up, -y forward
     path = tmp_path / "car_cm.obj"
     mesh.export(path)
     v = cs.Vehicle.from_mesh(path, mass=1500.0, units="cm", forward="-y", ground=True)
-    assert np.allclose(v.extents, [1.8, 4.0, 1.4], atol=1e-9)  # the file's x is 1.8 m wide
+    assert np.allclose(v.extents, [4.0, 1.8, 1.4], atol=1e-9)  # the file's x is 1.8 m wide
     assert v.mesh.bounds[0, 2] == pytest.approx(0.0, abs=1e-12)
     assert np.allclose(v.cg, [0.0, 0.0, 0.7], atol=1e-9)
     with pytest.raises(cs.ParameterError, match="same axis"):
@@ -474,7 +500,7 @@ def test_stiffness_is_kept_shown_and_checked() -> None:
     assert v.stiffness.rear is None
     assert "front A = 5e+04 N/m, B = 1.2e+06 N/m^2" in v.summary()
     assert v.renamed("b").stiffness is v.stiffness
-    m = cs.Vehicle.from_mesh(trimesh.creation.box(), mass=1.0, stiffness=v.stiffness)
+    m = cs.Vehicle.from_mesh(trimesh.creation.box(), mass=500.0, stiffness=v.stiffness)
     assert m.stiffness is v.stiffness
     assert cs.Vehicle.box(1, 1, 1, mass=1.0).stiffness == Stiffness()
     assert "stiffness: no data" in cs.Vehicle.box(1, 1, 1, mass=1.0).summary()
@@ -494,7 +520,7 @@ def test_renamed_keeps_every_source_and_the_quality() -> None:
 
 
 def test_the_summary_names_every_source(mesh_path: Path) -> None:
-    v = cs.Vehicle.from_mesh(mesh_path, mass=1500.0)
+    v = cs.Vehicle.from_mesh(mesh_path, mass=mesh_mass(mesh_path))
     text = v.summary()
     q = v.quality
     assert f"{q.shells} shells ({q.closed_shells} closed)" in text

@@ -24,6 +24,7 @@ from crashsim.errors import (
     InputError,
     MeshError,
     ParameterError,
+    PlausibilityWarning,
     SceneError,
     SimulationError,
 )
@@ -108,4 +109,5 @@ __all__ = [
     "InitialOverlapError",
     "SceneError",
     "SimulationError",
+    "PlausibilityWarning",
 ]

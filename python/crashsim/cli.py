@@ -14,9 +14,14 @@ default contact parameters (depth of penetration 30 ms, restitution 0.1, frictio
 ``crashsim dtp-montecarlo`` samples the depth of penetration dt_p = sqrt(m'/k') over pairs of
 the built-in vehicle classes (crashsim.analysis.montecarlo) and prints its percentiles in ms.
 
-Exit codes: 0 success; 1 the run or the check failed (or an output could not be written);
-2 bad input (a malformed scene file, bad arguments, vehicles overlapping at t = 0); 130
-interrupted (Ctrl-C). Messages go to stderr, one line for input errors.
+Exit codes: 0 success; 1 the run or the check failed (or writing an output failed after the
+run, e.g. a full disk); 2 bad input (a malformed scene file, bad arguments, vehicles
+overlapping at t = 0, an output folder that cannot be created or written: all found before
+the run); 130 interrupted (Ctrl-C). Every error is one line on stderr starting
+``crashsim: error:``.
+
+Option values that look like options (``--dt -1ms``, ``--speed -5``) are taken as values, so
+that they get this command's own message rather than argparse's "expected one argument".
 """
 
 from __future__ import annotations
@@ -24,8 +29,10 @@ from __future__ import annotations
 import argparse
 import csv
 import json
+import math
 import os
 import sys
+import tempfile
 import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -114,6 +121,10 @@ def _report(result: Result, scene: Scene, speed_mph: float) -> str:
     return "\n".join(lines)
 
 
+class RunFailed(Exception):
+    """The run finished but did not do what the command is for (exit 1)."""
+
+
 def _demo(args: argparse.Namespace) -> int:
     scene = demo_scene(args.speed)
     result = scene.run(duration=args.duration, dt=args.dt)
@@ -121,8 +132,11 @@ def _demo(args: argparse.Namespace) -> int:
         print(json.dumps(result.to_dict(), indent=2))
         return 0
     if not result.impacts:
-        print("no impulse exchange happened within the run")
-        return 1
+        raise RunFailed(
+            f"no impulse exchange happened within the {args.duration:g} s run: red at "
+            f"{args.speed:g} mph did not reach blue ({DEMO_GAP:g} m away); give a longer "
+            "--duration or a higher --speed"
+        )
     print(_report(result, scene, args.speed))
     return 0
 
@@ -145,8 +159,10 @@ def _dtp_table(summary: dict[str, Any], header: str) -> str:
 
 def _dtp_montecarlo(args: argparse.Namespace) -> int:
     plot = Path(args.plot) if args.plot is not None else None
-    if plot is not None and not plot.parent.is_dir():
-        raise ParameterError(f"--plot {plot}: the folder {plot.parent} does not exist")
+    if plot is not None:
+        if not plot.parent.is_dir():
+            raise ParameterError(f"--plot {plot}: the folder {plot.parent} does not exist")
+        _check_writable(plot.parent)
     result = dtp_montecarlo(samples=args.samples, seed=args.seed)
     summary = result.summary()
     pairing = {c: len(p) for c, p in result.pairs.items()}
@@ -211,14 +227,38 @@ def _no_progress(t: float) -> None:
     """A progress callback that shows nothing (it lets the engine notice Ctrl-C)."""
 
 
-def _time(text: str) -> float:
-    """argparse type: a time ("2 ms", "0.5 s" or a number of seconds), > 0."""
+def _positive_time(what: str, example: str) -> Callable[[str], float]:
+    """argparse type: a time ("2 ms", "0.5 s" or a number of seconds) that must be > 0;
+    ``what`` names it in the message ("the time step"), ``example`` is a valid value."""
+
+    def parse(text: str) -> float:
+        try:
+            value = parse_quantity(_number_or_text(text), "time")
+        except ParameterError as e:
+            raise argparse.ArgumentTypeError(str(e)) from None
+        if not value > 0.0:  # also NaN
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is {value:g} s: {what} must be > 0 (e.g. {example!r})"
+            )
+        return value
+
+    return parse
+
+
+_step = _positive_time("the time step", "1 ms")
+_duration = _positive_time("the simulated time", "0.5 s")
+
+
+def _speed_mph(text: str) -> float:
+    """argparse type of the demo's speed: a number of mph, > 0."""
     try:
-        value = parse_quantity(_number_or_text(text), "time")
-    except ParameterError as e:
-        raise argparse.ArgumentTypeError(str(e)) from None
-    if not value > 0.0:
-        raise argparse.ArgumentTypeError(f"{text!r} must be positive")
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of mph") from None
+    if not (value > 0.0 and math.isfinite(value)):
+        raise argparse.ArgumentTypeError(
+            f"{text!r} mph: red must drive towards blue, give a finite speed > 0 (e.g. 30)"
+        )
     return value
 
 
@@ -309,6 +349,9 @@ def _header(case: SceneFile) -> str:
 
 
 def _out_dir(args: argparse.Namespace, case: SceneFile) -> Path:
+    """The output folder, checked before the run (bad input, exit 2): it must be a folder
+    that exists and takes files, or one that can be created (nothing is created yet: a run
+    that fails leaves no empty folder behind)."""
     if args.out is not None:
         out = Path(args.out)
     elif case.output.dir is not None:
@@ -316,16 +359,41 @@ def _out_dir(args: argparse.Namespace, case: SceneFile) -> Path:
     else:
         stem = case.path.stem if case.path is not None else "scene"
         out = Path(f"{stem}-out")
-    if out.exists() and not out.is_dir():
-        raise ParameterError(f"the output folder {out} is a file: give another --out")
+    _check_writable(out)
     return out
 
 
+def _check_writable(out: Path) -> None:
+    """ParameterError unless files can be written into ``out`` once it is made: its nearest
+    existing ancestor (``out`` itself when it exists) must be a folder in which a file can be
+    created (tested with an anonymous temporary file, which leaves nothing behind)."""
+    if out.exists() and not out.is_dir():
+        raise ParameterError(f"the output folder {out} is a file: give another --out")
+    base = out
+    while not base.exists() and base != base.parent:
+        base = base.parent
+    if not base.is_dir():
+        raise ParameterError(
+            f"cannot create the output folder {out}: {base} is a file, not a folder; give "
+            "another --out"
+        )
+    try:
+        with tempfile.TemporaryFile(dir=base):
+            pass
+    except OSError as e:
+        where = "write into the output folder" if base == out else "create the output folder"
+        because = "" if base == out else f" (in {base})"
+        raise ParameterError(
+            f"cannot {where} {out}{because}: {e.strerror or e}; give a writable --out"
+        ) from e
+
+
 def _make(out: Path) -> None:
+    """Make the checked output folder (an OSError now is a failed run, exit 1)."""
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as e:
-        raise ParameterError(f"cannot create the output folder {out}: {e.strerror or e}") from e
+        raise OSError(e.errno, f"cannot create the output folder {out}: {e.strerror or e}") from e
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -384,22 +452,67 @@ def _check(args: argparse.Namespace) -> int:
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with a one-line error message (exit 2)."""
+    """argparse with a one-line error message (``crashsim: error: ...``, exit 2) that takes
+    an option's value even when it starts with "-" (``--dt -1ms``): argparse would read
+    "-1ms" as an unknown option and say "expected one argument"."""
+
+    def add_argument(self, *args: Any, **kwargs: Any) -> argparse.Action:
+        action = super().add_argument(*args, **kwargs)
+        if not hasattr(self, "_crashsim_options"):  # add_argument runs inside __init__ (-h)
+            self._crashsim_options: set[str] = set()
+            self._crashsim_value_options: set[str] = set()
+        self._crashsim_options.update(action.option_strings)
+        if action.option_strings and kwargs.get("action", "store") == "store":
+            self._crashsim_value_options.update(action.option_strings)  # takes one value
+        return action
+
+    def parse_known_args(  # type: ignore[override]
+        self, args: Sequence[str] | None = None, namespace: argparse.Namespace | None = None
+    ) -> tuple[argparse.Namespace, list[str]]:
+        argv = list(sys.argv[1:] if args is None else args)
+        return super().parse_known_args(self._join_values(argv), namespace)
+
+    def _join_values(self, argv: list[str]) -> list[str]:
+        """``--opt -x`` -> ``--opt=-x`` for this parser's one-value options when "-x" is not
+        one of its options (subcommands' parsers do the same for their own arguments)."""
+        options = getattr(self, "_crashsim_options", set())
+        values = getattr(self, "_crashsim_value_options", set())
+        out: list[str] = []
+        i = 0
+        while i < len(argv):
+            word = argv[i]
+            if word == "--":
+                out += argv[i:]
+                break
+            following = argv[i + 1] if i + 1 < len(argv) else None
+            if (
+                word in values
+                and following is not None
+                and following.startswith("-")
+                and following != "--"
+                and following.split("=", 1)[0] not in options
+            ):
+                out.append(f"{word}={following}")
+                i += 2
+                continue
+            out.append(word)
+            i += 1
+        return out
 
     def error(self, message: str) -> NoReturn:
-        self.exit(EXIT_INPUT, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+        self.exit(EXIT_INPUT, f"crashsim: error: {message} (see {self.prog} --help)\n")
 
 
 def _scene_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("scene", type=Path, help="the scene file (TOML, docs/scene-format.md)")
     p.add_argument(
         "--dt",
-        type=_time,
+        type=_step,
         help='largest time step ("2 ms" or seconds), overriding the file\'s run.dt',
     )
     p.add_argument(
         "--duration",
-        type=_time,
+        type=_duration,
         help='simulated time ("0.5 s" or seconds), overriding the file\'s run.duration',
     )
     p.add_argument(
@@ -421,7 +534,8 @@ def _parser() -> argparse.ArgumentParser:
         prog="crashsim",
         description="Open 3-D vehicle collision engine (depth of penetration, Kudlich-Slibar "
         "impulse). SI units inside.",
-        epilog="Exit codes: 0 success, 1 the run or check failed, 2 bad input, 130 interrupted.",
+        epilog="Exit codes: 0 success, 1 the run or check failed, 2 bad input, 130 interrupted. "
+        "Every error is one line on stderr starting 'crashsim: error:'.",
     )
     parser.add_argument("--version", action="version", version=f"crashsim {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="command")
@@ -434,7 +548,8 @@ def _parser() -> argparse.ArgumentParser:
         "impact-N.png (top-down picture of each exchange) "
         f"and {GLB_FILE} (the 3-D motion). Folder: --out, else the file's output.dir, else "
         "<scene name>-out in the current folder.",
-        epilog="Exit codes: 0 success, 1 the run failed, 2 bad input, 130 interrupted.",
+        epilog="Exit codes: 0 success, 1 the run failed (or writing its outputs did), 2 bad "
+        "input (also an output folder that cannot be created or written), 130 interrupted.",
     )
     _scene_arguments(run)
     run.add_argument("--out", metavar="DIR", help="output folder (created if needed)")
@@ -461,9 +576,13 @@ def _parser() -> argparse.ArgumentParser:
         "box car; prints the first overlap, the exchange, the centroid, normal, impulse, "
         "delta-V and the energy dissipated.",
     )
-    demo.add_argument("--speed", type=float, default=30.0, help="red's speed, mph (30)")
-    demo.add_argument("--dt", type=float, default=1e-3, help="largest time step, s (0.001)")
-    demo.add_argument("--duration", type=float, default=0.5, help="simulated time, s (0.5)")
+    demo.add_argument("--speed", type=_speed_mph, default=30.0, help="red's speed, mph (30)")
+    demo.add_argument(
+        "--dt", type=_step, default=1e-3, help='largest time step ("1 ms" or seconds; 0.001)'
+    )
+    demo.add_argument(
+        "--duration", type=_duration, default=0.5, help='simulated time ("0.5 s" or seconds; 0.5)'
+    )
     demo.add_argument("--json", action="store_true", help="print the result as JSON")
     demo.set_defaults(func=_demo)
     mc = sub.add_parser(
@@ -510,7 +629,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("crashsim: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
-    except SimulationError as e:
+    except (SimulationError, RunFailed) as e:
         print(f"crashsim: error: {' '.join(str(e).split())}", file=sys.stderr)
         return EXIT_FAILED
     except CrashsimError as e:  # the input is at fault

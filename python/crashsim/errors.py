@@ -7,6 +7,9 @@ CrashsimError
 │   ├── InitialOverlapError  vehicles overlap when the run starts
 │   └── SceneError           a scene-level mistake (unknown or duplicate vehicle)
 └── SimulationError (also a RuntimeError)
+
+PlausibilityWarning (a UserWarning): input that is possible but unlikely for a road vehicle
+(a size or density outside road vehicles' ranges: a wrong unit or up axis?).
 """
 
 from crashsim._core import (
@@ -23,6 +26,15 @@ class SceneError(InputError):
     """A scene-level mistake: an unknown vehicle, a vehicle added twice, a duplicate name."""
 
 
+class PlausibilityWarning(UserWarning):
+    """Input that is possible but unlikely for a road vehicle: a size or a density outside
+    road vehicles' ranges (crashsim.vehicles.plausibility). The message names the likely
+    mistake (a unit, an up axis, the mass) and how to fix it; silence it with
+    ``warnings.filterwarnings("ignore", category=crashsim.PlausibilityWarning)`` when the
+    vehicle is meant to be so. Impossible input (an inertia no body has, a density above
+    any material's) is an error instead."""
+
+
 __all__ = [
     "CrashsimError",
     "InputError",
@@ -31,4 +43,5 @@ __all__ = [
     "InitialOverlapError",
     "SceneError",
     "SimulationError",
+    "PlausibilityWarning",
 ]

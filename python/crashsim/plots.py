@@ -9,7 +9,7 @@ Figures are matplotlib ``Figure`` objects on the Agg canvas, built without pyplo
 functions are safe in library code, threads and on machines without a display.
 
     from crashsim.plots import plot_impact, plot_trajectories
-    plot_impact(result, "impact.png")         # first contact | exchange, one impact
+    plot_impact(result, "impact.png")         # timer start | exchange, one impact
     plot_trajectories(result, "motion.png")   # the whole run, outlines at regular times
 """
 
@@ -497,15 +497,17 @@ def _speeds(v: float) -> str:
 def plot_impact(
     result: Result, path: str | Path | None = None, impact: int | Impact = 0, *, dpi: int = DPI
 ) -> Figure:
-    """The top-down diagram of one impact: two panels, at first contact and at the impulse
+    """The top-down diagram of one impact: two panels, when its timer started (the first
+    overlap, or for a secondary exchange the engaged pair closing again, with how deep the
+    meshes then are inside each other and why they closed again) and at the impulse
     exchange, with both vehicles' outlines (true silhouettes), their body x axes and fronts,
     CGs, CG paths over the whole run (solid before the exchange, dashed after), and:
 
-    - first contact: each CG's velocity (arrow, m/s);
+    - timer start: each CG's velocity (arrow, m/s);
     - exchange: the overlap region (the engine's region points, their 2-D hull), the impulse
       centroid, the contact normal n (vehicle 1 into 2, fixed length) and the contact plane,
       the impulse on each vehicle at the centroid (horizontal part, N s) and each CG's
-      delta-V (m/s); the outlines at first contact dotted, to show the travel in between.
+      delta-V (m/s); the outlines at the timer's start dotted, to show the travel in between.
 
     Velocity and delta-V arrows share one scale, impulses have their own; both scales are in
     the legend (1 m of arrow = ...). ``impact`` is an index into ``result.impacts`` or one of
@@ -518,6 +520,7 @@ def plot_impact(
     from matplotlib.patches import FancyArrowPatch, Patch
 
     names = list(imp.vehicles)
+    start = _timer_start(result, index, imp)
     colours = {n: vehicle_colour(result.vehicles.index(n)) for n in result.vehicles}
     others = [n for n in result.vehicles if n not in names]
     t0, t1 = imp.first_contact_time, imp.time
@@ -541,7 +544,7 @@ def plot_impact(
     ax2 = fig.add_subplot(1, 2, 2, sharex=ax1, sharey=ax1)
     centroid = np.asarray(imp.centroid)
 
-    # Panel 1: first contact.
+    # Panel 1: the timer's start (first overlap or closing again).
     _draw_paths(ax1, result, t1)
     paths = _path_points(result)
     for n in result.vehicles:
@@ -565,10 +568,7 @@ def plot_impact(
         tips.append(cg[:2] + velocity[n] / v_unit)
     for n in result.vehicles:
         _label(ax1, at_contact[n], colours[n], np.concatenate(busy), n)
-    ax1.set_title(
-        f"First contact, t = {t0:.4f} s\n(the meshes touch; the depth-of-penetration timer starts)",
-        fontsize=11,
-    )
+    ax1.set_title(f"{start['title']}, t = {t0:.4f} s\n({start['what']})", fontsize=11)
     ax1.set_ylabel("world y (m)")
 
     # Panel 2: the exchange.
@@ -655,7 +655,7 @@ def plot_impact(
     )
     dtp_ms = 1e3 * (t1 - t0)
     ax2.set_title(
-        f"Impulse exchange, t = {t1:.4f} s ({dtp_ms:.1f} ms after first contact)\n"
+        f"Impulse exchange, t = {t1:.4f} s ({dtp_ms:.1f} ms after {start['word']})\n"
         "(the impulse acts at the centroid; velocities jump by delta-V)",
         fontsize=11,
     )
@@ -689,12 +689,12 @@ def plot_impact(
         "centre of gravity (CG)",
         "CG path up to the exchange",
         "CG path after the exchange",
-        "outline at first contact",
+        f"outline at {start['word']}",
         "overlap region at the exchange",
         "impulse centroid",
         f"contact normal n ({names[0]} into {names[1]})",
         "contact plane (normal to n)",
-        f"velocity at first contact (1 m = {_fmt(v_unit)} m/s)",
+        f"velocity at {start['word']} (1 m = {_fmt(v_unit)} m/s)",
         f"impulse on the vehicle of its colour (1 m = {_fmt(j_unit / 1e3)} kN s)",
         f"delta-V of the CG (1 m = {_fmt(v_unit)} m/s)",
     ]
@@ -727,6 +727,8 @@ def plot_impact(
     )
     if others:
         line3 += f";  also in the scene: {', '.join(others)}"
+    if imp.secondary:
+        line3 += f"\n{start['caption']}"
     tilts = {n: max(at_contact[n].tilt, at_exchange[n].tilt) for n in result.vehicles}
     note = _tilt_note(result, tilts)
     fig.suptitle(f"{title}\n{line2}\n{line3}" + (f"\n{note}" if note else ""), fontsize=11)
@@ -734,6 +736,141 @@ def plot_impact(
     if path is not None:
         fig.savefig(Path(path), dpi=dpi)
     return fig
+
+
+# Characters of an 11 pt caption line that fit the trajectories figure's width (12 in at
+# about 0.55 em per character, with a margin).
+CAPTION_CHARS = 125
+
+
+def _wrap(items: list[str], lead: str) -> list[str]:
+    """Caption lines of at most CAPTION_CHARS characters (so that none is cut at the figure's
+    edges): ``lead`` then the items joined by "; ", broken between items (an item longer than
+    a line is broken between words)."""
+    import textwrap
+
+    lines: list[str] = []
+    line = lead
+    for item in items:
+        sep = "" if line == lead else "; "
+        if line != lead and len(line) + len(sep) + len(item) > CAPTION_CHARS:
+            lines.append(line + ";")
+            line = ""
+            sep = ""
+        line += sep + item
+    lines.append(line)
+    return [w for text in lines for w in textwrap.wrap(text, width=CAPTION_CHARS)]
+
+
+def _outline_points(geom: Any) -> Array:
+    """The vertices of an outline's exterior rings (world x-y, m)."""
+    import shapely
+
+    rings = shapely.get_rings(shapely.get_parts(geom))
+    return np.concatenate([shapely.get_coordinates(r) for r in rings] or [np.zeros((0, 2))])
+
+
+def _number_points(fig: Figure, ax: Axes, points: Array, busy: list[Array]) -> None:
+    """Writes 1, 2, ... beside ``points`` (world x-y, m) so that no two numbers overlap each
+    other or a marker: each number takes the first free place on rings of growing radius
+    around its point (display space, after the layout), joined to it by a thin leader line
+    when it had to move out. ``busy``: other points a number should rather not cover."""
+    if len(points) == 0:
+        return
+    to_px = ax.transData.transform
+    px_per_pt = fig.dpi / 72.0
+    marks = to_px(points)
+    others = to_px(np.concatenate(busy)) if busy else np.zeros((0, 2))
+    taken: list[tuple[float, float, float, float]] = []  # placed boxes (x0, y0, x1, y1), px
+    for k, (anchor, point) in enumerate(zip(marks, points, strict=True)):
+        text = str(k + 1)
+        half_w = (3.5 + 3.3 * len(text)) * px_per_pt  # px: 10 pt bold digits
+        half_h = 6.5 * px_per_pt
+        best: tuple[float, Array] | None = None
+        for radius in (13.0, 22.0, 32.0, 44.0, 58.0, 74.0):  # pt
+            for step in range(12):
+                angle = math.pi / 4 + step * math.pi / 6
+                offset = radius * np.array([math.cos(angle), math.sin(angle)])
+                c = anchor + offset * px_per_pt
+                box = (c[0] - half_w, c[1] - half_h, c[0] + half_w, c[1] + half_h)
+                if any(
+                    box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3]
+                    for b in taken
+                ):
+                    continue
+                gap = half_w + 6.0 * px_per_pt  # clear of every marker (11 pt across)
+                if np.any(np.all(np.abs(marks - c) < gap, axis=1)):
+                    continue
+                near = int(np.sum(np.all(np.abs(others - c) < [half_w, half_h], axis=1)))
+                if best is None or near < best[0]:
+                    best = (near, offset)
+                if near == 0:
+                    break
+            if best is not None and best[0] == 0:
+                break
+        offset = best[1] if best is not None else np.array([13.0, 13.0])
+        c = anchor + offset * px_per_pt
+        taken.append((c[0] - half_w, c[1] - half_h, c[0] + half_w, c[1] + half_h))
+        leader = float(np.hypot(*offset)) > 13.5
+        ax.annotate(
+            text,
+            (float(point[0]), float(point[1])),
+            xytext=(float(offset[0]), float(offset[1])),
+            textcoords="offset points",
+            ha="center",
+            va="center",
+            fontsize=10,
+            fontweight="bold",
+            zorder=9.6,
+            gid=f"impact-number:{k + 1}",
+            bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "0.3", "lw": 0.6},
+            arrowprops={"arrowstyle": "-", "color": "0.2", "lw": 0.7, "shrinkA": 0, "shrinkB": 6}
+            if leader
+            else None,
+        )
+
+
+def _overlap_depth(result: Result, imp: Impact, time: float) -> float:
+    """How deep (m) the impact's two meshes overlap at ``time``: the extent of the engine's
+    overlap region along the impact's normal (0 when they only touch or are apart)."""
+    from crashsim import _core
+
+    posed = []
+    for name in imp.vehicles:
+        state = result.state(name, time)
+        posed += [result.vehicle(name).shape, state["position"], state["orientation"]]
+    points = np.asarray(_core.overlap_region(*posed)["points"], dtype=np.float64).reshape(-1, 3)
+    if len(points) == 0:
+        return 0.0
+    return float(np.ptp(points @ np.asarray(imp.normal)))
+
+
+def _timer_start(result: Result, index: int, imp: Impact) -> dict[str, str]:
+    """The words for the instant the impact's timer started: a first overlap (the meshes
+    first touch) or, for a secondary exchange, the engaged pair closing again (the meshes
+    still deep inside each other; how deep and why it closed again are said)."""
+    if not imp.secondary:
+        return {
+            "title": "First overlap",
+            "word": "first overlap",
+            "what": "the meshes first touch; the depth-of-penetration timer starts",
+            "caption": "",
+        }
+    from crashsim.analysis.engagements import engagement_of, secondary_cause
+
+    depth = _overlap_depth(result, imp, imp.first_contact_time)
+    engaged = engagement_of(result, imp)
+    primary = (
+        "" if engaged is None or engaged.primary is None else f" of impact {engaged.primary + 1}"
+    )
+    return {
+        "title": "Closing again (secondary exchange)",
+        "word": "closing again",
+        "what": f"still engaged, the meshes {depth:.2f} m inside each other along n; a new "
+        "timer starts",
+        "caption": f"secondary exchange: the pair stayed engaged after the exchange{primary}; "
+        + secondary_cause(result, index),
+    }
 
 
 def _auto_count(result: Result) -> int:
@@ -815,38 +952,16 @@ def plot_trajectories(
                 alpha=0.9,
                 zorder=3.6,
             )
-        for i, imp in enumerate(result.impacts):
-            if name in imp.vehicles:
+        for imp in result.impacts:
+            if name in imp.vehicles:  # the pose at each exchange, bold (numbered at its centroid)
                 pose = _Pose(result, name, imp.time)
                 outlines.append(pose.outline)
                 _draw_vehicle(ax, pose, c, fill_alpha=0.25, lw=1.8, z=4.0)
-                cg = pose.position
-                ax.annotate(
-                    f"impact {i + 1}, {imp.time:.3f} s",
-                    (cg[0], cg[1]),
-                    xytext=(6, -13),
-                    textcoords="offset points",
-                    fontsize=8.5,
-                    fontweight="bold",
-                    color=c,
-                    zorder=8.0,
-                    bbox={"boxstyle": "square,pad=0.1", "fc": "white", "ec": "none", "alpha": 0.7},
-                )
         first = _Pose(result, name, t_start)
         _label(ax, first, c, _path_points(result), f"{name} (start)")
-    for i, imp in enumerate(result.impacts):
-        p = np.asarray(imp.centroid)
+    centroids = np.array([np.asarray(imp.centroid)[:2] for imp in result.impacts]).reshape(-1, 2)
+    for p in centroids:
         ax.plot([p[0]], [p[1]], marker="X", ms=11, mfc="gold", mec="black", zorder=9.5)
-        angle = -0.25 * math.pi - 0.5 * math.pi * i  # labels of close centroids fan out
-        ax.annotate(
-            f"{i + 1}",
-            (p[0], p[1]),
-            xytext=(12 * math.cos(angle) - 4, 12 * math.sin(angle) - 4),
-            textcoords="offset points",
-            fontsize=10,
-            fontweight="bold",
-            zorder=9.6,
-        )
     ax.set_ylabel("world y (m)")
     handles: list[Any] = []
     labels: list[str] = []
@@ -864,22 +979,22 @@ def plot_trajectories(
         "at an impulse exchange (with body x axis, front chevron, CG)",
         "CG path before the first exchange",
         "CG path after it",
-        "impulse centroid (numbered in time order)",
+        "impulse centroid, numbered as the impacts in the caption",
     ]
     ax.legend(handles, labels, loc="best", fontsize=8.5, framealpha=0.9)
-    summary = "; ".join(
-        f"impact {i + 1} at {imp.time:.3f} s ({imp.vehicles[0]}-{imp.vehicles[1]}, "
-        f"closing {imp.closing_speed:.1f} m/s)"
+    summary = [
+        f"{i + 1} at {imp.time:.3f} s {imp.vehicles[0]}-{imp.vehicles[1]}"
+        + (" (secondary)" if imp.secondary else "")
+        + f", closing {imp.closing_speed:.1f} m/s"
         for i, imp in enumerate(result.impacts)
-    )
+    ]
     note = _tilt_note(result, tilts)
-    fig.suptitle(
-        f"The run from above, {t_start:g} to {t_end:g} s (world frame, z up, metres)\n"
-        + (summary or "no impacts")
-        + (f"\n{note}" if note else ""),
-        fontsize=11,
-    )
+    lines = [f"The run from above, {t_start:g} to {t_end:g} s (world frame, z up, metres)"]
+    lines += _wrap(summary, "impacts: ") if summary else ["no impacts"]
+    lines += _wrap([note], "") if note else []
+    fig.suptitle("\n".join(lines), fontsize=11)
     _set_view(fig, [ax], _bounds(outlines, []), 0.05)
+    _number_points(fig, ax, centroids, [_outline_points(o) for o in outlines])
     if path is not None:
         fig.savefig(Path(path), dpi=dpi)
     return fig

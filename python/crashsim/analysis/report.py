@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.analysis import penetration
+from crashsim.analysis.engagements import WHY_SECONDARY, Engagement, engagements
 from crashsim.errors import ParameterError, SceneError
 from crashsim.units import to_kmh, to_mph
 
@@ -106,6 +107,10 @@ CONVENTIONS = {
     "deformation": (
         "vehicle 1 measured along +n, vehicle 2 along -n, from the impulse centroid to the "
         "undeformed (body-frame) bounding box or mesh surface"
+    ),
+    "engagements": (
+        "a pair's contact from its first overlap to its separation: its exchanges grouped "
+        "(the primary, then the secondary ones) with their delta-V summed (world); " + WHY_SECONDARY
     ),
 }
 
@@ -688,7 +693,7 @@ def build_report(result: Result) -> Report:
             "build the report from the Result that Scene.run returned"
         )
     impacts = [_impact_report(result, imp, i) for i, imp in enumerate(result.impacts, start=1)]
-    return Report(result=result, impacts=impacts)
+    return Report(result=result, impacts=impacts, engagements=engagements(result))
 
 
 # -- the text table -------------------------------------------------------------------------
@@ -729,13 +734,73 @@ def _table(headers: list[str], rows: list[list[str]]) -> list[str]:
     return [line(headers), rule, *(line(r) for r in rows)]
 
 
+def _pair(names: tuple[str, str] | list[str]) -> str:
+    return f"{names[0]}-{names[1]}"
+
+
+def _numbers(indices: tuple[int, ...]) -> str:
+    """Impact numbers (1-based) of impact indices: "3", "3 and 5", "3, 5 and 7"."""
+    n = [str(i + 1) for i in indices]
+    return n[0] if len(n) == 1 else ", ".join(n[:-1]) + " and " + n[-1]
+
+
+def _engagement_lines(e: Engagement, impacts: list[ImpactReport]) -> list[str]:
+    """A pair's contact in words: its exchanges grouped, their summed delta-V, the causes of
+    its secondary exchanges, and any timer that ended without an impulse (labelled)."""
+    apart = [t for t, reason in e.no_exchange if "no longer overlap" in reason]
+    if e.separation_time is not None:
+        end = f"separated at {_fmt(e.separation_time, 6)} s"
+    elif apart:
+        end = f"found apart when its timer expired at {_fmt(apart[-1], 6)} s"
+    else:
+        end = "still overlapping when the run ended"
+    head = f"  {_pair(e.vehicles)}: first overlap at {_fmt(e.first_overlap_time, 6)} s, {end}"
+    if not e.exchanged:
+        lines = [head]
+        for t, reason in e.no_exchange or ((e.first_overlap_time, "no timer expired"),):
+            lines.append(
+                f"    NO EXCHANGE: the overlap that began at {_fmt(e.first_overlap_time, 6)} s "
+                f"ended without an impulse (timer end {_fmt(t, 6)} s: {reason})"
+            )
+        return lines
+    primary, secondary = e.exchanges[0], e.exchanges[1:]
+    which = f"impact {primary + 1}"
+    which += f" (primary) and secondary {_numbers(secondary)}" if secondary else " only"
+    lines = [head + f"; {which}"]
+    summed = []
+    for name in e.vehicles:
+        dv = float(np.linalg.norm(e.delta_v[name]))
+        summed.append(
+            f"{name} {_fmt(dv, 3)} m/s ({_fmt(to_kmh(dv), 2)} km/h, {_fmt(to_mph(dv), 2)} mph)"
+        )
+    lines.append(
+        f"    summed delta-V (vector sum over its {len(e.exchanges)} exchange(s)): "
+        + ", ".join(summed)
+        + f"; energy dissipated {_fmt(e.energy_dissipated, 1)} J"
+    )
+    for i in e.exchanges:
+        if i in e.causes:
+            closing = impacts[i].closing_speed
+            lines.append(
+                f"    impact {i + 1} (secondary, closing speed {_fmt(closing, 3)} m/s): "
+                f"{e.causes[i]}"
+            )
+    for t, reason in e.no_exchange:
+        lines.append(
+            f"    NO EXCHANGE: a timer ended at {_fmt(t, 6)} s without an impulse: {reason}"
+        )
+    return lines
+
+
 def _speed_cells(v: float | None) -> list[str]:
     if v is None:
         return ["unknown"] * 3
     return [_fmt(v, 3), _fmt(to_kmh(v), 2), _fmt(to_mph(v), 2)]
 
 
-def _impact_lines(imp: ImpactReport) -> list[str]:
+def _impact_lines(imp: ImpactReport, primary: int | None = None) -> list[str]:
+    """The text of one impact; ``primary``: the number of the impact a secondary one
+    follows in its pair's engagement."""
     v1, v2 = imp.vehicles
     c = imp.centroid
     n = imp.normal
@@ -747,7 +812,11 @@ def _impact_lines(imp: ImpactReport) -> list[str]:
     dtp += ")"
     lines = [
         f"Impact {imp.number}: {v1} (1) -> {v2} (2)"
-        + (" [secondary]" if imp.secondary else "")
+        + (
+            " [secondary" + (f" to impact {primary}" if primary else "") + "]"
+            if imp.secondary
+            else ""
+        )
         + f", {imp.impact_type} impact",
         f"  first overlap t0 = {_fmt(imp.first_contact_time, 6)} s, exchange "
         f"t = {_fmt(imp.exchange_time, 6)} s, depth of penetration {dtp}",
@@ -853,9 +922,16 @@ class Report:
     Result it was built from). ``summary_table()`` / ``str(report)``: the text table;
     ``to_dict()`` / ``to_json()`` / ``write_json(path)``: the versioned JSON report."""
 
-    def __init__(self, result: Result, impacts: list[ImpactReport]) -> None:
+    def __init__(
+        self,
+        result: Result,
+        impacts: list[ImpactReport],
+        engagements: list[Engagement] | None = None,
+    ) -> None:
         self.result = result
         self.impacts = list(impacts)
+        #: the pairs' contacts, exchanges grouped (crashsim.analysis.engagements)
+        self.engagements = list(engagements) if engagements is not None else []
 
     @property
     def vehicles(self) -> list[str]:
@@ -878,9 +954,24 @@ class Report:
         ]
         if not self.impacts:
             lines.append("No impulse exchange in this run.")
-        for imp in self.impacts:
+        # Contacts by pair, when a pair had more than one exchange or one had none (a
+        # first overlap without an exchange is never left out).
+        if any(len(e.exchanges) != 1 or e.no_exchange for e in self.engagements):
+            lines += [
+                "",
+                "Contacts by pair (each from its first overlap to its separation; the "
+                "delta-V of a pair's exchanges summed):",
+            ]
+            for e in self.engagements:
+                lines += _engagement_lines(e, self.impacts)
+            if any(e.secondary for e in self.engagements):
+                lines.append(f"  Why secondary exchanges: {WHY_SECONDARY}.")
+        primaries = {
+            i: e.primary + 1 for e in self.engagements if e.primary is not None for i in e.secondary
+        }
+        for k, imp in enumerate(self.impacts):
             lines.append("")
-            lines += _impact_lines(imp)
+            lines += _impact_lines(imp, primaries.get(k))
         return "\n".join(lines)
 
     def __str__(self) -> str:
@@ -909,6 +1000,7 @@ class Report:
             },
             "impacts": [imp.to_dict() for imp in self.impacts],
             "contacts": [_plain(c.to_dict()) for c in r.contacts],
+            "engagements": [_engagement_record(e) for e in self.engagements],
         }
 
     def to_json(self, include_meshes: bool = False, indent: int | None = 2) -> str:
@@ -920,6 +1012,27 @@ class Report:
         with open(path, "w", encoding="utf-8") as f:
             f.write(self.to_json(include_meshes))
             f.write("\n")
+
+
+def _engagement_record(e: Engagement) -> dict[str, Any]:
+    """An engagement as JSON (impact numbers 1-based, as in ``impacts[].number``)."""
+    return {
+        "vehicles": list(e.vehicles),
+        "first_overlap_time": float(e.first_overlap_time),
+        "separation_time": _opt(e.separation_time),
+        "exchanged": e.exchanged,
+        "primary": None if e.primary is None else e.primary + 1,
+        "secondary": [i + 1 for i in e.secondary],
+        "secondary_causes": [
+            {"impact": i + 1, "cause": cause} for i, cause in sorted(e.causes.items())
+        ],
+        "no_exchange": [{"time": float(t), "reason": reason} for t, reason in e.no_exchange],
+        "delta_v": {
+            "summed": {n: _vec(v) for n, v in e.delta_v.items()},
+            "magnitude": {n: float(np.linalg.norm(v)) for n, v in e.delta_v.items()},
+        },
+        "energy_dissipated": float(e.energy_dissipated),
+    }
 
 
 def report_schema() -> dict[str, Any]:

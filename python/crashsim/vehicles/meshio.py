@@ -42,6 +42,7 @@ from numpy.typing import NDArray
 
 from crashsim.errors import MeshError, ParameterError
 from crashsim.units import FOOT
+from crashsim.vehicles.plausibility import check_size
 
 __all__ = [
     "UNITS",
@@ -67,6 +68,12 @@ _AXES = {"x": 0, "y": 1, "z": 2}
 
 # Twice a face's area at most this times its longest edge squared: zero to round-off.
 DEGENERATE_RATIO = 1e-10
+
+# Largest accepted |coordinate|, in file units and in metres. No vehicle mesh comes near it
+# in any unit (a bus in mm reaches 1.3e4, one placed in UTM coordinates in mm 1e10 would
+# not pass: move it near the origin); beyond about 9e10 trimesh's vertex merging, which
+# rounds to 1e-8 of a unit in 64-bit integers, overflows (a RuntimeWarning and garbage).
+MAX_COORDINATE = 1e9
 
 
 # -- units and axes ----------------------------------------------------------------------------
@@ -153,17 +160,41 @@ def _flatten(loaded: Any, what: str) -> trimesh.Trimesh:
 
 
 def check_mesh(mesh: trimesh.Trimesh, what: str) -> None:
-    """MeshError unless the mesh has triangles and finite vertices (the engine checks the
-    indices when it builds its shape)."""
+    """MeshError unless the mesh has triangles whose indices name its vertices, and finite
+    vertices no farther than MAX_COORDINATE from the origin."""
     if len(mesh.faces) == 0:
         raise MeshError(f"{what} has no triangles: a vehicle needs a surface mesh")
     vertices = np.asarray(mesh.vertices, dtype=np.float64)
+    if vertices.ndim != 2 or vertices.shape[1] != 3:
+        raise MeshError(
+            f"{what} has vertices of {vertices.shape[1] if vertices.ndim == 2 else '?'} "
+            "coordinates: a vehicle mesh needs x, y, z (the file is damaged or not 3-D)"
+        )
+    faces = np.asarray(mesh.faces)
+    if faces.ndim != 2 or faces.shape[1] != 3:
+        raise MeshError(f"{what} has faces of shape {faces.shape}: a vehicle needs triangles")
+    outside = (faces < 0) | (faces >= len(vertices))
+    if np.any(outside):
+        k = int(np.flatnonzero(np.any(outside, axis=1))[0])
+        raise MeshError(
+            f"{what} has {int(np.any(outside, axis=1).sum())} faces naming vertices it does not "
+            f"have (it has {len(vertices)}), the first is face {k} = {faces[k].tolist()}: the "
+            "file is damaged or truncated"
+        )
     bad = ~np.all(np.isfinite(vertices), axis=1)
     if np.any(bad):
         i = int(np.flatnonzero(bad)[0])
         raise MeshError(
             f"{what} has {int(bad.sum())} non-finite (NaN or inf) vertices, the first is "
             f"vertex {i} = {vertices[i].tolist()}: repair or remove them"
+        )
+    largest = float(np.max(np.abs(vertices))) if vertices.size else 0.0
+    if largest > MAX_COORDINATE:
+        raise MeshError(
+            f"{what} has a coordinate of {largest:.3g}, beyond the {MAX_COORDINATE:.0e} that "
+            "any vehicle mesh stays within in any unit (a bus in mm reaches 1.3e4): the "
+            "file's units or scale are wrong, or the mesh sits far from the origin (move it "
+            "there)"
         )
 
 
@@ -187,7 +218,9 @@ def load_mesh(
     trimesh reads (PLY, STL, OBJ, OFF, GLB/glTF, ...) or from a trimesh.Trimesh/Scene.
 
     A scene is flattened with its node transforms. The vertices are checked as written (no
-    triangles or a NaN/inf vertex is a MeshError), then coincident vertices are merged (files
+    triangles, a NaN/inf vertex, a coordinate beyond MAX_COORDINATE or a largest extent in
+    metres under 1 mm or over 10 km, which no vehicle has, is a MeshError naming the units
+    that would fit), then coincident vertices are merged (files
     split corners at texture and normal seams; the engine needs the shared corners) and
     nothing else is repaired. The input object is never modified.
 
@@ -217,12 +250,18 @@ def load_mesh(
             ) from e
         mesh = _flatten(loaded, what)
     check_mesh(mesh, what)
+    # Before merging (which joins vertices within 1e-8 of a unit: a tiny mesh would become
+    # one point): no vehicle is under 1 mm or over 10 km, whatever the file's units.
+    used = units.strip().lower() if isinstance(units, str) else f"{scale:g} m per unit"
+    raw = np.asarray(mesh.vertices, dtype=np.float64)
+    check_size(np.ptp(raw, axis=0) * scale, what, scale, used)
     # Geometry only: corners split for texture coordinates or normals are joined.
     mesh.merge_vertices(merge_tex=True, merge_norm=True)
     transform = np.eye(4)
     transform[:3, :3] = rotation * scale
     if not np.array_equal(transform, np.eye(4)):
         mesh.apply_transform(transform)
+        check_mesh(mesh, what + f" scaled to metres ({scale:g} m per unit)")
     shift = np.zeros(3)
     lo, hi = mesh.bounds
     if ground:
@@ -354,7 +393,10 @@ def mesh_quality(mesh: trimesh.Trimesh) -> MeshQuality:
     duplicates = _duplicates(faces)
     watertight = bool(np.all(counts == 2))
     winding = bool(mesh.is_winding_consistent)
-    volume = float(mesh.volume) if watertight and winding else None
+    volume = None
+    if watertight and winding:
+        with np.errstate(invalid="ignore", divide="ignore"):  # trimesh's centroid of volume 0
+            volume = float(mesh.volume)
     extents = vertices.max(axis=0) - vertices.min(axis=0)
     return MeshQuality(
         triangles=len(faces),

@@ -21,8 +21,10 @@ accepted ranges and their messages live in one place (crates/crashsim-core).
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -33,16 +35,19 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim import _core
 from crashsim.errors import MeshError, ParameterError
 from crashsim.units import POUND
+from crashsim.vehicles import plausibility
 from crashsim.vehicles.generator import PRESETS, BodyParams, body_params, generate_body
 from crashsim.vehicles.meshio import (
     MeshQuality,
     MeshSource,
+    axes_rotation,
     check_mesh,
     closed_shells,
     describe,
     load_mesh,
     mesh_quality,
     shell_labels,
+    unit_scale,
 )
 from crashsim.vehicles.stiffness import FACES, Stiffness
 from crashsim.vehicles.vehicle_data import ALIASES, VehicleClass, vehicle_class
@@ -67,6 +72,8 @@ SOLIDS = ("auto", "convex hull", "closed shells", "winding number")
 
 # Cells of the grid over the mesh's box on which the winding-number solid is integrated.
 WINDING_GRID_CELLS = 50_000
+# A mesh whose smallest extent is at most this fraction of its largest is flat: no solid.
+FLAT_RATIO = 1e-9
 
 _ZERO3 = (0.0, 0.0, 0.0)
 _IDENTITY = (1.0, 0.0, 0.0, 0.0)  # quaternion (w, x, y, z)
@@ -132,15 +139,75 @@ def _mass(mass: Any, weight_lb: Any) -> tuple[float, str]:
 
 
 def _parallel_axis(inertia_cm: Array, mass: float, d: Array) -> Array:
-    """Inertia about a point displaced by d (m) from the centre of mass (kg m^2)."""
-    return inertia_cm + mass * (float(d @ d) * np.eye(3) - np.outer(d, d))
+    """Inertia about a point displaced by d (m) from the centre of mass (kg m^2).
+    ParameterError when it overflows (a CG absurdly far from the body)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = inertia_cm + mass * (float(d @ d) * np.eye(3) - np.outer(d, d))
+    if not np.all(np.isfinite(inertia_cm)):
+        raise ParameterError(
+            f"the inertia of a {mass:g} kg body is not finite: give the mass in kg"
+        )
+    if not np.all(np.isfinite(out)):
+        raise ParameterError(
+            f"the CG is {float(np.linalg.norm(d)):.3g} m from the centre of the body's solid: "
+            "the inertia about it is not finite; give a CG on the vehicle (m, model frame) and "
+            "its dimensions in metres"
+        )
+    return out
 
 
 def _box_inertia(mass: float, length: float, width: float, height: float) -> Array:
-    """Uniform solid box about its centre, axes along its edges (kg m^2)."""
-    return (mass / 12.0) * np.diag(
-        [width**2 + height**2, length**2 + height**2, length**2 + width**2]
-    )
+    """Uniform solid box about its centre, axes along its edges (kg m^2); an absurd mass
+    overflows to inf without a warning, and the engine's check refuses it."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        return (mass / 12.0) * np.diag(
+            [width**2 + height**2, length**2 + height**2, length**2 + width**2]
+        )
+
+
+# The empirical rule's yaw moment m (WB/2)^2 stays below the box's Ixx + Iyy only while
+# 3 WB^2 <= L^2 + W^2 + 2 H^2 (a wheelbase up to about 0.7 of a car's length).
+_EMPIRICAL_FIX = (
+    "a shorter wheelbase (the rule needs 3 WB^2 <= L^2 + W^2 + 2 H^2), inertia='mesh', or "
+    "the inertia"
+)
+
+
+@contextlib.contextmanager
+def _rule_hint(mode: str, fix: str) -> Iterator[None]:
+    """Adds to an impossible-inertia ParameterError that a rule ("class", "empirical") made
+    the tensor and what to give instead (``fix``)."""
+    try:
+        yield
+    except ParameterError as e:
+        if mode in ("class", "empirical") and "is impossible" in str(e):
+            raise ParameterError(
+                f"{e}. The {mode!r} rule gave this tensor for these dimensions: give {fix}"
+            ) from e
+        raise
+
+
+def _dims(extents: ArrayLike) -> str:
+    """'4.22 x 1.81 x 1.18 m' (length x width x height)."""
+    return " x ".join(f"{float(x):.3g}" for x in np.asarray(extents)) + " m"
+
+
+def _volume_estimate(mesh: trimesh.Trimesh) -> tuple[float | None, str]:
+    """(m^3, what it is) of the solid a mesh stands for when its mass properties were not
+    needed (cg and inertia given): the mesh's own volume when it is closed, else its convex
+    hull's (at least the solid's: the density from it is low by up to 1.8x on the shared
+    meshes, well inside the plausible range's margin); None when it has none (flat)."""
+    if mesh.is_watertight and mesh.is_winding_consistent:
+        volume = solid_properties(mesh)[0]
+        if volume > 0.0:
+            return volume, "the mesh volume"
+    try:
+        with np.errstate(all="ignore"):
+            hull = mesh.convex_hull
+            volume = float(hull.volume)
+    except Exception:  # qhull refuses flat or degenerate point sets: nothing to judge
+        return None, ""
+    return (volume, "its convex hull") if volume > 0.0 else (None, "")
 
 
 def _wheelbase(wheelbase: Any, length: float) -> float:
@@ -195,19 +262,38 @@ def _combine(parts: list[tuple[float, Array, Array]]) -> tuple[float, Array, Arr
     return float(volume), np.asarray(centroid), np.asarray(inertia)
 
 
+def _grid_counts(ext: Array, cells: int) -> NDArray[np.int64]:
+    """Cells per axis of a grid of about ``cells`` near-cubic cells over a box of extents
+    ``ext`` (m). An axis thinner than one cell gets a single cell and the others share the
+    budget (a bare cube root would give a thin box millions of cells along its long sides:
+    a 1 x 2e-16 x 1 m mesh asked for 3.7e13 of them and ran out of memory)."""
+    counts = np.ones(3, dtype=np.int64)
+    free = np.ones(3, dtype=bool)
+    for _ in range(3):
+        budget = cells / float(np.prod(counts[~free]))
+        side = (float(np.prod(ext[free])) / budget) ** (1.0 / int(free.sum()))
+        wanted = np.ceil(ext / side)
+        thin = free & (wanted <= 1.0)
+        counts[free] = np.maximum(1, wanted[free]).astype(np.int64)
+        if not thin.any() or thin.all():
+            break
+        free &= ~thin
+        counts[thin] = 1
+    return counts
+
+
 def _winding_solid(mesh: trimesh.Trimesh, what: str) -> tuple[float, Array, Array]:
     """Mass properties (unit density) of the region where the engine's generalized winding
     number exceeds 1/2, integrated on a grid of about WINDING_GRID_CELLS cells over the mesh's
     box (each inside cell a uniform small box)."""
     lo, hi = mesh.bounds
     ext = hi - lo
-    side = (float(np.prod(ext)) / WINDING_GRID_CELLS) ** (1.0 / 3.0)
-    if side <= 0.0:
+    if not float(ext.min()) > FLAT_RATIO * float(ext.max()):
         raise MeshError(
-            f"{what} encloses no volume (it is flat): give cg and inertia explicitly, or "
-            'use inertia="empirical" with a wheelbase'
+            f"{what} encloses no volume (it is flat: {_dims(ext)}): give cg and inertia "
+            'explicitly, or use inertia="empirical" with a wheelbase'
         )
-    counts = np.maximum(1, np.ceil(ext / side)).astype(int)
+    counts = _grid_counts(ext, WINDING_GRID_CELLS)
     cell = ext / counts
     axes = [lo[i] + (np.arange(counts[i]) + 0.5) * cell[i] for i in range(3)]
     grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
@@ -314,6 +400,8 @@ class Vehicle:
         mass = _as_float(mass, "mass", "kg")
         cg_v = _point(cg, "cg")
         _check_mass_properties(mass, inertia)
+        source = (sources or {}).get("inertia", USER)
+        plausibility.check_inertia(inertia, None if source == USER else source)
         self._name = name
         self._mass = mass
         self._mesh = mesh
@@ -385,6 +473,8 @@ class Vehicle:
             raise ParameterError('inertia="empirical" needs the wheelbase (m): give wheelbase=')
         what = describe(source)
         mesh = load_mesh(source, units=units, up=up, forward=forward, ground=ground, center=center)
+        scale = unit_scale(units)
+        units_name = units.strip().lower() if isinstance(units, str) else f"{scale:g} m per unit"
         if name is None:
             if isinstance(source, trimesh.Trimesh | trimesh.Scene):
                 name = "vehicle"
@@ -418,8 +508,20 @@ class Vehicle:
             )
         else:
             inertia_v, sources["inertia"] = np.asarray(inertia, dtype=np.float64), USER
-        vehicle = cls(mesh, mass_kg, cg_v, inertia_v, name=name, sources=sources, stiffness=stiff)
+        with _rule_hint(inertia_mode, _EMPIRICAL_FIX):
+            vehicle = cls(
+                mesh, mass_kg, cg_v, inertia_v, name=name, sources=sources, stiffness=stiff
+            )
         vehicle._mass_source, vehicle._details = mass_source, details
+        findings = plausibility.size_findings(
+            mesh.extents, scale, units_name, axes_rotation(up, forward)
+        )
+        if solid_props is not None:
+            volume, label = solid_props[0], f"the {kind}"
+        else:
+            volume, label = _volume_estimate(mesh)
+        findings += plausibility.check_density(mass_kg, volume, label, findings)
+        plausibility.warn(f"{what} ({name!r}, {_dims(mesh.extents)})", findings, stacklevel=3)
         return vehicle
 
     @classmethod
@@ -454,6 +556,13 @@ class Vehicle:
             raise ParameterError(
                 f"box dimensions (length, width, height) = {dims.tolist()} are invalid: "
                 "each must be a finite, positive number of metres"
+            )
+        lo, hi = plausibility.SIZE_IMPOSSIBLE
+        if not lo <= float(dims.max()) <= hi:  # also keeps m L^2 / 12 from overflowing
+            raise ParameterError(
+                f"box dimensions (length, width, height) = {dims.tolist()} m: no vehicle is "
+                f"{'shorter than 1 mm' if dims.max() < lo else 'longer than 10 km'}; give "
+                "metres"
             )
         clearance = _as_float(ground_clearance, "ground_clearance", "m")
         if not math.isfinite(clearance) or clearance < 0.0:
@@ -490,9 +599,10 @@ class Vehicle:
             )
         else:
             inertia_v, sources["inertia"] = np.asarray(inertia, dtype=np.float64), USER
-        vehicle = cls(
-            mesh, mass_kg, cg, inertia_v, name=name or "box", sources=sources, stiffness=stiff
-        )
+        with _rule_hint(inertia_mode, _EMPIRICAL_FIX):
+            vehicle = cls(
+                mesh, mass_kg, cg, inertia_v, name=name or "box", sources=sources, stiffness=stiff
+            )
         vehicle._mass_source, vehicle._details = mass_source, details
         return vehicle
 
@@ -567,6 +677,12 @@ class Vehicle:
         inertia_mode = "class" if inertia is None else _mode(inertia, "inertia", _INERTIA_WORDS)
         asked = {"length": length, "width": width, "height": height, "wheelbase": wheelbase}
         dims = {k: getattr(vc, k).value if v is None else v for k, v in asked.items()}
+        for k, v in {**dims, **shape}.items():  # the generator's geometry fails beyond it
+            if isinstance(v, int | float) and not isinstance(v, bool):
+                if math.isfinite(v) and abs(v) > plausibility.SIZE_IMPOSSIBLE[1]:
+                    raise ParameterError(
+                        f"{k} = {v:g} m: no vehicle is longer than 10 km; give metres"
+                    )
         params = body_params(key, **dims, **shape)
         mesh = generate_body(params, resolution)
         # Ratios to the class (exactly 1.0 for the class's own numbers).
@@ -629,17 +745,30 @@ class Vehicle:
         defaults = f"generator defaults ({key})"
         sources["body"] = f"{USER} ({', '.join(sorted(shape))}); {defaults}" if shape else defaults
         sources["stiffness"] = stiffness_source
-        vehicle = cls(
-            mesh,
-            mass_kg,
-            cg_v,
-            inertia_v,
-            name=key if name is None else name,
-            sources=sources,
-            stiffness=stiff,
+        fix = (
+            "a wheelbase in proportion to the length (the class's yaw moment scales with the "
+            "wheelbase squared, the body's pitch moment with its length), inertia='mesh', or "
+            "the inertia"
         )
+        with _rule_hint(inertia_mode, fix):
+            vehicle = cls(
+                mesh,
+                mass_kg,
+                cg_v,
+                inertia_v,
+                name=key if name is None else name,
+                sources=sources,
+                stiffness=stiff,
+            )
         vehicle._mass_source, vehicle._details = mass_source, details
         vehicle._generator_params = params
+        findings = plausibility.size_findings(mesh.extents)
+        findings += plausibility.check_density(
+            mass_kg, volume, "the generated body's solid", findings
+        )
+        plausibility.warn(
+            f"the generated {key} ({vehicle.name!r}, {_dims(mesh.extents)})", findings, stacklevel=3
+        )
         return vehicle
 
     # -- properties ----------------------------------------------------------------------
