@@ -247,6 +247,7 @@ def _positive_time(what: str, example: str) -> Callable[[str], float]:
 
 _step = _positive_time("the time step", "1 ms")
 _duration = _positive_time("the simulated time", "0.5 s")
+_record_interval = _positive_time("the recording interval", "10 ms")
 
 
 def _speed_mph(text: str) -> float:
@@ -517,7 +518,7 @@ def _scene_arguments(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--record-interval",
-        type=_time,
+        type=_record_interval,
         help='keep a sample of the states every so often ("10 ms" or seconds), overriding the '
         "file's run.record_interval (default: every step, or about 100,000 samples in all for "
         "longer runs; first overlaps and exchanges are always kept)",

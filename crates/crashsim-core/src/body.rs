@@ -24,7 +24,8 @@ pub struct MassProperties {
 
 impl MassProperties {
     /// Checks and builds mass properties. Errors: mass not finite or <= 0, inertia not
-    /// finite, not symmetric (relative 1e-9) or not positive definite.
+    /// finite, not symmetric (relative 1e-9), not positive definite, or impossible (its
+    /// largest principal moment above the sum of the other two, relative 1e-6).
     pub fn new(mass: Real, inertia: Matrix) -> Result<MassProperties> {
         require_finite("mass", mass)?;
         if mass <= 0.0 {
@@ -55,6 +56,16 @@ impl MassProperties {
                 "the inertia tensor is not positive definite (principal moments {:.6e}, {:.6e}, \
                  {:.6e} kg m^2): every principal moment must be positive",
                 eig[0], eig[1], eig[2]
+            )));
+        }
+        // Each principal moment of a body is at most the sum of the other two (I_z = sum of
+        // m (x^2 + y^2) <= I_x + I_y = sum of m (x^2 + y^2 + 2 z^2)); equality for a flat body.
+        let [a, b, c] = principal;
+        if c - (a + b) > 1e-6 * c {
+            return Err(Error::Parameter(format!(
+                "the inertia tensor is impossible: its largest principal moment {c:.6e} kg m^2 \
+                 exceeds the sum of the other two ({a:.6e} + {b:.6e}); a body's principal \
+                 moments each lie within the sum of the other two (check the axes and units)"
             )));
         }
         let inverse_inertia = sym
@@ -397,6 +408,12 @@ mod tests {
         let mut skew = i;
         skew[(0, 1)] = 0.5;
         assert!(MassProperties::new(1.0, skew).is_err());
+        // Izz > Ixx + Iyy: no body has it; a flat one reaches the sum.
+        let impossible = Matrix::from_diagonal(&Vector::new(500.0, 2000.0, 3000.0));
+        assert!(MassProperties::new(1450.0, impossible).is_err());
+        assert!(
+            MassProperties::new(1.0, Matrix::from_diagonal(&Vector::new(1.0, 2.0, 3.0))).is_ok()
+        );
     }
 
     #[test]
@@ -446,13 +463,19 @@ mod tests {
         use rand::rngs::SmallRng;
         use rand::{Rng, SeedableRng};
         let mut rng = SmallRng::seed_from_u64(11);
-        for case in 0..200 {
-            // A random positive definite tensor (random principal moments and axes).
+        let mut case = 0;
+        while case < 200 {
+            // A random physical tensor (random principal moments and axes; each moment at
+            // most the sum of the other two).
             let moments = Vector::new(
                 rng.random_range(300.0..3000.0),
                 rng.random_range(300.0..3000.0),
                 rng.random_range(300.0..3000.0),
             );
+            if 2.0 * moments.max() > moments.sum() {
+                continue;
+            }
+            case += 1;
             let axes = Rotation::from_euler_angles(
                 rng.random_range(-3.0..3.0),
                 rng.random_range(-1.5..1.5),

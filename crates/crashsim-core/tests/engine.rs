@@ -189,12 +189,15 @@ fn random_unit(rng: &mut SmallRng) -> Vector {
     }
 }
 
+/// A random physical inertia tensor of mass `m` (kg m^2): principal moments m (s_j + s_k)
+/// from random second moments s (m^2), so each is at most the sum of the other two.
 fn random_inertia(rng: &mut SmallRng, m: Real) -> Matrix {
-    let d = Vector::new(
-        rng.random_range(0.2..1.0),
-        rng.random_range(0.5..2.0),
-        rng.random_range(0.5..2.5),
-    ) * m;
+    let s = Vector::new(
+        rng.random_range(0.3..2.0),
+        rng.random_range(0.05..0.6),
+        rng.random_range(0.05..0.5),
+    );
+    let d = Vector::new(s.y + s.z, s.x + s.z, s.x + s.y) * m;
     let r = Rotation::from_scaled_axis(random_unit(rng) * rng.random_range(0.0..PI));
     let rm = r.to_rotation_matrix();
     rm.matrix() * Matrix::from_diagonal(&d) * rm.matrix().transpose()

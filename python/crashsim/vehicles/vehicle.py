@@ -399,9 +399,13 @@ class Vehicle:
         check_mesh(mesh, "the mesh")
         mass = _as_float(mass, "mass", "kg")
         cg_v = _point(cg, "cg")
-        _check_mass_properties(mass, inertia)
         source = (sources or {}).get("inertia", USER)
-        plausibility.check_inertia(inertia, None if source == USER else source)
+        try:
+            _check_mass_properties(mass, inertia)
+        except ParameterError as e:
+            if "impossible" in str(e):  # the engine's triangle inequality: name the axis
+                plausibility.check_inertia(inertia, None if source == USER else source)
+            raise
         self._name = name
         self._mass = mass
         self._mesh = mesh
