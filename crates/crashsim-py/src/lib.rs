@@ -6,6 +6,7 @@
 
 mod convert;
 mod errors;
+mod ground;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Arc;
@@ -262,6 +263,79 @@ impl World {
             .map_err(errors::to_py)
     }
 
+    /// Adds a fixed obstacle (infinite mass, never moves) with its mesh at a pose; returns
+    /// its index.
+    fn add_obstacle(
+        &mut self,
+        shape: &Shape,
+        position: &Bound<'_, PyAny>,
+        orientation: &Bound<'_, PyAny>,
+    ) -> PyResult<usize> {
+        let pose = convert::pose(position, orientation)?;
+        self.inner
+            .add_obstacle(shape.inner.clone(), &pose)
+            .map_err(errors::to_py)
+    }
+
+    /// Puts the world on the ground: the plane z = height, or a terrain mesh (world
+    /// coordinates), with tyre-road and body-ground friction and friction zones
+    /// ((k, 2) polygon, friction).
+    #[pyo3(signature = (*, height = 0.0, terrain = None, tyre_friction = 0.8, body_friction = 0.45, zones = Vec::new()))]
+    fn set_ground(
+        &mut self,
+        height: f64,
+        terrain: Option<&Shape>,
+        tyre_friction: f64,
+        body_friction: f64,
+        zones: Vec<(Bound<'_, PyAny>, f64)>,
+    ) -> PyResult<()> {
+        let g = ground::ground(
+            height,
+            terrain.map(|t| t.inner.clone()),
+            tyre_friction,
+            body_friction,
+            &zones,
+        )?;
+        self.inner.set_ground(g).map_err(errors::to_py)
+    }
+
+    /// Gives a body wheels (centres (n, 3) body frame at static ride height, radii, steerable,
+    /// static loads, spring rates, damping), a tyre (a dict), and driver inputs: the
+    /// road-wheel steering table (k, 2), per wheel braking (None or ("fraction" |
+    /// "deceleration", table)) and drive-force tables, and wheel-state switches.
+    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new()))]
+    #[allow(clippy::too_many_arguments)]
+    fn set_vehicle(
+        &mut self,
+        body: usize,
+        centers: &Bound<'_, PyAny>,
+        radii: &Bound<'_, PyAny>,
+        steerable: &Bound<'_, PyAny>,
+        static_loads: &Bound<'_, PyAny>,
+        spring_rates: &Bound<'_, PyAny>,
+        damping: &Bound<'_, PyAny>,
+        tyre: Option<&Bound<'_, PyDict>>,
+        steer: Option<&Bound<'_, PyAny>>,
+        brake: Vec<Option<(String, Bound<'_, PyAny>)>>,
+        drive: Vec<Option<Bound<'_, PyAny>>>,
+        switches: Vec<Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let spec = ground::vehicle(
+            centers,
+            radii,
+            steerable,
+            static_loads,
+            spring_rates,
+            damping,
+            tyre,
+            steer,
+            brake,
+            drive,
+            switches,
+        )?;
+        self.inner.set_vehicle(body, spec).map_err(errors::to_py)
+    }
+
     #[pyo3(signature = (
         body1, body2, *, depth_of_penetration = None, restitution = 0.1, friction = 0.6,
         restitution_mode = "total", centroid = "auto", centroid_point = None,
@@ -330,7 +404,8 @@ impl World {
     /// `record_interval` (s; None: the core's default) spaces the kept samples;
     /// `max_history_bytes` (None: the core's default, 1 GiB) refuses runs whose history would
     /// be larger.
-    #[pyo3(signature = (duration, dt, progress = None, record_interval = None, max_history_bytes = None))]
+    #[pyo3(signature = (duration, dt, progress = None, record_interval = None, max_history_bytes = None, until_rest = false))]
+    #[allow(clippy::too_many_arguments)]
     fn run<'py>(
         &mut self,
         py: Python<'py>,
@@ -339,11 +414,12 @@ impl World {
         progress: Option<Py<PyAny>>,
         record_interval: Option<f64>,
         max_history_bytes: Option<u64>,
+        until_rest: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let options = core::RunOptions {
             record_interval,
             max_history_bytes: max_history_bytes.unwrap_or(core::DEFAULT_MAX_HISTORY_BYTES),
-            until_rest: false,
+            until_rest,
         };
         let world = &mut self.inner;
         let mut failure: Option<PyErr> = None;
@@ -420,6 +496,7 @@ fn run_output_to_dict<'py>(
         .into_pyarray(py),
     )?;
     d.set_item("velocity", field(&|s| v3(&s.velocity), 3)?.into_pyarray(py))?;
+    wheels_to_dict(py, &d, out)?;
     d.set_item(
         "angular_velocity",
         field(&|s| v3(&s.angular_velocity), 3)?.into_pyarray(py),
@@ -530,6 +607,131 @@ fn free_motion<'py>(
     ))
 }
 
+/// The wheels' records: `wheel_counts` (per body), `wheel_contact` (W, k, 3) m,
+/// `wheel_load` (W, k) N, `wheel_force` (W, k, 3) N, `wheel_sliding` (W, k) bool; and
+/// `rest` (per body: the time it came to rest, s, or None).
+fn wheels_to_dict(py: Python<'_>, d: &Bound<'_, PyDict>, out: &core::RunOutput) -> PyResult<()> {
+    let n: usize = out.wheel_counts.iter().sum();
+    let k = out.len();
+    let memory = |what: &str| {
+        pyo3::exceptions::PyMemoryError::new_err(format!(
+            "no memory for the run's {what} ({n} wheels x {k} samples): record less often \
+             (record_interval)"
+        ))
+    };
+    let mut contact = Vec::new();
+    let mut force = Vec::new();
+    let mut load = Vec::new();
+    let mut sliding = Vec::new();
+    contact
+        .try_reserve_exact(n * k * 3)
+        .map_err(|_| memory("wheel contacts"))?;
+    force
+        .try_reserve_exact(n * k * 3)
+        .map_err(|_| memory("wheel forces"))?;
+    load.try_reserve_exact(n * k)
+        .map_err(|_| memory("wheel loads"))?;
+    sliding
+        .try_reserve_exact(n * k)
+        .map_err(|_| memory("wheel marks"))?;
+    for w in 0..n {
+        for s in 0..k {
+            let sample = &out.wheels_at(s)[w];
+            contact.extend_from_slice(sample.contact.coords.as_slice());
+            force.extend_from_slice(sample.force.as_slice());
+            load.push(sample.load);
+            sliding.push(sample.sliding);
+        }
+    }
+    let shape3 = |v: Vec<f64>| Array3::from_shape_vec((n, k, 3), v).expect("the shape fits");
+    d.set_item("wheel_counts", out.wheel_counts.clone())?;
+    d.set_item("wheel_contact", shape3(contact).into_pyarray(py))?;
+    d.set_item("wheel_force", shape3(force).into_pyarray(py))?;
+    d.set_item(
+        "wheel_load",
+        Array2::from_shape_vec((n, k), load)
+            .expect("the shape fits")
+            .into_pyarray(py),
+    )?;
+    d.set_item(
+        "wheel_sliding",
+        Array2::from_shape_vec((n, k), sliding)
+            .expect("the shape fits")
+            .into_pyarray(py),
+    )?;
+    d.set_item("rest", out.rest.clone())?;
+    Ok(())
+}
+
+/// Static loads (N) of wheels at body-frame (x, y) positions (m from the CG) carrying
+/// `weight` (N) on level ground: each axle its share.
+#[pyfunction]
+fn static_loads<'py>(
+    py: Python<'py>,
+    xy: &Bound<'py, PyAny>,
+    weight: f64,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let a: numpy::PyArrayLike2<'_, f64, numpy::AllowTypeChange> = xy
+        .extract()
+        .map_err(|_| errors::parameter("wheel positions must be an (n, 2) array".into()))?;
+    let a = a.as_array();
+    if a.ncols() != 2 {
+        return Err(errors::parameter(format!(
+            "wheel positions must have shape (n, 2), got {:?}",
+            a.shape()
+        )));
+    }
+    let pts: Vec<[f64; 2]> = a.rows().into_iter().map(|r| [r[0], r[1]]).collect();
+    let loads = core::vehicle::static_loads(&pts, weight).map_err(errors::to_py)?;
+    Ok(Array1::from_vec(loads).into_pyarray(py))
+}
+
+/// (spring rate N/m, damping N s/m) of a wheel with `static_load` N sprung at
+/// `natural_frequency` Hz with `damping_ratio`.
+#[pyfunction]
+#[pyo3(signature = (static_load, natural_frequency = core::vehicle::DEFAULT_NATURAL_FREQUENCY, damping_ratio = core::vehicle::DEFAULT_DAMPING_RATIO))]
+fn suspension(
+    static_load: f64,
+    natural_frequency: f64,
+    damping_ratio: f64,
+) -> PyResult<(f64, f64)> {
+    let w = core::vehicle::WheelSpec::sprung(
+        core::math::Point::origin(),
+        1.0,
+        false,
+        static_load,
+        natural_frequency,
+        damping_ratio,
+    )
+    .map_err(errors::to_py)?;
+    Ok((w.spring_rate, w.damping))
+}
+
+/// The engine's defaults for the ground, wheels and tyres, and its rest thresholds.
+#[pyfunction]
+fn dynamics_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let d = PyDict::new(py);
+    let t = core::vehicle::Tyre::default();
+    let core::vehicle::TyreModel::Linear { saturation_angle } = t.model else {
+        unreachable!("the default tyre is the reconstruction tyre")
+    };
+    d.set_item("gravity", core::vehicle::GRAVITY)?;
+    d.set_item(
+        "natural_frequency",
+        core::vehicle::DEFAULT_NATURAL_FREQUENCY,
+    )?;
+    d.set_item("damping_ratio", core::vehicle::DEFAULT_DAMPING_RATIO)?;
+    d.set_item("saturation_angle", saturation_angle)?;
+    d.set_item("relaxation_length", t.relaxation_length)?;
+    d.set_item("rolling_resistance", t.rolling_resistance)?;
+    d.set_item("tyre_friction", core::ground::DEFAULT_TYRE_FRICTION)?;
+    d.set_item("body_friction", core::ground::DEFAULT_BODY_FRICTION)?;
+    d.set_item("rest_speed", core::world::REST_SPEED)?;
+    d.set_item("rest_yaw_rate", core::world::REST_YAW_RATE)?;
+    d.set_item("rest_time", core::world::REST_TIME)?;
+    Ok(d)
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
@@ -540,5 +742,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(overlap_region, m)?)?;
     m.add_function(wrap_pyfunction!(free_motion, m)?)?;
     m.add_function(wrap_pyfunction!(solid_properties, m)?)?;
+    m.add_function(wrap_pyfunction!(static_loads, m)?)?;
+    m.add_function(wrap_pyfunction!(suspension, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics_defaults, m)?)?;
     Ok(())
 }
