@@ -50,30 +50,138 @@ fn same_strict_sign(d: &[Real; 3]) -> bool {
     (d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0) || (d[0] < 0.0 && d[1] < 0.0 && d[2] < 0.0)
 }
 
-/// The segment along which triangles `a` and `b` cross, oriented along `n_a x n_b`
-/// (n the unnormalized normals). None when they do not meet, are coplanar or degenerate.
-/// A touching contact gives a zero-length segment.
-pub fn triangle_triangle_segment(a: &Tri, b: &Tri) -> Option<(Point, Point)> {
+/// Relative width of the band about a plane inside which a point counts as lying on it:
+/// 2^-40 (about 1e-12) times the magnitude of the coordinates involved, some four thousand
+/// times the round-off of rigidly moving them. Faces that are coplanar in the scene (two
+/// boxes of one height side by side, a heading of 180 deg) stay coplanar to about that
+/// round-off, not exactly; without the band their planes crossed at arbitrary places and a
+/// head-on of two equal boxes lost half a front face (its normal came out 1.27 deg off).
+pub const PLANE_TOLERANCE: Real = 1.0 / 1_099_511_627_776.0;
+
+/// The largest coordinate magnitude (m) of the given triangles' vertices: the scale of the
+/// round-off in their positions, and of [`PLANE_TOLERANCE`].
+#[inline]
+pub fn coordinate_scale(tris: &[&Tri]) -> Real {
+    tris.iter()
+        .flat_map(|t| t.iter())
+        .map(|p| p.coords.amax())
+        .fold(0.0, Real::max)
+}
+
+/// The signed distances of `t`'s vertices from the plane through `origin` with the
+/// unnormalized normal `n`, times |n|; those within `tol` (m) of the plane are exactly 0.
+#[inline]
+fn snapped_plane_distances(t: &Tri, origin: &Point, n: &Vector, tol: Real) -> [Real; 3] {
+    // |d| <= tol |n|, squared (no square root per pair).
+    let band_sq = tol * tol * n.norm_squared();
+    let mut d = [0.0; 3];
+    for i in 0..3 {
+        let di = n.dot(&(t[i] - origin));
+        d[i] = if di * di <= band_sq { 0.0 } else { di };
+    }
+    d
+}
+
+/// The band (m) within which a vertex of the triangles counts as on a plane of theirs.
+#[inline]
+fn plane_band(tris: &[&Tri]) -> Real {
+    PLANE_TOLERANCE * coordinate_scale(tris)
+}
+
+/// The move (per unit length, so a vector of about unit norm) that settles where a point
+/// `p` of triangle `t` lying on another surface belongs: towards `t`'s centroid and into its
+/// solid (against its normal), p -> p + tau ((c - p) / rho - n / |n|), rho the largest
+/// distance from the centroid c to a vertex. Affine in p, so every point of `t` on a plane
+/// moves to the same side of it. None for a triangle without area.
+#[inline]
+pub fn inward_nudge(t: &Tri, p: &Point) -> Option<Vector> {
+    let n = scaled_normal(t);
+    let full = n.norm();
+    let c = centroid(t);
+    let rho = t.iter().map(|v| (v - c).norm()).fold(0.0, Real::max);
+    (full > 0.0 && rho > 0.0).then(|| (c - p) / rho - n / full)
+}
+
+/// The centroid of a triangle.
+#[inline]
+pub fn centroid(t: &Tri) -> Point {
+    Point::from((t[0].coords + t[1].coords + t[2].coords) / 3.0)
+}
+
+/// Whether `t`, nudged by [`inward_nudge`], has vertices strictly on both sides of the
+/// plane with unnormalized normal `n_other`, given the snapped distances `d` of its vertices
+/// from that plane (times |n_other|): a vertex on the plane takes the side the nudge moves
+/// it to, which is the same for all of them.
+#[inline]
+fn nudged_straddles(t: &Tri, nt: &Vector, d: &[Real; 3], n_other: &Vector) -> bool {
+    let side = if d.contains(&0.0) {
+        let c = centroid(t);
+        let rho = t.iter().map(|v| (v - c).norm()).fold(0.0, Real::max);
+        let (full, mean) = (nt.norm(), (d[0] + d[1] + d[2]) / 3.0);
+        if full == 0.0 || rho == 0.0 {
+            0.0
+        } else {
+            mean / rho - n_other.dot(nt) / full
+        }
+    } else {
+        0.0
+    };
+    let signed = d.map(|x| if x == 0.0 { side } else { x });
+    signed.iter().any(|&x| x < 0.0) && signed.iter().any(|&x| x > 0.0)
+}
+
+/// How two triangles (one common frame, m) meet: the limit of their crossing segment and,
+/// for each, whether it is crossed when it alone is moved a hair into its own solid and
+/// interior ([`inward_nudge`]); see [`triangle_triangle_contact`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleContact {
+    /// Start of the segment the triangles share, oriented along n_a x n_b (m).
+    pub start: Point,
+    /// End of that segment (equal to the start for a touch at a point).
+    pub end: Point,
+    /// `a`, nudged into its solid and interior, crosses `b` along a segment: the segment
+    /// bounds a part of `a` inside `b`'s side (false for a mere touch, which bounds nothing).
+    pub a_crossed: bool,
+    /// The same for `b` nudged into its own solid and interior.
+    pub b_crossed: bool,
+    /// Which vertices of `a` lie on `b`'s plane (within the band): where their side is
+    /// settled by the nudge, which can differ from one triangle at the vertex to another.
+    pub a_on_plane: [bool; 3],
+    /// Which vertices of `b` lie on `a`'s plane (within the band).
+    pub b_on_plane: [bool; 3],
+}
+
+impl TriangleContact {
+    /// True when either triangle is crossed (not a mere touch of both).
+    #[inline]
+    pub fn is_crossing(&self) -> bool {
+        self.a_crossed || self.b_crossed
+    }
+}
+
+/// How triangles `a` and `b` meet; None when they do not, are coplanar or degenerate.
+///
+/// A vertex within [`PLANE_TOLERANCE`] (relative to the coordinates' magnitude) of the
+/// other triangle's plane counts as on it, so triangles coplanar up to round-off are
+/// coplanar, and an edge lying on the other's plane up to round-off touches it. Which
+/// touches are crossings is settled by a symbolic nudge of one triangle at a time into its
+/// own solid and interior (the rule the overlap region classifies points on the other
+/// surface by): `a` is crossed when its nudged vertices straddle `b`'s plane and `b` reaches
+/// below `a`'s plane (b's vertices on that plane lie above the nudged `a`).
+pub fn triangle_triangle_contact(a: &Tri, b: &Tri) -> Option<TriangleContact> {
+    let tol = plane_band(&[a, b]);
     let nb = scaled_normal(b);
-    let da = [
-        nb.dot(&(a[0] - b[0])),
-        nb.dot(&(a[1] - b[0])),
-        nb.dot(&(a[2] - b[0])),
-    ];
+    let da = snapped_plane_distances(a, &b[0], &nb, tol);
     if same_strict_sign(&da) {
         return None;
     }
     let na = scaled_normal(a);
-    let db = [
-        na.dot(&(b[0] - a[0])),
-        na.dot(&(b[1] - a[0])),
-        na.dot(&(b[2] - a[0])),
-    ];
+    let db = snapped_plane_distances(b, &a[0], &na, tol);
     if same_strict_sign(&db) {
         return None;
     }
     let dir = na.cross(&nb);
-    if dir.norm_squared() == 0.0 {
+    if da == [0.0; 3] || db == [0.0; 3] || dir.norm_squared() == 0.0 {
         // Coplanar or degenerate: no crossing segment (coplanar faces bound no volume).
         return None;
     }
@@ -95,23 +203,39 @@ pub fn triangle_triangle_segment(a: &Tri, b: &Tri) -> Option<(Point, Point)> {
     if alo > bhi || blo > ahi {
         return None;
     }
-    let lo = if alo >= blo { pa_lo } else { pb_lo };
-    let hi = if ahi <= bhi { pa_hi } else { pb_hi };
-    Some((lo, hi))
+    let start = if alo >= blo { pa_lo } else { pb_lo };
+    let end = if ahi <= bhi { pa_hi } else { pb_hi };
+    // A segment no longer than the band is a touch at a point, which the nudges part (a
+    // crossing through a vertex or edge of either mesh is also reported, with length, by the
+    // triangles beside it).
+    let long = (end - start).norm_squared() > tol * tol;
+    Some(TriangleContact {
+        start,
+        end,
+        a_crossed: long && nudged_straddles(a, &na, &da, &nb) && db.iter().any(|&x| x < 0.0),
+        b_crossed: long && nudged_straddles(b, &nb, &db, &na) && da.iter().any(|&x| x < 0.0),
+        a_on_plane: da.map(|x| x == 0.0),
+        b_on_plane: db.map(|x| x == 0.0),
+    })
+}
+
+/// The segment along which triangles `a` and `b` cross, oriented along `n_a x n_b`
+/// (n the unnormalized normals). None when they do not meet, are coplanar or degenerate.
+/// A touching contact gives a zero-length segment (or the shared piece of an edge lying on
+/// the other's plane). Vertices within the band of [`triangle_triangle_contact`] count as
+/// on the other's plane.
+pub fn triangle_triangle_segment(a: &Tri, b: &Tri) -> Option<(Point, Point)> {
+    triangle_triangle_contact(a, b).map(|c| (c.start, c.end))
 }
 
 /// True when the vertices of `a` lie strictly on both sides of the plane of `b` (so `a` is
-/// cut by that plane, not merely touching it).
+/// cut by that plane, not merely touching it); vertices within the band of
+/// [`triangle_triangle_segment`] count as on the plane.
 #[inline]
 pub fn triangle_cut_by_plane_of(a: &Tri, b: &Tri) -> bool {
     let nb = scaled_normal(b);
-    let (mut below, mut above) = (false, false);
-    for v in a {
-        let d = nb.dot(&(v - b[0]));
-        below |= d < 0.0;
-        above |= d > 0.0;
-    }
-    below && above
+    let d = snapped_plane_distances(a, &b[0], &nb, plane_band(&[a, b]));
+    d.iter().any(|&x| x < 0.0) && d.iter().any(|&x| x > 0.0)
 }
 
 /// True when the triangles touch or cross (coplanar pairs count as not crossing).
@@ -167,11 +291,17 @@ pub fn triangle_triangle_distance_sq(a: &Tri, b: &Tri) -> Real {
 }
 
 /// The parameter s in (0, 1) at which the segment p0 -> p1 crosses triangle `t`, if it does
-/// (end points on the triangle's plane do not count as crossings).
+/// (end points on the triangle's plane do not count as crossings). End points within the
+/// band of [`triangle_triangle_segment`] count as on the plane, and a crossing point within
+/// that band of the triangle's boundary as inside it (a crossing through an edge the
+/// triangle shares is then reported by both its triangles).
 pub fn segment_triangle_crossing(p0: &Point, p1: &Point, t: &Tri) -> Option<Real> {
+    let tol = plane_band(&[t, &[*p0, *p1, *p1]]);
     let n = scaled_normal(t);
-    let d0 = n.dot(&(p0 - t[0]));
-    let d1 = n.dot(&(p1 - t[0]));
+    let band_sq = tol * tol * n.norm_squared();
+    let snap = |d: Real| if d * d <= band_sq { 0.0 } else { d };
+    let d0 = snap(n.dot(&(p0 - t[0])));
+    let d1 = snap(n.dot(&(p1 - t[0])));
     if !((d0 < 0.0 && d1 > 0.0) || (d0 > 0.0 && d1 < 0.0)) {
         return None;
     }
@@ -180,7 +310,9 @@ pub fn segment_triangle_crossing(p0: &Point, p1: &Point, t: &Tri) -> Option<Real
     // Inside test by the signs of the sub-triangle normals against n.
     for i in 0..3 {
         let e = t[(i + 1) % 3] - t[i];
-        if e.cross(&(x - t[i])).dot(&n) < 0.0 {
+        // Outside edge i by more than the band: v < -tol |e| |n|.
+        let v = e.cross(&(x - t[i])).dot(&n);
+        if v < 0.0 && v * v > band_sq * e.norm_squared() {
             return None;
         }
     }
@@ -227,6 +359,66 @@ mod tests {
         assert!(d > 4.0 && d < 4.4, "{d}");
         let d_rev = triangle_triangle_distance_sq(&other, &sliver).sqrt();
         assert_eq!(d, d_rev);
+    }
+
+    #[test]
+    fn faces_coplanar_up_to_round_off_do_not_cross() {
+        // Regression (issue 10, item 5): a side face of a box and the side face of another
+        // turned by 180 deg lie in one plane up to 1e-16 rad; their planes crossed in the
+        // middle of the face and tilted the head-on's normal by 1.27 deg.
+        let a = [p(-2.25, 0.9, -0.7), p(-2.25, 0.9, 0.7), p(2.25, 0.9, -0.7)];
+        let tilt = 1.2246467991473532e-16;
+        let b = [
+            p(6.73, 0.9 - 6.73 * tilt, -0.7),
+            p(2.23, 0.9 - 2.23 * tilt, 0.7),
+            p(2.23, 0.9 - 2.23 * tilt, -0.7),
+        ];
+        assert!(triangle_triangle_contact(&a, &b).is_none());
+        // A real tilt (1e-6 rad) is a crossing.
+        let tilt = 1e-6;
+        let b = [
+            p(6.73, 0.9 + (6.73 - 2.24) * tilt, -0.7),
+            p(2.23, 0.9 + (2.23 - 2.24) * tilt, 0.7),
+            p(2.23, 0.9 + (2.23 - 2.24) * tilt, -0.7),
+        ];
+        let c = triangle_triangle_contact(&a, &b).unwrap();
+        assert!(c.a_crossed && c.b_crossed, "{c:?}");
+    }
+
+    #[test]
+    fn an_edge_lying_on_a_face_is_crossed_only_for_the_face() {
+        // A front face (plane x = 2.25, normal +x) whose edge lies on a side face of the
+        // other box (plane y = 0.9, normal +y, the other box at y < 0.9): nudged into its
+        // triangle the edge leaves the side's plane, so the front face is only touched; the
+        // side face, nudged into its solid, is cut by the front face along the edge.
+        let front = [p(2.25, 0.9, -0.7), p(2.25, 0.9, 0.7), p(2.25, -0.9, 0.7)];
+        let side = [p(6.73, 0.9, -0.7), p(2.23, 0.9, -0.7), p(2.23, 0.9, 0.7)];
+        assert!(scaled_normal(&side).y > 0.0);
+        let c = triangle_triangle_contact(&front, &side).unwrap();
+        assert!(!c.a_crossed && c.b_crossed, "{c:?}");
+        assert!((c.end - c.start).norm() > 1.0);
+        let r = triangle_triangle_contact(&side, &front).unwrap();
+        assert!(r.a_crossed && !r.b_crossed, "{r:?}");
+        // The same front face against a side face of a box at y > 0.9 (touching from
+        // outside): nothing is crossed.
+        let outside = [p(6.73, 0.9, -0.7), p(2.23, 0.9, 0.7), p(2.23, 0.9, -0.7)];
+        let c = triangle_triangle_contact(&front, &outside).unwrap();
+        assert!(!c.is_crossing(), "{c:?}");
+    }
+
+    #[test]
+    fn a_touch_at_a_point_is_not_a_crossing() {
+        // Two boxes side by side touching along a side: the bottom of one meets the front
+        // face of the other only at a corner (a segment 1e-16 m long).
+        let front = [p(2.25, -0.9, -0.7), p(2.25, 0.9, -0.7), p(2.25, -0.9, 0.7)];
+        let bottom = [
+            p(-1.25, 2.7, -0.7),
+            p(3.25, 0.8999999999999998, -0.7),
+            p(-1.25, 0.9000000000000002, -0.7),
+        ];
+        let c = triangle_triangle_contact(&front, &bottom).unwrap();
+        assert!(!c.is_crossing(), "{c:?}");
+        assert!((c.end - c.start).norm() < 1e-12);
     }
 
     #[test]
