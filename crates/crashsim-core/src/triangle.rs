@@ -68,18 +68,50 @@ pub fn coordinate_scale(tris: &[&Tri]) -> Real {
         .fold(0.0, Real::max)
 }
 
-/// The signed distances of `t`'s vertices from the plane through `origin` with the
-/// unnormalized normal `n`, times |n|; those within `tol` (m) of the plane are exactly 0.
-#[inline]
-fn snapped_plane_distances(t: &Tri, origin: &Point, n: &Vector, tol: Real) -> [Real; 3] {
-    // |d| <= tol |n|, squared (no square root per pair).
-    let band_sq = tol * tol * n.norm_squared();
-    let mut d = [0.0; 3];
-    for i in 0..3 {
-        let di = n.dot(&(t[i] - origin));
-        d[i] = if di * di <= band_sq { 0.0 } else { di };
+/// A triangle's plane with what its snapping band needs.
+struct Plane {
+    origin: Point,
+    /// Unnormalized normal (b - a) x (c - a).
+    n: Vector,
+    n_norm: Real,
+    /// Twice the sum of the largest edge components from the origin: how far the normal's
+    /// direction can turn per unit of position round-off, times |n|.
+    lever: Real,
+}
+
+impl Plane {
+    #[inline]
+    fn of(t: &Tri) -> Plane {
+        let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+        let n = e1.cross(&e2);
+        Plane {
+            origin: t[0],
+            n,
+            n_norm: n.norm(),
+            lever: 2.0 * (e1.amax() + e2.amax()),
+        }
     }
-    d
+
+    /// The signed distance of `v` (times |n|), exactly 0 within the band: `tol` m of
+    /// round-off in every position, through the plane's offset and through its direction
+    /// over the lever arm |v - origin| (so a sliver's poorly known plane has a wider band).
+    #[inline]
+    fn snapped_distance(&self, v: &Point, tol: Real) -> Real {
+        let r = v - self.origin;
+        let d = self.n.dot(&r);
+        if d.abs() <= tol * (self.n_norm + r.amax() * self.lever) {
+            0.0
+        } else {
+            d
+        }
+    }
+}
+
+/// The signed distances of `t`'s vertices from `plane` (times |n|), snapped to 0 within the
+/// band of `tol` m.
+#[inline]
+fn snapped_plane_distances(t: &Tri, plane: &Plane, tol: Real) -> [Real; 3] {
+    t.map(|v| plane.snapped_distance(&v, tol))
 }
 
 /// The band (m) within which a vertex of the triangles counts as on a plane of theirs.
@@ -170,19 +202,28 @@ impl TriangleContact {
 /// below `a`'s plane (b's vertices on that plane lie above the nudged `a`).
 pub fn triangle_triangle_contact(a: &Tri, b: &Tri) -> Option<TriangleContact> {
     let tol = plane_band(&[a, b]);
-    let nb = scaled_normal(b);
-    let da = snapped_plane_distances(a, &b[0], &nb, tol);
+    let plane_b = Plane::of(b);
+    let nb = plane_b.n;
+    let da = snapped_plane_distances(a, &plane_b, tol);
     if same_strict_sign(&da) {
         return None;
     }
-    let na = scaled_normal(a);
-    let db = snapped_plane_distances(b, &a[0], &na, tol);
+    let plane_a = Plane::of(a);
+    let na = plane_a.n;
+    let db = snapped_plane_distances(b, &plane_a, tol);
     if same_strict_sign(&db) {
         return None;
     }
     let dir = na.cross(&nb);
-    if da == [0.0; 3] || db == [0.0; 3] || dir.norm_squared() == 0.0 {
-        // Coplanar or degenerate: no crossing segment (coplanar faces bound no volume).
+    // The planes' directions are known to about tol * lever / |n| rad each: planes parallel
+    // to within that have no crossing line (it would lie anywhere).
+    let (la, lb) = (plane_a.n_norm, plane_b.n_norm);
+    let parallel = la == 0.0
+        || lb == 0.0
+        || dir.norm() <= tol * (plane_a.lever / la + plane_b.lever / lb) * la * lb;
+    if da == [0.0; 3] || db == [0.0; 3] || parallel {
+        // Coplanar, parallel or degenerate: no crossing segment (coplanar faces bound no
+        // volume).
         return None;
     }
     let (a0, a1) = plane_section(a, &da)?;
@@ -200,7 +241,11 @@ pub fn triangle_triangle_contact(a: &Tri, b: &Tri) -> Option<TriangleContact> {
     } else {
         (sb1, sb0, b1, b0)
     };
-    if alo > bhi || blo > ahi {
+    // Intervals that meet within the band touch (an edge of one triangle through the edge
+    // of the other): reported, though not as a crossing, so the overlap region still tests
+    // the own triangle's edges against this triangle.
+    let slack = 2.0 * tol * dir.norm();
+    if alo > bhi + slack || blo > ahi + slack {
         return None;
     }
     let start = if alo >= blo { pa_lo } else { pb_lo };
@@ -233,8 +278,7 @@ pub fn triangle_triangle_segment(a: &Tri, b: &Tri) -> Option<(Point, Point)> {
 /// [`triangle_triangle_segment`] count as on the plane.
 #[inline]
 pub fn triangle_cut_by_plane_of(a: &Tri, b: &Tri) -> bool {
-    let nb = scaled_normal(b);
-    let d = snapped_plane_distances(a, &b[0], &nb, plane_band(&[a, b]));
+    let d = snapped_plane_distances(a, &Plane::of(b), plane_band(&[a, b]));
     d.iter().any(|&x| x < 0.0) && d.iter().any(|&x| x > 0.0)
 }
 
@@ -297,11 +341,11 @@ pub fn triangle_triangle_distance_sq(a: &Tri, b: &Tri) -> Real {
 /// triangle shares is then reported by both its triangles).
 pub fn segment_triangle_crossing(p0: &Point, p1: &Point, t: &Tri) -> Option<Real> {
     let tol = plane_band(&[t, &[*p0, *p1, *p1]]);
-    let n = scaled_normal(t);
+    let plane = Plane::of(t);
+    let n = plane.n;
     let band_sq = tol * tol * n.norm_squared();
-    let snap = |d: Real| if d * d <= band_sq { 0.0 } else { d };
-    let d0 = snap(n.dot(&(p0 - t[0])));
-    let d1 = snap(n.dot(&(p1 - t[0])));
+    let d0 = plane.snapped_distance(p0, tol);
+    let d1 = plane.snapped_distance(p1, tol);
     if !((d0 < 0.0 && d1 > 0.0) || (d0 > 0.0 && d1 < 0.0)) {
         return None;
     }
@@ -328,6 +372,12 @@ pub fn solid_angle(t: &Tri, p: &Point) -> Real {
     let c = t[2] - p;
     let (la, lb, lc) = (a.norm(), b.norm(), c.norm());
     let det = a.dot(&b.cross(&c));
+    if det == 0.0 {
+        // On the triangle's plane: 0 outside it, and the mean of the +2 pi and -2 pi of the
+        // two sides on it (atan2 gave either, by the sign of a zero), so a point on a closed
+        // surface has winding number one half.
+        return 0.0;
+    }
     let denom = la * lb * lc + a.dot(&b) * lc + b.dot(&c) * la + c.dot(&a) * lb;
     2.0 * det.atan2(denom)
 }
