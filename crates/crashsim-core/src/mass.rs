@@ -6,6 +6,7 @@
 //! bounded by the mesh and the cones to the reference point, which depends on that point, so
 //! callers should only trust it for closed meshes (the Python layer checks closure).
 
+use crate::error::{Error, Result};
 use crate::math::{Matrix, Point, Real, Vector};
 
 /// Volume, centroid and inertia of a uniform solid of density 1 kg/m^3 (frame of the mesh).
@@ -24,16 +25,43 @@ pub struct SolidProperties {
 /// Each triangle (a, b, c) and the reference point o span a tetrahedron of signed volume
 /// det[a-o, b-o, c-o] / 6 whose second moment about o is
 /// det/120 (sum_i d_i d_i^T + (sum_i d_i)(sum_i d_i)^T), d_i = vertex_i - o.
-/// The reference point is the centre of the vertices' box, which keeps round-off small.
-pub fn solid_properties(vertices: &[Point], triangles: &[[u32; 3]]) -> SolidProperties {
-    let (mut lo, mut hi) = (vertices[0], vertices[0]);
-    for v in vertices {
+/// The reference point is the centre of the used vertices' box, which keeps round-off small.
+///
+/// Errors (`Error::Mesh`): no triangles, an index out of range, a non-finite vertex, a solid
+/// without volume (zero up to the round-off of the sum: an open or flat mesh, whose centroid
+/// is undefined), or a result that overflows.
+pub fn solid_properties(vertices: &[Point], triangles: &[[u32; 3]]) -> Result<SolidProperties> {
+    if triangles.is_empty() {
+        return Err(Error::Mesh(
+            "the mesh has no triangles: it bounds no solid".into(),
+        ));
+    }
+    let n = vertices.len();
+    if let Some(t) = triangles
+        .iter()
+        .find(|t| t.iter().any(|&k| k as usize >= n))
+    {
+        return Err(Error::Mesh(format!(
+            "triangle {t:?} refers to a vertex beyond the mesh's {n} vertices"
+        )));
+    }
+    let first = vertices[triangles[0][0] as usize];
+    let (mut lo, mut hi) = (first, first);
+    for &k in triangles.iter().flatten() {
+        let v = &vertices[k as usize];
+        if !v.iter().all(|c| c.is_finite()) {
+            return Err(Error::Mesh(format!(
+                "vertex {k} is not finite ({:?}): remove or repair NaN/inf vertices",
+                v.coords.as_slice()
+            )));
+        }
         lo = lo.inf(v);
         hi = hi.sup(v);
     }
     let o = nalgebra::center(&lo, &hi);
     let mut six_volume = 0.0;
-    let mut first = Vector::zeros(); // sum det * (a + b + c), i.e. 24 x the first moment
+    let mut six_volume_abs = 0.0;
+    let mut moment = Vector::zeros(); // sum det * (a + b + c), i.e. 24 x the first moment
     let mut second = Matrix::zeros(); // sum det * (...), i.e. 120 x the second moment
     for t in triangles {
         let a = vertices[t[0] as usize] - o;
@@ -42,22 +70,43 @@ pub fn solid_properties(vertices: &[Point], triangles: &[[u32; 3]]) -> SolidProp
         let det = a.dot(&b.cross(&c));
         let s = a + b + c;
         six_volume += det;
-        first += s * det;
+        six_volume_abs += det.abs();
+        moment += s * det;
         second +=
             (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose()) * det;
     }
+    // The sum's round-off is at most a few ulps of the sum of the magnitudes per term.
+    let resolved = six_volume.abs() > 64.0 * Real::EPSILON * six_volume_abs;
+    if !resolved {
+        return Err(Error::Mesh(format!(
+            "the mesh encloses no volume ({} m^3 with round-off {:.3e} m^3): it is open or \
+             flat, so its centroid and inertia are undefined; close it",
+            six_volume / 6.0,
+            64.0 * Real::EPSILON * six_volume_abs / 6.0
+        )));
+    }
     let volume = six_volume / 6.0;
-    // First moment = first / 24; centroid offset from o = moment / volume.
-    let offset = first / (24.0 * volume);
+    // First moment = moment / 24; centroid offset from o = moment / volume.
+    let offset = moment / (24.0 * volume);
     // Second moment about o, then about the centroid (parallel axes on the covariance).
     let covariance_o = second / 120.0;
     let covariance_c = covariance_o - offset * offset.transpose() * volume;
     let inertia = Matrix::identity() * covariance_c.trace() - covariance_c;
-    SolidProperties {
+    let props = SolidProperties {
         volume,
         centroid: o + offset,
         inertia: (inertia + inertia.transpose()) * 0.5,
+    };
+    if !(volume.is_finite()
+        && props.centroid.iter().all(|c| c.is_finite())
+        && props.inertia.iter().all(|c| c.is_finite()))
+    {
+        return Err(Error::Mesh(format!(
+            "the mass properties of the mesh overflow (volume {volume} m^3): its coordinates \
+             are too large; give them in metres"
+        )));
     }
+    Ok(props)
 }
 
 #[cfg(test)]
@@ -69,7 +118,7 @@ mod tests {
     fn a_box_has_the_analytic_volume_centroid_and_inertia() {
         let (hx, hy, hz) = (2.25, 0.9, 0.7);
         let b = MeshShape::cuboid(Vector::new(1.0, -2.0, 3.0), Vector::new(hx, hy, hz));
-        let p = solid_properties(b.vertices(), b.triangles());
+        let p = solid_properties(b.vertices(), b.triangles()).unwrap();
         let (l, w, h) = (2.0 * hx, 2.0 * hy, 2.0 * hz);
         let v = l * w * h;
         assert!((p.volume - v).abs() < 1e-12 * v);
@@ -91,8 +140,8 @@ mod tests {
         let b = MeshShape::cuboid(Vector::zeros(), Vector::new(1.5, 0.5, 0.25));
         let rot = nalgebra::Rotation3::from_euler_angles(0.3, -0.7, 1.1);
         let moved: Vec<Point> = b.vertices().iter().map(|v| rot * v).collect();
-        let p0 = solid_properties(b.vertices(), b.triangles());
-        let p1 = solid_properties(&moved, b.triangles());
+        let p0 = solid_properties(b.vertices(), b.triangles()).unwrap();
+        let p1 = solid_properties(&moved, b.triangles()).unwrap();
         let expected = rot.matrix() * p0.inertia * rot.matrix().transpose();
         assert!((p1.inertia - expected).norm() < 1e-12 * expected.norm());
         assert!((p1.volume - p0.volume).abs() < 1e-12 * p0.volume);

@@ -9,8 +9,8 @@ use crate::bvh::BvhNode;
 use crate::math::{Aabb, Isometry, Point, Real, RigidMap, Vector};
 use crate::shape::MeshShape;
 use crate::triangle::{
-    scaled_normal, segment_triangle_crossing, triangle_cut_by_plane_of,
-    triangle_triangle_distance_sq, triangle_triangle_segment, triangles_intersect, Tri,
+    centroid, inward_nudge, scaled_normal, segment_triangle_crossing, triangle_triangle_contact,
+    triangle_triangle_distance_sq, Tri, TriangleContact, PLANE_TOLERANCE,
 };
 use parry3d_f64::bounding_volume::BoundingVolume;
 
@@ -19,11 +19,6 @@ use parry3d_f64::bounding_volume::BoundingVolume;
 pub struct QueryWorkspace {
     pairs: Vec<(u32, u32)>,
     bounded_pairs: Vec<(Real, u32, u32)>,
-}
-
-#[inline]
-fn transform_tri(t: &Tri, m: &Isometry) -> Tri {
-    [m * t[0], m * t[1], m * t[2]]
 }
 
 #[inline]
@@ -82,7 +77,12 @@ fn traverse_pairs(
     false
 }
 
-/// True when the two posed surfaces touch or cross.
+/// True when the two posed surfaces cross: a triangle of one, nudged a hair into its own
+/// solid and interior, is crossed by a triangle of the other (see
+/// [`crate::triangle::triangle_triangle_contact`]). Surfaces that merely touch (faces
+/// resting on each other, coplanar faces, an edge on a face from outside) do not intersect;
+/// [`surface_distance`] is 0 for them. This is the test [`overlap_region`] takes its crossing
+/// segments by, so the region is not empty whenever it holds.
 pub fn surfaces_intersect(
     s1: &MeshShape,
     pose1: &Isometry,
@@ -96,7 +96,8 @@ pub fn surfaces_intersect(
         for &t1 in s1.bvh().leaf_primitives(a) {
             let tri1 = s1.triangle(t1);
             for &t2 in s2.bvh().leaf_primitives(b) {
-                if triangles_intersect(&tri1, &map_tri(&s2.triangle(t2), &map)) {
+                let tri2 = map_tri(&s2.triangle(t2), &map);
+                if triangle_triangle_contact(&tri1, &tri2).is_some_and(|c| c.is_crossing()) {
                     return true;
                 }
             }
@@ -105,18 +106,50 @@ pub fn surfaces_intersect(
     })
 }
 
-/// True when a shell of `inner` lies inside `outer` (its representative vertex has a winding
-/// number above one half); `pose_io` maps inner's frame into outer's.
-fn shell_inside(outer: &MeshShape, inner: &MeshShape, pose_io: &Isometry) -> bool {
+/// True when a shell of `inner` lies inside `outer` (its representative vertex, nudged by
+/// `nudge` m into a triangle of it and its solid, has a winding number above one half);
+/// `pose_io` maps inner's frame into outer's.
+fn shell_inside(outer: &MeshShape, inner: &MeshShape, pose_io: &Isometry, nudge: Real) -> bool {
     let bounds = outer.aabb();
     inner.shells().iter().any(|s| {
-        let p = pose_io * inner.vertices()[s.vertex as usize];
+        let p = nudged_vertex(inner, s.vertex, nudge);
+        let p = pose_io * p;
         bounds.contains_local_point(&p) && outer.contains_point(&p)
     })
 }
 
-/// True when the two posed meshes overlap: their surfaces touch or cross, or a shell of one
-/// lies inside the other.
+/// Vertex `vi` of `mesh` (own frame) nudged `nudge` m into a triangle at it and into the
+/// solid ([`inward_nudge`]); the vertex itself when that triangle has no area.
+fn nudged_vertex(mesh: &MeshShape, vi: u32, nudge: Real) -> Point {
+    let v = mesh.vertices()[vi as usize];
+    let ti = mesh.vertex_triangle(vi);
+    if ti == u32::MAX {
+        return v;
+    }
+    inward_nudge(&mesh.triangle(ti), &v).map_or(v, |w| v + w * nudge)
+}
+
+/// How far (m) points lying on the other surface are nudged to settle their side: 2^8 times
+/// the band within which the crossing tests count a vertex as on a plane
+/// ([`PLANE_TOLERANCE`] of the largest coordinate either mesh has in either body frame), so
+/// a nudged point is clear of the band, yet close enough to be on the side the crossing
+/// tests put it (a few 1e-10 m for vehicles; the winding number is exact that near a face).
+fn nudge_length(s1: &MeshShape, s2: &MeshShape, pose12: &Isometry) -> Real {
+    let magnitude = |b: &Aabb| b.mins.coords.amax().max(b.maxs.coords.amax());
+    let to1 = RigidMap::new(pose12);
+    let to2 = RigidMap::new(&pose12.inverse());
+    let scale = magnitude(s1.aabb())
+        .max(magnitude(&to1.aabb(s2.aabb())))
+        .max(magnitude(s2.aabb()))
+        .max(magnitude(&to2.aabb(s1.aabb())));
+    NUDGE_BANDS * PLANE_TOLERANCE * scale
+}
+
+/// The nudge length in plane bands (see [`nudge_length`]).
+const NUDGE_BANDS: Real = 256.0;
+
+/// True when the two posed meshes overlap: their surfaces cross ([`surfaces_intersect`]), or
+/// a shell of one lies inside the other.
 pub fn shapes_overlap(
     s1: &MeshShape,
     pose1: &Isometry,
@@ -135,7 +168,8 @@ pub fn shapes_overlap(
         return true;
     }
     let pose12 = pose1.inv_mul(pose2);
-    shell_inside(s1, s2, &pose12) || shell_inside(s2, s1, &pose12.inverse())
+    let nudge = nudge_length(s1, s2, &pose12);
+    shell_inside(s1, s2, &pose12, nudge) || shell_inside(s2, s1, &pose12.inverse(), nudge)
 }
 
 /// Distance between two boxes (0 when they meet).
@@ -226,13 +260,15 @@ pub fn surface_distance(
 #[derive(Clone, Debug, Default)]
 pub struct OverlapRegion {
     /// The set S: end points of all triangle-triangle crossing segments and the vertices of
-    /// each mesh inside the other (m, world).
+    /// each mesh inside the other (m, world). Where the surfaces merely touch (see
+    /// [`surfaces_intersect`]) nothing is added: a point on both surfaces must not widen the
+    /// region beyond the overlap.
     pub points: Vec<Point>,
     /// Vector area (m^2, world) of mesh 1's surface inside mesh 2, outward normals.
     pub area_normal_1_in_2: Vector,
     /// Vector area (m^2, world) of mesh 2's surface inside mesh 1, outward normals.
     pub area_normal_2_in_1: Vector,
-    /// Number of crossing segments.
+    /// Number of crossing segments (touches not counted).
     pub segment_count: usize,
     /// Number of vertices of either mesh inside the other.
     pub inside_vertex_count: usize,
@@ -252,32 +288,32 @@ impl OverlapRegion {
     }
 }
 
-/// One triangle's crossing with a triangle of the other mesh: own triangle, other triangle,
+/// One triangle's meeting with a triangle of the other mesh: own triangle, other triangle,
 /// the segment (own frame) oriented so the other mesh's inside lies to its left (about the own
-/// triangle's normal), and whether the own triangle is cut by the other's plane (false for a
-/// mere touch, which bounds no inside region of the own triangle).
-type Crossing = (u32, u32, Point, Point, bool);
-
-/// Relative size of the nudges that settle inside tests of points lying exactly on the other
-/// surface (coplanar faces, edges on faces): into the own triangle and into the own solid.
-const NUDGE: Real = 1e-7;
+/// triangle's normal), whether the own triangle, nudged into its solid and interior, is
+/// crossed (false for a mere touch, which bounds no inside region of the own triangle), and
+/// which own vertices lie on the other triangle's plane.
+type Crossing = (u32, u32, Point, Point, bool, [bool; 3]);
 
 /// Vector area (own frame) of the part of triangle `t` inside `other`.
 ///
-/// Points exactly on the other surface are classified as the point a hair into the own
-/// triangle and into the own solid would be (a symbolic perturbation): so two coplanar faces
-/// of the same orientation both count as inside (and cancel in the volume normal), two facing
-/// ones neither, and an edge lying on the other's face takes the side of its triangle.
+/// Points on the other surface are classified as the point `nudge` m into the own triangle
+/// and into the own solid ([`inward_nudge`]): so two coplanar faces of the same orientation
+/// both count as inside (and cancel in the volume normal), two facing ones neither, and an
+/// edge lying on the other's face takes the side of its triangle. The crossing segments'
+/// flags follow the same rule ([`triangle_triangle_contact`]), so the boundary pieces agree.
 ///
 /// `edges[k]` says what is known of edge k (vertex k to k + 1): wholly inside or outside, or
-/// the status of its two ends, from which the pieces follow by flipping at each crossing when
-/// the count of crossings agrees (else, and when unknown, a winding number per piece).
+/// the status of its two ends (nudged into `t`), from which the pieces follow by flipping at
+/// each crossing when the count of crossings agrees (else, and when unknown, a winding
+/// number per piece).
 fn inside_vector_area(
     t: &Tri,
     crossings: &[(Tri, Point, Point, bool)],
     other: &MeshShape,
     to_other: &Isometry,
     edges: [EdgeStatus; 3],
+    nudge: Real,
 ) -> Vector {
     let n = scaled_normal(t);
     let full = n.norm();
@@ -285,10 +321,9 @@ fn inside_vector_area(
         return Vector::zeros();
     }
     let nhat = n / full;
-    let c = Point::from((t[0].coords + t[1].coords + t[2].coords) / 3.0);
-    let inward = nhat * (NUDGE * full.sqrt());
+    let c = centroid(t);
     let inside = |p: &Point| -> bool {
-        let q = p + (c - p) * NUDGE - inward;
+        let q = inward_nudge(t, p).map_or(*p, |w| p + w * nudge);
         other.contains_point(&(to_other * q))
     };
     if !crossings.iter().any(|x| x.3) {
@@ -350,7 +385,7 @@ fn inside_vector_area(
 }
 
 /// Vector area (own frame) of `own`'s surface inside `other`, and the own vertices inside it
-/// (own frame) appended to `inside`. `crossings` are sorted by own triangle.
+/// (own frame). `crossings` are sorted by own triangle.
 ///
 /// When `other` is closed, inside and outside change only across its surface: the own
 /// triangles no crossing touches form patches (joined across shared edges) that are wholly
@@ -364,14 +399,22 @@ fn surface_inside(
     own_to_other: &Isometry,
     crossings: &[Crossing],
     other_tri_in_own: impl Fn(u32) -> Tri,
-    inside: &mut Vec<Point>,
     use_patches: bool,
-) -> Vector {
+    nudge: Real,
+) -> (Vector, Vec<Point>) {
+    let mut inside = Vec::new();
     let other_box_in_own = other.aabb().transform_by(&own_to_other.inverse());
     let n = own.triangles().len();
     let mut crossed = vec![false; n];
+    // Own vertices on a plane of an other triangle they meet: on (or within the band of) the
+    // other surface, where the side depends on the triangle they are seen from.
+    let mut on_other = vec![false; own.vertices().len()];
     for x in crossings {
         crossed[x.0 as usize] = true;
+        let tri = own.triangles()[x.0 as usize];
+        for k in 0..3 {
+            on_other[tri[k] as usize] |= x.5[k];
+        }
     }
     let in_box =
         |ti: u32| Aabb::from_points(own.triangle(ti).iter().copied()).intersects(&other_box_in_own);
@@ -383,7 +426,7 @@ fn surface_inside(
         crossed: &crossed,
         patches: patches.as_ref(),
         patch_status: vec![None; if patches.is_some() { n } else { 0 }],
-        vertex_status: vec![
+        vertex_patch: vec![
             None;
             if patches.is_some() {
                 own.vertices().len()
@@ -391,6 +434,9 @@ fn surface_inside(
                 0
             }
         ],
+        vertex_status: vec![None; own.vertices().len()],
+        on_other: &on_other,
+        nudge,
     };
     let mut total = Vector::zeros();
     let mut k = 0;
@@ -398,7 +444,7 @@ fn surface_inside(
     for ti in 0..n as u32 {
         local.clear();
         while k < crossings.len() && crossings[k].0 == ti {
-            let (_, o, p, q, cut) = crossings[k];
+            let (_, o, p, q, cut, _) = crossings[k];
             local.push((other_tri_in_own(o), p, q, cut));
             k += 1;
         }
@@ -423,18 +469,21 @@ fn surface_inside(
                     .flatten()
                 {
                     Some(is_inside) => EdgeStatus::Whole(is_inside),
-                    None => EdgeStatus::Ends(cls.vertex(tri[k]), cls.vertex(tri[(k + 1) % 3])),
+                    None => EdgeStatus::Ends(
+                        cls.vertex_seen_from(tri[k], &t),
+                        cls.vertex_seen_from(tri[(k + 1) % 3], &t),
+                    ),
                 };
             }
         }
-        total += inside_vector_area(&t, &local, other, own_to_other, edges);
+        total += inside_vector_area(&t, &local, other, own_to_other, edges, nudge);
     }
     for (vi, v) in own.vertices().iter().enumerate() {
         if other_box_in_own.contains_local_point(v) && cls.vertex(vi as u32) {
             inside.push(*v);
         }
     }
-    total
+    (total, inside)
 }
 
 /// What is known of an edge of a cut triangle before its pieces are classified.
@@ -459,7 +508,13 @@ struct Classifier<'a> {
     crossed: &'a [bool],
     patches: Option<&'a Patches>,
     patch_status: Vec<Option<bool>>,
+    /// Per vertex (with patches): the status of an uncut triangle's patch at it, if any.
+    vertex_patch: Vec<Option<Option<bool>>>,
+    /// Per vertex: its status for the region's point set.
     vertex_status: Vec<Option<bool>>,
+    /// Per vertex: whether it lies on a plane of an other triangle it meets.
+    on_other: &'a [bool],
+    nudge: Real,
 }
 
 impl Classifier<'_> {
@@ -472,16 +527,22 @@ impl Classifier<'_> {
             self.patch_status[root] = if p.leaves_box[root] {
                 Some(false)
             } else {
-                tri_inside(&self.own.triangle(ti), self.other, self.own_to_other)
+                tri_inside(
+                    &self.own.triangle(ti),
+                    self.other,
+                    self.own_to_other,
+                    self.nudge,
+                )
             };
         }
         self.patch_status[root]
     }
 
-    /// Whether vertex vi is inside: from an uncut triangle at it (its own one, or the one
-    /// across an edge at it), else its own winding number. Cached with patches.
-    fn vertex(&mut self, vi: u32) -> bool {
-        if let Some(known) = self.vertex_status.get(vi as usize).copied().flatten() {
+    /// The status of vertex vi from an uncut triangle at it (its own one, or the one across
+    /// an edge at it): such a vertex is off the other surface, so it is the same seen from
+    /// every triangle. None without patches or such a triangle. Cached.
+    fn vertex_patch(&mut self, vi: u32) -> Option<bool> {
+        if let Some(known) = self.vertex_patch.get(vi as usize).copied().flatten() {
             return known;
         }
         let ti = self.own.vertex_triangle(vi);
@@ -498,13 +559,44 @@ impl Classifier<'_> {
                 .filter(|&nb| nb != u32::MAX && !self.crossed[nb as usize])
                 .find_map(|nb| self.patch(nb))
         };
-        let v = self.own.vertices()[vi as usize];
-        let is_inside =
-            from_patch.unwrap_or_else(|| self.other.contains_point(&(self.own_to_other * v)));
-        if let Some(slot) = self.vertex_status.get_mut(vi as usize) {
-            *slot = Some(is_inside);
+        if let Some(slot) = self.vertex_patch.get_mut(vi as usize) {
+            *slot = Some(from_patch);
         }
+        from_patch
+    }
+
+    /// Whether vertex vi is inside, for the region's point set: from an uncut triangle at
+    /// it, else its winding number; for a vertex on the other surface, nudged into a triangle
+    /// at it and the solid (it counts as inside when its own solid goes into the other's).
+    /// Cached.
+    fn vertex(&mut self, vi: u32) -> bool {
+        if let Some(known) = self.vertex_status[vi as usize] {
+            return known;
+        }
+        let is_inside = self.vertex_patch(vi).unwrap_or_else(|| {
+            let q = if self.on_other[vi as usize] {
+                nudged_vertex(self.own, vi, self.nudge)
+            } else {
+                self.own.vertices()[vi as usize]
+            };
+            self.other.contains_point(&(self.own_to_other * q))
+        });
+        self.vertex_status[vi as usize] = Some(is_inside);
         is_inside
+    }
+
+    /// Whether vertex vi, as an end of an edge of the cut triangle `t`, is inside: as for
+    /// the point set, except that a vertex on the other surface is nudged into `t` (it can be
+    /// inside seen from one triangle and outside from another).
+    fn vertex_seen_from(&mut self, vi: u32, t: &Tri) -> bool {
+        if !self.on_other[vi as usize] {
+            return self.vertex(vi);
+        }
+        self.vertex_patch(vi).unwrap_or_else(|| {
+            let v = self.own.vertices()[vi as usize];
+            let q = inward_nudge(t, &v).map_or(v, |w| v + w * self.nudge);
+            self.other.contains_point(&(self.own_to_other * q))
+        })
     }
 }
 
@@ -555,18 +647,12 @@ impl Patches {
     }
 }
 
-/// Whether an uncrossed triangle lies inside `other`: its centroid nudged into the triangle's
-/// own solid (see `inside_vector_area`).
-/// None for a triangle without area.
-fn tri_inside(t: &Tri, other: &MeshShape, to_other: &Isometry) -> Option<bool> {
-    let n = scaled_normal(t);
-    let full = n.norm();
-    if full == 0.0 {
-        return None;
-    }
-    let c = Point::from((t[0].coords + t[1].coords + t[2].coords) / 3.0);
-    let q = c - (n / full) * (NUDGE * full.sqrt());
-    Some(other.contains_point(&(to_other * q)))
+/// Whether an uncrossed triangle lies inside `other`: its centroid nudged `nudge` m into the
+/// triangle's own solid (see `inside_vector_area`). None for a triangle without area.
+fn tri_inside(t: &Tri, other: &MeshShape, to_other: &Isometry, nudge: Real) -> Option<bool> {
+    let c = centroid(t);
+    let w = inward_nudge(t, &c)?;
+    Some(other.contains_point(&(to_other * (c + w * nudge))))
 }
 
 /// The overlap region S of two posed meshes and their inside vector areas.
@@ -590,63 +676,67 @@ fn overlap_region_with(
 ) -> OverlapRegion {
     let pose12 = pose1.inv_mul(pose2);
     let pose21 = pose12.inverse();
+    // The same map as `surfaces_intersect`, so both see bit-identical triangles.
+    let (map12, map21) = (RigidMap::new(&pose12), RigidMap::new(&pose21));
+    let nudge = nudge_length(s1, s2, &pose12);
     let mut stack = Vec::new();
-    // Crossing segments in frame 1, oriented along n1 x n2, with whether triangle 1 and
-    // triangle 2 are cut (not merely touched) by the other's plane.
-    let mut segs: Vec<(u32, u32, Point, Point, bool, bool)> = Vec::new();
+    // Where the triangles meet, in frame 1: the segment oriented along n1 x n2, and whether
+    // triangle 1 and triangle 2 are crossed (not merely touched) by the other.
+    let mut segs: Vec<(u32, u32, TriangleContact)> = Vec::new();
     traverse_pairs(s1, s2, &pose12, &mut stack, |a, b| {
         for &t1 in s1.bvh().leaf_primitives(a) {
             let tri1 = s1.triangle(t1);
             for &t2 in s2.bvh().leaf_primitives(b) {
-                let tri2 = transform_tri(&s2.triangle(t2), &pose12);
-                if let Some((p, q)) = triangle_triangle_segment(&tri1, &tri2) {
-                    let cut1 = triangle_cut_by_plane_of(&tri1, &tri2);
-                    let cut2 = triangle_cut_by_plane_of(&tri2, &tri1);
-                    segs.push((t1, t2, p, q, cut1, cut2));
+                let tri2 = map_tri(&s2.triangle(t2), &map12);
+                if let Some(c) = triangle_triangle_contact(&tri1, &tri2) {
+                    segs.push((t1, t2, c));
                 }
             }
         }
         false
     });
-    let mut region = OverlapRegion {
-        segment_count: segs.len(),
-        ..Default::default()
-    };
-    for (_, _, p, q, _, _) in &segs {
-        region.points.push(pose1 * p);
-        region.points.push(pose1 * q);
+    let mut region = OverlapRegion::default();
+    // Only crossings are in S: where the surfaces merely touch (faces resting on each other)
+    // nothing overlaps. Touching triangles still count as met for the patches below.
+    for (_, _, c) in &segs {
+        if c.is_crossing() {
+            region.segment_count += 1;
+            region.points.push(pose1 * c.start);
+            region.points.push(pose1 * c.end);
+        }
     }
     // Mesh 1's side, in frame 1.
     let mut by_1: Vec<Crossing> = segs
         .iter()
-        .map(|&(t1, t2, p, q, cut1, _)| (t1, t2, p, q, cut1))
+        .map(|&(t1, t2, c)| (t1, t2, c.start, c.end, c.a_crossed, c.a_on_plane))
         .collect();
     by_1.sort_by_key(|c| (c.0, c.1));
-    let mut inside1 = Vec::new();
-    let va1 = surface_inside(
+    let (va1, inside1) = surface_inside(
         s1,
         s2,
-        &pose12.inverse(),
+        &pose21,
         &by_1,
-        |o| transform_tri(&s2.triangle(o), &pose12),
-        &mut inside1,
+        |o| map_tri(&s2.triangle(o), &map12),
         use_patches,
+        nudge,
     );
     // Mesh 2's side, in frame 2: its triangles' segments run the other way (n2 x n1).
     let mut by_2: Vec<Crossing> = segs
         .iter()
-        .map(|&(t1, t2, p, q, _, cut2)| (t2, t1, pose21 * q, pose21 * p, cut2))
+        .map(|&(t1, t2, c)| {
+            let (p, q) = (map21.point(&c.end), map21.point(&c.start));
+            (t2, t1, p, q, c.b_crossed, c.b_on_plane)
+        })
         .collect();
     by_2.sort_by_key(|c| (c.0, c.1));
-    let mut inside2 = Vec::new();
-    let va2 = surface_inside(
+    let (va2, inside2) = surface_inside(
         s2,
         s1,
         &pose12,
         &by_2,
-        |o| transform_tri(&s1.triangle(o), &pose21),
-        &mut inside2,
+        |o| map_tri(&s1.triangle(o), &map21),
         use_patches,
+        nudge,
     );
     region.inside_vertex_count = inside1.len() + inside2.len();
     region.points.extend(inside1.iter().map(|p| pose1 * p));

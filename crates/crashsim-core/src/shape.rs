@@ -11,6 +11,11 @@ use crate::error::{Error, Result};
 use crate::math::{Aabb, Point, Real, Vector};
 use crate::triangle::{scaled_normal, solid_angle, Tri};
 
+/// Largest coordinate magnitude a mesh may have (m): beyond it the winding number's
+/// products of three distances overflow (1e300 m gave NaN); a million kilometres is far
+/// beyond any scene.
+pub const MAX_COORDINATE: Real = 1e12;
+
 /// Far-field acceptance: a node is approximated by its dipole when the query point is more
 /// than `WINDING_BETA` times the node's radius away from the node's centre.
 const WINDING_BETA: Real = 2.5;
@@ -112,8 +117,8 @@ fn build_topology(n_vertices: usize, triangles: &[[u32; 3]]) -> Topology {
 impl MeshShape {
     /// Builds a shape from body-frame vertices (m) and triangles (vertex indices).
     ///
-    /// Errors: no triangles, a non-finite vertex, an index out of range, or no triangle with
-    /// a non-zero area.
+    /// Errors: no triangles, a non-finite vertex or one beyond [`MAX_COORDINATE`], an index
+    /// out of range, or no triangle with a non-zero area.
     pub fn new(vertices: Vec<Point>, triangles: Vec<[u32; 3]>) -> Result<MeshShape> {
         if triangles.is_empty() {
             return Err(Error::Mesh(
@@ -127,6 +132,16 @@ impl MeshShape {
         {
             return Err(Error::Mesh(format!(
                 "vertex {i} is not finite ({:?}): remove or repair NaN/inf vertices",
+                vertices[i].coords.as_slice()
+            )));
+        }
+        if let Some(i) = vertices
+            .iter()
+            .position(|v| v.iter().any(|c| c.abs() > MAX_COORDINATE))
+        {
+            return Err(Error::Mesh(format!(
+                "vertex {i} ({:?}) lies beyond {MAX_COORDINATE:e} m of the body origin: give \
+                 the mesh in metres, about its own centre",
                 vertices[i].coords.as_slice()
             )));
         }
@@ -313,8 +328,9 @@ impl MeshShape {
     }
 
     /// Volume, centroid and inertia of the mesh as a uniform solid of unit density (body
-    /// frame); meaningful for a closed, outward-wound mesh (see [`crate::mass`]).
-    pub fn solid_properties(&self) -> crate::mass::SolidProperties {
+    /// frame); meaningful for a closed, outward-wound mesh (see [`crate::mass`]). An error
+    /// when the mesh encloses no volume.
+    pub fn solid_properties(&self) -> Result<crate::mass::SolidProperties> {
         crate::mass::solid_properties(&self.vertices, &self.triangles)
     }
 

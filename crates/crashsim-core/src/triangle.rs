@@ -50,31 +50,180 @@ fn same_strict_sign(d: &[Real; 3]) -> bool {
     (d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0) || (d[0] < 0.0 && d[1] < 0.0 && d[2] < 0.0)
 }
 
-/// The segment along which triangles `a` and `b` cross, oriented along `n_a x n_b`
-/// (n the unnormalized normals). None when they do not meet, are coplanar or degenerate.
-/// A touching contact gives a zero-length segment.
-pub fn triangle_triangle_segment(a: &Tri, b: &Tri) -> Option<(Point, Point)> {
-    let nb = scaled_normal(b);
-    let da = [
-        nb.dot(&(a[0] - b[0])),
-        nb.dot(&(a[1] - b[0])),
-        nb.dot(&(a[2] - b[0])),
-    ];
+/// Relative width of the band about a plane inside which a point counts as lying on it:
+/// 2^-40 (about 1e-12) times the magnitude of the coordinates involved, some four thousand
+/// times the round-off of rigidly moving them. Faces that are coplanar in the scene (two
+/// boxes of one height side by side, a heading of 180 deg) stay coplanar to about that
+/// round-off, not exactly; without the band their planes crossed at arbitrary places and a
+/// head-on of two equal boxes lost half a front face (its normal came out 1.27 deg off).
+pub const PLANE_TOLERANCE: Real = 1.0 / 1_099_511_627_776.0;
+
+/// The largest coordinate magnitude (m) of the given triangles' vertices: the scale of the
+/// round-off in their positions, and of [`PLANE_TOLERANCE`].
+#[inline]
+pub fn coordinate_scale(tris: &[&Tri]) -> Real {
+    tris.iter()
+        .flat_map(|t| t.iter())
+        .map(|p| p.coords.amax())
+        .fold(0.0, Real::max)
+}
+
+/// A triangle's plane with what its snapping band needs.
+struct Plane {
+    origin: Point,
+    /// Unnormalized normal (b - a) x (c - a).
+    n: Vector,
+    n_norm: Real,
+    /// Twice the sum of the largest edge components from the origin: how far the normal's
+    /// direction can turn per unit of position round-off, times |n|.
+    lever: Real,
+}
+
+impl Plane {
+    #[inline]
+    fn of(t: &Tri) -> Plane {
+        let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+        let n = e1.cross(&e2);
+        Plane {
+            origin: t[0],
+            n,
+            n_norm: n.norm(),
+            lever: 2.0 * (e1.amax() + e2.amax()),
+        }
+    }
+
+    /// The signed distance of `v` (times |n|), exactly 0 within the band: `tol` m of
+    /// round-off in every position, through the plane's offset and through its direction
+    /// over the lever arm |v - origin| (so a sliver's poorly known plane has a wider band).
+    #[inline]
+    fn snapped_distance(&self, v: &Point, tol: Real) -> Real {
+        let r = v - self.origin;
+        let d = self.n.dot(&r);
+        if d.abs() <= tol * (self.n_norm + r.amax() * self.lever) {
+            0.0
+        } else {
+            d
+        }
+    }
+}
+
+/// The signed distances of `t`'s vertices from `plane` (times |n|), snapped to 0 within the
+/// band of `tol` m.
+#[inline]
+fn snapped_plane_distances(t: &Tri, plane: &Plane, tol: Real) -> [Real; 3] {
+    t.map(|v| plane.snapped_distance(&v, tol))
+}
+
+/// The band (m) within which a vertex of the triangles counts as on a plane of theirs.
+#[inline]
+fn plane_band(tris: &[&Tri]) -> Real {
+    PLANE_TOLERANCE * coordinate_scale(tris)
+}
+
+/// The move (per unit length, so a vector of about unit norm) that settles where a point
+/// `p` of triangle `t` lying on another surface belongs: towards `t`'s centroid and into its
+/// solid (against its normal), p -> p + tau ((c - p) / rho - n / |n|), rho the largest
+/// distance from the centroid c to a vertex. Affine in p, so every point of `t` on a plane
+/// moves to the same side of it. None for a triangle without area.
+#[inline]
+pub fn inward_nudge(t: &Tri, p: &Point) -> Option<Vector> {
+    let n = scaled_normal(t);
+    let full = n.norm();
+    let c = centroid(t);
+    let rho = t.iter().map(|v| (v - c).norm()).fold(0.0, Real::max);
+    (full > 0.0 && rho > 0.0).then(|| (c - p) / rho - n / full)
+}
+
+/// The centroid of a triangle.
+#[inline]
+pub fn centroid(t: &Tri) -> Point {
+    Point::from((t[0].coords + t[1].coords + t[2].coords) / 3.0)
+}
+
+/// Whether `t`, nudged by [`inward_nudge`], has vertices strictly on both sides of the
+/// plane with unnormalized normal `n_other`, given the snapped distances `d` of its vertices
+/// from that plane (times |n_other|): a vertex on the plane takes the side the nudge moves
+/// it to, which is the same for all of them.
+#[inline]
+fn nudged_straddles(t: &Tri, nt: &Vector, d: &[Real; 3], n_other: &Vector) -> bool {
+    let side = if d.contains(&0.0) {
+        let c = centroid(t);
+        let rho = t.iter().map(|v| (v - c).norm()).fold(0.0, Real::max);
+        let (full, mean) = (nt.norm(), (d[0] + d[1] + d[2]) / 3.0);
+        if full == 0.0 || rho == 0.0 {
+            0.0
+        } else {
+            mean / rho - n_other.dot(nt) / full
+        }
+    } else {
+        0.0
+    };
+    let signed = d.map(|x| if x == 0.0 { side } else { x });
+    signed.iter().any(|&x| x < 0.0) && signed.iter().any(|&x| x > 0.0)
+}
+
+/// How two triangles (one common frame, m) meet: the limit of their crossing segment and,
+/// for each, whether it is crossed when it alone is moved a hair into its own solid and
+/// interior ([`inward_nudge`]); see [`triangle_triangle_contact`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleContact {
+    /// Start of the segment the triangles share, oriented along n_a x n_b (m).
+    pub start: Point,
+    /// End of that segment (equal to the start for a touch at a point).
+    pub end: Point,
+    /// `a`, nudged into its solid and interior, crosses `b` along a segment: the segment
+    /// bounds a part of `a` inside `b`'s side (false for a mere touch, which bounds nothing).
+    pub a_crossed: bool,
+    /// The same for `b` nudged into its own solid and interior.
+    pub b_crossed: bool,
+    /// Which vertices of `a` lie on `b`'s plane (within the band): where their side is
+    /// settled by the nudge, which can differ from one triangle at the vertex to another.
+    pub a_on_plane: [bool; 3],
+    /// Which vertices of `b` lie on `a`'s plane (within the band).
+    pub b_on_plane: [bool; 3],
+}
+
+impl TriangleContact {
+    /// True when either triangle is crossed (not a mere touch of both).
+    #[inline]
+    pub fn is_crossing(&self) -> bool {
+        self.a_crossed || self.b_crossed
+    }
+}
+
+/// How triangles `a` and `b` meet; None when they do not, are coplanar or degenerate.
+///
+/// A vertex within [`PLANE_TOLERANCE`] (relative to the coordinates' magnitude) of the
+/// other triangle's plane counts as on it, so triangles coplanar up to round-off are
+/// coplanar, and an edge lying on the other's plane up to round-off touches it. Which
+/// touches are crossings is settled by a symbolic nudge of one triangle at a time into its
+/// own solid and interior (the rule the overlap region classifies points on the other
+/// surface by): `a` is crossed when its nudged vertices straddle `b`'s plane and `b` reaches
+/// below `a`'s plane (b's vertices on that plane lie above the nudged `a`).
+pub fn triangle_triangle_contact(a: &Tri, b: &Tri) -> Option<TriangleContact> {
+    let tol = plane_band(&[a, b]);
+    let plane_b = Plane::of(b);
+    let nb = plane_b.n;
+    let da = snapped_plane_distances(a, &plane_b, tol);
     if same_strict_sign(&da) {
         return None;
     }
-    let na = scaled_normal(a);
-    let db = [
-        na.dot(&(b[0] - a[0])),
-        na.dot(&(b[1] - a[0])),
-        na.dot(&(b[2] - a[0])),
-    ];
+    let plane_a = Plane::of(a);
+    let na = plane_a.n;
+    let db = snapped_plane_distances(b, &plane_a, tol);
     if same_strict_sign(&db) {
         return None;
     }
     let dir = na.cross(&nb);
-    if dir.norm_squared() == 0.0 {
-        // Coplanar or degenerate: no crossing segment (coplanar faces bound no volume).
+    // The planes' directions are known to about tol * lever / |n| rad each: planes parallel
+    // to within that have no crossing line (it would lie anywhere).
+    let (la, lb) = (plane_a.n_norm, plane_b.n_norm);
+    let parallel = la == 0.0
+        || lb == 0.0
+        || dir.norm() <= tol * (plane_a.lever / la + plane_b.lever / lb) * la * lb;
+    if da == [0.0; 3] || db == [0.0; 3] || parallel {
+        // Coplanar, parallel or degenerate: no crossing segment (coplanar faces bound no
+        // volume).
         return None;
     }
     let (a0, a1) = plane_section(a, &da)?;
@@ -92,26 +241,45 @@ pub fn triangle_triangle_segment(a: &Tri, b: &Tri) -> Option<(Point, Point)> {
     } else {
         (sb1, sb0, b1, b0)
     };
-    if alo > bhi || blo > ahi {
+    // Intervals that meet within the band touch (an edge of one triangle through the edge
+    // of the other): reported, though not as a crossing, so the overlap region still tests
+    // the own triangle's edges against this triangle.
+    let slack = 2.0 * tol * dir.norm();
+    if alo > bhi + slack || blo > ahi + slack {
         return None;
     }
-    let lo = if alo >= blo { pa_lo } else { pb_lo };
-    let hi = if ahi <= bhi { pa_hi } else { pb_hi };
-    Some((lo, hi))
+    let start = if alo >= blo { pa_lo } else { pb_lo };
+    let end = if ahi <= bhi { pa_hi } else { pb_hi };
+    // A segment no longer than the band is a touch at a point, which the nudges part (a
+    // crossing through a vertex or edge of either mesh is also reported, with length, by the
+    // triangles beside it).
+    let long = (end - start).norm_squared() > tol * tol;
+    Some(TriangleContact {
+        start,
+        end,
+        a_crossed: long && nudged_straddles(a, &na, &da, &nb) && db.iter().any(|&x| x < 0.0),
+        b_crossed: long && nudged_straddles(b, &nb, &db, &na) && da.iter().any(|&x| x < 0.0),
+        a_on_plane: da.map(|x| x == 0.0),
+        b_on_plane: db.map(|x| x == 0.0),
+    })
+}
+
+/// The segment along which triangles `a` and `b` cross, oriented along `n_a x n_b`
+/// (n the unnormalized normals). None when they do not meet, are coplanar or degenerate.
+/// A touching contact gives a zero-length segment (or the shared piece of an edge lying on
+/// the other's plane). Vertices within the band of [`triangle_triangle_contact`] count as
+/// on the other's plane.
+pub fn triangle_triangle_segment(a: &Tri, b: &Tri) -> Option<(Point, Point)> {
+    triangle_triangle_contact(a, b).map(|c| (c.start, c.end))
 }
 
 /// True when the vertices of `a` lie strictly on both sides of the plane of `b` (so `a` is
-/// cut by that plane, not merely touching it).
+/// cut by that plane, not merely touching it); vertices within the band of
+/// [`triangle_triangle_segment`] count as on the plane.
 #[inline]
 pub fn triangle_cut_by_plane_of(a: &Tri, b: &Tri) -> bool {
-    let nb = scaled_normal(b);
-    let (mut below, mut above) = (false, false);
-    for v in a {
-        let d = nb.dot(&(v - b[0]));
-        below |= d < 0.0;
-        above |= d > 0.0;
-    }
-    below && above
+    let d = snapped_plane_distances(a, &Plane::of(b), plane_band(&[a, b]));
+    d.iter().any(|&x| x < 0.0) && d.iter().any(|&x| x > 0.0)
 }
 
 /// True when the triangles touch or cross (coplanar pairs count as not crossing).
@@ -167,11 +335,17 @@ pub fn triangle_triangle_distance_sq(a: &Tri, b: &Tri) -> Real {
 }
 
 /// The parameter s in (0, 1) at which the segment p0 -> p1 crosses triangle `t`, if it does
-/// (end points on the triangle's plane do not count as crossings).
+/// (end points on the triangle's plane do not count as crossings). End points within the
+/// band of [`triangle_triangle_segment`] count as on the plane, and a crossing point within
+/// that band of the triangle's boundary as inside it (a crossing through an edge the
+/// triangle shares is then reported by both its triangles).
 pub fn segment_triangle_crossing(p0: &Point, p1: &Point, t: &Tri) -> Option<Real> {
-    let n = scaled_normal(t);
-    let d0 = n.dot(&(p0 - t[0]));
-    let d1 = n.dot(&(p1 - t[0]));
+    let tol = plane_band(&[t, &[*p0, *p1, *p1]]);
+    let plane = Plane::of(t);
+    let n = plane.n;
+    let band_sq = tol * tol * n.norm_squared();
+    let d0 = plane.snapped_distance(p0, tol);
+    let d1 = plane.snapped_distance(p1, tol);
     if !((d0 < 0.0 && d1 > 0.0) || (d0 > 0.0 && d1 < 0.0)) {
         return None;
     }
@@ -180,7 +354,9 @@ pub fn segment_triangle_crossing(p0: &Point, p1: &Point, t: &Tri) -> Option<Real
     // Inside test by the signs of the sub-triangle normals against n.
     for i in 0..3 {
         let e = t[(i + 1) % 3] - t[i];
-        if e.cross(&(x - t[i])).dot(&n) < 0.0 {
+        // Outside edge i by more than the band: v < -tol |e| |n|.
+        let v = e.cross(&(x - t[i])).dot(&n);
+        if v < 0.0 && v * v > band_sq * e.norm_squared() {
             return None;
         }
     }
@@ -196,6 +372,12 @@ pub fn solid_angle(t: &Tri, p: &Point) -> Real {
     let c = t[2] - p;
     let (la, lb, lc) = (a.norm(), b.norm(), c.norm());
     let det = a.dot(&b.cross(&c));
+    if det == 0.0 {
+        // On the triangle's plane: 0 outside it, and the mean of the +2 pi and -2 pi of the
+        // two sides on it (atan2 gave either, by the sign of a zero), so a point on a closed
+        // surface has winding number one half.
+        return 0.0;
+    }
     let denom = la * lb * lc + a.dot(&b) * lc + b.dot(&c) * la + c.dot(&a) * lb;
     2.0 * det.atan2(denom)
 }
@@ -227,6 +409,66 @@ mod tests {
         assert!(d > 4.0 && d < 4.4, "{d}");
         let d_rev = triangle_triangle_distance_sq(&other, &sliver).sqrt();
         assert_eq!(d, d_rev);
+    }
+
+    #[test]
+    fn faces_coplanar_up_to_round_off_do_not_cross() {
+        // Regression (issue 10, item 5): a side face of a box and the side face of another
+        // turned by 180 deg lie in one plane up to 1e-16 rad; their planes crossed in the
+        // middle of the face and tilted the head-on's normal by 1.27 deg.
+        let a = [p(-2.25, 0.9, -0.7), p(-2.25, 0.9, 0.7), p(2.25, 0.9, -0.7)];
+        let tilt = 1.2246467991473532e-16;
+        let b = [
+            p(6.73, 0.9 - 6.73 * tilt, -0.7),
+            p(2.23, 0.9 - 2.23 * tilt, 0.7),
+            p(2.23, 0.9 - 2.23 * tilt, -0.7),
+        ];
+        assert!(triangle_triangle_contact(&a, &b).is_none());
+        // A real tilt (1e-6 rad) is a crossing.
+        let tilt = 1e-6;
+        let b = [
+            p(6.73, 0.9 + (6.73 - 2.24) * tilt, -0.7),
+            p(2.23, 0.9 + (2.23 - 2.24) * tilt, 0.7),
+            p(2.23, 0.9 + (2.23 - 2.24) * tilt, -0.7),
+        ];
+        let c = triangle_triangle_contact(&a, &b).unwrap();
+        assert!(c.a_crossed && c.b_crossed, "{c:?}");
+    }
+
+    #[test]
+    fn an_edge_lying_on_a_face_is_crossed_only_for_the_face() {
+        // A front face (plane x = 2.25, normal +x) whose edge lies on a side face of the
+        // other box (plane y = 0.9, normal +y, the other box at y < 0.9): nudged into its
+        // triangle the edge leaves the side's plane, so the front face is only touched; the
+        // side face, nudged into its solid, is cut by the front face along the edge.
+        let front = [p(2.25, 0.9, -0.7), p(2.25, 0.9, 0.7), p(2.25, -0.9, 0.7)];
+        let side = [p(6.73, 0.9, -0.7), p(2.23, 0.9, -0.7), p(2.23, 0.9, 0.7)];
+        assert!(scaled_normal(&side).y > 0.0);
+        let c = triangle_triangle_contact(&front, &side).unwrap();
+        assert!(!c.a_crossed && c.b_crossed, "{c:?}");
+        assert!((c.end - c.start).norm() > 1.0);
+        let r = triangle_triangle_contact(&side, &front).unwrap();
+        assert!(r.a_crossed && !r.b_crossed, "{r:?}");
+        // The same front face against a side face of a box at y > 0.9 (touching from
+        // outside): nothing is crossed.
+        let outside = [p(6.73, 0.9, -0.7), p(2.23, 0.9, 0.7), p(2.23, 0.9, -0.7)];
+        let c = triangle_triangle_contact(&front, &outside).unwrap();
+        assert!(!c.is_crossing(), "{c:?}");
+    }
+
+    #[test]
+    fn a_touch_at_a_point_is_not_a_crossing() {
+        // Two boxes side by side touching along a side: the bottom of one meets the front
+        // face of the other only at a corner (a segment 1e-16 m long).
+        let front = [p(2.25, -0.9, -0.7), p(2.25, 0.9, -0.7), p(2.25, -0.9, 0.7)];
+        let bottom = [
+            p(-1.25, 2.7, -0.7),
+            p(3.25, 0.8999999999999998, -0.7),
+            p(-1.25, 0.9000000000000002, -0.7),
+        ];
+        let c = triangle_triangle_contact(&front, &bottom).unwrap();
+        assert!(!c.is_crossing(), "{c:?}");
+        assert!((c.end - c.start).norm() < 1e-12);
     }
 
     #[test]

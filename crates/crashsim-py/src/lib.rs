@@ -82,9 +82,11 @@ impl Shape {
     }
 
     /// Volume (m^3), centroid (m) and inertia about the centroid (kg m^2 for unit density) of
-    /// the mesh as a uniform solid, body frame; meaningful for a closed, outward-wound mesh.
+    /// the mesh as a uniform solid, body frame; meaningful for a closed, outward-wound mesh
+    /// (MeshError when it encloses no volume).
     fn solid_properties<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        solid_properties_to_dict(py, &self.inner.solid_properties())
+        let p = self.inner.solid_properties().map_err(errors::to_py)?;
+        solid_properties_to_dict(py, &p)
     }
 
     /// Distances (m, ascending) at which the ray from `origin` along `direction` (body frame;
@@ -527,7 +529,8 @@ fn run_output_to_dict<'py>(
 }
 
 /// Volume (m^3), centroid (m) and inertia about the centroid (kg m^2 for unit density) of
-/// the solid bounded by a closed, outward-wound triangle mesh (no BVH is built).
+/// the solid bounded by a closed, outward-wound triangle mesh (no BVH is built); MeshError
+/// when it encloses no volume.
 #[pyfunction]
 fn solid_properties<'py>(
     py: Python<'py>,
@@ -545,7 +548,9 @@ fn solid_properties<'py>(
             v.len()
         )));
     }
-    let p = py.detach(move || core::mass::solid_properties(&v, &t));
+    let p = py
+        .detach(move || core::mass::solid_properties(&v, &t))
+        .map_err(errors::to_py)?;
     solid_properties_to_dict(py, &p)
 }
 

@@ -242,11 +242,14 @@ def solid_properties(mesh: trimesh.Trimesh) -> tuple[float, Array, Array]:
     """(volume m^3, centroid m, inertia about the centroid for unit density (3, 3)) of a
     closed, outward-wound mesh, by the divergence theorem in the engine
     (``_core.solid_properties``; trimesh's mass properties are the independent check in the
-    tests). Callers check the volume: the centroid is not finite when it is zero."""
-    with np.errstate(invalid="ignore", divide="ignore"):
+    tests). Callers check the volume: a mesh enclosing none (open or flat; the engine
+    refuses it) gives volume 0 and a centroid and inertia that are not finite."""
+    try:
         props = _core.solid_properties(
             np.asarray(mesh.vertices, dtype=np.float64), np.asarray(mesh.faces, dtype=np.int64)
         )
+    except MeshError:
+        return 0.0, np.full(3, np.nan), np.full((3, 3), np.nan)
     return (
         float(props["volume"]),
         np.asarray(props["centroid"], dtype=np.float64),
