@@ -9,6 +9,34 @@ pub const MAX_DEPTH_OF_PENETRATION: Real = 0.060;
 /// The seed's typical range of dt_p (s): an automatic value outside it is reported.
 pub const TYPICAL_DEPTH_OF_PENETRATION: (Real, Real) = (0.010, 0.060);
 
+/// The automatic normal of a first exchange is read no deeper than where the overlap's vector
+/// area (mesh 1's surface inside 2 minus 2's inside 1, m^2) is still at least this fraction of
+/// the largest it reaches at the probed shallower depths. Default 1/2, a constant of the model.
+///
+/// While one body dents another the vector area grows with depth; once a thin part (a wall,
+/// a plate, a post thinner than the reading depth) has been cut through, the faces that met
+/// have left the overlap and the part's two faces cancel, so the vector area collapses (a 1 cm
+/// wall at 2 cm depth: from 2 x 6 m x 1.4 m to the noise of the side strips, and the normal
+/// turned sideways: no exchange). Below one half, the reading moves to the deepest shallower
+/// probe that is still above it.
+pub const NORMAL_COLLAPSE: Real = 0.5;
+
+/// Number of shallower depths probed for a thin part: NORMAL_DEPTH / 2^k, k = 1 ..= this
+/// (down to 10 um for the default 12). Bounded: at most this many overlap regions per first
+/// overlap, each over an overlap no deeper than 2 cm.
+pub const NORMAL_PROBES: usize = 12;
+
+/// Instants sampled across a timer to find out whether the overlap ends before the exchange
+/// (a thin part passing through, a corner clipping a post): dt_p / this apart. Default 16
+/// (about 2 ms for 30 ms). An overlap shorter than a sample spacing is still found when it is
+/// the first one (the first sample is already apart); the end is then bisected to 1e-6 s.
+pub const OVERLAP_SAMPLES: usize = 16;
+
+/// Iterations of the golden-section search for the deepest overlap of an overlap that ends
+/// before its timer expires (after the best of [`OVERLAP_SAMPLES`] samples): the bracket
+/// shrinks to 0.618^40 = 4e-9 of two sample spacings. Bounded by construction.
+pub const DEEPEST_ITERATIONS: usize = 40;
+
 /// How long the meshes pass through each other before the exchange.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum DepthOfPenetration {

@@ -6,7 +6,8 @@ use super::{Pair, World, NORMAL_DEPTH, TIME_TOLERANCE};
 use crate::bisect::bisect;
 use crate::body::RigidBody;
 use crate::contact::{
-    CentroidMode, NormalMode, MAX_DEPTH_OF_PENETRATION, TYPICAL_DEPTH_OF_PENETRATION,
+    CentroidMode, NormalMode, MAX_DEPTH_OF_PENETRATION, NORMAL_COLLAPSE, NORMAL_PROBES,
+    TYPICAL_DEPTH_OF_PENETRATION,
 };
 use crate::math::{Matrix, Point, Real, Vector};
 use crate::overlap::{overlap_region, OverlapRegion};
@@ -49,32 +50,86 @@ impl ContactGeometry {
 }
 
 impl World {
-    /// The volume normal (body 1's frame) of pair `pi`'s overlap once it is at most
-    /// NORMAL_DEPTH deep (no later than `cap` s after `started`), and its time; None when
-    /// the meshes no longer overlap then or the normal vanishes.
+    /// The volume normal (body 1's frame) of pair `pi`'s overlap for a first exchange, the
+    /// time it is read, and a note when it was not read at NORMAL_DEPTH. None when the meshes
+    /// do not overlap at any probed depth or the normal vanishes.
+    ///
+    /// The motion during the timer is free, so the overlap is examined ahead, at the timer's
+    /// start (`started`), no later than `cap` s after it. Depth here is the approach since the
+    /// first overlap: the fastest two surface points can approach now (m/s) times the time.
+    /// The rule (docs/glancing.md, contact.rs):
+    /// 1. read it once the overlap is NORMAL_DEPTH deep,
+    /// 2. but no deeper than where its vector area is still at least NORMAL_COLLAPSE of the
+    ///    largest at NORMAL_PROBES shallower depths NORMAL_DEPTH / 2^k (a thin part cut through).
     pub(super) fn early_normal(
         &self,
         pi: usize,
         started: Real,
         cap: Real,
-    ) -> Option<(Vector, Real)> {
+    ) -> Option<(Vector, Real, Option<String>)> {
         let pair = &self.pairs[pi];
         let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
-        // The fastest two surface points can approach now (m/s): over the few ms this covers
-        // the overlap grows by at most about NORMAL_DEPTH.
         let speed = (wb1.body.velocity() - wb2.body.velocity()).norm()
             + wb1.body.angular_velocity().norm() * wb1.shape.radius()
             + wb2.body.angular_velocity().norm() * wb2.shape.radius();
-        let dt = if speed > 0.0 {
-            (NORMAL_DEPTH / speed).min(cap)
-        } else {
-            cap
+        let time_for = |depth: Real| -> Real {
+            if speed > 0.0 {
+                (depth / speed).min(cap)
+            } else {
+                cap
+            }
         };
-        let offset = started - self.time + dt;
-        let (b1, b2) = (wb1.body.advanced(offset), wb2.body.advanced(offset));
-        let (pose1, pose2) = (b1.pose(), b2.pose());
-        let n = overlap_region(&wb1.shape, &pose1, &wb2.shape, &pose2).volume_normal()?;
-        Some((pose1.inverse_transform_vector(&n), started + dt))
+        let base = started - self.time;
+        // The overlap region `dt` s after `started`, with body 1's pose then.
+        let region_at = |dt: Real| -> (OverlapRegion, RigidBody, RigidBody) {
+            let (b1, b2) = (wb1.body.advanced(base + dt), wb2.body.advanced(base + dt));
+            let region = overlap_region(&wb1.shape, &b1.pose(), &wb2.shape, &b2.pose());
+            (region, b1, b2)
+        };
+        let reading = |r: &OverlapRegion, b1: &RigidBody, dt: Real| {
+            r.volume_normal()
+                .map(|n| (b1.pose().inverse_transform_vector(&n), started + dt))
+        };
+        let dt0 = time_for(NORMAL_DEPTH);
+        let (r0, b1_0, _) = region_at(dt0);
+        // 2. Thin parts: the vector area at shallower depths, measured along the normal of
+        // the shallowest overlap (the faces that met): cut through, a thin part's faces
+        // cancel (a wall against a car's sides) or reverse (a plate through a plate).
+        let mut probes = Vec::with_capacity(NORMAL_PROBES);
+        for k in 1..=NORMAL_PROBES {
+            let dt = dt0 * (0.5 as Real).powi(k as i32);
+            let (r, b1, _) = region_at(dt);
+            probes.push((dt, r, b1));
+        }
+        let first_faces = probes.iter().rev().find_map(|(_, r, _)| r.volume_normal());
+        let along = |r: &OverlapRegion| {
+            first_faces.map_or(0.0, |n| {
+                (r.area_normal_1_in_2 - r.area_normal_2_in_1).dot(&n)
+            })
+        };
+        let largest = probes
+            .iter()
+            .map(|(_, r, _)| along(r))
+            .fold(along(&r0), Real::max);
+        let m0 = along(&r0);
+        if largest > 0.0 && m0 < NORMAL_COLLAPSE * largest {
+            let (dt, r, b1) = probes
+                .into_iter()
+                .find(|(_, r, _)| along(r) >= NORMAL_COLLAPSE * largest)
+                .expect("the largest probe qualifies");
+            let (n, t) = reading(&r, &b1, dt)?;
+            let note = format!(
+                "contact normal read {:.2} mm deep, not at {:.0} mm: deeper, the overlap's \
+                 vector area along the faces that met had fallen to {:.0} % of its largest \
+                 (a thin part cut through)",
+                dt * speed * 1e3,
+                NORMAL_DEPTH * 1e3,
+                100.0 * m0 / largest
+            );
+            return Some((n, t, Some(note)));
+        }
+        let (n, t) = reading(&r0, &b1_0, dt0)?;
+        Some((n, t, None))
     }
 
     /// The automatic dt_p of pair `pi` whose timer starts at `started`: the dt in
