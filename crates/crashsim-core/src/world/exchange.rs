@@ -57,12 +57,16 @@ impl World {
         };
         notes.extend(early_note);
         let mut exchange_at = started + dtp;
+        let mut impulse_share = 1.0;
         // A first overlap that ends before its timer expires is exchanged at its deepest. A
         // secondary timer starts inside an overlap that may only shrink: it keeps its instant
         // (and, if the meshes have separated by then, a no-exchange event says so).
         if !secondary {
-            if let Some((deepest, note)) = self.overlap_ends_early(pi, started, dtp, early_normal) {
+            if let Some((deepest, share, note)) =
+                self.overlap_ends_early(pi, started, dtp, early_normal)
+            {
                 exchange_at = deepest;
+                impulse_share = share;
                 notes.push(note);
             }
         }
@@ -73,6 +77,7 @@ impl World {
             secondary,
             notes,
             early_normal,
+            impulse_share,
         };
         if exchange_at <= self.time {
             self.exchange(pi, out);
@@ -80,11 +85,19 @@ impl World {
     }
 
     /// When pair `pi`'s overlap, started at `started`, ends before its exchange at
-    /// `started + dtp`: the instant of its deepest overlap and a note saying so; else None.
+    /// `started + dtp`: the instant of its deepest overlap, the share of the impulse it
+    /// exchanges, and a note saying so; else None.
+    ///
+    /// The share is the seed's spring model's (eqs. 24, 28: crush C(t) = v dt_p sin(t / dt_p),
+    /// force k C, so the impulse transmitted by time t is m' v (1 - cos(t / dt_p))): what the
+    /// spring transmits by the time T the overlap ends, over what it transmits by dt_p, where
+    /// the model exchanges the whole impulse: (1 - cos(T / dt_p)) / (1 - cos 1), in (0, 1).
+    /// The contact ends before common velocity: a graze that ends at once exchanges nothing,
+    /// and the share grows continuously to 1 as the overlap lasts up to dt_p.
     ///
     /// The motion during the timer is free, so the future overlap is examined now: the
     /// overlap test at OVERLAP_SAMPLES instants across the timer; at the first one apart, the
-    /// end is bisected (to SEPARATION_TOLERANCE) from the last one overlapping. The depth is
+    /// end is bisected (to TIME_TOLERANCE) from the last one overlapping. The depth is
     /// the extent of the overlap region along the normal (the early normal turned with body 1,
     /// else the region's own volume normal, else the approach direction at the region's
     /// centre); its largest value over the overlap is found from OVERLAP_SAMPLES samples and
@@ -95,7 +108,7 @@ impl World {
         started: Real,
         dtp: Real,
         early_normal: Option<(Vector, Real)>,
-    ) -> Option<(Real, String)> {
+    ) -> Option<(Real, Real, String)> {
         if dtp <= 0.0 {
             return None;
         }
@@ -117,7 +130,7 @@ impl World {
         let step = dtp / OVERLAP_SAMPLES as Real;
         let apart = (1..=OVERLAP_SAMPLES).find(|k| !overlaps(*k as Real * step))?;
         let lo = (apart - 1) as Real * step;
-        let end = lo + bisect(0.0, step, SEPARATION_TOLERANCE, |dt| !overlaps(lo + dt));
+        let end = lo + bisect(0.0, step, TIME_TOLERANCE, |dt| !overlaps(lo + dt));
         // The deepest overlap in (0, end).
         let depth = |dt: Real| -> Real {
             let (a1, a2) = (b1.advanced(base + dt), b2.advanced(base + dt));
@@ -174,28 +187,38 @@ impl World {
         } else {
             (best, best_depth)
         };
+        let share = ((1.0 - (end / dtp).cos()) / (1.0 - (1.0 as Real).cos())).min(1.0);
         let note = format!(
             "the overlap ended {:.3} ms after the first overlap, before the {:.1} ms timer \
              expired: exchanged at its deepest ({:.1} mm along the normal), {:.3} ms after the \
-             first overlap",
+             first overlap, with {:.3} % of the impulse (the share the seed's spring transmits \
+             by the time the overlap ends: (1 - cos(T/dt_p)) / (1 - cos 1))",
             end * 1e3,
             dtp * 1e3,
             deepest * 1e3,
-            at * 1e3
+            at * 1e3,
+            share * 100.0
         );
-        Some((started + at, note))
+        Some((started + at, share, note))
     }
 
     /// Exchange the impulse of pair `pi` now (its timer expired).
     pub(super) fn exchange(&mut self, pi: usize, out: &mut RunOutput) {
-        let (started, secondary, notes, early_normal) = match &self.pairs[pi].phase {
+        let (started, secondary, notes, early_normal, share) = match &self.pairs[pi].phase {
             Phase::Timer {
                 started,
                 secondary,
                 notes,
                 early_normal,
+                impulse_share,
                 ..
-            } => (*started, *secondary, notes.clone(), *early_normal),
+            } => (
+                *started,
+                *secondary,
+                notes.clone(),
+                *early_normal,
+                *impulse_share,
+            ),
             _ => return,
         };
         let pair = self.pairs[pi].clone();
@@ -282,7 +305,7 @@ impl World {
         };
         let before = [b1.state(), b2.state()];
         let energy_before = b1.kinetic_energy() + b2.kinetic_energy();
-        let j = solution.impulse;
+        let j = solution.impulse * share;
         self.bodies[i1].body.apply_impulse(&(-j), &centroid);
         self.bodies[i2].body.apply_impulse(&j, &centroid);
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);

@@ -6,12 +6,54 @@ use super::{Pair, World, NORMAL_DEPTH, TIME_TOLERANCE};
 use crate::bisect::bisect;
 use crate::body::RigidBody;
 use crate::contact::{
-    CentroidMode, NormalMode, MAX_DEPTH_OF_PENETRATION, NORMAL_COLLAPSE, NORMAL_PROBES,
-    TYPICAL_DEPTH_OF_PENETRATION,
+    CentroidMode, NormalMode, MAX_DEPTH_OF_PENETRATION, NORMAL_COLLAPSE, NORMAL_FOOTPRINT,
+    NORMAL_PROBES, TYPICAL_DEPTH_OF_PENETRATION,
 };
 use crate::math::{Matrix, Point, Real, Vector};
 use crate::overlap::{overlap_region, OverlapRegion};
 use crate::stiffness::{effective_mass, Face};
+
+/// The footprint search's time tolerance (s): 40 um of approach at 40 m/s.
+const FOOTPRINT_TOLERANCE: Real = 1e-6;
+
+/// The overlap's footprint seen from above (m^2): the extent of the region S along the
+/// horizontal approach direction a times its extent along z x a. a is the horizontal part
+/// of body 1's point velocity relative to body 2's at the centre of S's box, or of the line
+/// from body 1's CG to body 2's when that is (nearly) zero. 0 for an empty region.
+pub(super) fn footprint(region: &OverlapRegion, b1: &RigidBody, b2: &RigidBody) -> Real {
+    let Some(first) = region.points.first() else {
+        return 0.0;
+    };
+    let (mut lo, mut hi) = (*first, *first);
+    for p in &region.points {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    let centre = nalgebra::center(&lo, &hi);
+    let horizontal = |v: Vector| Vector::new(v.x, v.y, 0.0);
+    let u = horizontal(b1.point_velocity(&centre) - b2.point_velocity(&centre));
+    let a = if u.norm() > 1e-9 {
+        u.normalize()
+    } else {
+        let c = horizontal(b2.position() - b1.position());
+        if c.norm() > 0.0 {
+            c.normalize()
+        } else {
+            Vector::x()
+        }
+    };
+    let across = Vector::z().cross(&a);
+    let extent = |dir: &Vector| {
+        let (mut lo, mut hi) = (Real::INFINITY, Real::NEG_INFINITY);
+        for p in &region.points {
+            let s = p.coords.dot(dir);
+            lo = lo.min(s);
+            hi = hi.max(s);
+        }
+        hi - lo
+    };
+    extent(&a) * extent(&across)
+}
 
 /// Where and how a pair touches at one instant (world frame, SI).
 #[derive(Clone, Debug)]
@@ -58,7 +100,8 @@ impl World {
     /// start (`started`), no later than `cap` s after it. Depth here is the approach since the
     /// first overlap: the fastest two surface points can approach now (m/s) times the time.
     /// The rule (docs/glancing.md, contact.rs):
-    /// 1. read it once the overlap is NORMAL_DEPTH deep,
+    /// 1. read it once the overlap is NORMAL_DEPTH deep and covers NORMAL_FOOTPRINT seen from
+    ///    above (a narrow overlap is read deeper: bisection on the footprint, to 1e-6 s);
     /// 2. but no deeper than where its vector area is still at least NORMAL_COLLAPSE of the
     ///    largest at NORMAL_PROBES shallower depths NORMAL_DEPTH / 2^k (a thin part cut through).
     pub(super) fn early_normal(
@@ -91,45 +134,81 @@ impl World {
                 .map(|n| (b1.pose().inverse_transform_vector(&n), started + dt))
         };
         let dt0 = time_for(NORMAL_DEPTH);
-        let (r0, b1_0, _) = region_at(dt0);
-        // 2. Thin parts: the vector area at shallower depths, measured along the normal of
-        // the shallowest overlap (the faces that met): cut through, a thin part's faces
-        // cancel (a wall against a car's sides) or reverse (a plate through a plate).
+        let (r0, b1_0, b2_0) = region_at(dt0);
+        // 2. Thin parts: the vector area at shallower depths. Cut through, a thin part's two
+        // faces cancel (a wall against a car's sides: the magnitude collapses) or reverse (a
+        // plate through a plate: it points back against the faces that met, the normal of
+        // the shallowest overlap). A contact that only turns (a corner developing into a
+        // scrape along the sides) is neither.
         let mut probes = Vec::with_capacity(NORMAL_PROBES);
         for k in 1..=NORMAL_PROBES {
             let dt = dt0 * (0.5 as Real).powi(k as i32);
             let (r, b1, _) = region_at(dt);
             probes.push((dt, r, b1));
         }
+        let vector = |r: &OverlapRegion| r.area_normal_1_in_2 - r.area_normal_2_in_1;
         let first_faces = probes.iter().rev().find_map(|(_, r, _)| r.volume_normal());
-        let along = |r: &OverlapRegion| {
-            first_faces.map_or(0.0, |n| {
-                (r.area_normal_1_in_2 - r.area_normal_2_in_1).dot(&n)
-            })
-        };
         let largest = probes
             .iter()
-            .map(|(_, r, _)| along(r))
-            .fold(along(&r0), Real::max);
-        let m0 = along(&r0);
-        if largest > 0.0 && m0 < NORMAL_COLLAPSE * largest {
-            let (dt, r, b1) = probes
-                .into_iter()
-                .find(|(_, r, _)| along(r) >= NORMAL_COLLAPSE * largest)
-                .expect("the largest probe qualifies");
+            .map(|(_, r, _)| vector(r).norm())
+            .fold(vector(&r0).norm(), Real::max);
+        let sound = |r: &OverlapRegion| {
+            let a = vector(r);
+            let m = a.norm();
+            m > 0.0
+                && m >= NORMAL_COLLAPSE * largest
+                && first_faces.is_none_or(|n| a.dot(&n) >= -NORMAL_COLLAPSE * m)
+        };
+        if largest > 0.0 && !sound(&r0) {
+            let m0 = vector(&r0).norm();
+            let Some((dt, r, b1)) = probes.into_iter().find(|(_, r, _)| sound(r)) else {
+                let (n, t) = reading(&r0, &b1_0, dt0)?;
+                return Some((n, t, None));
+            };
             let (n, t) = reading(&r, &b1, dt)?;
             let note = format!(
                 "contact normal read {:.2} mm deep, not at {:.0} mm: deeper, the overlap's \
-                 vector area along the faces that met had fallen to {:.0} % of its largest \
-                 (a thin part cut through)",
+                 vector area had {} (a thin part cut through)",
                 dt * speed * 1e3,
                 NORMAL_DEPTH * 1e3,
-                100.0 * m0 / largest
+                if m0 < NORMAL_COLLAPSE * largest {
+                    format!("collapsed to {:.0} % of its largest", 100.0 * m0 / largest)
+                } else {
+                    "turned back against the faces that met".to_string()
+                }
             );
             return Some((n, t, Some(note)));
         }
-        let (n, t) = reading(&r0, &b1_0, dt0)?;
-        Some((n, t, None))
+        // 1. A narrow overlap is read once it covers the footprint.
+        if r0.is_empty() || dt0 >= cap || footprint(&r0, &b1_0, &b2_0) >= NORMAL_FOOTPRINT {
+            let (n, t) = reading(&r0, &b1_0, dt0)?;
+            return Some((n, t, None));
+        }
+        let covers = |dt: Real| {
+            let (r, b1, b2) = region_at(dt);
+            footprint(&r, &b1, &b2) >= NORMAL_FOOTPRINT
+        };
+        let dt = if covers(cap) {
+            bisect(dt0, cap, FOOTPRINT_TOLERANCE, covers)
+        } else {
+            cap
+        };
+        let (r, b1, b2) = region_at(dt);
+        if r.is_empty() || !sound(&r) {
+            // The narrow overlap ended or was cut through on the way: keep the 2 cm reading.
+            let (n, t) = reading(&r0, &b1_0, dt0)?;
+            return Some((n, t, None));
+        }
+        let (n, t) = reading(&r, &b1, dt)?;
+        let note = format!(
+            "contact normal read {:.1} mm deep, where the overlap covered {:.1} cm^2 seen from \
+             above (a narrow overlap: at {:.0} mm it covered {:.1} cm^2)",
+            dt * speed * 1e3,
+            footprint(&r, &b1, &b2) * 1e4,
+            NORMAL_DEPTH * 1e3,
+            footprint(&r0, &b1_0, &b2_0) * 1e4
+        );
+        Some((n, t, Some(note)))
     }
 
     /// The automatic dt_p of pair `pi` whose timer starts at `started`: the dt in
