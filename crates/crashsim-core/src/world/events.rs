@@ -89,7 +89,7 @@ pub struct Impact {
     /// When the overlap's volume normal behind `normal` was taken (s): early in the timer
     /// for a first exchange (overlap [`NORMAL_DEPTH`](super::NORMAL_DEPTH) deep, deeper for a
     /// narrow overlap until it covers [`NORMAL_FOOTPRINT`](crate::contact::NORMAL_FOOTPRINT),
-    /// shallower for a thin part cut through; `notes` say when), else the exchange.
+    /// shallower for a thin part cut through, which `notes` record), else the exchange.
     pub normal_time: Real,
     /// Remarks on this exchange (e.g. an automatic dt_p outside the typical 10-60 ms).
     pub notes: Vec<String>,

@@ -191,13 +191,13 @@ impl World {
         let note = format!(
             "the overlap ended {:.3} ms after the first overlap, before the {:.1} ms timer \
              expired: exchanged at its deepest ({:.1} mm along the normal), {:.3} ms after the \
-             first overlap, with {:.3} % of the impulse (the share the seed's spring transmits \
-             by the time the overlap ends: (1 - cos(T/dt_p)) / (1 - cos 1))",
+             first overlap, with a share {:.3e} of the impulse (what the seed's spring \
+             transmits by the time the overlap ends: (1 - cos(T/dt_p)) / (1 - cos 1))",
             end * 1e3,
             dtp * 1e3,
             deepest * 1e3,
             at * 1e3,
-            share * 100.0
+            share
         );
         Some((started + at, share, note))
     }

@@ -93,7 +93,7 @@ impl ContactGeometry {
 
 impl World {
     /// The volume normal (body 1's frame) of pair `pi`'s overlap for a first exchange, the
-    /// time it is read, and a note when it was not read at NORMAL_DEPTH. None when the meshes
+    /// time it is read, and a note when a thin part moved it shallower. None when the meshes
     /// do not overlap at any probed depth or the normal vanishes.
     ///
     /// The motion during the timer is free, so the overlap is examined ahead, at the timer's
@@ -193,22 +193,16 @@ impl World {
         } else {
             cap
         };
-        let (r, b1, b2) = region_at(dt);
+        let (r, b1, _) = region_at(dt);
         if r.is_empty() || !sound(&r) {
             // The narrow overlap ended or was cut through on the way: keep the 2 cm reading.
             let (n, t) = reading(&r0, &b1_0, dt0)?;
             return Some((n, t, None));
         }
+        // The reading's time (Impact::normal_time) says how deep it was read; the deeper
+        // reading of a narrow overlap is the rule, not an event, so no note.
         let (n, t) = reading(&r, &b1, dt)?;
-        let note = format!(
-            "contact normal read {:.1} mm deep, where the overlap covered {:.1} cm^2 seen from \
-             above (a narrow overlap: at {:.0} mm it covered {:.1} cm^2)",
-            dt * speed * 1e3,
-            footprint(&r, &b1, &b2) * 1e4,
-            NORMAL_DEPTH * 1e3,
-            footprint(&r0, &b1_0, &b2_0) * 1e4
-        );
-        Some((n, t, Some(note)))
+        Some((n, t, None))
     }
 
     /// The automatic dt_p of pair `pi` whose timer starts at `started`: the dt in
