@@ -45,7 +45,9 @@ pub const NORMAL_FOOTPRINT: Real = 0.018;
 /// overlap: the part's two faces cancel against a long body (a 1 cm wall read 2 cm deep:
 /// from 2 x 1.8 m x 1.4 m to the noise of the side strips, the normal turned sideways and no
 /// exchange) or point back against the faces that met when both parts are thin (a plate
-/// through a plate). Then the reading moves to the deepest shallower probe that is sound.
+/// through a plate); a small part wholly inside the other has none at all (a closed
+/// surface's vector area is zero: a 1 cm cube 2 cm into a car). Then the reading moves to the
+/// deepest shallower probe that is sound.
 pub const NORMAL_COLLAPSE: Real = 0.5;
 
 /// Number of shallower depths probed for a thin part: NORMAL_DEPTH / 2^k, k = 1 ..= this

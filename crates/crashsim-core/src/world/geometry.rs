@@ -168,7 +168,7 @@ impl World {
             let (n, t) = reading(&r, &b1, dt)?;
             let note = format!(
                 "contact normal read {:.2} mm deep, not at {:.0} mm: deeper, the overlap's \
-                 vector area had {} (a thin part cut through)",
+                 vector area had {} (a thin part cut through, or a small one wholly inside)",
                 dt * speed * 1e3,
                 NORMAL_DEPTH * 1e3,
                 if m0 < NORMAL_COLLAPSE * largest {
