@@ -102,8 +102,10 @@ impl World {
     /// The rule (docs/glancing.md, contact.rs):
     /// 1. read it once the overlap is NORMAL_DEPTH deep and covers NORMAL_FOOTPRINT seen from
     ///    above (a narrow overlap is read deeper: bisection on the footprint, to 1e-6 s);
-    /// 2. but no deeper than where its vector area is still at least NORMAL_COLLAPSE of the
-    ///    largest at NORMAL_PROBES shallower depths NORMAL_DEPTH / 2^k (a thin part cut through).
+    /// 2. but no deeper than where its vector area is still sound: at least NORMAL_COLLAPSE
+    ///    of the largest at NORMAL_PROBES shallower depths NORMAL_DEPTH / 2^k, and within
+    ///    acos(-NORMAL_COLLAPSE) = 120 deg of the shallowest overlap's normal (else a thin
+    ///    part was cut through, or a small one is wholly inside: the deepest sound probe).
     pub(super) fn early_normal(
         &self,
         pi: usize,
