@@ -295,7 +295,10 @@ def test_a_mesh_wholly_inside_is_not_checkable() -> None:
     scene = cs.Scene(depth_of_penetration=0.010)
     scene.add(big, position=(0.0, 0.0, 0.7))
     scene.add(cube, position=(2.5, 0.1, 0.7), velocity=(-30.0, 0.0, 0.0))
-    result = scene.run(duration=0.03, dt=DT)
+    # 2 cm after touching, the cube is wholly inside: its vector area has vanished, so the
+    # engine reads the contact normal shallower and says so (docs/glancing.md).
+    with pytest.warns(cs.DepthOfPenetrationWarning, match="vector area had collapsed"):
+        result = scene.run(duration=0.03, dt=DT)
     cc = cross_check(result)
     assert cc.ok and not cc.failures
     assert [(c.kind, c.status) for c in cc.checks] == [

@@ -623,9 +623,10 @@ def test_three_vehicles_secondary_exchanges_grouped_with_summed_delta_v(
     assert "secondary exchange" in data["conventions"]["engagements"]
 
 
-def graze(speed: float = 80.0) -> cs.Result:
-    """Red passes blue's rear 1 cm deep at ``speed`` m/s: the overlap lasts 45 ms, shorter
-    than the 60 ms depth of penetration, so the timer expires with the meshes apart."""
+def graze(speed: float = 40.0) -> cs.Result:
+    """Red slides sideways past blue's rear 1 cm deep at ``speed`` m/s: the faces that meet
+    are parallel to the motion, so at the timer's end the vehicles are not approaching along
+    the normal and no impulse is exchanged; they separate 90 ms after the first overlap."""
     red = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red")
     blue = cs.Vehicle.box(4.6, 1.8, 1.45, mass=1500.0, name="blue")
     scene = cs.Scene(depth_of_penetration=0.060)
@@ -636,27 +637,27 @@ def graze(speed: float = 80.0) -> cs.Result:
 
 def test_first_overlap_without_an_exchange_is_stated_in_text_and_json() -> None:
     result = graze()
-    assert [c.kind for c in result.contacts] == ["first_overlap", "no_exchange"]
+    assert [c.kind for c in result.contacts] == ["first_overlap", "no_exchange", "separation"]
     report = cs.report(result)
     (e,) = report.engagements
-    assert not e.exchanged and e.primary is None and e.separation_time is None
+    assert not e.exchanged and e.primary is None
+    assert e.separation_time == pytest.approx(0.12)
     text = str(report)
     assert "No impulse exchange in this run." in text
-    assert "red-blue: first overlap at 0.015000 s, found apart when its timer expired at" in text
+    assert "red-blue: first overlap at 0.030000 s, separated at 0.120000 s" in text
     assert (
-        "NO EXCHANGE: the overlap that began at 0.015000 s ended without an impulse (timer end "
-        "0.075000 s: the meshes no longer overlap at the exchange instant)"
+        "NO EXCHANGE: the overlap that began at 0.030000 s ended without an impulse (timer end "
+        "0.090000 s: the vehicles are not approaching at the centroid along the normal"
     ) in text
     data = report.to_dict()
     jsonschema.validate(data, report_schema(), cls=jsonschema.Draft202012Validator)
     (record,) = data["engagements"]
     assert record["exchanged"] is False and record["primary"] is None
-    assert record["no_exchange"] == [
-        {
-            "time": pytest.approx(0.075),
-            "reason": "the meshes no longer overlap at the exchange instant",
-        }
-    ]
+    (no_exchange,) = record["no_exchange"]
+    assert no_exchange["time"] == pytest.approx(0.09)
+    assert no_exchange["reason"].startswith(
+        "the vehicles are not approaching at the centroid along the normal"
+    )
     assert record["delta_v"]["magnitude"] == {"red": 0.0, "blue": 0.0}
 
 

@@ -6,7 +6,7 @@ y left, z up). Quaternions are (w, x, y, z) and rotate body-frame vectors into t
 Users should not need this module: the public API is ``crashsim.Scene``.
 """
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any, final
 
 import numpy as np
@@ -23,10 +23,13 @@ __all__ = [
     "SimulationError",
     "World",
     "__version__",
+    "dynamics_defaults",
     "free_motion",
     "overlap_region",
     "shapes_overlap",
     "solid_properties",
+    "static_loads",
+    "suspension",
 ]
 
 class CrashsimError(Exception):
@@ -105,6 +108,22 @@ def solid_properties(vertices: ArrayLike, triangles: ArrayLike) -> dict[str, Any
     """The solid bounded by a closed, outward-wound mesh, unit density (no BVH is built):
     ``volume`` (m^3, signed), ``centroid`` (3,) m, ``inertia`` (3, 3) about the centroid."""
 
+def static_loads(xy: ArrayLike, weight: float) -> NDArray[np.float64]:
+    """Static loads (N) of wheels at body-frame (x, y) positions (m from the CG) carrying
+    weight (N) on level ground: each axle its share."""
+
+def suspension(
+    static_load: float, natural_frequency: float | None = None, damping_ratio: float | None = None
+) -> tuple[float, float]:
+    """(spring rate N/m, damping N s/m) of a wheel carrying static_load N sprung at
+    natural_frequency Hz (None: the engine's 1.3) with damping_ratio (None: 0.3)."""
+
+def dynamics_defaults() -> dict[str, float]:
+    """The engine's defaults for the ground, wheels and tyres (gravity, natural_frequency,
+    damping_ratio, saturation_angle, relaxation_length, rolling_resistance, tyre_friction,
+    body_friction) and its rest thresholds (rest_speed m/s, rest_yaw_rate rad/s,
+    rest_time s)."""
+
 def free_motion(
     mass: float,
     inertia: ArrayLike,
@@ -139,6 +158,45 @@ class World:
         """Add a body; returns its index. inertia: (3, 3) about the CG in the body frame (kg m^2);
         position of the CG (m), orientation (w, x, y, z), velocity (m/s) and angular velocity
         (rad/s) in the world frame."""
+    def add_obstacle(self, shape: Shape, position: ArrayLike, orientation: ArrayLike) -> int:
+        """Add a fixed obstacle (infinite mass and inertia, never moves) with its mesh at a pose
+        (position m, quaternion (w, x, y, z)); returns its index. Obstacles form no pair with
+        each other."""
+    def set_ground(
+        self,
+        *,
+        height: float = 0.0,
+        terrain: Shape | None = None,
+        tyre_friction: float = 0.8,
+        body_friction: float = 0.45,
+        zones: list[tuple[ArrayLike, float]] = ...,
+    ) -> None:
+        """Put the world on the ground (gravity along -z): the plane z = height (m), or a
+        terrain mesh in world coordinates; tyre-road and body-ground friction; friction zones
+        as ((k, 2) polygon in m, friction)."""
+    def set_vehicle(
+        self,
+        body: int,
+        *,
+        centers: ArrayLike,
+        radii: ArrayLike,
+        steerable: Sequence[bool],
+        static_loads: ArrayLike,
+        spring_rates: ArrayLike,
+        damping: ArrayLike,
+        tyre: dict[str, Any] | None = None,
+        steer: ArrayLike | None = None,
+        brake: list[tuple[str, ArrayLike] | None] = ...,
+        drive: list[ArrayLike | None] = ...,
+        switches: list[tuple[int, str, float, str, float]] = ...,
+    ) -> None:
+        """Give a body wheels: centres (n, 3) m in the body frame at static ride height, radii
+        (m), steerable flags, static loads (N), spring rates (N/m), damping (N s/m); a tyre
+        dict (model "linear" with saturation_angle rad, or "magic_formula" with b, c, e;
+        relaxation_length m, rolling_resistance); the road-wheel steering angle table (k, 2)
+        of (s, rad); per wheel braking None or ("fraction" | "deceleration", (k, 2) table of
+        (s, fraction) or (s, m/s^2)) and drive-force tables (s, N); wheel-state switches
+        (wheel, "time" | "exchange", when, "free" | "locked" | "braked", braked fraction)."""
     def set_contact(
         self,
         body1: int,
@@ -186,13 +244,16 @@ class World:
         progress: Callable[[float], object] | None = None,
         record_interval: float | None = None,
         max_history_bytes: int | None = None,
+        until_rest: bool = False,
     ) -> dict[str, Any]:
         """Advance the world by duration (s) with steps of at most dt (s). progress, if given,
         is called with the current time (s) at most every 0.1 s of wall time (Ctrl-C is
         honoured then); an exception it raises stops the run and propagates.
         record_interval (s; None: every step for runs of at most 100,000 steps, else about
         100,000 samples) spaces the kept samples; a run whose history would exceed
-        max_history_bytes (None: 2**30) is refused with a ParameterError.
+        max_history_bytes (None: 2**30) is refused with a ParameterError. until_rest stops the
+        run once every body on the ground is at rest (duration is then the longest it may
+        take; needs a ground).
 
         Returns a dict: ``t`` (k,) sample times (the kept step ends, every first overlap and
         every exchange; the state at an exchange is the one after it); ``record_interval``
@@ -213,5 +274,8 @@ class World:
         ``normal_time`` (s: when the overlap's volume normal behind ``normal`` was taken);
         ``contacts``: a list of dicts ``body1``, ``body2``, ``time``, ``kind``
         ("first_overlap", "closing_again", "separation" or "no_exchange") and ``reason``
-        (str or None).
+        (str or None); the wheels of the bodies on the ground (W in all, body after body):
+        ``wheel_counts`` (per body), ``wheel_contact`` (W, k, 3) m, ``wheel_load`` (W, k) N,
+        ``wheel_force`` (W, k, 3) N (the ground's force on the tyre), ``wheel_sliding``
+        (W, k) bool; ``rest`` per body: when it came to rest (s) or None.
         """

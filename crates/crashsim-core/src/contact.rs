@@ -9,6 +9,63 @@ pub const MAX_DEPTH_OF_PENETRATION: Real = 0.060;
 /// The seed's typical range of dt_p (s): an automatic value outside it is reported.
 pub const TYPICAL_DEPTH_OF_PENETRATION: (Real, Real) = (0.010, 0.060);
 
+/// Footprint (m^2) the overlap must cover, seen from above, before the automatic normal of a
+/// first exchange is read: its extent along the horizontal approach direction times its
+/// extent across it. Default 0.018 m^2; a constant of the model (not a pair parameter).
+///
+/// The normal is read once the overlap is [`NORMAL_DEPTH`](crate::world::NORMAL_DEPTH) deep
+/// *and* covers this footprint. A wide contact covers it by 2 cm of depth (a 0.9 m wide, 50 %
+/// offset frontal exactly: 0.02 m x 0.9 m; a full-width frontal or a side impact sooner), so
+/// its normal is read at 2 cm as before. A narrow overlap (a corner clip, a glancing pass with
+/// lateral overlap d) has to sink 0.018 / d deep first; by then its side walls, which sank into
+/// each other, turn the normal by atan(0.018 / d^2) toward the glance, so a corner clip slides
+/// off instead of stopping both vehicles. The length scale is sqrt(0.018) = 13 cm of overlap.
+/// Read at a set crushed footprint rather than a set depth, the normal is taken after about
+/// the same crush work whatever the overlap's width (CRASH3's force per width A, 35-60 kN/m,
+/// times the footprint: 0.6-1.1 kJ).
+///
+/// Measured (docs/glancing.md, benches/glancing_study.py): two boxes head-on at 20 m/s each
+/// with lateral overlap d went, with 2 cm alone, from a 0.7 m/s slide at d = 1 mm to a full
+/// stop (19.7 m/s) at 20 mm, up to 1.4 m/s per mm of d; with this footprint delta-V grows
+/// monotonically, about as d^2 (0.5 m/s at 20 mm, 11.8 at 0.1 m), to the full impact at
+/// 0.13-0.15 m, at most 0.3 m/s per mm. 0.018 m^2 is the largest footprint that keeps the
+/// DESIGN.md contract (the 50 % offset frontal's normal within 1.3 deg, read at 2 cm); the
+/// small-overlap crash data (glance-off common below about 30 % overlap) would argue for more.
+pub const NORMAL_FOOTPRINT: Real = 0.018;
+
+/// The automatic normal of a first exchange is read no deeper than where the overlap's vector
+/// area (mesh 1's surface inside 2 minus 2's inside 1, m^2) is still sound: its magnitude at
+/// least this fraction of the largest it reaches at the probed shallower depths, and its
+/// direction within acos(-this) = 120 deg of the normal of the shallowest overlap (the faces
+/// that met). Default 1/2, a constant of the model.
+///
+/// While one body dents another the vector area grows with depth (and may turn, as a corner
+/// clip develops into a scrape along the sides). Once a thin part (a wall, a plate, a post
+/// thinner than the reading depth) has been cut through, the faces that met have left the
+/// overlap: the part's two faces cancel against a long body (a 1 cm wall read 2 cm deep:
+/// from 2 x 1.8 m x 1.4 m to the noise of the side strips, the normal turned sideways and no
+/// exchange) or point back against the faces that met when both parts are thin (a plate
+/// through a plate); a small part wholly inside the other has none at all (a closed
+/// surface's vector area is zero: a 1 cm cube 2 cm into a car). Then the reading moves to the
+/// deepest shallower probe that is sound.
+pub const NORMAL_COLLAPSE: Real = 0.5;
+
+/// Number of shallower depths probed for a thin part: NORMAL_DEPTH / 2^k, k = 1 ..= this
+/// (down to 10 um for the default 12). Bounded: at most this many overlap regions per first
+/// overlap, each over an overlap no deeper than 2 cm.
+pub const NORMAL_PROBES: usize = 12;
+
+/// Instants sampled across a timer to find out whether the overlap ends before the exchange
+/// (a thin part passing through, a corner clipping a post): dt_p / this apart. Default 16
+/// (about 2 ms for 30 ms). An overlap shorter than a sample spacing is still found when it is
+/// the first one (the first sample is already apart); the end is then bisected to 1e-9 s.
+pub const OVERLAP_SAMPLES: usize = 16;
+
+/// Iterations of the golden-section search for the deepest overlap of an overlap that ends
+/// before its timer expires (after the best of [`OVERLAP_SAMPLES`] samples): the bracket
+/// shrinks to 0.618^40 = 4e-9 of two sample spacings. Bounded by construction.
+pub const DEEPEST_ITERATIONS: usize = 40;
+
 /// How long the meshes pass through each other before the exchange.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum DepthOfPenetration {

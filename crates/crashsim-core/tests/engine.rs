@@ -597,6 +597,23 @@ fn a_sideswipe_turns_closing_again_and_gets_a_secondary_exchange() {
         assert!(started_by_closing);
         assert!((imp.time - imp.first_contact_time - 0.030).abs() < 1e-12);
     }
+    // Every timer ends in an exchange or a logged reason.
+    let timers = out
+        .contacts
+        .iter()
+        .filter(|c| {
+            matches!(
+                c.kind,
+                ContactEventKind::FirstOverlap | ContactEventKind::ClosingAgain
+            )
+        })
+        .count();
+    let skipped = out
+        .contacts
+        .iter()
+        .filter(|c| matches!(c.kind, ContactEventKind::NoExchange(_)))
+        .count();
+    assert_eq!(timers, out.impacts.len() + skipped, "{:?}", out.contacts);
     for imp in &out.impacts {
         assert!(imp.energy_dissipated >= 0.0);
     }

@@ -692,21 +692,21 @@ fn static_loads<'py>(
 }
 
 /// (spring rate N/m, damping N s/m) of a wheel with `static_load` N sprung at
-/// `natural_frequency` Hz with `damping_ratio`.
+/// `natural_frequency` Hz (None: the engine's 1.3) with `damping_ratio` (None: 0.3).
 #[pyfunction]
-#[pyo3(signature = (static_load, natural_frequency = core::vehicle::DEFAULT_NATURAL_FREQUENCY, damping_ratio = core::vehicle::DEFAULT_DAMPING_RATIO))]
+#[pyo3(signature = (static_load, natural_frequency = None, damping_ratio = None))]
 fn suspension(
     static_load: f64,
-    natural_frequency: f64,
-    damping_ratio: f64,
+    natural_frequency: Option<f64>,
+    damping_ratio: Option<f64>,
 ) -> PyResult<(f64, f64)> {
     let w = core::vehicle::WheelSpec::sprung(
         core::math::Point::origin(),
         1.0,
         false,
         static_load,
-        natural_frequency,
-        damping_ratio,
+        natural_frequency.unwrap_or(core::vehicle::DEFAULT_NATURAL_FREQUENCY),
+        damping_ratio.unwrap_or(core::vehicle::DEFAULT_DAMPING_RATIO),
     )
     .map_err(errors::to_py)?;
     Ok((w.spring_rate, w.damping))

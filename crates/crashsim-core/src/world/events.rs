@@ -88,7 +88,9 @@ pub struct Impact {
     /// Effective masses of bodies 1 and 2 along n at the centroid (kg).
     pub effective_mass: [Real; 2],
     /// When the overlap's volume normal behind `normal` was taken (s): early in the timer
-    /// for a first exchange (overlap at most [`NORMAL_DEPTH`](super::NORMAL_DEPTH) deep), else the exchange.
+    /// for a first exchange (overlap [`NORMAL_DEPTH`](super::NORMAL_DEPTH) deep, deeper for a
+    /// narrow overlap until it covers [`NORMAL_FOOTPRINT`](crate::contact::NORMAL_FOOTPRINT),
+    /// shallower for a thin part cut through, which `notes` record), else the exchange.
     pub normal_time: Real,
     /// Remarks on this exchange (e.g. an automatic dt_p outside the typical 10-60 ms).
     pub notes: Vec<String>,

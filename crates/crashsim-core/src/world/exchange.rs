@@ -4,10 +4,12 @@
 
 use super::{Motion, Pair, Phase, World, TIME_TOLERANCE};
 use crate::bisect::bisect;
-use crate::contact::{DepthOfPenetration, MAX_DEPTH_OF_PENETRATION};
+use crate::contact::{
+    DepthOfPenetration, DEEPEST_ITERATIONS, MAX_DEPTH_OF_PENETRATION, OVERLAP_SAMPLES,
+};
 use crate::impulse::ImpulseProblem;
 use crate::math::{Point, Real, Vector};
-use crate::overlap::shapes_overlap;
+use crate::overlap::{overlap_region, shapes_overlap, QueryWorkspace};
 
 use super::events::{ContactEvent, ContactEventKind, Impact, RunOutput};
 
@@ -33,64 +35,220 @@ impl World {
             DepthOfPenetration::Fixed(dtp) => dtp,
             DepthOfPenetration::Auto => MAX_DEPTH_OF_PENETRATION,
         };
+        let mut early_note = None;
         let mut early_normal = match engaged_normal {
             Some(n) => Some((n, started)),
-            None => self.early_normal(pi, started, cap),
+            None => self.early_normal(pi, started, cap).map(|(n, t, note)| {
+                early_note = note;
+                (n, t)
+            }),
         };
-        let (dtp, notes) = match self.pairs[pi].params.depth_of_penetration {
+        let (dtp, mut notes) = match self.pairs[pi].params.depth_of_penetration {
             DepthOfPenetration::Fixed(dtp) => (dtp, Vec::new()),
             DepthOfPenetration::Auto => {
                 let (dtp, notes) = self.auto_depth_of_penetration(pi, started, early_normal);
                 if early_normal.is_some_and(|(_, t)| t > started + dtp) {
-                    // The exchange comes before the overlap is NORMAL_DEPTH deep: use its own.
+                    // The exchange comes before the normal's reading depth: use its own.
                     early_normal = None;
+                    early_note = None;
                 }
                 (dtp, notes)
             }
         };
-        let exchange_at = (started + dtp).max(self.time);
+        notes.extend(early_note);
+        let mut exchange_at = started + dtp;
+        let mut impulse_share = 1.0;
+        // A first overlap that ends before its timer expires is exchanged at its deepest. A
+        // secondary timer starts inside an overlap that may only shrink: it keeps its instant
+        // (and, if the meshes have separated by then, a no-exchange event says so).
+        if !secondary {
+            if let Some((deepest, share, note)) =
+                self.overlap_ends_early(pi, started, dtp, early_normal)
+            {
+                exchange_at = deepest;
+                impulse_share = share;
+                notes.push(note);
+            }
+        }
+        let exchange_at = exchange_at.max(self.time);
         self.pairs[pi].phase = Phase::Timer {
             started,
             exchange_at,
             secondary,
             notes,
             early_normal,
+            impulse_share,
         };
         if exchange_at <= self.time {
             self.exchange(pi, out);
         }
     }
 
+    /// When pair `pi`'s overlap, started at `started`, ends before its exchange at
+    /// `started + dtp`: the instant of its deepest overlap, the share of the impulse it
+    /// exchanges, and a note saying so; else None.
+    ///
+    /// The share is the seed's spring model's (eqs. 24, 28: crush C(t) = v dt_p sin(t / dt_p),
+    /// force k C, so the impulse transmitted by time t is m' v (1 - cos(t / dt_p))): what the
+    /// spring transmits by the time T the overlap ends, over what it transmits by dt_p, where
+    /// the model exchanges the whole impulse: (1 - cos(T / dt_p)) / (1 - cos 1), in (0, 1).
+    /// The contact ends before common velocity: a graze that ends at once exchanges nothing,
+    /// and the share grows continuously to 1 as the overlap lasts up to dt_p.
+    ///
+    /// The motion during the timer is free, so the future overlap is examined now: the
+    /// overlap test at OVERLAP_SAMPLES instants across the timer; at the first one apart, the
+    /// end is bisected (to TIME_TOLERANCE) from the last one overlapping. The depth is
+    /// the extent of the overlap region along the normal (the early normal turned with body 1,
+    /// else the region's own volume normal, else the approach direction at the region's
+    /// centre); its largest value over the overlap is found from OVERLAP_SAMPLES samples and
+    /// DEEPEST_ITERATIONS golden-section steps around the best one. Bounded throughout.
+    fn overlap_ends_early(
+        &self,
+        pi: usize,
+        started: Real,
+        dtp: Real,
+        early_normal: Option<(Vector, Real)>,
+    ) -> Option<(Real, Real, String)> {
+        if dtp <= 0.0 {
+            return None;
+        }
+        let pair = self.pairs[pi].clone();
+        let base = started - self.time;
+        let (s1, s2) = (
+            self.bodies[pair.body1].shape.clone(),
+            self.bodies[pair.body2].shape.clone(),
+        );
+        let (i1, i2) = (pair.body1, pair.body2);
+        let mut ws = QueryWorkspace::default();
+        let mut overlaps = |dt: Real| {
+            let (p1, p2) = (
+                self.predicted(i1, base + dt).pose(),
+                self.predicted(i2, base + dt).pose(),
+            );
+            shapes_overlap(&s1, &p1, &s2, &p2, &mut ws)
+        };
+        let step = dtp / OVERLAP_SAMPLES as Real;
+        let apart = (1..=OVERLAP_SAMPLES).find(|k| !overlaps(*k as Real * step))?;
+        let lo = (apart - 1) as Real * step;
+        let end = lo + bisect(0.0, step, TIME_TOLERANCE, |dt| !overlaps(lo + dt));
+        // The deepest overlap in (0, end).
+        let depth = |dt: Real| -> Real {
+            let (a1, a2) = (self.predicted(i1, base + dt), self.predicted(i2, base + dt));
+            let region = overlap_region(&s1, &a1.pose(), &s2, &a2.pose());
+            let Some(first) = region.points.first() else {
+                return 0.0;
+            };
+            let n = match early_normal {
+                Some((n, _)) => a1.pose() * n,
+                None => region.volume_normal().unwrap_or_else(|| {
+                    let u = a1.point_velocity(first) - a2.point_velocity(first);
+                    if u.norm() > 0.0 {
+                        u.normalize()
+                    } else {
+                        Vector::x()
+                    }
+                }),
+            };
+            let (mut lo, mut hi) = (Real::INFINITY, Real::NEG_INFINITY);
+            for p in &region.points {
+                let s = p.coords.dot(&n);
+                lo = lo.min(s);
+                hi = hi.max(s);
+            }
+            hi - lo
+        };
+        let h = end / OVERLAP_SAMPLES as Real;
+        let (mut best, mut best_depth) = (0.5 * end, Real::NEG_INFINITY);
+        for k in 1..OVERLAP_SAMPLES {
+            let d = depth(k as Real * h);
+            if d > best_depth {
+                (best, best_depth) = (k as Real * h, d);
+            }
+        }
+        // Golden-section refinement in the bracket around the best sample.
+        let (mut a, mut b) = ((best - h).max(0.0), (best + h).min(end));
+        let g = 0.5 * (5.0_f64.sqrt() - 1.0);
+        let (mut x1, mut x2) = (b - g * (b - a), a + g * (b - a));
+        let (mut f1, mut f2) = (depth(x1), depth(x2));
+        for _ in 0..DEEPEST_ITERATIONS {
+            if f1 >= f2 {
+                (b, x2, f2) = (x2, x1, f1);
+                x1 = b - g * (b - a);
+                f1 = depth(x1);
+            } else {
+                (a, x1, f1) = (x1, x2, f2);
+                x2 = a + g * (b - a);
+                f2 = depth(x2);
+            }
+        }
+        let (at, deepest) = if f1 >= f2 { (x1, f1) } else { (x2, f2) };
+        let (at, deepest) = if deepest >= best_depth {
+            (at, deepest)
+        } else {
+            (best, best_depth)
+        };
+        let share = ((1.0 - (end / dtp).cos()) / (1.0 - (1.0 as Real).cos())).min(1.0);
+        let note = format!(
+            "the overlap ended {:.3} ms after the first overlap, before the {:.1} ms timer \
+             expired: exchanged at its deepest ({:.1} mm along the normal), {:.3} ms after the \
+             first overlap, with a share {:.3e} of the impulse (what the seed's spring \
+             transmits by the time the overlap ends: (1 - cos(T/dt_p)) / (1 - cos 1))",
+            end * 1e3,
+            dtp * 1e3,
+            deepest * 1e3,
+            at * 1e3,
+            share
+        );
+        Some((started + at, share, note))
+    }
+
     /// Exchange the impulse of pair `pi` now (its timer expired).
     pub(super) fn exchange(&mut self, pi: usize, out: &mut RunOutput) {
-        let (started, secondary, notes, early_normal) = match &self.pairs[pi].phase {
+        let (started, secondary, notes, early_normal, share) = match &self.pairs[pi].phase {
             Phase::Timer {
                 started,
                 secondary,
                 notes,
                 early_normal,
+                impulse_share,
                 ..
-            } => (*started, *secondary, notes.clone(), *early_normal),
+            } => (
+                *started,
+                *secondary,
+                notes.clone(),
+                *early_normal,
+                *impulse_share,
+            ),
             _ => return,
         };
         let pair = self.pairs[pi].clone();
         let (i1, i2) = (pair.body1, pair.body2);
-        let skip = |world: &mut World, out: &mut RunOutput, why: &str, phase: Phase| {
+        let skip = |world: &mut World, out: &mut RunOutput, why: String, phase: Phase| {
             out.contacts.push(ContactEvent {
                 body1: i1,
                 body2: i2,
                 time: world.time,
-                kind: ContactEventKind::NoExchange(why.into()),
+                kind: ContactEventKind::NoExchange(why),
             });
             world.pairs[pi].phase = phase;
         };
+        let timer = (self.time - started) * 1e3;
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
         let normal = early_normal.map(|(n, t)| (b1.pose() * n, t));
         let Some(geometry) = self.contact_geometry(&pair, b1, b2, normal) else {
             skip(
                 self,
                 out,
-                "the meshes no longer overlap at the exchange instant",
+                format!(
+                    "the meshes no longer overlap at the exchange instant, {timer:.1} ms after \
+                     the {} (they separated during the timer): no impulse. A shorter \
+                     depth_of_penetration exchanges while they still overlap",
+                    if secondary {
+                        "closing again"
+                    } else {
+                        "first overlap"
+                    }
+                ),
                 Phase::Apart,
             );
             return;
@@ -118,17 +276,36 @@ impl World {
             normal_in_1: pose1.inverse_transform_vector(&normal),
         };
         let Some(solution) = problem.solve() else {
+            let depth = geometry.region_max.x - geometry.region_min.x;
             skip(
                 self,
                 out,
-                "the vehicles are not approaching at the centroid along the normal",
+                format!(
+                    "the vehicles are not approaching at the centroid along the normal \
+                     (relative normal velocity {:.3} m/s; normal ({:.3}, {:.3}, {:.3}); overlap \
+                     {:.3} m deep along it, {:.3} m wide, {timer:.1} ms after the {}): no \
+                     impulse; the pair stays engaged and gets one if it turns closing. If the \
+                     overlap represents a real impact, give the normal (or a shorter \
+                     depth_of_penetration)",
+                    u.dot(&normal),
+                    normal.x,
+                    normal.y,
+                    normal.z,
+                    depth,
+                    geometry.width,
+                    if secondary {
+                        "closing again"
+                    } else {
+                        "first overlap"
+                    }
+                ),
                 engaged,
             );
             return;
         };
         let before = [b1.state(), b2.state()];
         let energy_before = b1.kinetic_energy() + b2.kinetic_energy();
-        let j = solution.impulse;
+        let j = solution.impulse * share;
         self.bodies[i1].body.apply_impulse(&(-j), &centroid);
         self.bodies[i2].body.apply_impulse(&j, &centroid);
         for i in [i1, i2] {

@@ -6,11 +6,57 @@ use super::{Pair, World, NORMAL_DEPTH, TIME_TOLERANCE};
 use crate::bisect::bisect;
 use crate::body::RigidBody;
 use crate::contact::{
-    CentroidMode, NormalMode, MAX_DEPTH_OF_PENETRATION, TYPICAL_DEPTH_OF_PENETRATION,
+    CentroidMode, NormalMode, MAX_DEPTH_OF_PENETRATION, NORMAL_COLLAPSE, NORMAL_FOOTPRINT,
+    NORMAL_PROBES, TYPICAL_DEPTH_OF_PENETRATION,
 };
 use crate::math::{Matrix, Point, Real, Vector};
 use crate::overlap::{overlap_region, OverlapRegion};
 use crate::stiffness::{effective_mass, Face};
+
+/// The footprint search's time tolerance (s): 40 um of approach at 40 m/s.
+const FOOTPRINT_TOLERANCE: Real = 1e-6;
+/// Samples of a narrow overlap that ends before it covers NORMAL_FOOTPRINT, for its largest
+/// footprint.
+const FOOTPRINT_SAMPLES: usize = 8;
+
+/// The overlap's footprint seen from above (m^2): the extent of the region S along the
+/// horizontal approach direction a times its extent along z x a. a is the horizontal part
+/// of body 1's point velocity relative to body 2's at the centre of S's box, or of the line
+/// from body 1's CG to body 2's when that is (nearly) zero. 0 for an empty region.
+pub(super) fn footprint(region: &OverlapRegion, b1: &RigidBody, b2: &RigidBody) -> Real {
+    let Some(first) = region.points.first() else {
+        return 0.0;
+    };
+    let (mut lo, mut hi) = (*first, *first);
+    for p in &region.points {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    let centre = nalgebra::center(&lo, &hi);
+    let horizontal = |v: Vector| Vector::new(v.x, v.y, 0.0);
+    let u = horizontal(b1.point_velocity(&centre) - b2.point_velocity(&centre));
+    let a = if u.norm() > 1e-9 {
+        u.normalize()
+    } else {
+        let c = horizontal(b2.position() - b1.position());
+        if c.norm() > 0.0 {
+            c.normalize()
+        } else {
+            Vector::x()
+        }
+    };
+    let across = Vector::z().cross(&a);
+    let extent = |dir: &Vector| {
+        let (mut lo, mut hi) = (Real::INFINITY, Real::NEG_INFINITY);
+        for p in &region.points {
+            let s = p.coords.dot(dir);
+            lo = lo.min(s);
+            hi = hi.max(s);
+        }
+        hi - lo
+    };
+    extent(&a) * extent(&across)
+}
 
 /// Where and how a pair touches at one instant (world frame, SI).
 #[derive(Clone, Debug)]
@@ -55,35 +101,137 @@ impl ContactGeometry {
 }
 
 impl World {
-    /// The volume normal (body 1's frame) of pair `pi`'s overlap once it is at most
-    /// NORMAL_DEPTH deep (no later than `cap` s after `started`), and its time; None when
-    /// the meshes no longer overlap then or the normal vanishes.
+    /// The volume normal (body 1's frame) of pair `pi`'s overlap for a first exchange, the
+    /// time it is read, and a note when a thin part moved it shallower. None when the meshes
+    /// do not overlap at any probed depth or the normal vanishes.
+    ///
+    /// The motion during the timer is free, so the overlap is examined ahead, at the timer's
+    /// start (`started`), no later than `cap` s after it. Depth here is the approach since the
+    /// first overlap: the fastest two surface points can approach now (m/s) times the time.
+    /// The rule (docs/glancing.md, contact.rs):
+    /// 1. read it once the overlap is NORMAL_DEPTH deep and covers NORMAL_FOOTPRINT seen from
+    ///    above (a narrow overlap is read deeper: bisection on the footprint, to 1e-6 s; one
+    ///    that ends first, where its footprint is largest among FOOTPRINT_SAMPLES samples);
+    /// 2. but no deeper than where its vector area is still sound: at least NORMAL_COLLAPSE
+    ///    of the largest at NORMAL_PROBES shallower depths NORMAL_DEPTH / 2^k, and within
+    ///    acos(-NORMAL_COLLAPSE) = 120 deg of the shallowest overlap's normal (else a thin
+    ///    part was cut through, or a small one is wholly inside: the deepest sound probe).
     pub(super) fn early_normal(
         &self,
         pi: usize,
         started: Real,
         cap: Real,
-    ) -> Option<(Vector, Real)> {
+    ) -> Option<(Vector, Real, Option<String>)> {
         let pair = &self.pairs[pi];
         let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
-        // The fastest two surface points can approach now (m/s): over the few ms this covers
-        // the overlap grows by at most about NORMAL_DEPTH.
         let speed = (wb1.body.velocity() - wb2.body.velocity()).norm()
             + wb1.body.angular_velocity().norm() * wb1.shape.radius()
             + wb2.body.angular_velocity().norm() * wb2.shape.radius();
-        let dt = if speed > 0.0 {
-            (NORMAL_DEPTH / speed).min(cap)
-        } else {
-            cap
+        let time_for = |depth: Real| -> Real {
+            if speed > 0.0 {
+                (depth / speed).min(cap)
+            } else {
+                cap
+            }
         };
-        let offset = started - self.time + dt;
-        let (b1, b2) = (
-            self.predicted(pair.body1, offset),
-            self.predicted(pair.body2, offset),
-        );
-        let (pose1, pose2) = (b1.pose(), b2.pose());
-        let n = overlap_region(&wb1.shape, &pose1, &wb2.shape, &pose2).volume_normal()?;
-        Some((pose1.inverse_transform_vector(&n), started + dt))
+        let base = started - self.time;
+        // The overlap region `dt` s after `started`, with body 1's pose then.
+        let region_at = |dt: Real| -> (OverlapRegion, RigidBody, RigidBody) {
+            let (b1, b2) = (
+                self.predicted(pair.body1, base + dt),
+                self.predicted(pair.body2, base + dt),
+            );
+            let region = overlap_region(&wb1.shape, &b1.pose(), &wb2.shape, &b2.pose());
+            (region, b1, b2)
+        };
+        let reading = |r: &OverlapRegion, b1: &RigidBody, dt: Real| {
+            r.volume_normal()
+                .map(|n| (b1.pose().inverse_transform_vector(&n), started + dt))
+        };
+        let dt0 = time_for(NORMAL_DEPTH);
+        let (r0, b1_0, b2_0) = region_at(dt0);
+        // 2. Thin parts: the vector area at shallower depths. Cut through, a thin part's two
+        // faces cancel (a wall against a car's sides: the magnitude collapses) or reverse (a
+        // plate through a plate: it points back against the faces that met, the normal of
+        // the shallowest overlap). A contact that only turns (a corner developing into a
+        // scrape along the sides) is neither.
+        let mut probes = Vec::with_capacity(NORMAL_PROBES);
+        for k in 1..=NORMAL_PROBES {
+            let dt = dt0 * (0.5 as Real).powi(k as i32);
+            let (r, b1, _) = region_at(dt);
+            probes.push((dt, r, b1));
+        }
+        let vector = |r: &OverlapRegion| r.area_normal_1_in_2 - r.area_normal_2_in_1;
+        let first_faces = probes.iter().rev().find_map(|(_, r, _)| r.volume_normal());
+        let largest = probes
+            .iter()
+            .map(|(_, r, _)| vector(r).norm())
+            .fold(vector(&r0).norm(), Real::max);
+        let sound = |r: &OverlapRegion| {
+            let a = vector(r);
+            let m = a.norm();
+            m > 0.0
+                && m >= NORMAL_COLLAPSE * largest
+                && first_faces.is_none_or(|n| a.dot(&n) >= -NORMAL_COLLAPSE * m)
+        };
+        if largest > 0.0 && !sound(&r0) {
+            let m0 = vector(&r0).norm();
+            let Some((dt, r, b1)) = probes.into_iter().find(|(_, r, _)| sound(r)) else {
+                let (n, t) = reading(&r0, &b1_0, dt0)?;
+                return Some((n, t, None));
+            };
+            let (n, t) = reading(&r, &b1, dt)?;
+            let note = format!(
+                "contact normal read {:.2} mm deep, not at {:.0} mm: deeper, the overlap's \
+                 vector area had {} (a thin part cut through, or a small one wholly inside)",
+                dt * speed * 1e3,
+                NORMAL_DEPTH * 1e3,
+                if m0 < NORMAL_COLLAPSE * largest {
+                    format!("collapsed to {:.0} % of its largest", 100.0 * m0 / largest)
+                } else {
+                    "turned back against the faces that met".to_string()
+                }
+            );
+            return Some((n, t, Some(note)));
+        }
+        // 1. A narrow overlap is read once it covers the footprint.
+        if r0.is_empty() || dt0 >= cap || footprint(&r0, &b1_0, &b2_0) >= NORMAL_FOOTPRINT {
+            let (n, t) = reading(&r0, &b1_0, dt0)?;
+            return Some((n, t, None));
+        }
+        let covers = |dt: Real| {
+            let (r, b1, b2) = region_at(dt);
+            footprint(&r, &b1, &b2) >= NORMAL_FOOTPRINT
+        };
+        let dt = if covers(cap) {
+            bisect(dt0, cap, FOOTPRINT_TOLERANCE, covers)
+        } else if !region_at(cap).0.is_empty() {
+            cap
+        } else {
+            // The narrow overlap ends before it covers the footprint (a corner passing by):
+            // read it where its footprint is largest, among samples up to its end.
+            let end = bisect(dt0, cap, FOOTPRINT_TOLERANCE, |dt| {
+                region_at(dt).0.is_empty()
+            });
+            (1..=FOOTPRINT_SAMPLES)
+                .map(|k| dt0 + (end - dt0) * k as Real / (FOOTPRINT_SAMPLES + 1) as Real)
+                .map(|dt| {
+                    let (r, b1, b2) = region_at(dt);
+                    (dt, footprint(&r, &b1, &b2))
+                })
+                .fold((dt0, 0.0), |best, x| if x.1 > best.1 { x } else { best })
+                .0
+        };
+        let (r, b1, _) = region_at(dt);
+        if r.is_empty() || !sound(&r) {
+            // The narrow overlap was cut through on the way: keep the 2 cm reading.
+            let (n, t) = reading(&r0, &b1_0, dt0)?;
+            return Some((n, t, None));
+        }
+        // The reading's time (Impact::normal_time) says how deep it was read; the deeper
+        // reading of a narrow overlap is the rule, not an event, so no note.
+        let (n, t) = reading(&r, &b1, dt)?;
+        Some((n, t, None))
     }
 
     /// The automatic dt_p of pair `pi` whose timer starts at `started`: the dt in

@@ -54,6 +54,9 @@ enum Phase {
         notes: Vec<String>,
         /// The volume normal of the shallow overlap, body 1's frame, and when it was taken.
         early_normal: Option<(Vector, Real)>,
+        /// The share of the model's impulse exchanged, in (0, 1]: below 1 when the overlap
+        /// ends before dt_p (exchange.rs, `overlap_ends_early`).
+        impulse_share: Real,
     },
     Engaged {
         /// The centroid as material points of body 1 and body 2 (their frames, m).
