@@ -369,6 +369,45 @@ impl OnGround {
         t0: Real,
         dt: Real,
     ) -> Result<()> {
+        self.advance_visiting(body, ground, t0, dt, &mut |_| {})
+    }
+
+    /// The largest change of the CG velocity from its value now (m/s) and the largest angular
+    /// speed (rad/s) over the next `dt` s, from the states at the integration's sub-step ends,
+    /// each grown by the largest change between neighbouring ones (the motion within a
+    /// sub-step stays within it). One integration pass.
+    pub fn motion_bound(
+        &self,
+        body: &RigidBody,
+        ground: &Ground,
+        t0: Real,
+        dt: Real,
+    ) -> Result<(Real, Real)> {
+        let (v0, w0) = (body.velocity(), body.angular_velocity());
+        let (mut dv, mut w, mut step_v, mut step_w) = (0.0, w0.norm(), 0.0, 0.0);
+        let (mut prev_v, mut prev_w) = (v0, w0);
+        let (mut b, mut m) = (body.clone(), self.clone());
+        m.advance_visiting(&mut b, ground, t0, dt, &mut |s| {
+            let (v, wk) = (s.0, s.1);
+            dv = Real::max(dv, (v - v0).norm());
+            w = w.max(wk.norm());
+            step_v = Real::max(step_v, (v - prev_v).norm());
+            step_w = Real::max(step_w, (wk - prev_w).norm());
+            (prev_v, prev_w) = (v, wk);
+        })?;
+        Ok((dv + step_v, w + step_w))
+    }
+
+    /// [`OnGround::advance`], calling `visit((velocity, angular velocity))` after each
+    /// sub-step (world frame).
+    fn advance_visiting(
+        &mut self,
+        body: &mut RigidBody,
+        ground: &Ground,
+        t0: Real,
+        dt: Real,
+        visit: &mut dyn FnMut((Vector, Vector)),
+    ) -> Result<()> {
         if dt <= 0.0 {
             return Ok(());
         }
@@ -392,6 +431,9 @@ impl OnGround {
             next = next.axpy(h / 6.0, &k4);
             next.q = *Rotation::new_normalize(next.q).quaternion();
             s = next;
+            let r = Rotation::new_normalize(s.q).to_rotation_matrix();
+            let w = r.matrix() * props.inverse_inertia() * r.matrix().transpose() * s.l;
+            visit((s.v, w));
         }
         *body = RigidBody::from_momentum(
             props,

@@ -73,6 +73,16 @@ struct Pair {
     params: ContactParams,
     phase: Phase,
     exchanges: usize,
+    /// Before this time (s) the apart pair cannot touch: certified by a distance and a speed
+    /// bound that holds until then (see first_contact.rs). Forgotten when either body's
+    /// motion jumps (an exchange) or the pair leaves its apart phase.
+    clear_until: Real,
+    /// How many steps ahead (a power of two) the pair's distance query certifies: doubled
+    /// while the certificates hold for longer, back to one when the surfaces come close.
+    lookahead: Real,
+    /// The closest pair of triangles (of body 1, body 2) at the pair's last distance query:
+    /// the next query starts from it.
+    closest: Option<(u32, u32)>,
 }
 
 /// How a body moves between exchanges.
@@ -184,6 +194,9 @@ impl World {
                 params: ContactParams::default(),
                 phase: Phase::Apart,
                 exchanges: 0,
+                clear_until: Real::NEG_INFINITY,
+                lookahead: 1.0,
+                closest: None,
             });
         }
         self.bodies.push(WorldBody {
@@ -266,6 +279,16 @@ impl World {
             )));
         }
         Ok(())
+    }
+
+    /// Forgets the clearance certificates of every pair with body `i` (its motion jumped).
+    fn forget_clearance(&mut self, i: usize) {
+        for p in &mut self.pairs {
+            if p.body1 == i || p.body2 == i {
+                p.clear_until = Real::NEG_INFINITY;
+                p.lookahead = 1.0;
+            }
+        }
     }
 
     /// Body `i` as it will be `dt` s from now (or was, for dt < 0, within the current step),
