@@ -225,6 +225,8 @@ impl World {
                 (span - t) * speed * (1.0 + 1e-9) + 1e-12
             };
             let (d, near) = surface_distance_from(&s1, &p1, &s2, &p2, cap, closest, ws);
+            self.distance_queries
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             closest = near.or(closest);
             // Zero distance without a crossing is a touch (e.g. coplanar faces on the ground):
             // not an overlap, so keep advancing by the smallest step.

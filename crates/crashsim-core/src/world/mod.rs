@@ -18,6 +18,7 @@ mod first_contact;
 mod geometry;
 mod stepper;
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 use crate::body::{BodyState, MassProperties, RigidBody};
@@ -121,6 +122,9 @@ pub struct World {
     /// An error met inside a prediction that cannot return one (a wheel off the terrain in a
     /// bisection); the stepper returns it after the step.
     deferred: Mutex<Option<Error>>,
+    /// Distance queries between meshes made by the first-contact search so far (a count for
+    /// tests and benchmarks: a step with every pair out of reach makes none).
+    distance_queries: AtomicU64,
 }
 
 impl World {
@@ -132,6 +136,11 @@ impl World {
     /// Current time (s).
     pub fn time(&self) -> Real {
         self.time
+    }
+
+    /// Distance queries between meshes the first-contact search has made so far.
+    pub fn distance_queries(&self) -> u64 {
+        self.distance_queries.load(Ordering::Relaxed)
     }
 
     /// Number of bodies.
