@@ -19,7 +19,7 @@ use std::sync::Arc;
 use crate::body::{MassProperties, RigidBody};
 use crate::error::{Error, Result};
 use crate::ground::Ground;
-use crate::math::{Point, Real, Rotation, Vector};
+use crate::math::{Aabb, Point, Real, Rotation, Vector};
 use crate::shape::MeshShape;
 use crate::vehicle::{Braking, VehicleSpec, WheelAction, WheelState, GRAVITY};
 
@@ -43,14 +43,18 @@ const WHEEL_HALF_WIDTH: Real = 0.15;
 /// The points by which a body's mesh can touch the ground, body frame.
 #[derive(Clone, Debug)]
 pub struct BodyContact {
-    /// Convex-hull vertices not inside a wheel (m, body frame).
+    /// Convex-hull vertices not inside a wheel (m, body frame), by ascending z.
     points: Vec<Point>,
     /// Stiffness of each point (N/m).
     stiffness: Vec<Real>,
     /// Damping of each point (N s/m).
     damping: Vec<Real>,
-    /// Largest distance of a point from the CG (m).
-    reach: Real,
+    /// Box of the points, body frame (m): its lowest corner in the world bounds them all.
+    bounds: Aabb,
+    /// Largest |x| and |y| of a point (m): with the rotation's bottom row they bound how far
+    /// a point's world height can differ from its body z (scaled), so only the points low
+    /// enough in the body frame need a look.
+    reach_xy: [Real; 2],
 }
 
 impl BodyContact {
@@ -91,15 +95,26 @@ impl BodyContact {
             points: Vec::new(),
             stiffness: Vec::new(),
             damping: Vec::new(),
-            reach: 0.0,
+            bounds: Aabb::new_invalid(),
+            reach_xy: [0.0, 0.0],
         };
-        for (p, a) in vertices.iter().zip(&area) {
-            if *a > 0.0 && !in_wheel(p) {
-                out.points.push(*p);
-                out.stiffness.push(per_area * a);
-                out.damping.push(damping_per_area * a);
-                out.reach = out.reach.max(p.coords.norm());
-            }
+        let mut kept: Vec<(Point, Real)> = vertices
+            .iter()
+            .zip(&area)
+            .filter(|(p, a)| **a > 0.0 && !in_wheel(p))
+            .map(|(p, a)| (*p, *a))
+            .collect();
+        kept.sort_by(|a, b| a.0.z.total_cmp(&b.0.z).then(a.0.x.total_cmp(&b.0.x)));
+        out.reach_xy = [0.0, 0.0];
+        for (p, a) in kept {
+            out.points.push(p);
+            out.stiffness.push(per_area * a);
+            out.damping.push(damping_per_area * a);
+            out.bounds.take_point(p);
+            out.reach_xy = [
+                out.reach_xy[0].max(p.x.abs()),
+                out.reach_xy[1].max(p.y.abs()),
+            ];
         }
         Ok(out)
     }
@@ -316,11 +331,38 @@ impl OnGround {
             crate::ground::Surface::Plane { height } => *height,
             crate::ground::Surface::Terrain(mesh) => mesh.aabb().maxs.z,
         };
-        if x.z - c.reach > highest_ground {
+        // The lowest corner of the points' box, in the world: above the ground, nothing
+        // touches (a car on its wheels: every evaluation ends here).
+        let (lo, hi) = (c.bounds.mins, c.bounds.maxs);
+        let lowest = (0..8)
+            .map(|k| {
+                let corner = Vector::new(
+                    if k & 1 == 0 { lo.x } else { hi.x },
+                    if k & 2 == 0 { lo.y } else { hi.y },
+                    if k & 4 == 0 { lo.z } else { hi.z },
+                );
+                (r * corner).z
+            })
+            .fold(Real::INFINITY, Real::min);
+        if x.z + lowest > highest_ground {
             return;
         }
         let mu = ground.body_friction();
-        for k in 0..c.points.len() {
+        // A point's world height is x.z + r20 px + r21 py + r22 pz, at least
+        // x.z + r22 pz - slack: only points whose r22 pz is low enough can touch. The points
+        // are sorted by pz, so that is a prefix (upright) or a suffix (upside down).
+        let slack = r[(2, 0)].abs() * c.reach_xy[0] + r[(2, 1)].abs() * c.reach_xy[1];
+        let limit = highest_ground - x.z + slack;
+        let r22 = r[(2, 2)];
+        let n = c.points.len();
+        let range = if r22 > 0.0 {
+            0..c.points.partition_point(|p| r22 * p.z <= limit)
+        } else if r22 < 0.0 {
+            c.points.partition_point(|p| r22 * p.z > limit)..n
+        } else {
+            0..n
+        };
+        for k in range {
             let p = x + r * c.points[k].coords;
             if p.z > highest_ground {
                 continue;

@@ -320,6 +320,7 @@ impl World {
             }
             self.forget_clearance(i);
         }
+        self.forget_predictions();
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
         let after = [b1.state(), b2.state()];
         let energy_after = b1.kinetic_energy() + b2.kinetic_energy();

@@ -125,7 +125,23 @@ pub struct World {
     /// Distance queries between meshes made by the first-contact search so far (a count for
     /// tests and benchmarks: a step with every pair out of reach makes none).
     distance_queries: AtomicU64,
+    /// The latest predictions of bodies on the ground (each an integration of its own):
+    /// a step asks for the same ones several times (swept box, speed bound, search, advance).
+    predictions: Mutex<Vec<Prediction>>,
 }
+
+/// A body on the ground as predicted `dt` s after `time` (keys as bits: exact matches only).
+#[derive(Clone, Debug)]
+struct Prediction {
+    body: usize,
+    time: u64,
+    dt: u64,
+    state: RigidBody,
+    motion: OnGround,
+}
+
+/// How many predictions are kept.
+const PREDICTIONS_KEPT: usize = 32;
 
 impl World {
     /// An empty world at t = 0.
@@ -308,6 +324,27 @@ impl World {
         match &wb.motion {
             Motion::Free => wb.body.advanced(dt),
             Motion::Fixed => wb.body.clone(),
+            Motion::OnGround(_) => self
+                .predicted_on_ground(i, dt)
+                .map_or_else(|| wb.body.advanced(dt), |p| p.state),
+        }
+    }
+
+    /// A prediction of body `i` (on the ground) `dt` s from now, from the kept ones when
+    /// there; None (the error kept for the stepper) when a wheel leaves the terrain.
+    fn predicted_on_ground(&self, i: usize, dt: Real) -> Option<Prediction> {
+        let (time, dt_bits) = (self.time.to_bits(), dt.to_bits());
+        {
+            let kept = self.predictions.lock().expect("not poisoned");
+            if let Some(p) = kept
+                .iter()
+                .find(|p| p.body == i && p.time == time && p.dt == dt_bits)
+            {
+                return Some(p.clone());
+            }
+        }
+        let wb = &self.bodies[i];
+        match &wb.motion {
             Motion::OnGround(g) => {
                 let ground = self
                     .ground
@@ -328,11 +365,29 @@ impl World {
                 };
                 if let Err(e) = motion.advance(&mut body, ground, from, span.max(0.0)) {
                     self.deferred.lock().expect("not poisoned").get_or_insert(e);
-                    return wb.body.advanced(dt);
+                    return None;
                 }
-                body
+                let p = Prediction {
+                    body: i,
+                    time,
+                    dt: dt_bits,
+                    state: body,
+                    motion,
+                };
+                let mut kept = self.predictions.lock().expect("not poisoned");
+                if kept.len() >= PREDICTIONS_KEPT {
+                    kept.remove(0);
+                }
+                kept.push(p.clone());
+                Some(p)
             }
+            _ => None,
         }
+    }
+
+    /// Forgets every kept prediction (a body's state jumped at the current time).
+    fn forget_predictions(&self) {
+        self.predictions.lock().expect("not poisoned").clear();
     }
 
     /// Sets body `i`'s face stiffness (used by automatic dt_p, the stiffness centroid and

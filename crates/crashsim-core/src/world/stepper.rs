@@ -375,18 +375,23 @@ impl World {
 
     /// Moves every body on by `dt` s from now (> 0), as [`World::predicted`] does.
     fn move_bodies(&mut self, dt: Real) -> Result<()> {
-        let time = self.time;
-        for wb in &mut self.bodies {
+        for i in 0..self.bodies.len() {
+            if matches!(self.bodies[i].motion, Motion::OnGround(_)) {
+                // The prediction the step's search made is the same integration.
+                let p = self.predicted_on_ground(i, dt);
+                if let Some(e) = self.deferred.lock().expect("not poisoned").take() {
+                    return Err(e);
+                }
+                let p = p.expect("a failed prediction leaves its error");
+                let wb = &mut self.bodies[i];
+                wb.body = p.state;
+                wb.motion = Motion::OnGround(Box::new(p.motion));
+                continue;
+            }
+            let wb = &mut self.bodies[i];
             match &mut wb.motion {
                 Motion::Free => wb.body.advance(dt),
-                Motion::Fixed => {}
-                Motion::OnGround(g) => {
-                    let ground = self
-                        .ground
-                        .as_ref()
-                        .expect("a body on the ground has a ground");
-                    g.advance(&mut wb.body, ground, time, dt)?;
-                }
+                Motion::Fixed | Motion::OnGround(_) => {}
             }
         }
         Ok(())
