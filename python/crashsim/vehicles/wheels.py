@@ -457,10 +457,18 @@ class Wheels:
         self.source = "user"
         # What only the engine knows: CG over the wheels, positive numbers (weight scales).
         self.spec(1.0)
+        self._check(self._probe(), 1.0, "")
+
+    def _probe(self) -> _core.World:
+        """A world with a box body around these wheels, of 1 kg."""
         lo = np.min(self._centers, axis=0) - np.max(self._radii)
         hi = np.max(self._centers, axis=0) + np.max(self._radii)
-        half = np.maximum(np.abs(lo), np.abs(hi)) + 0.01
-        self._check(_probe_world(half, 1.0), 1.0, "")
+        return _probe_world(np.maximum(np.abs(lo), np.abs(hi)) + 0.01, 1.0)
+
+    def check_inputs(self, **inputs: Any) -> None:
+        """The engine's checks of driver inputs (World.set_vehicle's steer, brake, drive,
+        switches) on these wheels; the engine's ParameterError otherwise."""
+        self._probe().set_vehicle(0, **self.spec(1.0), **inputs)
 
     # -- what the engine gets --------------------------------------------------------------
 

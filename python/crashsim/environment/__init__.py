@@ -1,0 +1,8 @@
+"""What the vehicles move in: the ground (plane or terrain, friction, friction zones), the
+table of road surfaces, and fixed obstacles."""
+
+from crashsim.environment.ground import FrictionZone, Ground
+from crashsim.environment.obstacles import Obstacle
+from crashsim.environment.surfaces import Surface, surface, surfaces
+
+__all__ = ["FrictionZone", "Ground", "Obstacle", "Surface", "surface", "surfaces"]
