@@ -401,9 +401,9 @@ class Scene:
 
         position: the CG in the world (m); in a scene with a ground (set it first), (x, y)
         only (with a heading) puts the CG at its static height above the ground at (x, y):
-        the wheels' CG height, else the model frame's ground (z = 0) on the ground. heading: yaw about world z (rad;
-        0 = body x along world x), or instead orientation: a quaternion (w, x, y, z) or a 3x3
-        rotation matrix (body -> world). velocity (m/s) and angular_velocity (rad/s): world
+        the wheels' CG height, else the model frame's ground (z = 0) on the ground.
+        heading: yaw about world z (rad; 0 = body x along world x), or instead orientation: a
+        quaternion (w, x, y, z) or a 3x3 rotation matrix (body -> world). velocity (m/s) and angular_velocity (rad/s): world
         frame. inputs: the driver's (:class:`crashsim.DriverInputs`; needs wheels; used when
         the scene has a ground).
         """
