@@ -404,8 +404,8 @@ class Scene:
         the wheels' CG height, else the model frame's ground (z = 0) on the ground.
         heading: yaw about world z (rad; 0 = body x along world x), or instead orientation: a
         quaternion (w, x, y, z) or a 3x3 rotation matrix (body -> world). velocity (m/s) and
-        angular_velocity (rad/s): world frame. inputs: the driver's (:class:`crashsim.DriverInputs`; needs wheels; used when
-        the scene has a ground).
+        angular_velocity (rad/s): world frame. inputs: the driver's
+        (:class:`crashsim.DriverInputs`; needs wheels; used when the scene has a ground).
         """
         if not isinstance(vehicle, Vehicle):
             raise TypeError(f"add() needs a crashsim.Vehicle, got {type(vehicle).__name__}")

@@ -379,8 +379,8 @@ class ImpactReport:
     ``energy_split_basis`` ("stiffness", "unknown", or "rigid obstacle": a fixed obstacle
     without stiffness data for both parties takes none of the crush and energy).
     ``overlap_depth`` (along n) and ``overlap_width`` (along t), m. ``parties``: the
-    VehicleImpactReports of the moving vehicles, vehicle 1 first (one when the other party is a fixed obstacle, described by
-    ``obstacle``: its mass is infinite, so m' is the vehicle's effective mass).
+    VehicleImpactReports of the moving vehicles, vehicle 1 first (one when the other party
+    is a fixed obstacle, described by ``obstacle``: its mass is infinite, so m' is the vehicle's effective mass).
     ``notes``: the engine's remarks and the report's."""
 
     number: int
