@@ -380,8 +380,8 @@ class ImpactReport:
     without stiffness data for both parties takes none of the crush and energy).
     ``overlap_depth`` (along n) and ``overlap_width`` (along t), m. ``parties``: the
     VehicleImpactReports of the moving vehicles, vehicle 1 first (one when the other party
-    is a fixed obstacle, described by ``obstacle``: its mass is infinite, so m' is the vehicle's effective mass).
-    ``notes``: the engine's remarks and the report's."""
+    is a fixed obstacle, described by ``obstacle``: its mass is infinite, so m' is the
+    vehicle's effective mass). ``notes``: the engine's remarks and the report's."""
 
     number: int
     vehicles: tuple[str, str]
