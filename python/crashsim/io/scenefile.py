@@ -1115,10 +1115,7 @@ def _inputs(t: _Table) -> DriverInputs | None:
             r.fail(kind, f'the brake rows of "{where}" mix fraction and deceleration')
         brakes.setdefault(where, (kind, []))[1].append(row)
     if brakes:
-        kwargs["brake"] = {
-            w: _wrap(i, "brake", lambda k=k, rows=rows: getattr(Brake, k)(rows))
-            for w, (k, rows) in brakes.items()
-        }
+        kwargs["brake"] = {w: Brake(k, np.array(rows)) for w, (k, rows) in brakes.items()}
     drives: dict[str, list[tuple[float, float]]] = {}
     for r in _rows(i, "drive", DRIVE_KEYS):
         where = r.string("wheels", "all")

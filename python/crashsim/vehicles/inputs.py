@@ -89,7 +89,12 @@ class Brake:
 
 def _brake(value: Any, name: str) -> Brake:
     if isinstance(value, Brake):
-        return value
+        if value.kind not in ("fraction", "deceleration"):
+            raise ParameterError(
+                f"{name}: braking is a 'fraction' of the friction or a 'deceleration', not "
+                f"{value.kind!r}"
+            )
+        return Brake(value.kind, _table(value.table, name))
     return Brake("fraction", _table(value, name))
 
 
@@ -131,6 +136,10 @@ def _switch(value: Any, k: int) -> WheelStateSwitch:
                 "(the vehicle's first) or 'exchange N'"
             )
         at = ("exchange", int(m.group(1) or 1))
+        if at[1] < 1:
+            raise ParameterError(
+                f"wheel_states[{k}]: exchange {at[1]}: exchanges count from 1 (the first)"
+            )
     elif isinstance(at, tuple | list):
         if len(at) != 2 or at[0] != "exchange" or isinstance(at[1], bool):
             raise ParameterError(f"wheel_states[{k}]: at = {at!r}: give ('exchange', n)")
