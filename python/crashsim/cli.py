@@ -520,7 +520,7 @@ def _scene_arguments(p: argparse.ArgumentParser) -> None:
         "--duration",
         type=_duration,
         help='simulated time ("0.5 s" or seconds), overriding the file\'s run.duration (or '
-        'its run.max_duration when it runs until rest)',
+        "its run.max_duration when it runs until rest)",
     )
     p.add_argument(
         "--record-interval",
