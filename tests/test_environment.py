@@ -282,3 +282,10 @@ def test_obstacle_names_pairs_and_overlaps() -> None:
     scene.add_obstacle(cs.Obstacle.wall(3.0).renamed("inside"), (0.0, 0.0))
     with pytest.raises(cs.InitialOverlapError, match="'car' and 'inside' already overlap"):
         scene.run(0.1)
+
+
+def test_the_fcl_cross_check_re_tests_contacts_with_obstacles() -> None:
+    pytest.importorskip("fcl")
+    scene, _ = car_into_wall()
+    check = cs.cross_check(scene.run(0.3))
+    assert check.ok and len(check.checks) == 2
