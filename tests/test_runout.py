@@ -144,6 +144,10 @@ def test_a_collision_then_run_out_to_rest_with_separations_and_energy() -> None:
         assert rest is not None and rest.last_exchange == pytest.approx(result.impacts[-1].time)
         assert rest.distance_from_exchange is not None and rest.distance_from_exchange > 0
         assert rest.displacement_from_exchange <= rest.distance_from_exchange + 1e-12
+    # just before an exchange the interpolated state has the velocities before it
+    imp = result.impacts[0]
+    just_before = result.state("red", imp.time - 1e-9)["velocity"]
+    np.testing.assert_allclose(just_before, imp.velocity_before["red"], atol=1e-5)
     seps = result.separations("red")
     assert seps and seps[0].other == "blue" and seps[0].time > result.impacts[0].time
     assert seps[0].speed == pytest.approx(float(np.linalg.norm(seps[0].velocity)))

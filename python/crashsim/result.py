@@ -482,7 +482,8 @@ class Result:
         forward by torque-free motion (exact: nothing else acts between samples). With a
         ground, forces act between samples, so the state is interpolated between the two
         samples around ``time``: cubic Hermite on the position with the sampled velocities
-        as its slopes, linear on the velocities, spherical linear (slerp) on the orientation
+        as its slopes (the velocity just before an exchange at the later sample), linear on
+        the velocities, spherical linear (slerp) on the orientation
         and linear on the angular velocity (an approximation whose error shrinks with the
         sample spacing, ``record_interval``). At an exchange instant this is the state after
         the exchange; ask for ``impact.time`` minus a hair (or use ``state_before``) for the
@@ -500,7 +501,7 @@ class Result:
         if tr.t[k] == time or self.is_obstacle(vehicle):
             return sample
         if self.on_ground:
-            return self._interpolated(tr, k, float(time))
+            return self._interpolated(tr, k, float(time), self._before(_name_of(vehicle), k))
         v = self.vehicle(vehicle)
         p, q, vel, w = _core.free_motion(
             v.mass,
@@ -518,9 +519,22 @@ class Result:
             "angular_velocity": _frozen(w),
         }
 
+    def _before(self, name: str, k: int) -> tuple[Array, Array] | None:
+        """(velocity, angular velocity) of a vehicle just before an exchange at sample k + 1
+        (its samples hold the state after it), or None when no exchange of it is there."""
+        t1 = float(self.t[k + 1])
+        for imp in self.impacts:
+            if imp.time == t1 and name in imp.delta_v:
+                return imp.velocity_before[name], imp.angular_velocity_before[name]
+        return None
+
     @staticmethod
-    def _interpolated(tr: Trajectory, k: int, time: float) -> dict[str, Array]:
-        """Between samples k and k + 1: Hermite position, slerp orientation, linear rates."""
+    def _interpolated(
+        tr: Trajectory, k: int, time: float, before: tuple[Array, Array] | None = None
+    ) -> dict[str, Array]:
+        """Between samples k and k + 1: Hermite position, slerp orientation, linear rates;
+        ``before``: the rates just before an exchange at sample k + 1 (its sample holds the
+        rates after it)."""
         t0, t1 = float(tr.t[k]), float(tr.t[k + 1])
         h = t1 - t0
         s = (time - t0) / h
@@ -528,13 +542,14 @@ class Result:
         h01, h11 = -2 * s**3 + 3 * s**2, s**3 - s**2
         p0, p1 = tr.position[k], tr.position[k + 1]
         v0, v1 = tr.velocity[k], tr.velocity[k + 1]
+        w0, w1 = tr.angular_velocity[k], tr.angular_velocity[k + 1]
+        if before is not None:
+            v1, w1 = before
         return {
             "position": _frozen(h00 * p0 + h10 * h * v0 + h01 * p1 + h11 * h * v1),
             "orientation": _frozen(_slerp(tr.orientation[k], tr.orientation[k + 1], s)),
             "velocity": _frozen((1 - s) * v0 + s * v1),
-            "angular_velocity": _frozen(
-                (1 - s) * tr.angular_velocity[k] + s * tr.angular_velocity[k + 1]
-            ),
+            "angular_velocity": _frozen((1 - s) * w0 + s * w1),
         }
 
     def state_before(self, vehicle: Any, impact: Impact) -> dict[str, Array]:
