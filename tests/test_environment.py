@@ -138,7 +138,11 @@ def wheeled(name: str = "car") -> cs.Vehicle:
 
 def test_a_wheel_over_a_hole_in_the_terrain_is_named_before_the_run() -> None:
     scene = cs.Scene(ground=cs.Ground(terrain=terrain(size=40.0)))
-    scene.add(wheeled(), (19.0, 0.0), heading=0.0)  # the front axle at x = 20.1: off the sheet
+    # placed by (x, y): the front axle at x = 20.1 is off the sheet
+    with pytest.raises(cs.SceneError, match=r"'car' wheel 'front_left' at \(20.10, 0.78\) m"):
+        scene.add(wheeled(), (19.0, 0.0), heading=0.0)
+    # placed with its z: found when the world is built
+    scene.add(wheeled(), (19.0, 0.0, 0.55), heading=0.0)
     with pytest.raises(cs.SceneError, match=r"'car' wheel 'front_left' starts at \(20.10, 0.78\)"):
         scene.run(0.1)
 
@@ -151,9 +155,21 @@ def test_a_wheel_leaving_the_terrain_names_the_vehicle_and_wheel() -> None:
 
 
 def test_a_vehicle_placed_by_x_y_stands_on_the_terrain_at_its_static_height() -> None:
-    scene = cs.Scene(ground=cs.Ground(terrain=terrain(slope=0.05)))
-    scene.add(wheeled(), (4.0, 0.0), heading=0.0)
-    assert scene._placements[0].position[2] == pytest.approx(0.2 + 0.55, abs=1e-12)
+    slope = 0.05
+    scene = cs.Scene(ground=cs.Ground(terrain=terrain(slope=slope)))
+    car = wheeled()
+    scene.add(car, (4.0, 0.0), heading=0.0)
+    placed = scene._placements[0]
+    n = np.array([-slope, 0.0, 1.0]) / math.hypot(slope, 1.0)  # the terrain's normal
+    np.testing.assert_allclose(placed.position, [4.0, 0.0, 4.0 * slope] + 0.55 * n, atol=1e-12)
+    # tilted to the slope (nose up), heading kept: every tyre touches the terrain
+    r = cs.result.rotation_matrix(placed.orientation)
+    np.testing.assert_allclose(r[:, 2], n, atol=1e-12)
+    feet = placed.position + car.wheels.contact_points() @ r.T
+    np.testing.assert_allclose(feet[:, 2], slope * feet[:, 0], atol=1e-12)
+    # it stands still there (a braked car, the slope well below atan(mu))
+    scene.ground = cs.Ground(terrain=terrain(slope=slope))  # re-read: the same pose
+    np.testing.assert_allclose(scene._placements[0].position, placed.position, atol=1e-15)
     with pytest.raises(cs.SceneError, match="has no ground under it"):
         scene.add(wheeled("far"), (100.0, 0.0))
 

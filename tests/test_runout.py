@@ -364,3 +364,29 @@ def test_crashsim_run_writes_a_run_out_to_rest(tmp_path: Path) -> None:
     assert "no impulse exchange happened" in out.stdout
     report = json.loads((tmp_path / "skid-out" / "report.json").read_text(encoding="utf-8"))
     assert report["scene"]["obstacles"][0]["name"] == "pole"
+
+
+def test_a_magic_formula_tyre_skids_to_rest_like_the_friction_says() -> None:
+    tyre = cs.Tyre("magic_formula", b=10.0, c=1.9, e=0.97)
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(wheeled(tyre=tyre), (0.0, 0.0), heading=0.0, velocity=(15.0, 0.0, 0.0),
+              inputs=LOCKED)  # fmt: skip
+    rest = scene.run(until="rest").rest("car")
+    assert rest is not None
+    assert rest.displacement == pytest.approx(15.0**2 / (2 * MU * G), rel=0.02)
+
+
+def test_a_braked_car_stays_on_a_slope_below_atan_mu_and_slides_above_it() -> None:
+    import trimesh
+
+    def on_slope(slope: float) -> float:
+        h = 30.0
+        v = [[-h, -h, -slope * h], [h, -h, slope * h], [h, h, slope * h], [-h, h, -slope * h]]
+        sheet = trimesh.Trimesh(v, [[0, 1, 2], [0, 2, 3]], process=False)
+        scene = cs.Scene(ground=cs.Ground(terrain=sheet, friction=0.5))
+        scene.add(wheeled(), (0.0, 0.0), heading=0.0, inputs=LOCKED)
+        track = scene.run(2.0).trajectory("car")
+        return float(np.linalg.norm(track.position[-1, :2] - track.position[0, :2]))
+
+    assert on_slope(0.3) < 0.05  # 16.7 deg < atan(0.5) = 26.6 deg: it stays
+    assert on_slope(0.7) > 1.0  # 35 deg: it slides down

@@ -148,6 +148,10 @@ class _Placement:
     # Given as (x, y): z is the CG's static height above the ground there (re-read when the
     # scene's ground changes; without a ground the model frame's ground on z = 0).
     z_from_ground: bool = False
+    # The heading-only orientation and the (x, y) given (a vehicle on wheels on a terrain is
+    # tilted to it, which moves its CG a little off (x, y)).
+    level: Array | None = None
+    anchor: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -311,11 +315,53 @@ class Scene:
         return h
 
     def _resting(self, p: _Placement) -> _Placement:
-        """p with its CG at its static height above the ground at its (x, y)."""
-        x, y = float(p.position[0]), float(p.position[1])
-        z = self._ground_height(x, y, f"vehicle {p.vehicle.name!r}")
-        position = _read_only([x, y, z + _static_height(p.vehicle)])
-        return dataclasses.replace(p, position=position)
+        """p with its CG at its static height above the ground at its (x, y); a vehicle on
+        wheels on a terrain is also tilted so its wheels stand on the plane fitted through
+        the terrain's heights under them."""
+        x, y = (float(p.position[0]), float(p.position[1])) if p.anchor is None else p.anchor
+        what = f"vehicle {p.vehicle.name!r}"
+        level = p.orientation if p.level is None else p.level
+        wheels = p.vehicle.wheels
+        h = _static_height(p.vehicle)
+        if self._ground is None or self._ground.terrain is None or wheels is None:
+            z = self._ground_height(x, y, what)
+            return dataclasses.replace(
+                p,
+                position=_read_only([x, y, z + h]),
+                orientation=level,
+                level=level,
+                anchor=(x, y),
+            )
+        from crashsim.result import rotation_matrix
+
+        yaw = rotation_matrix(level)
+        feet = np.array([x, y]) + wheels.contact_points()[:, :2] @ yaw[:2, :2].T
+        heights = []
+        for k, (fx, fy) in enumerate(feet):
+            height = self._ground.height_at(fx, fy)
+            if height is None:
+                raise SceneError(
+                    f"{what} wheel {wheels.names[k]!r} at ({fx:.2f}, {fy:.2f}) m has no ground "
+                    "under it: the terrain does not reach there (extend it, or place the "
+                    "vehicle on it)"
+                )
+            heights.append(height)
+        # the plane z = a + b x + c y through the ground under the wheels (least squares)
+        design = np.c_[np.ones(len(feet)), feet]
+        a, b, c = np.linalg.lstsq(design, np.asarray(heights), rcond=None)[0]
+        n = np.array([-b, -c, 1.0]) / math.sqrt(b * b + c * c + 1.0)
+        axis = np.cross([0.0, 0.0, 1.0], n)
+        sin, cos = float(np.linalg.norm(axis)), float(n[2])
+        tilt = np.eye(3)
+        if sin > 0.0:
+            k_ = axis / sin
+            cross = np.array([[0, -k_[2], k_[1]], [k_[2], 0, -k_[0]], [-k_[1], k_[0], 0]])
+            tilt = np.eye(3) + sin * cross + (1.0 - cos) * cross @ cross
+        q = _quaternion_from_matrix(tilt @ yaw)
+        cg = np.array([x, y, a + b * x + c * y]) + h * n
+        return dataclasses.replace(
+            p, position=_read_only(cg), orientation=_read_only(q), level=level, anchor=(x, y)
+        )
 
     def _grounded(self, p: _ObstaclePlacement) -> _ObstaclePlacement:
         x, y = float(p.position[0]), float(p.position[1])
@@ -401,7 +447,9 @@ class Scene:
 
         position: the CG in the world (m); in a scene with a ground (set it first), (x, y)
         only (with a heading) puts the CG at its static height above the ground at (x, y):
-        the wheels' CG height, else the model frame's ground (z = 0) on the ground.
+        the wheels' CG height, else the model frame's ground (z = 0) on the ground; on a
+        terrain a vehicle on wheels is also tilted to the plane fitted through the ground
+        under its wheels (pitch and roll; the heading kept).
         heading: yaw about world z (rad; 0 = body x along world x), or instead orientation: a
         quaternion (w, x, y, z) or a 3x3 rotation matrix (body -> world). velocity (m/s) and
         angular_velocity (rad/s): world frame. inputs: the driver's
