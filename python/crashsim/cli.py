@@ -322,7 +322,8 @@ def _summary_and_json(result: Result, json_path: Path | None) -> str:
 
 
 def _simulate(args: argparse.Namespace, case: SceneFile) -> Result:
-    duration = case.run.duration if args.duration is None else args.duration
+    # until rest, --duration overrides the longest run (the file's max_duration)
+    duration = case.run.longest if args.duration is None else args.duration
     dt = case.run.dt if args.dt is None else args.dt
     bar = ProgressBar(duration, sys.stderr) if args.progress or sys.stderr.isatty() else None
     done = False
@@ -427,7 +428,11 @@ def _run(args: argparse.Namespace) -> int:
 def _pictures(result: Result, out: Path) -> list[Path]:
     plot_trajectories(result, out / TRAJECTORIES_FILE)
     paths = [out / TRAJECTORIES_FILE]
-    for k in range(len(result.impacts)):
+    for k, imp in enumerate(result.impacts):
+        if imp.obstacle is not None:
+            # plot_impact draws two vehicles; an obstacle's picture is not made yet
+            print(f"impact {k + 1} is with the fixed obstacle {imp.obstacle!r}: no picture of it")
+            continue
         path = out / f"impact-{k + 1}.png"
         plot_impact(result, path, impact=k)
         paths.append(path)
@@ -514,7 +519,8 @@ def _scene_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--duration",
         type=_duration,
-        help='simulated time ("0.5 s" or seconds), overriding the file\'s run.duration',
+        help='simulated time ("0.5 s" or seconds), overriding the file\'s run.duration (or '
+        "its run.max_duration when it runs until rest)",
     )
     p.add_argument(
         "--record-interval",
