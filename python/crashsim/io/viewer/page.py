@@ -73,12 +73,13 @@ def write_page(data: dict[str, Any], path: str | os.PathLike[str]) -> Path:
     failed write leaves no half page; returns the path."""
     out = check_output_path(path)
     text = render_page(data)
-    fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=".crashsim-", suffix=".html")
+    # a plain new file (the umask's permissions, unlike mkstemp's 0600) beside the target
+    tmp = out.parent / f".{out.name}.{os.getpid()}.tmp"
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
+        with open(tmp, "x", encoding="utf-8") as f:
             f.write(text)
         os.replace(tmp, out)
     except BaseException:
-        Path(tmp).unlink(missing_ok=True)
+        tmp.unlink(missing_ok=True)
         raise
     return out
