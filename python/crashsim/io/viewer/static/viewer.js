@@ -521,7 +521,7 @@
       document.getElementById('slider').value = span > 0 ? Math.round(((currentTime - T0()) / span) * SLIDER_STEPS) : 0;
     }
     let text = 't = ' + fmt(currentTime, 4) + ' s';
-    const near = data.impacts.find((i) => currentTime >= i.time && currentTime < i.time + HOLD);
+    const near = data.impacts.filter((i) => currentTime >= i.time && currentTime < i.time + HOLD).pop();
     if (near) text += '  (exchange ' + near.number + ' at ' + fmt(near.time, 4) + ' s)';
     document.getElementById('time').textContent = text;
     for (const c of cursors) c(currentTime);
