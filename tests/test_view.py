@@ -99,6 +99,15 @@ def test_packed_arrays_and_quantized_meshes_round_trip() -> None:
     assert np.max(np.abs(back - (v - v.mean(axis=0))[used])) <= 0.5 * max(packed["step"]) + 1e-12
 
 
+def test_three_js_and_its_licence_are_installed_with_the_package() -> None:
+    from importlib import resources
+
+    three = resources.files("crashsim.io.viewer").joinpath("static", "three")
+    assert "The MIT License" in three.joinpath("LICENSE").read_text(encoding="utf-8")
+    assert 'REVISION="111"' in three.joinpath("three.min.js").read_text(encoding="utf-8")
+    assert "OrbitControls" in three.joinpath("OrbitControls.js").read_text(encoding="utf-8")
+
+
 def test_sample_thinning_keeps_events_and_the_end() -> None:
     t = np.linspace(0.0, 1.0, 10_001)
     assert np.array_equal(keep_samples(t, [], 20_000), np.arange(t.size))
