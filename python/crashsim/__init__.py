@@ -31,6 +31,7 @@ from crashsim.errors import (
 )
 from crashsim.io import export, scenefile
 from crashsim.io.export import export_frames, export_glb
+from crashsim.io.viewer import view
 from crashsim.plots import plot_impact, plot_trajectories
 from crashsim.result import (
     ContactEvent,
@@ -100,6 +101,7 @@ __all__ = [
     "plot_trajectories",
     "export_glb",
     "export_frames",
+    "view",
     "dtp_montecarlo",
     "CrossCheck",
     "cross_check",

@@ -1097,6 +1097,8 @@ class Report:
                 "dt": None if r.dt is None else float(r.dt),
                 "end_time": float(r.t[-1]),
                 "samples": int(r.t.size),
+                # optional: a run on the ground (its states between samples are interpolated)
+                **({"on_ground": True} if getattr(r, "on_ground", False) else {}),
             },
             "impacts": [imp.to_dict() for imp in self.impacts],
             "contacts": [_plain(c.to_dict()) for c in r.contacts],
