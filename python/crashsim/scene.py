@@ -813,19 +813,19 @@ class Scene:
         return result
 
     def _named_simulation_error(self, error: SimulationError) -> SimulationError:
-        """The engine's error with the vehicles' and wheels' names (a wheel leaving the
-        terrain is named by its index only: every vehicle that has such a wheel is named)."""
-        m = re.match(r"wheel (\d+) left the terrain (.*)", str(error), re.DOTALL)
+        """The engine's error with the vehicle's and wheel's names ("body i: wheel k left the
+        terrain ...": the bodies are the placements in order)."""
+        m = re.match(r"body (\d+): wheel (\d+) left the terrain (.*)", str(error), re.DOTALL)
         if m is None:
             return error
-        k = int(m.group(1))
-        who = [
-            f"{p.vehicle.name!r} ({p.vehicle.wheels.names[k]})"
-            for p in self._placements
-            if p.vehicle.wheels is not None and k < len(p.vehicle.wheels)
-        ]
-        which = who[0] if len(who) == 1 else "one of " + ", ".join(who)
-        return SimulationError(f"a wheel of vehicle {which} left the terrain {m.group(2)}")
+        i, k = int(m.group(1)), int(m.group(2))
+        if i >= len(self._placements):
+            return error
+        vehicle = self._placements[i].vehicle
+        wheel = vehicle.wheels.names[k] if vehicle.wheels is not None else f"wheel {k}"
+        return SimulationError(
+            f"vehicle {vehicle.name!r} ({wheel}) left the terrain {m.group(3)}"
+        )
 
     def _named_overlap_error(self, error: InitialOverlapError) -> InitialOverlapError:
         """The engine's error with the vehicles' names instead of body indices."""

@@ -72,6 +72,10 @@ impl World {
                     Ok(bound) => bound,
                     Err(e) => {
                         // A wheel leaves the terrain ahead: the stepper reports it.
+                        let e = match e {
+                            Error::Simulation(m) => Error::Simulation(format!("body {i}: {m}")),
+                            other => other,
+                        };
                         self.deferred.lock().expect("not poisoned").get_or_insert(e);
                         (Real::INFINITY, Real::INFINITY)
                     }

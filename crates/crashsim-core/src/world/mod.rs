@@ -364,6 +364,10 @@ impl World {
                     (b.clone(), g0.as_ref().clone(), *t0, self.time + dt - t0)
                 };
                 if let Err(e) = motion.advance(&mut body, ground, from, span.max(0.0)) {
+                    let e = match e {
+                        Error::Simulation(m) => Error::Simulation(format!("body {i}: {m}")),
+                        other => other,
+                    };
                     self.deferred.lock().expect("not poisoned").get_or_insert(e);
                     return None;
                 }
