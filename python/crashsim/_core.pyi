@@ -64,6 +64,10 @@ class Shape:
     def vertices(self) -> NDArray[np.float64]: ...
     @property
     def triangles(self) -> NDArray[np.uint32]: ...
+    def __reduce__(
+        self,
+    ) -> tuple[type[Shape], tuple[NDArray[np.float64], NDArray[np.uint32]]]:
+        """Pickled as its vertices and triangles (the rebuilt hierarchy is the same)."""
     def aabb(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(mins, maxs) of the vertices, body frame."""
     def solid_properties(self) -> dict[str, Any]:

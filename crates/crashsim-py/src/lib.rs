@@ -130,6 +130,22 @@ impl Shape {
         Ok(w.into_pyarray(py))
     }
 
+    /// Pickling (studies send scenes to other processes): rebuilt from its vertices and
+    /// triangles, which gives the same hierarchy and so the same results bit for bit.
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(
+        Bound<'py, PyAny>,
+        (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<u32>>),
+    )> {
+        let py = slf.py();
+        let me = slf.get();
+        Ok((
+            slf.get_type().into_any(),
+            (me.vertices(py), me.triangles(py)),
+        ))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Shape(n_vertices={}, n_triangles={})",

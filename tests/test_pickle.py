@@ -1,0 +1,46 @@
+"""Scenes and results pickle (studies send them between processes), and a scene run after a
+round trip gives the same result bit for bit."""
+
+from __future__ import annotations
+
+import pickle
+
+import numpy as np
+
+import crashsim as cs
+
+
+def _scene() -> cs.Scene:
+    scene = cs.Scene()
+    red = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1500, name="red")
+    blue = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1200, name="blue")
+    scene.add(red, position=(-5.0, 0.0, 0.7), velocity=(20.0, 0.0, 0.0))
+    scene.add(blue, position=(0.0, -5.0, 0.7), heading=np.pi / 2, velocity=(0.0, 10.0, 0.0))
+    return scene
+
+
+def test_shape_round_trip_is_exact() -> None:
+    shape = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1500).shape
+    back = pickle.loads(pickle.dumps(shape))
+    assert np.array_equal(back.vertices, shape.vertices)
+    assert np.array_equal(back.triangles, shape.triangles)
+
+
+def test_scene_after_a_round_trip_runs_bit_identical() -> None:
+    scene = _scene()
+    before = scene.run(duration=0.4, dt=1e-3)
+    after = pickle.loads(pickle.dumps(scene)).run(duration=0.4, dt=1e-3)
+    assert len(before.impacts) == len(after.impacts) == 1
+    for name in ("red", "blue"):
+        a, b = before.trajectory(name), after.trajectory(name)
+        assert np.array_equal(a.position, b.position)
+        assert np.array_equal(a.orientation, b.orientation)
+    assert np.array_equal(before.impacts[0].delta_v["red"], after.impacts[0].delta_v["red"])
+
+
+def test_result_round_trip_keeps_its_figures() -> None:
+    result = _scene().run(duration=0.4, dt=1e-3)
+    back = pickle.loads(pickle.dumps(result))
+    assert np.array_equal(back.trajectory("blue").velocity, result.trajectory("blue").velocity)
+    assert back.impacts[0].time == result.impacts[0].time
+    assert np.array_equal(back.impacts[0].centroid, result.impacts[0].centroid)
