@@ -482,3 +482,138 @@ fn separated_steps_make_no_mesh_query() {
     eprintln!("{q} distance queries in 2000 steps at rest 5 cm apart");
     assert!(q > 0 && q < 100, "{q}");
 }
+
+/// The linear single-track model with first-order tyre lag (relaxation length sigma) at a
+/// constant forward speed `u` (m/s): yaw rate (rad/s) at `times` (s) for the road-wheel
+/// angle `steer(t)` (rad). Axle cornering stiffnesses from the static axle loads, as the
+/// reconstruction tyre's (mu Fz / alpha_sat).
+fn single_track_yaw_rate(
+    u: Real,
+    sigma: Real,
+    steer: &dyn Fn(Real) -> Real,
+    times: &[Real],
+) -> Vec<Real> {
+    let wb = A + B;
+    let c = |axle_share: Real| 0.8 * MASS * GRAVITY * axle_share / 10f64.to_radians();
+    let (cf, cr) = (c(B / wb), c(A / wb));
+    let izz = MASS * (0.5 * wb).powi(2);
+    // State: lateral velocity v (m/s), yaw rate r (rad/s), axle forces ff, fr (N).
+    let rate = |t: Real, s: [Real; 4]| -> [Real; 4] {
+        let [v, r, ff, fr] = s;
+        let alpha_f = (v + A * r) / u - steer(t);
+        let alpha_r = (v - B * r) / u;
+        [
+            (ff + fr) / MASS - u * r,
+            (A * ff - B * fr) / izz,
+            u / sigma * (-cf * alpha_f - ff),
+            u / sigma * (-cr * alpha_r - fr),
+        ]
+    };
+    let (h, mut t, mut s): (Real, Real, [Real; 4]) = (1e-5, 0.0, [0.0; 4]);
+    let mut out = Vec::new();
+    for &target in times {
+        while t < target - 1e-12 {
+            let step = h.min(target - t);
+            let add =
+                |a: [Real; 4], k: [Real; 4], f: Real| std::array::from_fn(|i| a[i] + f * k[i]);
+            let k1 = rate(t, s);
+            let k2 = rate(t + step / 2.0, add(s, k1, step / 2.0));
+            let k3 = rate(t + step / 2.0, add(s, k2, step / 2.0));
+            let k4 = rate(t + step, add(s, k3, step));
+            s = std::array::from_fn(|i| {
+                s[i] + step / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+            });
+            t += step;
+        }
+        out.push(s[1]);
+    }
+    out
+}
+
+#[test]
+fn a_step_steer_follows_the_single_track_model_with_tyre_lag() {
+    // 20 m/s, the front wheels steered to 1.5 deg (about 0.4 g) over 0.1 s from t = 0.5 s.
+    // The tread's force must lag its slip over the relaxation length as the model's axle
+    // forces do: a damper kept at speed made it lead by 94 ms, the yaw rate reaching half its
+    // end value 47 ms early and the lateral acceleration 62 % high in the ramp.
+    let (v, delta) = (20.0, 1.5f64.to_radians());
+    let steer = move |t: Real| (((t - 0.5) / 0.1).clamp(0.0, 1.0)) * delta;
+    let inputs = DriverInputs {
+        steer: Some(Table::new("steer", &[(0.0, 0.0), (0.5, 0.0), (0.6, delta)]).unwrap()),
+        ..DriverInputs::default()
+    };
+    let mut w = World::new();
+    let state = BodyState {
+        position: Point::new(0.0, 0.0, CG_HEIGHT),
+        orientation: Rotation::identity(),
+        velocity: Vector::new(v, 0.0, 0.0),
+        angular_velocity: Vector::zeros(),
+    };
+    let i = w.add_body(car_shape(), car_props(), &state).unwrap();
+    let tyre = Tyre {
+        rolling_resistance: 0.0,
+        ..Tyre::default()
+    };
+    let sigma = tyre.relaxation_length;
+    w.set_vehicle(i, car_spec(tyre, inputs)).unwrap();
+    w.set_ground(Ground::default()).unwrap();
+    let out = w.run(1.5, 1e-3).unwrap();
+    let times = [0.55, 0.6, 0.65, 0.7, 0.8, 1.0, 1.5];
+    let model = single_track_yaw_rate(v, sigma, &steer, &times);
+    let end = *model.last().unwrap();
+    for (t, expected) in times.iter().zip(&model) {
+        let k = out.times.iter().position(|s| (s - t).abs() < 1e-9).unwrap();
+        let r = out.sample(k)[0].angular_velocity.z;
+        // 1 % of the end value (measured: within 0.03 % to 1 s, 0.15 % at 1.5 s, where the
+        // speed lost to the tyres' drag, not in the model, shows); roll, pitch and load
+        // transfer are not in the model either.
+        assert!(
+            (r - expected).abs() < 0.01 * end,
+            "t {t}: yaw rate {r} vs the model's {expected} (end {end})"
+        );
+    }
+}
+
+#[test]
+fn a_short_relaxation_length_stays_finite_at_speed() {
+    // 3 mm at 20 m/s renews the tread 6,700 times a second: classical Runge-Kutta at 1 ms
+    // diverged (NaN from 0.17 s); the sub-steps now shrink with |v_x| / sigma.
+    let inputs = DriverInputs {
+        steer: Some(Table::new("steer", &[(0.0, 0.0), (0.2, 0.02)]).unwrap()),
+        ..DriverInputs::default()
+    };
+    let run = |sigma: Real| {
+        let mut w = World::new();
+        let state = BodyState {
+            position: Point::new(0.0, 0.0, CG_HEIGHT),
+            orientation: Rotation::identity(),
+            velocity: Vector::new(20.0, 0.0, 0.0),
+            angular_velocity: Vector::zeros(),
+        };
+        let i = w.add_body(car_shape(), car_props(), &state).unwrap();
+        let tyre = Tyre {
+            relaxation_length: sigma,
+            ..Tyre::default()
+        };
+        w.set_vehicle(i, car_spec(tyre, inputs.clone())).unwrap();
+        w.set_ground(Ground::default()).unwrap();
+        w.run(1.0, 1e-3).unwrap()
+    };
+    let short = run(0.003);
+    let last = short.len() - 1;
+    let end = &short.sample(last)[0];
+    assert!(
+        end.position.coords.iter().all(|x| x.is_finite()),
+        "{:?}",
+        end.position
+    );
+    // The path hardly depends on sigma at this steer: within 5 cm of the default's.
+    let default = run(0.1);
+    let other = &default.sample(default.len() - 1)[0];
+    assert!(
+        (end.position - other.position).norm() < 0.05,
+        "{} vs {}",
+        end.position,
+        other.position
+    );
+}
