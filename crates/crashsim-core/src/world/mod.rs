@@ -84,6 +84,10 @@ struct Pair {
     /// The closest pair of triangles (of body 1, body 2) at the pair's last distance query:
     /// the next query starts from it.
     closest: Option<(u32, u32)>,
+    /// The surfaces' distance (m) at the pair's last exact query from a step's start
+    /// (infinite before any), and how many capped queries have followed it (see
+    /// first_contact.rs: GAP_FRACTION).
+    gap: (Real, u32),
 }
 
 /// How a body moves between exchanges.
@@ -222,6 +226,7 @@ impl World {
                 clear_until: Real::NEG_INFINITY,
                 lookahead: 1.0,
                 closest: None,
+                gap: (Real::INFINITY, 0),
             });
         }
         self.bodies.push(WorldBody {
