@@ -516,6 +516,11 @@ def test_the_examples_figures(examples) -> None:
     d_result = examples["runout-rollover-kerb"]
     end = rotation_matrix(d_result.trajectory("suv").orientation[-1])
     assert end[2, 2] < 0.0, "the SUV rests on its roof"
+    rolled = reports["runout-rollover-kerb"].vehicle_run_out("suv")
+    assert rolled.attitude == "on its roof"
+    assert rolled.tilt == pytest.approx(math.degrees(math.acos(end[2, 2])), abs=1e-9)
+    assert "suv ends on its roof" in str(reports["runout-rollover-kerb"])
+    assert a.vehicle_run_out("suv").attitude == "upright"
     assert reports["runout-rollover-kerb"].vehicle_run_out("suv").obstacle_impacts[0].obstacle == "kerb"
 
 

@@ -50,6 +50,7 @@ __all__ = [
 Array = NDArray[np.float64]
 
 SEPARATION, EXCHANGE, START = "separation", "exchange", "start"
+UPRIGHT = 30.0  # deg: a vehicle tilted less than this is upright, more than 180 - this on its roof
 
 
 def _deg(angle_rad: float) -> float:
@@ -126,6 +127,9 @@ class RunOutReport:
     ``rest_time`` (s, None when still moving) and ``time_to_rest`` = rest_time - start_time
     (s); ``end_time`` (s), ``end_speed`` (m/s), ``end_yaw_rate`` (deg/s); ``position`` (3,)
     m and ``end_heading`` (deg) at the end of the run (the rest position when at rest);
+    ``tilt``: the angle between the body's z axis and the vertical then (deg, 0 upright,
+    180 upside down) and ``attitude`` in words ("upright" below 30 deg, "on its roof" above
+    150 deg, "on its side" between);
     ``heading_change``: the yaw turned through from the start to the end (deg, unwrapped:
     a full spin is 360). ``distance`` (m, along the CG path) and ``displacement`` (m,
     straight). ``tyre_marks`` {wheel: TyreMarks} (empty for a vehicle without wheels);
@@ -149,6 +153,8 @@ class RunOutReport:
     end_yaw_rate: float
     position: Array
     end_heading: float
+    tilt: float
+    attitude: str
     heading_change: float
     distance: float
     displacement: float
@@ -193,6 +199,8 @@ class RunOutReport:
                 "yaw_rate_deg_s": self.end_yaw_rate,
                 "position": [float(x) for x in self.position],
                 "heading_deg": self.end_heading,
+                "tilt_deg": self.tilt,
+                "attitude": self.attitude,
             },
             "heading_change_deg": self.heading_change,
             "distance": self.distance,
@@ -216,6 +224,13 @@ def _start(result: Result, name: str) -> tuple[str, float, str | None]:
         if last in e.exchanges and e.separation_time is not None:
             return SEPARATION, float(e.separation_time), other
     return EXCHANGE, float(imp.time), other
+
+
+def _attitude(tilt: float) -> str:
+    """How a vehicle lies, from its tilt (deg): upright, on its side or on its roof."""
+    if tilt < UPRIGHT:
+        return "upright"
+    return "on its roof" if tilt > 180.0 - UPRIGHT else "on its side"
 
 
 def _obstacle_hits(result: Result, name: str) -> tuple[ObstacleHit, ...]:
@@ -268,6 +283,10 @@ def run_out(result: Result, vehicle: Any) -> RunOutReport:
     moving = speed >= dynamics_defaults()["rest_speed"]
     rest = result.rest(name)
     end_v = tr.velocity[-1]
+    from crashsim.result import rotation_matrix
+
+    up = float(rotation_matrix(tr.orientation[-1])[2, 2])  # body z . world z
+    tilt = math.degrees(math.acos(max(-1.0, min(1.0, up))))
     return RunOutReport(
         vehicle=name,
         start=kind,
@@ -287,6 +306,8 @@ def run_out(result: Result, vehicle: Any) -> RunOutReport:
         end_yaw_rate=math.degrees(float(tr.angular_velocity[-1][2])),
         position=tr.position[-1],
         end_heading=_deg(float(yaws[-1])),
+        tilt=tilt,
+        attitude=_attitude(tilt),
         heading_change=math.degrees(float(yaws[-1] - yaws[0])),
         distance=_length(path),
         displacement=float(np.linalg.norm(path[-1] - path[0])),
@@ -368,6 +389,11 @@ def run_out_lines(
         ],
     )
     for r in reports:
+        if r.attitude != "upright":
+            lines.append(
+                f"  {r.vehicle} ends {r.attitude}: its body z axis {_f(r.tilt, 1)} deg from "
+                "the vertical"
+            )
         if not r.at_rest:
             lines.append(
                 f"  {r.vehicle} did NOT reach rest: still moving at t = {_f(r.end_time, 3)} s, "
