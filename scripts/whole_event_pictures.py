@@ -11,10 +11,9 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
+import crashsim as cs
 import numpy as np
 import trimesh
-
-import crashsim as cs
 from crashsim.io.scenefile import load_scene
 from crashsim.plots import plot_trajectories
 
@@ -46,7 +45,9 @@ def setup_example() -> cs.Result:
     ground = cs.Ground(
         terrain=road,  # or a file: cs.Ground(terrain="road.ply", units="m", up="z")
         friction="dry asphalt",  # 0.8 outside the zones
-        zones=[cs.FrictionZone([(-10, -30), (70, -30), (70, -4), (-10, -4)], "grass", name="verge")],
+        zones=[
+            cs.FrictionZone([(-10, -30), (70, -30), (70, -4), (-10, -4)], "grass", name="verge")
+        ],
     )
     car = cs.Vehicle.generate("sedan", name="car")  # on its wheels: the class's axles, track
     inputs = cs.DriverInputs(

@@ -27,8 +27,8 @@ from crashsim.analysis.runout import run_out
 from crashsim.io.export import (
     GROUND_Z,
     WHEEL_WIDTH,
-    ZONE_Z,
     Z_UP_TO_Y_UP,
+    ZONE_Z,
     export_frames,
     export_glb,
     wheel_node_name,
@@ -241,9 +241,8 @@ def test_wheel_centres_follow_the_ground_and_the_steering() -> None:
     # on the plane the tyres stay on the ground: every centre one radius above it, while the
     # body pitches under braking (the hubs it carries dip and rise by cm)
     np.testing.assert_allclose(centres[..., 2], 0.3, atol=1e-9)
-    hubs = np.array(
-        [p + car.wheels.centers @ rotation_matrix(q).T for p, q in zip(tr.position, tr.orientation)]
-    )
+    poses = zip(tr.position, tr.orientation, strict=True)
+    hubs = np.array([p + car.wheels.centers @ rotation_matrix(q).T for p, q in poses])
     assert np.ptp(hubs[:, 0, 2]) > 0.02
     # the steering: the steerable (front) wheels turn with the table, the rear ones do not
     angles = result.wheel_steer("car")
@@ -393,7 +392,9 @@ def test_the_glb_wheels_follow_the_run(tmp_path: Path) -> None:
             transform = _world(glb.graph.get(wheel_node_name("car", w))[0])
             np.testing.assert_allclose(transform[:3, 3], centres[i, k], atol=1e-6)
             a = steer_angles[i, k]
-            yaw = np.array([[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]])
+            yaw = np.array(
+                [[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]]
+            )
             np.testing.assert_allclose(transform[:3, :3], body @ yaw, atol=1e-6)
     assert steer_angles[0, -1] == pytest.approx(0.08) and steer_angles[2, -1] == 0.0
     # the car climbs the terrain: the front wheels sit one radius above it, along its normal
@@ -521,7 +522,10 @@ def test_the_examples_figures(examples) -> None:
     assert rolled.tilt == pytest.approx(math.degrees(math.acos(end[2, 2])), abs=1e-9)
     assert "suv ends on its roof" in str(reports["runout-rollover-kerb"])
     assert a.vehicle_run_out("suv").attitude == "upright"
-    assert reports["runout-rollover-kerb"].vehicle_run_out("suv").obstacle_impacts[0].obstacle == "kerb"
+    assert (
+        reports["runout-rollover-kerb"].vehicle_run_out("suv").obstacle_impacts[0].obstacle
+        == "kerb"
+    )
 
 
 def test_the_rollover_lands_within_the_engine_bound(examples) -> None:
@@ -545,8 +549,15 @@ def test_the_rollover_lands_within_2_cm(examples) -> None:
 
 def test_an_example_through_the_command_line(tmp_path: Path) -> None:
     out = subprocess.run(
-        [sys.executable, "-m", "crashsim", "run", str(EXAMPLES / "runout-sedan-into-pole.toml"),
-         "--out", str(tmp_path / "o")],  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "crashsim",
+            "run",
+            str(EXAMPLES / "runout-sedan-into-pole.toml"),
+            "--out",
+            str(tmp_path / "o"),
+        ],  # fmt: skip
         capture_output=True,
         text=True,
         check=False,

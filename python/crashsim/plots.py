@@ -297,7 +297,7 @@ def _draw_vehicle(
     fill_alpha: float = 0.22,
     edge_alpha: float = 1.0,
     lw: float = 1.6,
-    ls: str = "-",
+    ls: str | tuple[float, tuple[float, ...]] = "-",
     details: bool = True,
     gid: str | None = None,
     z: float = 2.0,
@@ -1021,9 +1021,7 @@ def plot_trajectories(
         c = vehicle_colour(k)
         vehicle_handles.append(Patch(facecolor=to_rgba(c, 0.12), edgecolor=to_rgba(c, 0.6)))
         if on_ground:
-            vehicle_labels.append(
-                f"{name} every {spacing:.3g} m of travel (darker = later)"
-            )
+            vehicle_labels.append(f"{name} every {spacing:.3g} m of travel (darker = later)")
         else:
             vehicle_labels.append(f"{name} every {(times[1] - times[0]):.3g} s (darker = later)")
     vehicle_handles += [
@@ -1224,7 +1222,7 @@ def _draw_wheels_and_marks(ax: Axes, result: Result) -> list[Array]:
             ax.plot(xy[:, 0], xy[:, 1], color=c, lw=0.6, alpha=0.7, zorder=1.4)
             on = xy[~np.isnan(xy[:, 0])]
             points.append(on[:: max(1, len(on) // 200)])
-        for w, lines in result.tyre_marks(name).items():
+        for wheel, lines in result.tyre_marks(name).items():
             for line in lines:
                 ax.plot(
                     line[:, 0],
@@ -1234,7 +1232,7 @@ def _draw_wheels_and_marks(ax: Axes, result: Result) -> list[Array]:
                     alpha=0.9,
                     solid_capstyle="butt",
                     zorder=1.8,
-                    gid=f"tyre-mark:{name}:{w}",
+                    gid=f"tyre-mark:{name}:{wheel}",
                 )
     return points
 
@@ -1261,8 +1259,7 @@ def _draw_obstacles(
         x0 - OBSTACLE_REACH, y0 - OBSTACLE_REACH, x1 + OBSTACLE_REACH, y1 + OBSTACLE_REACH
     )
     busy = np.concatenate(
-        [_path_points(result)]
-        + [np.asarray(imp.centroid)[None, :2] for imp in result.impacts]
+        [_path_points(result)] + [np.asarray(imp.centroid)[None, :2] for imp in result.impacts]
     )
     shown: list[Array] = []
     for name in result.obstacles:
@@ -1290,7 +1287,13 @@ def _draw_obstacles(
             color="0.1",
             zorder=9.0,
             gid=f"obstacle:{name}",
-            bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "0.4", "lw": 0.6, "alpha": 0.85},
+            bbox={
+                "boxstyle": "round,pad=0.2",
+                "fc": "white",
+                "ec": "0.4",
+                "lw": 0.6,
+                "alpha": 0.85,
+            },
         )
     handles = [Patch(facecolor=OBSTACLE_COLOUR, edgecolor="0.1", alpha=0.9)]
     labels = ["fixed obstacle"]

@@ -786,9 +786,7 @@ def build_report(result: Result) -> Report:
         )
     impacts = [_impact_report(result, imp, i) for i, imp in enumerate(result.impacts, start=1)]
     runout = [run_out(result, n) for n in result.vehicles] if result.on_ground else []
-    return Report(
-        result=result, impacts=impacts, engagements=engagements(result), run_out=runout
-    )
+    return Report(result=result, impacts=impacts, engagements=engagements(result), run_out=runout)
 
 
 # -- the text table -------------------------------------------------------------------------

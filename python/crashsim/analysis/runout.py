@@ -326,9 +326,7 @@ def _f(x: float | None, digits: int) -> str:
     return text[1:] if text.startswith("-") and float(text) == 0.0 else text
 
 
-def run_out_lines(
-    reports: list[RunOutReport], table: Any, obstacles: bool = False
-) -> list[str]:
+def run_out_lines(reports: list[RunOutReport], table: Any, obstacles: bool = False) -> list[str]:
     """The run-out section of the text report. ``table(headers, rows)`` makes a plain table;
     ``obstacles``: the scene has fixed obstacles (their impacts are listed, "none" too)."""
     lines = [

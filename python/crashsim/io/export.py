@@ -304,9 +304,10 @@ def _ground(doc: _Gltf, result: Result) -> int:
     i0, j0 = np.floor(lo / tile).astype(int)
     i1, j1 = np.ceil(hi / tile).astype(int)
     z = base + GROUND_Z
-    parts = []
+    parts: list[tuple[Array, NDArray[np.int64], int]] = []
     for parity, rgb in enumerate(_GROUND_COLOURS):
-        verts, faces = [], []
+        verts: list[tuple[float, float, float]] = []
+        faces: list[tuple[int, int, int]] = []
         for i in range(i0, i1):
             for j in range(j0, j1):
                 if (i + j) % 2 != parity:
@@ -317,20 +318,20 @@ def _ground(doc: _Gltf, result: Result) -> int:
                 faces += [(b, b + 1, b + 2), (b, b + 2, b + 3)]  # up
         if faces:
             material = doc.material(f"ground {parity}", [*rgb, 1.0], roughness=0.95)
-            parts.append((np.array(verts), np.array(faces), material))
+            parts.append((np.array(verts), np.array(faces, dtype=np.int64), material))
     mesh = doc.mesh(f"ground ({tile:g} m tiles)", parts)
     node = doc.node({"name": "ground", "mesh": mesh})
     if ground is not None and ground.zones:
-        zones = []
+        zones: list[tuple[Array, NDArray[np.int64], int]] = []
         for k, zone in enumerate(ground.zones):
             poly = np.asarray(zone.polygon, dtype=np.float64)
             tri = _triangulate(poly)
-            verts = np.column_stack([poly, np.full(len(poly), base + ZONE_Z)])
+            corners = np.column_stack([poly, np.full(len(poly), base + ZONE_Z)])
             colour = ZONE_COLOURS[k % len(ZONE_COLOURS)]
             material = doc.material(
                 f"{zone.label(k)}, tyre friction {zone.friction:g}", _linear_rgba(colour)
             )
-            zones.append((verts, tri, material))
+            zones.append((corners, tri, material))
         doc.node({"name": "friction zones", "mesh": doc.mesh("friction zones", zones)})
     return node
 
@@ -339,7 +340,9 @@ def _triangulate(polygon: Array) -> NDArray[np.int64]:
     """Triangles (m, 3) of a simple polygon's corners (n, 2), by ear clipping, each wound
     counter-clockwise seen from above (facing +z)."""
     pts = np.asarray(polygon, dtype=np.float64)
-    area = 0.5 * float(np.sum(pts[:, 0] * np.roll(pts[:, 1], -1) - np.roll(pts[:, 0], -1) * pts[:, 1]))
+    area = 0.5 * float(
+        np.sum(pts[:, 0] * np.roll(pts[:, 1], -1) - np.roll(pts[:, 0], -1) * pts[:, 1])
+    )
     order = list(range(len(pts))) if area >= 0.0 else list(range(len(pts)))[::-1]
 
     def cross(o: int, a: int, b: int) -> float:
@@ -449,7 +452,9 @@ class _Wheels:
         p = np.asarray(s["position"], dtype=np.float64)
         q = np.asarray(s["orientation"], dtype=np.float64)
         r = rotation_matrix(q)
-        angle = 0.0 if self.steer is None else float(np.interp(t, self.steer[:, 0], self.steer[:, 1]))
+        angle = (
+            0.0 if self.steer is None else float(np.interp(t, self.steer[:, 0], self.steer[:, 1]))
+        )
         out = []
         for k in range(len(self.names)):
             b = np.array([np.interp(t, self.t, self.offsets[k, :, i]) for i in range(3)])
