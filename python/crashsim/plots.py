@@ -297,7 +297,7 @@ def _draw_vehicle(
     fill_alpha: float = 0.22,
     edge_alpha: float = 1.0,
     lw: float = 1.6,
-    ls: str = "-",
+    ls: str | tuple[float, tuple[float, ...]] = "-",
     details: bool = True,
     gid: str | None = None,
     z: float = 2.0,
@@ -331,9 +331,12 @@ def _draw_vehicle(
     ax.plot([cg[0]], [cg[1]], marker="+", ms=9, color=colour, mew=1.8, zorder=z + 3.1)
 
 
-def _label(ax: Axes, pose: _Pose, colour: str, obstacles: Array, text: str) -> None:
+def _label(
+    ax: Axes, pose: _Pose, colour: str, obstacles: Array, text: str, small: bool = False
+) -> None:
     """The vehicle's name inside its outline, at the candidate spot farthest from the
-    ``obstacles`` (world x-y points, m: arrows, paths, the centroid) so it hides none."""
+    ``obstacles`` (world x-y points, m: arrows, paths, the centroid) so it hides none;
+    ``small``: a smaller label in a dashed box (the outline at the end of a run)."""
     cand = np.array(
         [
             [fx * end, fy * pose.half_width]
@@ -354,7 +357,7 @@ def _label(ax: Axes, pose: _Pose, colour: str, obstacles: Array, text: str) -> N
         y,
         text,
         color=colour,
-        fontsize=11,
+        fontsize=9 if small else 11,
         fontweight="bold",
         ha="center",
         va="center",
@@ -364,6 +367,7 @@ def _label(ax: Axes, pose: _Pose, colour: str, obstacles: Array, text: str) -> N
             "facecolor": "white",
             "edgecolor": colour,
             "alpha": 0.85,
+            "linestyle": "--" if small else "-",
         },
     )
 
@@ -405,9 +409,14 @@ def _tilt_note(result: Result, tilts: dict[str, float]) -> str:
     big = [f"{n} {tilts[n]:.0f} deg" for n in result.vehicles if tilts.get(n, 0.0) > TILT_NOTE_DEG]
     if not big:
         return ""
+    why = (
+        "rolled or pitched on the ground"
+        if getattr(result, "on_ground", False)
+        else "no ground or tyres in the model"
+    )
     return (
-        "note: largest roll/pitch drawn: " + ", ".join(big) + " (no ground or tyres in the "
-        "model; a tilted vehicle's outline is its projection)"
+        "note: largest roll/pitch drawn: " + ", ".join(big) + f" ({why}; a tilted vehicle's "
+        "outline is its projection)"
     )
 
 
@@ -901,7 +910,16 @@ def plot_trajectories(
     at every exchange drawn bold, the CG paths (solid before the first exchange, dashed
     after), the start and end positions and every impulse centroid numbered as in
     ``result.impacts``. Writes a PNG to ``path`` when given (TRAJECTORY_FIGSIZE inches at
-    ``dpi``); returns the Figure (Agg canvas, no pyplot state)."""
+    ``dpi``); returns the Figure (Agg canvas, no pyplot state).
+
+    A run on a ground (``result.on_ground``) also shows the run-out: the outlines are spaced
+    by the distance travelled (the same for every vehicle) rather than by time, so a vehicle
+    slowing to rest does not pile them up; every wheel's path (where its tyre met the
+    ground; thin, the vehicle's colour), the tyre marks (where a contact patch slid; thick,
+    dark), each vehicle's outline at the end of the run (dashed, labelled with its rest time,
+    or "still moving"), the friction zones (tinted, with their friction in the legend) and a
+    terrain's extent; the caption gives each vehicle's rest. Fixed obstacles are drawn filled
+    (grey, named) in any run. The legend of such a run is below the plot."""
     _check_scene(result)
     if count is None:
         count = _auto_count(result)
@@ -911,22 +929,33 @@ def plot_trajectories(
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
+    on_ground = bool(getattr(result, "on_ground", False))
+    extended = on_ground or bool(result.obstacles)
     t_start, t_end = float(result.t[0]), float(result.t[-1])
     times = np.linspace(t_start, t_end, int(count))
     split = result.impacts[0].time if result.impacts else t_end
     fig = _new_figure(TRAJECTORY_FIGSIZE)
     ax = fig.add_subplot(1, 1, 1)
+    handles: list[Any] = []
+    labels: list[str] = []
+    extra_points: list[Array] = []  # world x-y (m) the view must show besides the outlines
+    if on_ground:
+        handles, labels = _draw_ground(ax, result)
+        extra_points += _draw_wheels_and_marks(ax, result)
     _draw_paths(ax, result, split)
     outlines = []
     tilts: dict[str, float] = {}
+    spacing = _outline_spacing(result, int(count)) if on_ground else 0.0
+    rests: list[str] = []
     for k, name in enumerate(result.vehicles):
         c = vehicle_colour(k)
         last: Array | None = None  # CG of the last time stamp written
-        for i, t in enumerate(times):
+        vtimes = _spaced_times(result, name, spacing) if on_ground else times
+        for i, t in enumerate(vtimes):
             pose = _Pose(result, name, float(t))
             outlines.append(pose.outline)
             tilts[name] = max(tilts.get(name, 0.0), pose.tilt)
-            share = i / (len(times) - 1)
+            share = i / max(len(vtimes) - 1, 1)
             _draw_vehicle(
                 ax,
                 pose,
@@ -958,30 +987,77 @@ def plot_trajectories(
                 outlines.append(pose.outline)
                 _draw_vehicle(ax, pose, c, fill_alpha=0.25, lw=1.8, z=4.0)
         first = _Pose(result, name, t_start)
+        if on_ground:
+            end = _Pose(result, name, t_end)
+            outlines.append(end.outline)
+            tilts[name] = max(tilts.get(name, 0.0), end.tilt)
+            rest = result.rest(name)
+            _draw_vehicle(ax, end, c, fill_alpha=0.10, lw=1.6, ls=(0, (5, 3)), z=4.5)
+            when = (
+                f"at rest, t = {rest.time:.2f} s"
+                if rest is not None
+                else f"still moving at t = {t_end:.2f} s"
+            )
+            rests.append(_rest_words(result, name))
+            moved = float(np.linalg.norm(end.position[:2] - first.position[:2]))
+            turned = abs(math.degrees(_yaw_between(first.rotation, end.rotation)))
+            if moved < 0.15 * first.length and turned < 10.0:  # one label: it hardly moved
+                _label(ax, first, c, _path_points(result), f"{name} (start; {when})")
+                continue
+            _label(ax, end, c, _path_points(result), f"{name} {when}", small=True)
         _label(ax, first, c, _path_points(result), f"{name} (start)")
+    if result.obstacles:
+        obstacle_handles, obstacle_labels, shown = _draw_obstacles(ax, result, outlines)
+        handles += obstacle_handles
+        labels += obstacle_labels
+        extra_points += shown
     centroids = np.array([np.asarray(imp.centroid)[:2] for imp in result.impacts]).reshape(-1, 2)
     for p in centroids:
         ax.plot([p[0]], [p[1]], marker="X", ms=11, mfc="gold", mec="black", zorder=9.5)
     ax.set_ylabel("world y (m)")
-    handles: list[Any] = []
-    labels: list[str] = []
+    vehicle_handles: list[Any] = []
+    vehicle_labels: list[str] = []
     for k, name in enumerate(result.vehicles):
         c = vehicle_colour(k)
-        handles.append(Patch(facecolor=to_rgba(c, 0.12), edgecolor=to_rgba(c, 0.6)))
-        labels.append(f"{name} every {(times[1] - times[0]):.3g} s (darker = later)")
-    handles += [
+        vehicle_handles.append(Patch(facecolor=to_rgba(c, 0.12), edgecolor=to_rgba(c, 0.6)))
+        if on_ground:
+            vehicle_labels.append(f"{name} every {spacing:.3g} m of travel (darker = later)")
+        else:
+            vehicle_labels.append(f"{name} every {(times[1] - times[0]):.3g} s (darker = later)")
+    vehicle_handles += [
         Patch(facecolor=to_rgba("0.3", 0.25), edgecolor="0.3", lw=1.8),
         Line2D([], [], color="0.3", lw=1.2, ls="-"),
         Line2D([], [], color="0.3", lw=1.2, ls=(0, (4, 3))),
         Line2D([], [], ls="", marker="X", ms=11, mfc="gold", mec="black"),
     ]
-    labels += [
+    vehicle_labels += [
         "at an impulse exchange (with body x axis, front chevron, CG)",
         "CG path before the first exchange",
         "CG path after it",
         "impulse centroid, numbered as the impacts in the caption",
     ]
-    ax.legend(handles, labels, loc="best", fontsize=8.5, framealpha=0.9)
+    if on_ground:
+        vehicle_handles += [
+            Patch(facecolor=to_rgba("0.3", 0.10), edgecolor="0.3", lw=1.6, ls=(0, (5, 3))),
+            Line2D([], [], color="0.3", lw=0.6, alpha=0.7),
+            Line2D([], [], color=mark_colour(0), lw=MARK_WIDTH, solid_capstyle="butt"),
+        ]
+        vehicle_labels += [
+            "at the end of the run (dashed)",
+            "wheel paths (where each tyre met the ground)",
+            "tyre marks (a tyre sliding at the friction limit)",
+        ]
+    if extended:
+        fig.legend(
+            vehicle_handles + handles,
+            vehicle_labels + labels,
+            loc="outside lower center",
+            ncols=3,
+            fontsize=8.5,
+            frameon=False,
+        )
+    else:
+        ax.legend(vehicle_handles, vehicle_labels, loc="best", fontsize=8.5, framealpha=0.9)
     summary = [
         f"{i + 1} at {imp.time:.3f} s {imp.vehicles[0]}-{imp.vehicles[1]}"
         + (" (secondary)" if imp.secondary else "")
@@ -991,10 +1067,234 @@ def plot_trajectories(
     note = _tilt_note(result, tilts)
     lines = [f"The run from above, {t_start:g} to {t_end:g} s (world frame, z up, metres)"]
     lines += _wrap(summary, "impacts: ") if summary else ["no impacts"]
+    if on_ground:
+        lines += _wrap(rests, "run-out: ")
+        lines += _wrap([_ground_words(result)], "")
     lines += _wrap([note], "") if note else []
     fig.suptitle("\n".join(lines), fontsize=11)
-    _set_view(fig, [ax], _bounds(outlines, []), 0.05)
+    _set_view(fig, [ax], _bounds(outlines, extra_points), 0.05)
     _number_points(fig, ax, centroids, [_outline_points(o) for o in outlines])
     if path is not None:
         fig.savefig(Path(path), dpi=dpi)
     return fig
+
+
+# -- the run-out on the ground -------------------------------------------------------------
+
+MARK_DARKEN = 0.6  # tyre marks: the vehicle's colour this much of the way to black
+MARK_WIDTH = 2.4  # pt
+OBSTACLE_COLOUR = "0.55"
+# Tints of the friction zones, in the order given (cycled).
+ZONE_COLOURS = ("#6cbf6c", "#6fa8dc", "#e0b050", "#b48ad6", "#e07b7b", "#7fcfc4")
+OBSTACLE_REACH = 6.0  # m: an obstacle is drawn, and widens the view, this far beyond the run
+
+
+def _outline_spacing(result: Result, count: int) -> float:
+    """The distance (m, seen from above) between a ground run's outlines: the longest CG path
+    over ``count - 1``, at least 0.2 m."""
+    longest = max(
+        float(np.sum(np.linalg.norm(np.diff(result.trajectory(n).position[:, :2], axis=0), axis=1)))
+        for n in result.vehicles
+    )
+    return max(longest / max(count - 1, 1), 0.2)
+
+
+def _spaced_times(result: Result, name: str, spacing: float) -> Array:
+    """The times at which a vehicle's CG has travelled 0, spacing, 2 spacing, ... (m, seen
+    from above), without the end of the run (drawn as the rest outline)."""
+    tr = result.trajectory(name)
+    xy = tr.position[:, :2]
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))])
+    marks = np.arange(0.0, s[-1] - 0.5 * spacing, spacing)
+    k = np.minimum(np.searchsorted(s, marks, side="left"), len(s) - 1)
+    return np.unique(tr.t[k])
+
+
+def _yaw_between(r0: Array, r1: Array) -> float:
+    """The yaw (rad) turned from body rotation r0 to r1, seen from above, in (-pi, pi]."""
+    a = math.atan2(float(r1[1, 0]), float(r1[0, 0])) - math.atan2(float(r0[1, 0]), float(r0[0, 0]))
+    return math.atan2(math.sin(a), math.cos(a))
+
+
+def _rest_words(result: Result, name: str) -> str:
+    """One vehicle's rest for the caption."""
+    from crashsim.analysis.runout import run_out
+
+    r = run_out(result, name)
+    where = f"({r.position[0]:.2f}, {r.position[1]:.2f}) m, heading {r.end_heading:.0f} deg"
+    since = {
+        "separation": "from separation",
+        "exchange": "from its last exchange",
+        "start": "from the start",
+    }[r.start]
+    if r.at_rest:
+        return (
+            f"{name} at rest at {r.rest_time:.2f} s at {where}, {r.distance:.2f} m {since} "
+            f"({r.speed:.1f} m/s)"
+        )
+    return f"{name} STILL MOVING at {r.end_time:.2f} s ({r.end_speed:.2f} m/s) at {where}"
+
+
+def _ground_words(result: Result) -> str:
+    ground = result.scene.ground if result.scene is not None else None
+    if ground is None:  # pragma: no cover - on_ground runs have one
+        return ""
+    where = (
+        f"terrain mesh ({ground.terrain_source})"
+        if ground.terrain is not None
+        else f"the plane z = {ground.height:g} m"
+    )
+    mu = f"{ground.tyre_friction:g}" + (f" ({ground.surface})" if ground.surface else "")
+    zones = f", {len(ground.zones)} friction zone(s) tinted" if ground.zones else ""
+    return f"ground: {where}, tyre-road friction {mu}{zones}"
+
+
+def _draw_ground(ax: Axes, result: Result) -> tuple[list[Any], list[str]]:
+    """The terrain's extent and the friction zones (below everything); their legend
+    entries."""
+    from matplotlib.colors import to_rgba
+    from matplotlib.patches import Patch, Polygon
+
+    ground = result.scene.ground if result.scene is not None else None
+    handles: list[Any] = []
+    labels: list[str] = []
+    if ground is None:  # pragma: no cover - on_ground runs have one
+        return handles, labels
+    if ground.terrain is not None:
+        outline = _terrain_outline(ground.terrain)
+        ax.add_patch(_patch(outline, facecolor="#f1ead8", edgecolor="#b9a77a", lw=1.0, zorder=0.2))
+        lo, hi = ground.terrain.bounds[0][2], ground.terrain.bounds[1][2]
+        handles.append(Patch(facecolor="#f1ead8", edgecolor="#b9a77a"))
+        labels.append(f"terrain seen from above (heights {lo:.2f} to {hi:.2f} m)")
+    for k, zone in enumerate(ground.zones):
+        colour = ZONE_COLOURS[k % len(ZONE_COLOURS)]
+        poly = np.asarray(zone.polygon, dtype=np.float64)
+        ax.add_patch(
+            Polygon(
+                poly,
+                closed=True,
+                facecolor=to_rgba(colour, 0.28),
+                edgecolor=to_rgba(colour, 0.9),
+                lw=1.0,
+                zorder=0.3,
+                gid=f"zone:{k}",
+            )
+        )
+        handles.append(Patch(facecolor=to_rgba(colour, 0.28), edgecolor=to_rgba(colour, 0.9)))
+        labels.append(f"{zone.label(k)}: tyre friction {zone.friction:g}")
+    return handles, labels
+
+
+def _terrain_outline(terrain: Any) -> Any:
+    """A terrain mesh seen from above: the union of its triangles (its convex hull when it has
+    more than 20,000)."""
+    import shapely
+
+    xy = np.asarray(terrain.vertices, dtype=np.float64)[:, :2]
+    faces = np.asarray(terrain.faces, dtype=np.int64)
+    if len(faces) > 20_000:
+        return shapely.convex_hull(shapely.multipoints(xy))
+    return _projected_union(xy, faces)
+
+
+def mark_colour(index: int) -> tuple[float, float, float]:
+    """The tyre marks' colour of the vehicle added ``index``-th: its colour darkened (RGB)."""
+    from matplotlib.colors import to_rgb
+
+    rgb = np.asarray(to_rgb(vehicle_colour(index)))
+    r, g, b = (1.0 - MARK_DARKEN) * rgb
+    return (float(r), float(g), float(b))
+
+
+def _draw_wheels_and_marks(ax: Axes, result: Result) -> list[Array]:
+    """Every wheel's path (thin, the vehicle's colour) and the tyre marks (thick, the
+    vehicle's colour darkened); returns the paths' points (x-y, m)."""
+    points: list[Array] = []
+    for k, name in enumerate(result.vehicles):
+        try:
+            record = result.wheels(name)
+        except SceneError:  # a vehicle without wheels
+            continue
+        c = vehicle_colour(k)
+        for w in range(len(record.names)):
+            # only where the tyre touched (a wheel in the air leaves no path)
+            xy = np.where((record.load[w] > 0.0)[:, None], record.contact[w][:, :2], np.nan)
+            ax.plot(xy[:, 0], xy[:, 1], color=c, lw=0.6, alpha=0.7, zorder=1.4)
+            on = xy[~np.isnan(xy[:, 0])]
+            points.append(on[:: max(1, len(on) // 200)])
+        for wheel, lines in result.tyre_marks(name).items():
+            for line in lines:
+                ax.plot(
+                    line[:, 0],
+                    line[:, 1],
+                    color=mark_colour(k),
+                    lw=MARK_WIDTH,
+                    alpha=0.9,
+                    solid_capstyle="butt",
+                    zorder=1.8,
+                    gid=f"tyre-mark:{name}:{wheel}",
+                )
+    return points
+
+
+def _obstacle_outline(result: Result, name: str) -> Any:
+    """A fixed obstacle's outline seen from above at its place (world x-y, m)."""
+    obstacle = result.obstacle(name)
+    position, rotation = result.pose(name, float(result.t[0]))
+    world = np.asarray(obstacle.mesh.vertices, dtype=np.float64) @ np.asarray(rotation).T
+    world += np.asarray(position)
+    return _projected_union(world[:, :2].copy(), np.asarray(obstacle.mesh.faces, dtype=np.int64))
+
+
+def _draw_obstacles(
+    ax: Axes, result: Result, outlines: list[Any]
+) -> tuple[list[Any], list[str], list[Array]]:
+    """The fixed obstacles, filled and named, as far as OBSTACLE_REACH beyond the vehicles'
+    outlines; returns legend entries and the drawn parts' points (for the view)."""
+    import shapely
+    from matplotlib.patches import Patch
+
+    x0, y0, x1, y1 = _bounds(outlines, [])
+    near = shapely.box(
+        x0 - OBSTACLE_REACH, y0 - OBSTACLE_REACH, x1 + OBSTACLE_REACH, y1 + OBSTACLE_REACH
+    )
+    busy = np.concatenate(
+        [_path_points(result)] + [np.asarray(imp.centroid)[None, :2] for imp in result.impacts]
+    )
+    shown: list[Array] = []
+    for name in result.obstacles:
+        outline = _obstacle_outline(result, name)
+        part = shapely.intersection(outline, near)
+        if part.is_empty:
+            continue
+        ax.add_patch(
+            _patch(part, facecolor=OBSTACLE_COLOUR, edgecolor="0.1", lw=1.0, alpha=0.9, zorder=1.9)
+        )
+        corners = _outline_points(part)
+        shown.append(corners)
+        # the name at the corner of the drawn part farthest from the paths and centroids
+        spots = np.vstack([corners, np.asarray(part.representative_point().coords)])
+        gap = np.min(np.linalg.norm(spots[:, None, :] - busy[None, :, :], axis=2), axis=1)
+        c = spots[int(np.argmax(gap))]
+        ax.annotate(
+            name,
+            (float(c[0]), float(c[1])),
+            xytext=(6, -6),
+            textcoords="offset points",
+            ha="left",
+            va="top",
+            fontsize=8.5,
+            color="0.1",
+            zorder=9.0,
+            gid=f"obstacle:{name}",
+            bbox={
+                "boxstyle": "round,pad=0.2",
+                "fc": "white",
+                "ec": "0.4",
+                "lw": 0.6,
+                "alpha": 0.85,
+            },
+        )
+    handles = [Patch(facecolor=OBSTACLE_COLOUR, edgecolor="0.1", alpha=0.9)]
+    labels = ["fixed obstacle"]
+    return handles, labels, shown

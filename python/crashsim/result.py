@@ -615,6 +615,59 @@ class Result:
         record = self.wheels(vehicle)
         return record.contact[self._wheel(record, wheel)]
 
+    def wheel_centres(self, vehicle: Any) -> Array:
+        """(n, k, 3) where each wheel's centre is at the sample times ``t`` (m, world), in
+        the wheels' order: the engine's wheel is massless and its tyre follows the ground,
+        so while the spring can reach the ground the centre is the tyre radius above the
+        contact point along the ground's normal (the suspension's travel shows as the
+        centre moving against the body); a wheel in the air hangs at the spring's full
+        extension (static load / rate below its static place, along the body's z). At static ride
+        height it is the body-frame centre ``Wheels.centers`` posed with the body."""
+        name = self._vehicle_name(vehicle)
+        record = self.wheels(name)
+        v = self.vehicle(name)
+        if v.wheels is None:  # pragma: no cover - a wheel record comes from wheels
+            raise SceneError(f"vehicle {name!r} has no wheels")
+        spec = v.wheels.spec(v.mass)
+        body = np.asarray(spec["centers"], dtype=np.float64)  # (n, 3) body frame, m
+        radius = np.asarray(spec["radii"], dtype=np.float64)[:, None, None]  # (n, 1, 1) m
+        droop = (  # m: the spring's extension from static ride height to no load
+            np.asarray(spec["static_loads"], dtype=np.float64)
+            / np.asarray(spec["spring_rates"], dtype=np.float64)
+        )[:, None, None]
+        tr = self.trajectory(name)
+        rot = np.array([rotation_matrix(q) for q in tr.orientation])  # (k, 3, 3)
+        hub = tr.position[None, :, :] + np.einsum("kij,nj->nki", rot, body)  # (n, k, 3)
+        d = hub - record.contact  # the ground's normal times the hub's height above it
+        h = np.linalg.norm(d, axis=2)
+        # the ground's normal points up (+z): d / |d|, turned up when the hub is below it
+        normal = np.where((h > 1e-12)[..., None], d / np.where(h > 1e-12, h, 1.0)[..., None], 0.0)
+        normal[h <= 1e-12] = (0.0, 0.0, 1.0)
+        below = normal[..., 2] < 0.0
+        normal[below] *= -1.0
+        height = np.where(below, -h, h)[..., None]  # the hub's signed height above the ground
+        touching = height <= radius + droop
+        hanging = hub - rot[None, :, :, 2] * droop  # along the body's z, the spring's axis
+        out = np.where(touching, record.contact + normal * radius, hanging)
+        return _frozen(out)
+
+    def wheel_steer(self, vehicle: Any) -> Array:
+        """(n, k) each wheel's road-wheel steering angle at the sample times ``t`` (rad, + to
+        the left, about the body z axis): the driver's steer table (linear between rows,
+        held beyond them) on the steerable wheels, 0 on the others and without inputs."""
+        name = self._vehicle_name(vehicle)
+        record = self.wheels(name)
+        v = self.vehicle(name)
+        out = np.zeros((len(record.names), len(self.t)))
+        inputs = self.scene.inputs(name) if self.scene is not None else None
+        if inputs is not None and inputs.steer is not None and v.wheels is not None:
+            table = np.asarray(inputs.steer, dtype=np.float64)
+            angle = np.interp(self.t, table[:, 0], table[:, 1])
+            for k, steers in enumerate(v.wheels.steerable):
+                if steers:
+                    out[k] = angle
+        return _frozen(out)
+
     def tyre_marks(self, vehicle: Any, min_length: float = 0.0) -> dict[str, list[Array]]:
         """The stretches where each wheel's contact patch slid at the friction limit (skid
         and yaw marks): {wheel name: [polyline (m, 3) of contact points (m, world), ...]},

@@ -37,6 +37,7 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim import _core
 from crashsim.analysis import penetration
 from crashsim.analysis.engagements import WHY_SECONDARY, Engagement, engagements
+from crashsim.analysis.runout import RunOutReport, run_out, run_out_lines
 from crashsim.errors import ParameterError, SceneError
 from crashsim.units import to_kmh, to_mph
 
@@ -52,6 +53,7 @@ __all__ = [
     "ImpactReport",
     "ObstacleImpactReport",
     "Report",
+    "RunOutReport",
     "VehicleImpactReport",
     "build_report",
     "clock_direction",
@@ -783,7 +785,8 @@ def build_report(result: Result) -> Report:
             "build the report from the Result that Scene.run returned"
         )
     impacts = [_impact_report(result, imp, i) for i, imp in enumerate(result.impacts, start=1)]
-    return Report(result=result, impacts=impacts, engagements=engagements(result))
+    runout = [run_out(result, n) for n in result.vehicles] if result.on_ground else []
+    return Report(result=result, impacts=impacts, engagements=engagements(result), run_out=runout)
 
 
 # -- the text table -------------------------------------------------------------------------
@@ -1019,19 +1022,33 @@ def _impact_lines(imp: ImpactReport, primary: int | None = None) -> list[str]:
 
 class Report:
     """The report of a run: ``impacts`` (ImpactReport list, in time order), ``result`` (the
-    Result it was built from). ``summary_table()`` / ``str(report)``: the text table;
-    ``to_dict()`` / ``to_json()`` / ``write_json(path)``: the versioned JSON report."""
+    Result it was built from), ``run_out`` (a run on a ground: each vehicle's
+    RunOutReport, from its separation to rest; crashsim.analysis.runout).
+    ``summary_table()`` / ``str(report)``: the text table; ``to_dict()`` / ``to_json()`` /
+    ``write_json(path)``: the versioned JSON report."""
 
     def __init__(
         self,
         result: Result,
         impacts: list[ImpactReport],
         engagements: list[Engagement] | None = None,
+        run_out: list[RunOutReport] | None = None,
     ) -> None:
         self.result = result
         self.impacts = list(impacts)
         #: the pairs' contacts, exchanges grouped (crashsim.analysis.engagements)
         self.engagements = list(engagements) if engagements is not None else []
+        #: each vehicle's run-out to rest (runs on a ground; empty otherwise)
+        self.run_out = list(run_out) if run_out is not None else []
+
+    def vehicle_run_out(self, name: str) -> RunOutReport:
+        """The run-out of a named vehicle (SceneError when the run had no ground)."""
+        for r in self.run_out:
+            if r.vehicle == name:
+                return r
+        if not self.run_out:
+            raise SceneError("the run had no ground: its report has no run-out")
+        raise SceneError(f"no vehicle named {name!r} in this report: {self.vehicles}")
 
     @property
     def vehicles(self) -> list[str]:
@@ -1072,6 +1089,9 @@ class Report:
         for k, imp in enumerate(self.impacts):
             lines.append("")
             lines += _impact_lines(imp, primaries.get(k))
+        if self.run_out:
+            lines.append("")
+            lines += run_out_lines(self.run_out, _table, obstacles=bool(self.result.obstacles))
         return "\n".join(lines)
 
     def __str__(self) -> str:
@@ -1103,6 +1123,8 @@ class Report:
             "impacts": [imp.to_dict() for imp in self.impacts],
             "contacts": [_plain(c.to_dict()) for c in r.contacts],
             "engagements": [_engagement_record(e) for e in self.engagements],
+            # optional: a run on a ground (schema version stays 1)
+            **({"run_out": [r.to_dict() for r in self.run_out]} if self.run_out else {}),
         }
 
     def to_json(self, include_meshes: bool = False, indent: int | None = 2) -> str:

@@ -12,6 +12,17 @@ the world and its rotation is the body -> world rotation. The ground is a checke
 square tiles at z = GROUND_Z (just below z = 0, so that the bottoms of meshes standing on
 z = 0 do not flicker against it).
 
+A run on a ground (``Result.on_ground``) writes that ground instead: the plane z = h as the
+checkerboard (GROUND_Z below it) with each friction zone as a tinted polygon just above it
+(ZONE_Z), or the terrain mesh itself (its triangles, world frame; zones are not draped on a
+terrain). Fixed obstacles are nodes with their meshes (their own frame) at their places.
+Vehicles with wheels get one node per wheel, a cylinder of the tyre's radius (axis along the
+body y): on the ground its centre follows ``Result.wheel_centres`` (the tyre on the ground,
+so the suspension's travel shows) and it turns with the body and the steering
+(``Result.wheel_steer``); without wheel records (no ground) the wheels are children of the
+vehicle's node at their static body-frame centres. The wheels do not spin (a plain
+cylinder looks the same turned).
+
 Animation: one animation "motion" with, per vehicle, a translation and a rotation sampler,
 LINEAR, quaternions in glTF's (x, y, z, w) order (crashsim's are (w, x, y, z)), times in s
 from the start of the run. Keys are at ``fps`` frames per second plus every impact's first
@@ -36,18 +47,32 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim._core import __version__
 from crashsim.errors import ParameterError, SceneError
-from crashsim.plots import VEHICLE_COLOURS
+from crashsim.plots import VEHICLE_COLOURS, ZONE_COLOURS
+from crashsim.result import rotation_matrix
 
 if TYPE_CHECKING:
     from crashsim.result import Result
 
-__all__ = ["GROUND_Z", "Z_UP_TO_Y_UP", "export_frames", "export_glb", "key_times"]
+__all__ = [
+    "GROUND_Z",
+    "ZONE_Z",
+    "Z_UP_TO_Y_UP",
+    "export_frames",
+    "export_glb",
+    "key_times",
+    "wheel_node_name",
+]
 
 Array = NDArray[np.float64]
 
 # The root node's rotation, glTF (x, y, z, w): -90 deg about x, world z -> glTF y.
 Z_UP_TO_Y_UP = (-math.sqrt(0.5), 0.0, 0.0, math.sqrt(0.5))
-GROUND_Z = -0.005  # m: the ground plane's height in the world
+GROUND_Z = -0.005  # m: the checkerboard's height in the world (below the ground's plane)
+ZONE_Z = -0.002  # m: friction zones, relative to the ground's plane (above the checkerboard)
+WHEEL_WIDTH = 0.65  # a drawn wheel's width per tyre radius (a 205/55 R16 tyre: 0.66)
+WHEEL_SECTIONS = 24  # sides of a drawn wheel's cylinder
+WHEEL_COLOUR = "#2b2b2b"
+OBSTACLE_COLOUR = "#8c8c8c"
 GROUND_MARGIN = 3.0  # m of ground beyond the vehicles' reach on every side
 MAX_TILES = 60  # per side of the ground: the tile grows (1, 2, 5, 10 ... m) to keep under it
 MIN_KEY_GAP = 1e-4  # s: a frame closer than this to an impact instant is dropped for it
@@ -63,6 +88,12 @@ _TRIANGLES = 4
 _TYPES = {1: "SCALAR", 3: "VEC3", 4: "VEC4"}
 
 _GROUND_COLOURS = ((0.62, 0.62, 0.60), (0.50, 0.50, 0.48))  # linear RGB, two tiles
+_TERRAIN_COLOUR = (0.55, 0.52, 0.44)  # linear RGB
+
+
+def wheel_node_name(vehicle: str, wheel: str) -> str:
+    """The name of a wheel's node: "<vehicle> wheel <wheel>"."""
+    return f"{vehicle} wheel {wheel}"
 
 
 def _linear_rgba(hex_colour: str, alpha: float = 1.0) -> list[float]:
@@ -174,11 +205,11 @@ class _Gltf:
         self.doc["meshes"].append({"name": name, "primitives": primitives})
         return len(self.doc["meshes"]) - 1
 
-    def node(self, node: dict[str, Any]) -> int:
-        """A child of the root (world) node; returns the node's index."""
+    def node(self, node: dict[str, Any], parent: int = 0) -> int:
+        """A child of ``parent`` (default the root, world node); returns the node's index."""
         self.doc["nodes"].append(node)
         index = len(self.doc["nodes"]) - 1
-        self.doc["nodes"][0]["children"].append(index)
+        self.doc["nodes"][parent].setdefault("children", []).append(index)
         return index
 
     def glb(self) -> bytes:
@@ -236,8 +267,27 @@ def _nice_tile(span: float) -> float:
     return tile
 
 
+def _scene_ground(result: Result) -> Any:
+    """The Ground of a run on the ground, else None."""
+    if not getattr(result, "on_ground", False) or result.scene is None:
+        return None
+    return result.scene.ground
+
+
 def _ground(doc: _Gltf, result: Result) -> int:
-    """A checkerboard at z = GROUND_Z under everything the vehicles reach (m)."""
+    """The ground: a run's terrain mesh, or a checkerboard GROUND_Z below the plane (z = 0
+    without a ground) under everything the vehicles and obstacles reach (m), with the
+    friction zones tinted on it."""
+    ground = _scene_ground(result)
+    if ground is not None and ground.terrain is not None:
+        material = doc.material("terrain", [*_TERRAIN_COLOUR, 1.0], roughness=0.95)
+        terrain = ground.terrain
+        mesh = doc.mesh(
+            "ground (terrain)",
+            [(np.asarray(terrain.vertices), np.asarray(terrain.faces, dtype=np.int64), material)],
+        )
+        return doc.node({"name": "ground", "mesh": mesh})
+    base = 0.0 if ground is None else float(ground.height)
     lo = np.array([np.inf, np.inf])
     hi = -lo
     for name in result.vehicles:
@@ -245,31 +295,213 @@ def _ground(doc: _Gltf, result: Result) -> int:
         reach = float(np.max(np.linalg.norm(result.vehicle(name).body_vertices, axis=1)))
         lo = np.minimum(lo, xy.min(axis=0) - reach)
         hi = np.maximum(hi, xy.max(axis=0) + reach)
+    for name in result.obstacles:  # under the obstacles too
+        p, _ = _pose(result, name, float(result.t[0]))
+        reach = float(np.max(np.linalg.norm(result.obstacle(name).mesh.vertices, axis=1)))
+        lo, hi = np.minimum(lo, p[:2] - reach), np.maximum(hi, p[:2] + reach)
     lo, hi = lo - GROUND_MARGIN, hi + GROUND_MARGIN
     tile = _nice_tile(float(np.max(hi - lo)))
     i0, j0 = np.floor(lo / tile).astype(int)
     i1, j1 = np.ceil(hi / tile).astype(int)
-    parts = []
+    z = base + GROUND_Z
+    parts: list[tuple[Array, NDArray[np.int64], int]] = []
     for parity, rgb in enumerate(_GROUND_COLOURS):
-        verts, faces = [], []
+        verts: list[tuple[float, float, float]] = []
+        faces: list[tuple[int, int, int]] = []
         for i in range(i0, i1):
             for j in range(j0, j1):
                 if (i + j) % 2 != parity:
                     continue
                 x0, y0, x1, y1 = i * tile, j * tile, (i + 1) * tile, (j + 1) * tile
-                base = len(verts)
-                verts += [
-                    (x0, y0, GROUND_Z),
-                    (x1, y0, GROUND_Z),
-                    (x1, y1, GROUND_Z),
-                    (x0, y1, GROUND_Z),
-                ]
-                faces += [(base, base + 1, base + 2), (base, base + 2, base + 3)]  # up
+                b = len(verts)
+                verts += [(x0, y0, z), (x1, y0, z), (x1, y1, z), (x0, y1, z)]
+                faces += [(b, b + 1, b + 2), (b, b + 2, b + 3)]  # up
         if faces:
             material = doc.material(f"ground {parity}", [*rgb, 1.0], roughness=0.95)
-            parts.append((np.array(verts), np.array(faces), material))
+            parts.append((np.array(verts), np.array(faces, dtype=np.int64), material))
     mesh = doc.mesh(f"ground ({tile:g} m tiles)", parts)
-    return doc.node({"name": "ground", "mesh": mesh})
+    node = doc.node({"name": "ground", "mesh": mesh})
+    if ground is not None and ground.zones:
+        zones: list[tuple[Array, NDArray[np.int64], int]] = []
+        for k, zone in enumerate(ground.zones):
+            poly = np.asarray(zone.polygon, dtype=np.float64)
+            tri = _triangulate(poly)
+            corners = np.column_stack([poly, np.full(len(poly), base + ZONE_Z)])
+            colour = ZONE_COLOURS[k % len(ZONE_COLOURS)]
+            material = doc.material(
+                f"{zone.label(k)}, tyre friction {zone.friction:g}", _linear_rgba(colour)
+            )
+            zones.append((corners, tri, material))
+        doc.node({"name": "friction zones", "mesh": doc.mesh("friction zones", zones)})
+    return node
+
+
+def _triangulate(polygon: Array) -> NDArray[np.int64]:
+    """Triangles (m, 3) of a simple polygon's corners (n, 2), by ear clipping, each wound
+    counter-clockwise seen from above (facing +z)."""
+    pts = np.asarray(polygon, dtype=np.float64)
+    area = 0.5 * float(
+        np.sum(pts[:, 0] * np.roll(pts[:, 1], -1) - np.roll(pts[:, 0], -1) * pts[:, 1])
+    )
+    order = list(range(len(pts))) if area >= 0.0 else list(range(len(pts)))[::-1]
+
+    def cross(o: int, a: int, b: int) -> float:
+        return float(
+            (pts[a, 0] - pts[o, 0]) * (pts[b, 1] - pts[o, 1])
+            - (pts[a, 1] - pts[o, 1]) * (pts[b, 0] - pts[o, 0])
+        )
+
+    def inside(p: int, a: int, b: int, c: int) -> bool:
+        return cross(a, b, p) >= 0.0 and cross(b, c, p) >= 0.0 and cross(c, a, p) >= 0.0
+
+    out: list[tuple[int, int, int]] = []
+    guard = 0
+    while len(order) > 3 and guard < 10 * len(pts) ** 2:
+        guard += 1
+        n = len(order)
+        for k in range(n):
+            a, b, c = order[k - 1], order[k], order[(k + 1) % n]
+            if cross(a, b, c) <= 0.0:
+                continue  # a reflex (or flat) corner is no ear
+            if any(inside(p, a, b, c) for p in order if p not in (a, b, c)):
+                continue
+            out.append((a, b, c))
+            del order[k]
+            break
+        else:  # no ear: degenerate left-overs (collinear corners); fan them
+            break
+    for k in range(1, len(order) - 1):
+        out.append((order[0], order[k], order[k + 1]))
+    return np.asarray(out, dtype=np.int64).reshape(-1, 3)
+
+
+def _cylinder(radius: float, width: float) -> tuple[Array, NDArray[np.int64]]:
+    """A closed cylinder (m) centred on its frame's origin, its axis along y."""
+    a = np.linspace(0.0, 2.0 * math.pi, WHEEL_SECTIONS, endpoint=False)
+    ring = np.column_stack([radius * np.cos(a), np.zeros_like(a), radius * np.sin(a)])
+    left, right = ring + (0.0, width / 2.0, 0.0), ring + (0.0, -width / 2.0, 0.0)
+    verts = np.vstack([left, right, [(0.0, width / 2.0, 0.0), (0.0, -width / 2.0, 0.0)]])
+    n = WHEEL_SECTIONS
+    faces = []
+    for k in range(n):
+        j = (k + 1) % n
+        faces += [(k, j, n + j), (k, n + j, n + k)]  # the tread
+        faces += [(2 * n, j, k), (2 * n + 1, n + k, n + j)]  # the two sides
+    return verts, np.asarray(faces, dtype=np.int64)
+
+
+def _obstacles(doc: _Gltf, result: Result) -> None:
+    """One node per fixed obstacle: its mesh (its own frame) at its place."""
+    if not result.obstacles:
+        return
+    material = doc.material("obstacle", _linear_rgba(OBSTACLE_COLOUR))
+    t0 = float(result.t[0])
+    for name in result.obstacles:
+        obstacle = result.obstacle(name)
+        mesh = doc.mesh(
+            name,
+            [(np.asarray(obstacle.mesh.vertices), np.asarray(obstacle.mesh.faces), material)],
+        )
+        p, q = _pose(result, name, t0)
+        doc.node(
+            {
+                "name": name,
+                "mesh": mesh,
+                "translation": [float(c) for c in p],
+                "rotation": [float(c) for c in q],
+            }
+        )
+
+
+class _Wheels:
+    """A vehicle's drawn wheels: their meshes, and their poses at any time of the run."""
+
+    def __init__(self, doc: _Gltf, result: Result, name: str, material: int) -> None:
+        self.name = name
+        v = result.vehicle(name)
+        assert v.wheels is not None
+        self.names = tuple(v.wheels.names)
+        self.body = np.asarray(v.wheels.centers, dtype=np.float64)  # static, body frame (m)
+        self.meshes = [
+            doc.mesh(
+                wheel_node_name(name, w),
+                [(*_cylinder(float(r), WHEEL_WIDTH * float(r)), material)],
+            )
+            for w, r in zip(self.names, v.wheels.radii, strict=True)
+        ]
+        self.result = result
+        self.moving = bool(getattr(result, "on_ground", False))
+        inputs = result.scene.inputs(name) if result.scene is not None else None
+        self.steer = None if inputs is None else inputs.steer  # rows (time s, angle rad)
+        self.steerable = np.asarray(v.wheels.steerable, dtype=bool)
+        if self.moving:
+            # the wheels' centres in the body frame at the samples (m), one sample per time
+            # (at an exchange the last one; the centres do not jump there)
+            t = result.t
+            last = np.r_[np.diff(t) > 0.0, True]
+            tr = result.trajectory(name)
+            rot = np.array([rotation_matrix(q) for q in tr.orientation[last]])
+            centres = result.wheel_centres(name)[:, last, :]  # (n, k, 3) world
+            rel = centres - tr.position[last][None, :, :]
+            self.t = t[last]
+            self.offsets = np.einsum("kji,nkj->nki", rot, rel)  # R^T (c - p), (n, k, 3)
+
+    def poses(self, t: float) -> list[tuple[Array, Array]]:
+        """(centre (3,) m world, glTF quaternion (x, y, z, w)) of each wheel at t."""
+        s = self.result.state(self.name, t)
+        p = np.asarray(s["position"], dtype=np.float64)
+        q = np.asarray(s["orientation"], dtype=np.float64)
+        r = rotation_matrix(q)
+        angle = (
+            0.0 if self.steer is None else float(np.interp(t, self.steer[:, 0], self.steer[:, 1]))
+        )
+        out = []
+        for k in range(len(self.names)):
+            b = np.array([np.interp(t, self.t, self.offsets[k, :, i]) for i in range(3)])
+            yaw = angle if self.steerable[k] else 0.0
+            turn = np.array([math.cos(yaw / 2.0), 0.0, 0.0, math.sin(yaw / 2.0)])
+            out.append((p + r @ b, _gltf_quaternion(_multiply(q, turn))))
+        return out
+
+
+def _multiply(a: ArrayLike, b: ArrayLike) -> Array:
+    """The quaternion product a b, both (w, x, y, z)."""
+    w1, x1, y1, z1 = np.asarray(a, dtype=np.float64)
+    w2, x2, y2, z2 = np.asarray(b, dtype=np.float64)
+    return np.array(
+        [
+            w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+            w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+            w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+        ]
+    )
+
+
+def _wheels(doc: _Gltf, result: Result) -> list[_Wheels]:
+    """The drawn wheels of every vehicle that has wheels."""
+    out = []
+    material: int | None = None
+    for name in result.vehicles:
+        if result.vehicle(name).wheels is None:
+            continue
+        if material is None:
+            material = doc.material("tyre", _linear_rgba(WHEEL_COLOUR), roughness=0.9)
+        out.append(_Wheels(doc, result, name, material))
+    return out
+
+
+def _static_wheels(doc: _Gltf, wheels: _Wheels, vehicle_node: int) -> None:
+    """Wheels at their static body-frame centres, children of the vehicle's node."""
+    for w, mesh, centre in zip(wheels.names, wheels.meshes, wheels.body, strict=True):
+        doc.node(
+            {
+                "name": wheel_node_name(wheels.name, w),
+                "mesh": mesh,
+                "translation": [float(c) for c in centre],
+            },
+            parent=vehicle_node,
+        )
 
 
 def _pose(result: Result, name: str, t: float) -> tuple[Array, Array]:
@@ -317,11 +549,13 @@ def export_glb(result: Result, path: str | Path, fps: float = 30.0, *, ground: b
     """Writes the run as one animated GLB (glTF 2.0 binary) at ``path``; returns the path.
 
     The file holds one node and mesh per vehicle (named as in the scene; the mesh in the
-    body frame, so the node's translation is the CG), a ground checkerboard (unless
-    ``ground=False``) and the animation "motion": per vehicle a translation and a rotation
-    (x, y, z, w) sampler, LINEAR, keyed at ``fps`` per second plus the impacts' instants
-    (times in s). The world's z up is turned to glTF's y up by the root node. The nodes'
-    static transforms are the poses at the start of the run."""
+    body frame, so the node's translation is the CG), its wheels (nodes named by
+    ``wheel_node_name``), the fixed obstacles, the ground (unless ``ground=False``: a
+    checkerboard, with a ground run's friction zones, or its terrain mesh) and the animation
+    "motion": per vehicle, and per wheel on the ground, a translation and a rotation (x, y,
+    z, w) sampler, LINEAR, keyed at ``fps`` per second plus the impacts' instants (times in
+    s). The world's z up is turned to glTF's y up by the root node. The nodes' static
+    transforms are the poses at the start of the run."""
     _check_result(result)
     try:
         if isinstance(fps, str):
@@ -338,10 +572,9 @@ def export_glb(result: Result, path: str | Path, fps: float = 30.0, *, ground: b
     time_accessor = doc.accessor(times)
     samplers: list[dict[str, Any]] = []
     channels: list[dict[str, Any]] = []
-    for name, mesh in zip(result.vehicles, meshes, strict=True):
-        poses = [_pose(result, name, float(t)) for t in times]
-        translation = np.array([p for p, _ in poses])
-        rotation = np.array([q for _, q in poses])
+
+    def animate(name: str, mesh: int, translation: Array, rotation: Array) -> int:
+        """A node with its mesh, posed at the first key, and its two samplers."""
         for k in range(1, len(rotation)):  # q and -q are one rotation: keep the short way
             if float(rotation[k] @ rotation[k - 1]) < 0.0:
                 rotation[k] = -rotation[k]
@@ -364,6 +597,24 @@ def export_glb(result: Result, path: str | Path, fps: float = 30.0, *, ground: b
             channels.append(
                 {"sampler": len(samplers) - 1, "target": {"node": node, "path": path_name}}
             )
+        return node
+
+    nodes = {}
+    for name, mesh in zip(result.vehicles, meshes, strict=True):
+        poses = [_pose(result, name, float(t)) for t in times]
+        translation = np.array([p for p, _ in poses])
+        rotation = np.array([q for _, q in poses])
+        nodes[name] = animate(name, mesh, translation, rotation)
+    for wheels in _wheels(doc, result):
+        if not wheels.moving:
+            _static_wheels(doc, wheels, nodes[wheels.name])
+            continue
+        poses_w = [wheels.poses(float(t)) for t in times]  # [key][wheel]
+        for k, (w, mesh) in enumerate(zip(wheels.names, wheels.meshes, strict=True)):
+            translation = np.array([keyed[k][0] for keyed in poses_w])
+            rotation = np.array([keyed[k][1] for keyed in poses_w])
+            animate(wheel_node_name(wheels.name, w), mesh, translation, rotation)
+    _obstacles(doc, result)
     if ground:
         _ground(doc, result)
     doc.doc["animations"] = [{"name": "motion", "samplers": samplers, "channels": channels}]
@@ -377,7 +628,8 @@ def export_frames(
 ) -> list[Path]:
     """Writes one static GLB per time (s) into ``folder`` (created if missing), named
     ``frame_0000_t0.0673s.glb`` etc. in the order given: the vehicles posed at that time on
-    the ground, no animation, for viewers that cannot play one. Returns the paths."""
+    the ground with their wheels and the obstacles, no animation, for viewers that cannot
+    play one. Returns the paths."""
     _check_result(result)
     try:
         ts = np.asarray(times, dtype=np.float64).reshape(-1)
@@ -399,9 +651,10 @@ def export_frames(
         extras = _extras(result)
         extras["crashsim"]["time"] = float(t)
         doc.doc["asset"]["extras"] = extras
+        nodes = {}
         for name, mesh in zip(result.vehicles, _vehicle_meshes(doc, result), strict=True):
             p, q = _pose(result, name, float(t))
-            doc.node(
+            nodes[name] = doc.node(
                 {
                     "name": name,
                     "mesh": mesh,
@@ -409,6 +662,22 @@ def export_frames(
                     "rotation": [float(c) for c in q],
                 }
             )
+        for wheels in _wheels(doc, result):
+            if not wheels.moving:
+                _static_wheels(doc, wheels, nodes[wheels.name])
+                continue
+            for w, mesh, (p, q) in zip(
+                wheels.names, wheels.meshes, wheels.poses(float(t)), strict=True
+            ):
+                doc.node(
+                    {
+                        "name": wheel_node_name(wheels.name, w),
+                        "mesh": mesh,
+                        "translation": [float(c) for c in p],
+                        "rotation": [float(c) for c in q],
+                    }
+                )
+        _obstacles(doc, result)
         if ground:
             _ground(doc, result)
         out = folder / f"frame_{k:04d}_t{t:.4f}s.glb"
