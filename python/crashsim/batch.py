@@ -37,7 +37,7 @@ from crashsim.errors import CrashsimError, ParameterError
 from crashsim.result import Result
 from crashsim.scene import Scene
 
-__all__ = ["BatchResult", "VariantError", "column_names", "run_batch"]
+__all__ = ["BatchResult", "VariantError", "run_batch"]
 
 Array = NDArray[np.float64]
 
@@ -82,7 +82,7 @@ class BatchResult:
     interrupted: bool = False
 
 
-def column_names(scene: Scene, max_impacts: int = 2) -> list[str]:
+def _column_names(scene: Scene, max_impacts: int = 2) -> list[str]:
     """The columns of a batch of ``scene``, in order."""
     names = [v.name for v in scene.vehicles]
     out = ["n_impacts"]
@@ -266,7 +266,7 @@ def run_batch(
         raise ParameterError(f"threads = {threads!r} is invalid: give an integer >= 1 or None")
     arrays, count = _check_overrides(scene, overrides or {}, n)
     names = [v.name for v in scene.vehicles]
-    columns_order = column_names(scene, max_impacts)
+    columns_order = _column_names(scene, max_impacts)
     columns: dict[str, np.ndarray] = {
         c: np.full(count, -1, dtype=np.int64) if c == "n_impacts" else np.full(count, np.nan)
         for c in columns_order

@@ -486,3 +486,45 @@ def with_(scene: Scene, changes: Mapping[str, Any]) -> Scene:
 def path_units(scene: Scene, names: Sequence[str]) -> dict[str, str]:
     """{path: SI unit} of paths (for column headers and summaries)."""
     return {n: parse_path(scene, n).unit for n in names}
+
+
+def base_value(scene: Scene, name: str) -> float:
+    """The base scene's value of a path (SI), as the path's rule reads it: speed |v|,
+    direction atan2(vy, vx), heading the body x axis's yaw, ...; an every-pair parameter
+    needs the same value on every pair (StudyError otherwise: name one pair); a depth of
+    penetration "auto" is NaN."""
+    p = parse_path(scene, name)
+    if p.kind == "vehicle":
+        j = [v.name for v in scene.vehicles].index(str(p.target))
+        pl = scene._placements[j]
+        v, w, q, pos = pl.velocity, pl.angular_velocity, pl.orientation, pl.position
+        return float(
+            {
+                "speed": lambda: np.linalg.norm(v),
+                "direction": lambda: math.atan2(v[1], v[0]),
+                "velocity_x": lambda: v[0],
+                "velocity_y": lambda: v[1],
+                "heading": lambda: _yaw(q),
+                "position_x": lambda: pos[0],
+                "position_y": lambda: pos[1],
+                "yaw_rate": lambda: w[2],
+                "mass": lambda: pl.vehicle.mass,
+            }[p.parameter]()
+        )
+    if p.kind == "ground":
+        assert scene.ground is not None
+        kwargs = scene.ground.core_kwargs()
+        return float(kwargs["tyre_friction" if p.parameter == "friction" else "body_friction"])
+    values = [
+        _pair_value(params[p.parameter])
+        for a, b, params in scene.pairs()
+        if p.kind == "pairs" or p.target == (a, b)
+    ]
+    distinct = {("nan" if math.isnan(x) else x) for x in values}
+    if len(distinct) > 1:
+        raise StudyError(
+            f'"{name}" differs between the pairs ({sorted(map(str, distinct))}): name one pair, '
+            f'e.g. "{scene.pairs()[0][0]}/{scene.pairs()[0][1]}.{p.parameter}"',
+            key=name,
+        )
+    return values[0] if values else math.nan
