@@ -38,11 +38,12 @@ Array = NDArray[np.float64]
 
 MAX_CHUNK = 256  # variants per task at most
 TASKS_PER_WORKER = 4  # chunks per worker at least, for balance (when n allows)
+CONNECT_TIMEOUT = "10s"  # how long to try reaching a scheduler given by its address
 
 
 def local_cluster(n_workers: int | None = None) -> Any:
     """A LocalCluster on this machine: ``n_workers`` worker processes (default: the cores),
-    one thread each, listening on the loopback only, without the dashboard."""
+    one thread each, listening on the loopback only (the HTTP server on a free port)."""
     from distributed import LocalCluster
 
     return LocalCluster(
@@ -50,7 +51,7 @@ def local_cluster(n_workers: int | None = None) -> Any:
         threads_per_worker=1,
         processes=True,
         host="127.0.0.1",
-        dashboard_address=None,
+        dashboard_address="127.0.0.1:0",  # its HTTP server (health, metrics) on a free port
     )
 
 
@@ -73,7 +74,7 @@ def _connect(client: Any, threads: int | None) -> tuple[Any, list[Any]]:
         return c, [c, cluster]
     if isinstance(client, str):
         try:
-            c = Client(client, timeout="10s")
+            c = Client(client, timeout=CONNECT_TIMEOUT)
         except OSError as e:
             raise StudyError(
                 f"cannot reach the Dask scheduler at {client!r}: {e}; start one (dask scheduler) "
