@@ -533,6 +533,7 @@ def _study_spec(args: argparse.Namespace, case: SceneFile, kind: str) -> Any:
             vary[key] = parse_values(key, value, dim)
         else:
             dists[key] = parse_distribution(key, value, dim)
+            dists[key].check(key)
     n = seed = None
     if kind == "montecarlo":
         n = args.n if args.n is not None else (file_spec.n if file_spec is not None else None)
