@@ -28,6 +28,7 @@ from crashsim.errors import (
     PlausibilityWarning,
     SceneError,
     SimulationError,
+    StudyError,
 )
 from crashsim.io import export, scenefile
 from crashsim.io.export import export_frames, export_glb
@@ -43,6 +44,7 @@ from crashsim.result import (
     WheelRecord,
 )
 from crashsim.scene import DepthOfPenetrationWarning, RestNotReachedWarning, Scene
+from crashsim.studies import Study, monte_carlo, sobol, sweep, tornado
 from crashsim.units import (
     deg,
     ft,
@@ -78,6 +80,11 @@ __all__ = [
     "SeparationState",
     "WheelRecord",
     "RestNotReachedWarning",
+    "Study",
+    "sweep",
+    "monte_carlo",
+    "tornado",
+    "sobol",
     "Ground",
     "FrictionZone",
     "Obstacle",
@@ -134,5 +141,6 @@ __all__ = [
     "InitialOverlapError",
     "SceneError",
     "SimulationError",
+    "StudyError",
     "PlausibilityWarning",
 ]

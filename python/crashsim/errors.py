@@ -5,7 +5,8 @@ CrashsimError
 │   ├── MeshError            empty or broken mesh, unreadable file
 │   ├── ParameterError       non-finite or out-of-range number
 │   ├── InitialOverlapError  vehicles overlap when the run starts
-│   └── SceneError           a scene-level mistake (unknown or duplicate vehicle)
+│   ├── SceneError           a scene-level mistake (unknown or duplicate vehicle)
+│   └── StudyError           a study's mistake (unknown parameter path, bad distribution)
 └── SimulationError (also a RuntimeError)
 
 PlausibilityWarning (a UserWarning): input that is possible but unlikely for a road vehicle
@@ -26,6 +27,19 @@ class SceneError(InputError):
     """A scene-level mistake: an unknown vehicle, a vehicle added twice, a duplicate name."""
 
 
+class StudyError(InputError):
+    """A mistake in a study (crashsim.studies): an unknown parameter path, a distribution or
+    grid with an invalid parameter, conflicting paths. ``key`` is the parameter path at fault
+    (None when the mistake is not one key's); the message names it and says how to fix it."""
+
+    def __init__(self, message: str, key: str | None = None) -> None:
+        super().__init__(message)
+        self.key = key
+
+    def __reduce__(self) -> tuple[object, ...]:  # pickles with its key (Dask sends errors)
+        return (type(self), (str(self), self.key))
+
+
 class PlausibilityWarning(UserWarning):
     """Input that is possible but unlikely for a road vehicle: a size or a density outside
     road vehicles' ranges (crashsim.vehicles.plausibility). The message names the likely
@@ -43,5 +57,6 @@ __all__ = [
     "InitialOverlapError",
     "SceneError",
     "SimulationError",
+    "StudyError",
     "PlausibilityWarning",
 ]

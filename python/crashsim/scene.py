@@ -16,7 +16,7 @@ import enum
 import math
 import re
 import warnings
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from itertools import combinations
 from typing import Any, Literal, TypeAlias
@@ -843,6 +843,16 @@ class Scene:
             f"vehicles {', '.join(pairs)} already overlap at t = 0: place them apart (the "
             "engine starts every contact at a first overlap it observes)"
         )
+
+    def with_(self, changes: Mapping[str, Any] | None = None, /, **more: Any) -> Scene:
+        """A new Scene with some inputs changed, named by parameter paths (SI):
+        ``scene.with_({"red.speed": 20.0, "red.heading": 0.1, "restitution": 0.2})`` or
+        ``scene.with_(restitution=0.2)``; this scene is unchanged. The paths and their rules
+        are crashsim.studies.paths's (StudyError for an unknown one, listing the valid ones);
+        the new scene runs bit for bit as that variant of a study's batch does."""
+        from crashsim.studies.paths import with_
+
+        return with_(self, {**(changes or {}), **more})
 
     def __repr__(self) -> str:
         names = [p.vehicle.name for p in self._placements]

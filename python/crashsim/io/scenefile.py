@@ -368,6 +368,7 @@ class SceneFile:
     path: Path | None = None
     title: str = ""
     description: str = ""
+    study: Any = None  # a crashsim.io.studyfile.StudySpec from the [study] table, or None
 
     def __iter__(self) -> Iterator[Any]:
         return iter((self.scene, self.run, self.output))
@@ -628,6 +629,7 @@ TOP_KEYS = (
     "output",
     "ground",
     "obstacles",
+    "study",
 )
 RUN_KEYS = ("duration", "dt", "record_interval", "until", "max_duration")
 OUTPUT_KEYS = ("dir", "report", "csv", "pictures", "glb")
@@ -1465,6 +1467,12 @@ def loads_scene(
     if run.until == "rest" and scene.ground is None:
         top.fail("run.until", "a run until rest needs a ground: add a [ground] table")
     output = _output(top.table("output", OUTPUT_KEYS), base)
+    study = None
+    if top.has("study"):
+        from crashsim.io.studyfile import read_study
+
+        study = read_study(top.raw("study"), scene, source)
+    top.taken.add("study")
     top.finish()
     _check_stiffness_needs(top, scene)
     _wrap(top, None, scene.build_world)  # what only the whole scene can tell (stiffness needs)
@@ -1475,6 +1483,7 @@ def loads_scene(
         path=path,
         title=title,
         description=description,
+        study=study,
     )
 
 

@@ -1,0 +1,530 @@
+"""Parameter paths: the names a study gives to what varies, and what they change.
+
+A path names one input of a scene (SI units in the API; the command line and scene files
+take units, crashsim.io.studyfile):
+
+=========================  ========  =====================================================
+path                       unit      what it sets
+=========================  ========  =====================================================
+``red.speed``              m/s       the CG speed along the current direction of travel
+                                     (the base velocity's direction; for a vehicle at rest,
+                                     its body x axis: the heading)
+``red.direction``          rad       the direction of travel, counter-clockwise from world
+                                     x, speed and vertical velocity kept
+``red.velocity_x/_y``      m/s       a world component of the CG velocity
+``red.heading``            rad       yaw of the body x axis from world x: the vehicle is
+                                     turned about the vertical through its CG, and its
+                                     velocity and angular velocity are turned with it
+``red.position_x/_y``      m         the CG's world x or y; the CG keeps its height above
+                                     the ground (on a terrain it moves with the ground
+                                     under the CG, the tilt kept)
+``red.yaw_rate``           rad/s     the world z component of the angular velocity
+``red.mass``               kg        the mass; inertia scaled with it (radii of gyration
+                                     kept), wheels keep their natural frequencies
+``restitution``            1         every pair's restitution; likewise ``friction``,
+                                     ``depth_of_penetration`` (s; NaN = "auto") and
+                                     ``pitch`` (rad)
+``red/blue.restitution``   1         one pair's (either order; obstacles too:
+                                     ``red/wall.friction``)
+``ground.friction``        1         the tyre-road friction outside friction zones
+``ground.body_friction``   1         body-ground friction
+=========================  ========  =====================================================
+
+Several paths of one vehicle combine in this order: mass, position, heading (turning the base
+velocity), direction, speed, then velocity_x/_y; ``speed`` or ``direction`` together with
+``velocity_x``/``velocity_y`` of the same vehicle is refused (they set the same numbers).
+
+:func:`overrides` maps a base scene and arrays of values (one per variant) to the core-level
+override arrays of crashsim.batch.run_batch (the batch contract); :func:`with_` gives the
+Scene of one variant (``Scene.with_`` calls it), which runs bit for bit as that variant of
+the batch does.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import difflib
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from crashsim.errors import StudyError
+
+if TYPE_CHECKING:
+    from crashsim.scene import Scene
+
+__all__ = [
+    "GROUND_PARAMETERS",
+    "PAIR_PARAMETERS",
+    "VEHICLE_PARAMETERS",
+    "ParameterPath",
+    "apply_overrides",
+    "overrides",
+    "parse_path",
+    "valid_paths",
+    "with_",
+]
+
+Array = NDArray[np.float64]
+
+# parameter -> (dimension for unit parsing, None = a plain number; SI unit)
+VEHICLE_PARAMETERS: dict[str, tuple[str | None, str]] = {
+    "speed": ("speed", "m/s"),
+    "direction": ("angle", "rad"),
+    "velocity_x": ("speed", "m/s"),
+    "velocity_y": ("speed", "m/s"),
+    "heading": ("angle", "rad"),
+    "position_x": ("length", "m"),
+    "position_y": ("length", "m"),
+    "yaw_rate": ("angular velocity", "rad/s"),
+    "mass": ("mass", "kg"),
+}
+PAIR_PARAMETERS: dict[str, tuple[str | None, str]] = {
+    "restitution": (None, "1"),
+    "friction": (None, "1"),
+    "depth_of_penetration": ("time", "s"),
+    "pitch": ("angle", "rad"),
+}
+GROUND_PARAMETERS: dict[str, tuple[str | None, str]] = {
+    "friction": (None, "1"),
+    "body_friction": (None, "1"),
+}
+_GROUND_KEYS = {"friction": "ground.tyre_friction", "body_friction": "ground.body_friction"}
+
+
+@dataclass(frozen=True)
+class ParameterPath:
+    """A parsed path: ``name`` (as the study names it), ``kind`` ("vehicle", "pairs" (every
+    pair), "pair" or "ground"), ``target`` (the vehicle's name, the pair (vehicle 1, vehicle
+    2) as ``Scene.pairs()`` orders it, or None), ``parameter``, its ``dimension`` (for unit
+    parsing; None: a plain number) and SI ``unit``."""
+
+    name: str
+    kind: str
+    target: str | tuple[str, str] | None
+    parameter: str
+    dimension: str | None
+    unit: str
+
+
+def _names(scene: Scene) -> tuple[list[str], list[str]]:
+    return [v.name for v in scene.vehicles], [o.name for o in scene.obstacles]
+
+
+def valid_paths(scene: Scene) -> list[str]:
+    """Every path the scene has, in a stable order (vehicles, every-pair, pairs, ground)."""
+    vehicles, _ = _names(scene)
+    out = [f"{v}.{p}" for v in vehicles for p in VEHICLE_PARAMETERS]
+    out += list(PAIR_PARAMETERS)
+    out += [f"{a}/{b}.{p}" for a, b, _ in scene.pairs() for p in PAIR_PARAMETERS]
+    if scene.ground is not None:
+        out += [f"ground.{p}" for p in GROUND_PARAMETERS]
+    return out
+
+
+def _listing(scene: Scene) -> str:
+    """The valid paths, compactly: red.{speed, ...}, restitution, ..."""
+    vehicles, _ = _names(scene)
+    params = ", ".join(VEHICLE_PARAMETERS)
+    parts = [f"{v}.{{{params}}}" for v in vehicles]
+    parts += list(PAIR_PARAMETERS)
+    pair_params = ", ".join(PAIR_PARAMETERS)
+    parts += [f"{a}/{b}.{{{pair_params}}}" for a, b, _ in scene.pairs()]
+    if scene.ground is not None:
+        parts.append(f"ground.{{{', '.join(GROUND_PARAMETERS)}}}")
+    return "; ".join(parts)
+
+
+def _unknown(scene: Scene, name: str, why: str) -> StudyError:
+    close = difflib.get_close_matches(name, valid_paths(scene), n=1, cutoff=0.6)
+    hint = f'did you mean "{close[0]}"? ' if close else ""
+    return StudyError(
+        f'unknown parameter path "{name}": {why}; {hint}the paths of this scene are '
+        f"{_listing(scene)}",
+        key=name,
+    )
+
+
+def parse_path(scene: Scene, name: str) -> ParameterPath:
+    """The :class:`ParameterPath` of a name in a scene; StudyError naming it and listing the
+    valid ones when the scene has no such input."""
+    if not isinstance(name, str):
+        raise StudyError(f"a parameter path must be a string such as 'red.speed', got {name!r}")
+    text = name.strip()
+    if text in PAIR_PARAMETERS:
+        dim, unit = PAIR_PARAMETERS[text]
+        return ParameterPath(text, "pairs", None, text, dim, unit)
+    head, dot, parameter = text.rpartition(".")
+    if not dot or not head:
+        raise _unknown(scene, text, "a path is <vehicle>.<parameter>, <a>/<b>.<parameter>, "
+                       "ground.<parameter> or an every-pair parameter")
+    vehicles, obstacles = _names(scene)
+    if head == "ground" and "ground" not in vehicles:
+        if parameter not in GROUND_PARAMETERS:
+            raise _unknown(scene, text, f"the ground has {', '.join(GROUND_PARAMETERS)}")
+        if scene.ground is None:
+            raise StudyError(
+                f'"{text}" needs a ground, and the scene has none: set scene.ground = '
+                "crashsim.Ground(...) (or a [ground] table in the scene file)",
+                key=text,
+            )
+        dim, unit = GROUND_PARAMETERS[parameter]
+        return ParameterPath(text, "ground", None, parameter, dim, unit)
+    if "/" in head:
+        a, _, b = head.partition("/")
+        a, b = a.strip(), b.strip()
+        if parameter not in PAIR_PARAMETERS:
+            raise _unknown(scene, text, f"a pair has {', '.join(PAIR_PARAMETERS)}")
+        for v1, v2, _ in scene.pairs():
+            if {v1, v2} == {a, b} and a != b:
+                dim, unit = PAIR_PARAMETERS[parameter]
+                return ParameterPath(text, "pair", (v1, v2), parameter, dim, unit)
+        raise _unknown(scene, text, f"the scene has no pair of {a!r} and {b!r}")
+    if head in vehicles:
+        if parameter not in VEHICLE_PARAMETERS:
+            raise _unknown(scene, text, f"a vehicle has {', '.join(VEHICLE_PARAMETERS)}")
+        dim, unit = VEHICLE_PARAMETERS[parameter]
+        return ParameterPath(text, "vehicle", head, parameter, dim, unit)
+    if head in obstacles:
+        raise _unknown(scene, text, f"{head!r} is a fixed obstacle: it has no state to vary")
+    raise _unknown(scene, text, f"the scene has no vehicle named {head!r}")
+
+
+# -- values -> the contract's override arrays -------------------------------------------------
+
+
+def _yaw(q: Array) -> float:
+    """Yaw of the body x axis from world x (rad) of a quaternion (w, x, y, z)."""
+    w, x, y, z = (float(c) for c in q)
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def _rz(angle: float) -> Array:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _qmul(a: Array, b: Array) -> Array:
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return np.array(
+        [
+            aw * bw - ax * bx - ay * by - az * bz,
+            aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+        ]
+    )
+
+
+def _body_x(q: Array) -> Array:
+    w, x, y, z = (float(c) for c in q)
+    return np.array([1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)])
+
+
+def _values(name: str, values: ArrayLike, n: int | None) -> Array:
+    try:
+        a = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise StudyError(f'"{name}": the values must be numbers (SI): {e}', key=name) from e
+    if a.ndim == 0:
+        a = a.reshape(1)
+    if a.ndim != 1:
+        raise StudyError(
+            f'"{name}": give one value per variant (a 1-D array), got shape {a.shape}', key=name
+        )
+    if n is not None and a.size != n:
+        raise StudyError(
+            f'"{name}": {a.size} values for {n} variants: give one value per variant', key=name
+        )
+    return a
+
+
+def overrides(
+    scene: Scene, values: Mapping[str, ArrayLike], n: int | None = None
+) -> dict[str, Array]:
+    """The core-level override arrays (crashsim.batch.run_batch's ``overrides``) for the
+    variants whose inputs are ``values``: {path: (n,) values, SI}. Only the keys the paths
+    touch are returned, filled with the base scene's values where a path does not set them.
+    StudyError naming the path for an unknown path, a wrong number of values or
+    conflicting paths; values out of range are left to the engine (that variant fails)."""
+    paths = [parse_path(scene, k) for k in values]
+    arrays = {p.name: _values(p.name, values[k], n) for p, k in zip(paths, values, strict=True)}
+    sizes = {a.size for a in arrays.values()}
+    if len(sizes) > 1:
+        raise StudyError(
+            "every path needs the same number of values (one per variant), got "
+            + ", ".join(f"{k}: {a.size}" for k, a in arrays.items())
+        )
+    count = n if n is not None else (sizes.pop() if sizes else 0)
+    seen: dict[tuple[Any, ...], str] = {}
+    for p in paths:
+        for key in _slots(scene, p):
+            if key in seen:
+                raise StudyError(
+                    f'"{p.name}" and "{seen[key]}" set the same input: give one of them',
+                    key=p.name,
+                )
+            seen[key] = p.name
+    vehicles, _ = _names(scene)
+    for v in vehicles:
+        given = {p.parameter for p in paths if p.kind == "vehicle" and p.target == v}
+        if given & {"speed", "direction"} and given & {"velocity_x", "velocity_y"}:
+            raise StudyError(
+                f"vehicle {v!r}: speed/direction and velocity_x/velocity_y set the same "
+                "velocity: vary one or the other",
+                key=f"{v}.velocity_x" if "velocity_x" in given else f"{v}.velocity_y",
+            )
+    out: dict[str, Array] = {}
+    placements = scene._placements
+    by_vehicle = {v: [p for p in paths if p.kind == "vehicle" and p.target == v] for v in vehicles}
+    state_keys = set()
+    for v, ps in by_vehicle.items():
+        for p in ps:
+            if p.parameter == "mass":
+                state_keys.add("mass")
+            elif p.parameter in ("position_x", "position_y"):
+                state_keys.add("position")
+            elif p.parameter == "heading":
+                state_keys.update(("orientation", "velocity", "angular_velocity"))
+            elif p.parameter == "yaw_rate":
+                state_keys.add("angular_velocity")
+            else:
+                state_keys.add("velocity")
+    base = {
+        "position": np.stack([p.position for p in placements]),
+        "orientation": np.stack([p.orientation for p in placements]),
+        "velocity": np.stack([p.velocity for p in placements]),
+        "angular_velocity": np.stack([p.angular_velocity for p in placements]),
+        "mass": np.array([p.vehicle.mass for p in placements], dtype=np.float64),
+    }
+    for key in ("position", "orientation", "velocity", "angular_velocity", "mass"):
+        if key in state_keys:
+            out[key] = np.repeat(base[key][None], count, axis=0).astype(np.float64)
+    ground = scene.ground
+    for j, v in enumerate(vehicles):
+        ps = {p.parameter: arrays[p.name] for p in by_vehicle[v]}
+        if not ps:
+            continue
+        p0 = base["position"][j]
+        q0 = base["orientation"][j]
+        if "mass" in ps:
+            out["mass"][:, j] = ps["mass"]
+        if "position_x" in ps or "position_y" in ps:
+            xs = ps.get("position_x", np.full(count, p0[0]))
+            ys = ps.get("position_y", np.full(count, p0[1]))
+            out["position"][:, j, 0] = xs
+            out["position"][:, j, 1] = ys
+            if ground is not None and ground.terrain is not None:
+                h0 = ground.height_at(p0[0], p0[1])
+                for i in range(count):
+                    h = ground.height_at(xs[i], ys[i])
+                    if h is None or h0 is None:
+                        h = math.nan  # off the terrain: that variant fails (non-finite z)
+                    out["position"][i, j, 2] = p0[2] + (h - (h0 or 0.0))
+        if "heading" in ps:
+            h0 = _yaw(q0)
+            level = q0[1] == 0.0 and q0[2] == 0.0
+            for i, h in enumerate(ps["heading"]):
+                turn = float(h) - h0
+                rz = _rz(turn)
+                if level:  # exactly what Scene.add(heading=h) gives
+                    out["orientation"][i, j] = [math.cos(h / 2.0), 0.0, 0.0, math.sin(h / 2.0)]
+                else:
+                    dq = np.array([math.cos(turn / 2.0), 0.0, 0.0, math.sin(turn / 2.0)])
+                    out["orientation"][i, j] = _qmul(dq, q0)
+                if turn != 0.0:
+                    out["velocity"][i, j] = rz @ base["velocity"][j]
+                    out["angular_velocity"][i, j] = rz @ base["angular_velocity"][j]
+        if "direction" in ps:
+            for i, d in enumerate(ps["direction"]):
+                vel = out["velocity"][i, j]
+                s = math.hypot(vel[0], vel[1])
+                out["velocity"][i, j, :2] = (s * math.cos(d), s * math.sin(d))
+        if "speed" in ps:
+            for i, s in enumerate(ps["speed"]):
+                vel = out["velocity"][i, j]
+                size = float(np.linalg.norm(vel))
+                if size > 0.0:
+                    out["velocity"][i, j] = vel * (float(s) / size)
+                else:
+                    q = out["orientation"][i, j] if "orientation" in out else q0
+                    out["velocity"][i, j] = float(s) * _body_x(q)
+        if "velocity_x" in ps:
+            out["velocity"][:, j, 0] = ps["velocity_x"]
+        if "velocity_y" in ps:
+            out["velocity"][:, j, 1] = ps["velocity_y"]
+        if "yaw_rate" in ps:
+            out["angular_velocity"][:, j, 2] = ps["yaw_rate"]
+    pairs = scene.pairs()
+    for p in paths:
+        if p.kind not in ("pairs", "pair"):
+            continue
+        key = f"contact.{p.parameter}"
+        if key not in out:
+            out[key] = np.array(
+                [[_pair_value(params[p.parameter]) for _, _, params in pairs]] * count,
+                dtype=np.float64,
+            ).reshape(count, len(pairs))
+        for k, (a, b, _) in enumerate(pairs):
+            if p.kind == "pairs" or p.target == (a, b):
+                out[key][:, k] = arrays[p.name]
+    for p in paths:
+        if p.kind == "ground":
+            assert ground is not None
+            key = _GROUND_KEYS[p.parameter]
+            out[key] = arrays[p.name].copy()
+    return out
+
+
+def _pair_value(value: Any) -> float:
+    """A pair parameter as a number: "auto" (depth of penetration) is NaN."""
+    if isinstance(value, str):
+        return math.nan
+    return float(value)
+
+
+def _slots(scene: Scene, p: ParameterPath) -> list[tuple[Any, ...]]:
+    """The inputs a path sets (two paths setting one of them conflict)."""
+    if p.kind == "vehicle":
+        return [("vehicle", p.target, p.parameter)]
+    if p.kind == "ground":
+        return [("ground", p.parameter)]
+    if p.kind == "pair":
+        return [("pair", p.target, p.parameter)]
+    return [("pair", (a, b), p.parameter) for a, b, _ in scene.pairs()]
+
+
+# -- one variant as a Scene -------------------------------------------------------------------
+
+
+def _read_only(a: ArrayLike) -> Array:
+    out = np.array(a, dtype=np.float64)
+    out.setflags(write=False)
+    return out
+
+
+def _with_mass(vehicle: Any, mass: float) -> Any:
+    """The vehicle with another mass (kg): inertia scaled by the same ratio (radii of
+    gyration kept); wheels keep their natural frequencies (explicit spring rates and damping
+    scaled by the ratio; rates from natural frequencies follow the static loads)."""
+    from crashsim.vehicles.vehicle import _check_mass_properties
+
+    ratio = mass / vehicle.mass
+    inertia = np.asarray(vehicle.inertia, dtype=np.float64) * ratio
+    _check_mass_properties(mass, inertia)  # the engine's checks (ParameterError)
+    other = copy.copy(vehicle)
+    other._mass = float(mass)
+    other._inertia = _read_only(inertia)
+    wheels = vehicle.wheels
+    if wheels is not None and (wheels._rates is not None or wheels._damping is not None):
+        wheels = copy.copy(wheels)
+        if wheels._rates is not None:
+            wheels._rates = wheels._rates * ratio
+        if wheels._damping is not None:
+            wheels._damping = wheels._damping * ratio
+        other._wheels = wheels
+    return other
+
+
+def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
+    """The Scene of variant ``i`` of core-level override arrays (the batch contract's keys):
+    a copy of ``scene`` sharing its vehicles' meshes and engine shapes, with the variant's
+    states, masses, pair parameters and ground frictions. Values are not checked here: the
+    engine checks them when the scene runs (as in the batch)."""
+    new = copy.copy(scene)
+    placements = list(scene._placements)
+    for j, p in enumerate(placements):
+        changes: dict[str, Any] = {}
+        for key in ("position", "orientation", "velocity", "angular_velocity"):
+            if key in arrays:
+                changes[key] = _read_only(arrays[key][i, j])
+        if "mass" in arrays and float(arrays["mass"][i, j]) != p.vehicle.mass:
+            changes["vehicle"] = _with_mass(p.vehicle, float(arrays["mass"][i, j]))
+        if changes:
+            placements[j] = dataclasses.replace(p, **changes)
+    new._placements = placements
+    new._overrides = {k: dict(v) for k, v in scene._overrides.items()}
+    for key, arr in arrays.items():
+        if key.startswith("contact."):
+            parameter = key.removeprefix("contact.")
+            for k, (a, b, params) in enumerate(scene.pairs()):
+                value: Any = float(arr[i, k])
+                if parameter == "depth_of_penetration" and math.isnan(value):
+                    value = "auto"
+                if value != params[parameter] or isinstance(value, str):
+                    new._overrides.setdefault((a, b), {})[parameter] = value
+    ground_keys = [k for k in ("ground.tyre_friction", "ground.body_friction") if k in arrays]
+    if ground_keys:
+        g = copy.copy(scene.ground)
+        if "ground.tyre_friction" in arrays:
+            g.friction = float(arrays["ground.tyre_friction"][i])
+            g.surface = None
+        if "ground.body_friction" in arrays:
+            g.body_friction = float(arrays["ground.body_friction"][i])
+        new._ground = g
+    return new
+
+
+def with_(scene: Scene, changes: Mapping[str, Any]) -> Scene:
+    """A new Scene with one variant's values ({path: value}, SI; see the module's table):
+    ``scene.with_({"red.speed": 20.0, "restitution": 0.2})``. Running it gives what the
+    batch gives for the same values, bit for bit. StudyError for an unknown path."""
+    if not isinstance(changes, Mapping):
+        raise StudyError(
+            f"with_() takes a mapping of parameter paths to values, got {type(changes).__name__}"
+        )
+    arrays = overrides(scene, {k: [v] for k, v in changes.items()}, n=1)
+    return apply_overrides(scene, arrays, 0)
+
+
+def path_units(scene: Scene, names: Sequence[str]) -> dict[str, str]:
+    """{path: SI unit} of paths (for column headers and summaries)."""
+    return {n: parse_path(scene, n).unit for n in names}
+
+
+def base_value(scene: Scene, name: str) -> float:
+    """The base scene's value of a path (SI), as the path's rule reads it: speed |v|,
+    direction atan2(vy, vx), heading the body x axis's yaw, ...; an every-pair parameter
+    needs the same value on every pair (StudyError otherwise: name one pair); a depth of
+    penetration "auto" is NaN."""
+    p = parse_path(scene, name)
+    if p.kind == "vehicle":
+        j = [v.name for v in scene.vehicles].index(str(p.target))
+        pl = scene._placements[j]
+        v, w, q, pos = pl.velocity, pl.angular_velocity, pl.orientation, pl.position
+        return float(
+            {
+                "speed": lambda: np.linalg.norm(v),
+                "direction": lambda: math.atan2(v[1], v[0]),
+                "velocity_x": lambda: v[0],
+                "velocity_y": lambda: v[1],
+                "heading": lambda: _yaw(q),
+                "position_x": lambda: pos[0],
+                "position_y": lambda: pos[1],
+                "yaw_rate": lambda: w[2],
+                "mass": lambda: pl.vehicle.mass,
+            }[p.parameter]()
+        )
+    if p.kind == "ground":
+        assert scene.ground is not None
+        kwargs = scene.ground.core_kwargs()
+        return float(kwargs["tyre_friction" if p.parameter == "friction" else "body_friction"])
+    values = [
+        _pair_value(params[p.parameter])
+        for a, b, params in scene.pairs()
+        if p.kind == "pairs" or p.target == (a, b)
+    ]
+    distinct = {("nan" if math.isnan(x) else x) for x in values}
+    if len(distinct) > 1:
+        raise StudyError(
+            f'"{name}" differs between the pairs ({sorted(map(str, distinct))}): name one pair, '
+            f'e.g. "{scene.pairs()[0][0]}/{scene.pairs()[0][1]}.{p.parameter}"',
+            key=name,
+        )
+    return values[0] if values else math.nan

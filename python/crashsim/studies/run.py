@@ -1,0 +1,400 @@
+"""Running a study: sweeps and Monte Carlo over one scene, in chunks through the batch engine
+(crashsim.batch.run_batch) on this machine or on a Dask cluster, into a :class:`Study`.
+
+    study = cs.sweep(scene, {"red.speed": cs.studies.linspace(10, 20, 5),
+                             "restitution": [0.0, 0.1, 0.2]}, duration=0.5, dt=1e-3)
+    study = cs.monte_carlo(scene, {"red.speed": cs.studies.normal(15, 1)}, n=1000, seed=1)
+    study.frame                 # pandas DataFrame: one row per variant, inputs then outputs
+    study["impact1.red.delta_v"]  # a numpy column
+    study.to_parquet("study.parquet"); study.summary()
+
+Inputs are the parameter paths (crashsim.studies.paths; SI: m, m/s, rad, kg, s); outputs are
+the batch's columns (m, m/s, s, J; degrees where the name ends ``_deg``): docs/studies.md.
+A variant that fails (vehicles overlapping at t = 0, a value the engine refuses) is listed in
+``study.errors`` with its inputs; the others finish. Ctrl-C stops the study and returns what
+finished (``study.interrupted``; the variants not run have status "not run").
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from os import PathLike
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from crashsim.errors import StudyError
+from crashsim.studies import design, paths
+from crashsim.studies.distributions import Distribution
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from crashsim.scene import Scene
+
+__all__ = ["FailedVariant", "Study", "monte_carlo", "run_study", "sweep"]
+
+Array = NDArray[np.float64]
+
+DEFAULT_CHUNK = 256  # variants per batch call on this machine
+OK, FAILED, NOT_RUN = "ok", "failed", "not run"
+
+
+@dataclass(frozen=True)
+class FailedVariant:
+    """A variant that failed: its ``index``, ``kind`` (the crashsim exception class name,
+    e.g. "InitialOverlapError"), ``message`` (naming the variant and its inputs) and
+    ``inputs`` ({path: value, SI})."""
+
+    index: int
+    kind: str
+    message: str
+    inputs: dict[str, float]
+
+    def __str__(self) -> str:
+        return f"{self.kind}: {self.message}"
+
+
+def _fmt(x: float) -> str:
+    return "auto" if isinstance(x, float) and math.isnan(x) else f"{x:.6g}"
+
+
+@dataclass(eq=False)
+class Study:
+    """A study's variants: ``inputs`` ({path: (n,) values, SI}), ``outputs`` ({column: (n,)},
+    the batch's columns), ``status`` (n,) ("ok", "failed", "not run"), ``errors`` (the failed
+    variants), ``interrupted`` (stopped by Ctrl-C); ``kind`` ("sweep", "montecarlo",
+    "one-at-a-time" or "sobol"), ``units`` of the inputs, ``seed`` and ``distributions`` of a
+    Monte Carlo study, ``settings`` (duration, dt, until, backend)."""
+
+    kind: str
+    inputs: dict[str, Array]
+    outputs: dict[str, np.ndarray]
+    status: NDArray[np.str_]
+    errors: list[FailedVariant] = field(default_factory=list)
+    interrupted: bool = False
+    units: dict[str, str] = field(default_factory=dict)
+    seed: int | None = None
+    distributions: dict[str, Distribution] = field(default_factory=dict)
+    settings: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def n(self) -> int:
+        return int(self.status.size)
+
+    @property
+    def ok(self) -> NDArray[np.bool_]:
+        """(n,) True where the variant ran to the end."""
+        return np.asarray(self.status == OK)
+
+    @property
+    def finished(self) -> NDArray[np.bool_]:
+        """(n,) True where the variant ran (to the end or into an error)."""
+        return np.asarray(self.status != NOT_RUN)
+
+    def __len__(self) -> int:
+        return self.n
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        """A column (input path or output) as a numpy array."""
+        if name in self.inputs:
+            return self.inputs[name]
+        if name in self.outputs:
+            return self.outputs[name]
+        raise KeyError(
+            f"no column {name!r}: the inputs are {', '.join(self.inputs)}; outputs such as "
+            f"{', '.join(list(self.outputs)[:4])}, ... (study.outputs)"
+        )
+
+    @property
+    def columns(self) -> list[str]:
+        return [*self.inputs, *self.outputs, "status"]
+
+    @property
+    def frame(self) -> pd.DataFrame:
+        """One row per variant (index ``variant``): the inputs, the outputs, ``status``."""
+        import pandas as pd
+
+        data: dict[str, Any] = {**self.inputs, **self.outputs, "status": self.status}
+        out = pd.DataFrame(data)
+        out.index.name = "variant"
+        return out
+
+    def to_csv(self, path: str | PathLike[str]) -> None:
+        """Write :attr:`frame` as CSV (a header row of column names, full precision)."""
+        self.frame.to_csv(path, float_format="%.17g")
+
+    def to_parquet(self, path: str | PathLike[str]) -> None:
+        """Write :attr:`frame` as Parquet (pyarrow), exact floats."""
+        self.frame.to_parquet(path, engine="pyarrow")
+
+    def write(self, path: str | PathLike[str]) -> None:
+        """CSV or Parquet by the file's suffix (.csv, .parquet, .pq)."""
+        suffix = str(path).lower().rsplit(".", 1)[-1]
+        if suffix == "csv":
+            self.to_csv(path)
+        elif suffix in ("parquet", "pq"):
+            self.to_parquet(path)
+        else:
+            raise StudyError(f"{path}: write a .csv or a .parquet file")
+
+    def summary(self, percentiles: tuple[float, ...] | None = None) -> pd.DataFrame:
+        """Percentiles of every output (and input) over the variants that ran to the end:
+        see crashsim.studies.summary.percentiles."""
+        from crashsim.studies.summary import percentiles as table
+
+        return table(self, percentiles)
+
+    def __repr__(self) -> str:
+        failed = len(self.errors)
+        stop = ", interrupted" if self.interrupted else ""
+        return (
+            f"Study(kind={self.kind!r}, n={self.n}, inputs={list(self.inputs)}, "
+            f"ok={int(self.ok.sum())}, failed={failed}{stop})"
+        )
+
+
+class _Progress:
+    """The study's progress: a callable (done, n), a tqdm bar on stderr, or nothing."""
+
+    def __init__(self, progress: bool | Callable[[int, int], None] | None, n: int) -> None:
+        self.bar = None
+        self.call: Callable[[int, int], None] | None = None
+        self.n = n
+        if callable(progress):
+            self.call = progress
+        elif progress:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=n, unit="variant", file=sys.stderr, smoothing=0.1)
+
+    def __call__(self, done: int) -> None:
+        if self.bar is not None:
+            self.bar.update(done - self.bar.n)
+        if self.call is not None:
+            self.call(done, self.n)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _chunks(n: int, size: int) -> list[tuple[int, int]]:
+    return [(s, min(s + size, n)) for s in range(0, n, size)]
+
+
+def _check_options(
+    backend: str, duration: float | None, dt: float, until: str | None
+) -> tuple[float, float]:
+    if backend not in ("local", "dask"):
+        raise StudyError(f'backend = {backend!r} is unknown: use "local" or "dask"')
+    if until is not None and until != "rest":
+        raise StudyError(f'until = {until!r} is unknown: use until="rest" or None')
+    if duration is None:
+        from crashsim.scene import DEFAULT_MAX_DURATION
+
+        duration = DEFAULT_MAX_DURATION if until == "rest" else 1.0
+    for name, x in (("duration", duration), ("dt", dt)):
+        if isinstance(x, bool) or not isinstance(x, int | float) or not x > 0 or not math.isfinite(x):
+            raise StudyError(f"{name} = {x!r} is invalid: give a time > 0 in s")
+    return float(duration), float(dt)
+
+
+def run_study(
+    scene: Scene,
+    values: Mapping[str, Array],
+    *,
+    kind: str,
+    duration: float | None = None,
+    dt: float = 1e-3,
+    until: str | None = None,
+    backend: str = "local",
+    client: Any = None,
+    threads: int | None = None,
+    progress: bool | Callable[[int, int], None] | None = True,
+    chunk_size: int | None = None,
+    max_impacts: int = 2,
+    seed: int | None = None,
+    distributions: Mapping[str, Distribution] | None = None,
+) -> Study:
+    """Run the variants ``values`` ({path: (n,) values, SI}) of ``scene``: the common engine
+    of :func:`sweep`, :func:`monte_carlo` and the sensitivity designs."""
+    duration, dt = _check_options(backend, duration, dt, until)
+    overrides = paths.overrides(scene, values)  # StudyError for an unknown path, up front
+    n = int(next(iter(values.values())).size) if values else 0
+    if n < 1:
+        raise StudyError("the study has no variants")
+    if chunk_size is not None and (
+        isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1
+    ):
+        raise StudyError(f"chunk_size = {chunk_size!r} is invalid: give an integer >= 1")
+    options = {"duration": duration, "dt": dt, "until": until, "max_impacts": max_impacts}
+    bar = _Progress(progress, n)
+    try:
+        if backend == "dask":
+            from crashsim.studies.dask_backend import run_dask
+
+            result = run_dask(
+                scene, overrides, n, options, client=client, chunk_size=chunk_size,
+                progress=bar, threads=threads,
+            )
+        else:
+            result = _run_local(scene, overrides, n, options, threads, chunk_size, bar)
+    finally:
+        bar.close()
+    columns, errors, finished, interrupted = result
+    status = np.full(n, NOT_RUN, dtype=object)
+    status[finished] = OK
+    failed = []
+    for e in sorted(errors, key=lambda e: e.index):
+        status[e.index] = FAILED
+        inputs = {k: float(v[e.index]) for k, v in values.items()}
+        units = paths.path_units(scene, list(values))
+        given = ", ".join(
+            f"{k} = {_fmt(x)}" + ("" if units[k] == "1" else f" {units[k]}")
+            for k, x in inputs.items()
+        )
+        text = str(e.message)
+        prefix = f"variant {e.index}: "
+        text = text[len(prefix):] if text.startswith(prefix) else text
+        failed.append(FailedVariant(e.index, e.kind, f"variant {e.index} ({given}): {text}",
+                                    inputs))
+    return Study(
+        kind=kind,
+        inputs={k: np.asarray(v, dtype=np.float64) for k, v in values.items()},
+        outputs=columns,
+        status=np.asarray(status.astype(str)),
+        errors=failed,
+        interrupted=interrupted,
+        units=paths.path_units(scene, list(values)),
+        seed=seed,
+        distributions=dict(distributions or {}),
+        settings={**options, "backend": backend},
+    )
+
+
+def _run_local(
+    scene: Scene,
+    overrides: Mapping[str, Array],
+    n: int,
+    options: Mapping[str, Any],
+    threads: int | None,
+    chunk_size: int | None,
+    bar: Callable[[int], None],
+) -> tuple[dict[str, np.ndarray], list[Any], NDArray[np.bool_], bool]:
+    """Chunks through run_batch on this machine, in variant order."""
+    from crashsim.batch import run_batch
+
+    columns: dict[str, np.ndarray] = {}
+    errors: list[Any] = []
+    finished = np.zeros(n, dtype=bool)
+    interrupted = False
+    for start, stop in _chunks(n, chunk_size or DEFAULT_CHUNK):
+        part = {k: v[start:stop] for k, v in overrides.items()}
+        try:
+            b = run_batch(
+                scene, part, n=stop - start, threads=threads,
+                progress=lambda done, _m, s=start: bar(s + done), **options,
+            )
+        except KeyboardInterrupt:
+            interrupted = True
+            break
+        _place(columns, b.columns, start, n)
+        finished[start:stop] = b.finished
+        errors += [type(e)(e.index + start, e.kind, _shift(e.message, e.index, start))
+                   for e in b.errors]
+        if b.interrupted:
+            interrupted = True
+            break
+    if not columns:  # interrupted before the first chunk returned: empty columns
+        columns = _empty_columns(scene, n, int(options["max_impacts"]))
+    return columns, errors, finished, interrupted
+
+
+def _shift(message: str, index: int, start: int) -> str:
+    """A chunk's "variant i: ..." renumbered to the study's variant."""
+    prefix = f"variant {index}: "
+    if start and message.startswith(prefix):
+        return f"variant {index + start}: " + message[len(prefix):]
+    return message
+
+
+def _place(columns: dict[str, np.ndarray], chunk: Mapping[str, np.ndarray], start: int,
+           n: int) -> None:
+    for k, v in chunk.items():
+        if k not in columns:
+            fill = -1 if v.dtype.kind in "iu" else np.nan
+            columns[k] = np.full(n, fill, dtype=v.dtype)
+        columns[k][start:start + v.size] = v
+
+
+def _empty_columns(scene: Scene, n: int, max_impacts: int) -> dict[str, np.ndarray]:
+    from crashsim.batch import run_batch
+
+    b = run_batch(scene, None, n=0, duration=1.0, dt=1e-3, max_impacts=max_impacts)
+    return {k: np.full(n, -1 if v.dtype.kind in "iu" else np.nan, dtype=v.dtype)
+            for k, v in b.columns.items()}
+
+
+def sweep(
+    scene: Scene,
+    grid: Mapping[str, Any],
+    *,
+    duration: float | None = None,
+    dt: float = 1e-3,
+    until: str | None = None,
+    backend: str = "local",
+    client: Any = None,
+    threads: int | None = None,
+    progress: bool | Callable[[int, int], None] | None = True,
+    chunk_size: int | None = None,
+    max_impacts: int = 2,
+) -> Study:
+    """Run the full factorial of ``grid`` ({path: values (a list, or
+    crashsim.studies.linspace(start, stop, count))}, SI), the first path varying slowest.
+
+    ``duration`` (s; default 1 s, or 60 s as the longest with ``until="rest"``) and ``dt``
+    (s) as for Scene.run. ``backend``: "local" (this machine, ``threads`` threads, None = all
+    cores) or "dask" (``client``: a dask.distributed Client, a scheduler address, or None for
+    a LocalCluster of this machine's cores, closed afterwards). ``progress``: True draws a bar
+    on stderr, a callable gets (done, n), False nothing. ``max_impacts``: impacts reported as
+    columns. Returns a :class:`Study`."""
+    values = design.grid(grid)
+    return run_study(
+        scene, values, kind="sweep", duration=duration, dt=dt, until=until, backend=backend,
+        client=client, threads=threads, progress=progress, chunk_size=chunk_size,
+        max_impacts=max_impacts,
+    )
+
+
+def monte_carlo(
+    scene: Scene,
+    distributions: Mapping[str, Distribution],
+    n: int,
+    seed: int | None = None,
+    *,
+    duration: float | None = None,
+    dt: float = 1e-3,
+    until: str | None = None,
+    backend: str = "local",
+    client: Any = None,
+    threads: int | None = None,
+    progress: bool | Callable[[int, int], None] | None = True,
+    chunk_size: int | None = None,
+    max_impacts: int = 2,
+) -> Study:
+    """Run ``n`` variants whose inputs are drawn from ``distributions`` ({path:
+    crashsim.studies.uniform / normal / triangular / class_table}, SI) with
+    ``numpy.random.default_rng(seed)``: the same seed gives the same variants. Other
+    arguments as for :func:`sweep`. StudyError naming the path for an invalid distribution."""
+    values = design.monte_carlo_sample(distributions, n, seed)
+    return run_study(
+        scene, values, kind="montecarlo", duration=duration, dt=dt, until=until,
+        backend=backend, client=client, threads=threads, progress=progress,
+        chunk_size=chunk_size, max_impacts=max_impacts, seed=seed,
+        distributions=distributions,
+    )
