@@ -20,10 +20,17 @@ import time
 
 import crashsim as cs
 import numpy as np
-from crashsim.studies.evidence import EDRDeltaV, RestHeading, RestPosition
+from crashsim.studies.evidence import (
+    EDRDeltaV,
+    ImpactPoint,
+    PostImpactSpeed,
+    RestHeading,
+    RestPosition,
+)
 
 UNKNOWNS = ("red.speed", "blue.speed", "red.heading", "blue.heading")
 TOL_POS, TOL_HEADING, TOL_DV = 0.2, math.radians(2.0), 0.5  # m, rad, m/s
+TOL_POI, TOL_SPEED = 0.3, 0.3  # m, m/s
 DT, MAX_DURATION = 2e-3, 15.0  # s
 
 
@@ -64,8 +71,10 @@ def case(seed: int) -> tuple[cs.Scene, dict[str, float], dict[str, tuple[float, 
 
 
 def evidence_of(result: cs.Result) -> list:
-    """Rest positions and headings of both cars and their first impact's EDR delta-V."""
-    out: list = []
+    """Rest positions and headings of both cars, their first impact's EDR delta-V and
+    speeds at separation, and the point of impact."""
+    c = result.impacts[0].centroid
+    out: list = [ImpactPoint(float(c[0]), float(c[1]), TOL_POI)]
     for n in ("red", "blue"):
         rest = result.rest(n)
         assert rest is not None
@@ -73,6 +82,9 @@ def evidence_of(result: cs.Result) -> list:
         out.append(RestHeading(n, float(rest.heading), TOL_HEADING))
         body = result.delta_v_body(result.impacts[0], n)
         out.append(EDRDeltaV(n, float(body[0]), float(body[1]), TOL_DV))
+        t = result.impacts[0].time
+        sep = next(s for s in result.separations(n) if s.time >= t)
+        out.append(PostImpactSpeed(n, float(sep.speed), TOL_SPEED))
     return out
 
 
@@ -87,6 +99,11 @@ def noisy(evidence: list, rng: np.random.Generator) -> list:
                                            y=e.y + rng.normal(0, e.tolerance)))  # fmt: skip
         elif isinstance(e, RestHeading):
             out.append(dataclasses.replace(e, heading=e.heading + rng.normal(0, e.tolerance)))
+        elif isinstance(e, ImpactPoint):
+            out.append(dataclasses.replace(e, x=e.x + rng.normal(0, e.tolerance),
+                                           y=e.y + rng.normal(0, e.tolerance)))  # fmt: skip
+        elif isinstance(e, PostImpactSpeed):
+            out.append(dataclasses.replace(e, speed=e.speed + rng.normal(0, e.tolerance)))
         else:
             out.append(dataclasses.replace(
                 e, longitudinal=e.longitudinal + rng.normal(0, e.tolerance),
