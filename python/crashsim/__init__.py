@@ -45,6 +45,7 @@ from crashsim.result import (
 )
 from crashsim.scene import DepthOfPenetrationWarning, RestNotReachedWarning, Scene
 from crashsim.studies import Study, monte_carlo, sobol, sweep, tornado
+from crashsim.studies.fit import FitError, FitResult, fit
 from crashsim.units import (
     deg,
     ft,
@@ -82,6 +83,9 @@ __all__ = [
     "RestNotReachedWarning",
     "Study",
     "sweep",
+    "fit",
+    "FitError",
+    "FitResult",
     "monte_carlo",
     "tornado",
     "sobol",

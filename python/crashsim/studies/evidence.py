@@ -1,0 +1,384 @@
+"""Evidence for a fit (crashsim.studies.fit, docs/fitting.md): what was found at the scene,
+each item with its tolerance, in SI units and radians.
+
+=====================  =================================================  =================
+item                   residual (in its unit; divided by ``tolerance``)   tolerance unit
+=====================  =================================================  =================
+RestPosition           rest CG (x, y) minus (x, y)                        m
+RestHeading            rest heading minus heading, wrapped to (-pi, pi]   rad
+EDRDeltaV              impact ``impact``'s delta-V in the body frame       m/s
+                       (longitudinal: x forward; lateral: y, + to the
+                       left, ISO 8855; an EDR's +right lateral is -y)
+ImpactPoint            impact ``impact``'s centroid (x, y) minus (x, y)    m
+TyreMark               mean 2-D distance of the mark's points to the       m
+                       wheel's path (its contact patch over the run)
+PostImpactSpeed        CG speed at the vehicle's separation after impact   m/s
+                       ``impact`` minus speed
+=====================  =================================================  =================
+
+The tolerance plays the part of one standard deviation: a fit's objective is the sum of the
+squared residuals divided by their tolerances (dimensionless), and its 95 % ranges are
++-1.96 sigma of that model. A run with no rest (the run ended first) is read at its last
+sample; an item that the run cannot give (no such impact, no separation) has the residual
+MISSING (in tolerances) so that the fit moves away from it.
+
+Rest positions, headings and EDR delta-V are read from the batch engine's columns
+(``uses_result = False``), so a fit with only these evaluates its candidates as batches; an
+impact point, a tyre mark or a post-impact speed needs each run's Result.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, ClassVar
+
+import numpy as np
+from numpy.typing import NDArray
+
+from crashsim.errors import StudyError
+
+if TYPE_CHECKING:
+    from crashsim.result import Result
+    from crashsim.scene import Scene
+
+__all__ = [
+    "EDRDeltaV",
+    "Evidence",
+    "FitError",
+    "ImpactPoint",
+    "MISSING",
+    "PostImpactSpeed",
+    "RestHeading",
+    "RestPosition",
+    "TyreMark",
+    "check_evidence",
+]
+
+Array = NDArray[np.float64]
+
+MISSING = 100.0  # residual (in tolerances) of an item the run cannot give
+
+
+class FitError(StudyError):
+    """A mistake in a fit's input: bounds with lo >= hi, an unknown parameter path, evidence
+    naming a vehicle the scene does not have, a tolerance <= 0. ``key`` names the unknown
+    or the evidence item at fault (e.g. ``"evidence[2] RestPosition(blue)"``)."""
+
+
+def _wrap(a: float) -> float:
+    """An angle wrapped to (-pi, pi] (rad)."""
+    return math.pi - (math.pi - a) % (2.0 * math.pi)
+
+
+def _finite(label: str, name: str, value: Any, size: int | None = None) -> Any:
+    try:
+        a = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise FitError(f"{label}: {name} must be numbers (SI), got {value!r}", key=label) from e
+    if size is not None and a.shape != (size,):
+        raise FitError(f"{label}: {name} must be {size} numbers, got {value!r}", key=label)
+    if not np.all(np.isfinite(a)):
+        raise FitError(f"{label}: {name} must be finite, got {value!r}", key=label)
+    return a
+
+
+@dataclass(frozen=True)
+class Evidence:
+    """Base of the evidence items. ``tolerance`` > 0 in the item's unit (``unit``)."""
+
+    unit: ClassVar[str] = ""
+    uses_result: ClassVar[bool] = False  # True: needs the run's Result, not the columns
+
+    @property
+    def label(self) -> str:
+        v = getattr(self, "vehicle", None)
+        return f"{type(self).__name__}({v})" if v is not None else type(self).__name__
+
+    @property
+    def size(self) -> int:
+        return len(self.components)
+
+    @property
+    def components(self) -> tuple[str, ...]:
+        return ("",)
+
+    def check(self, scene: Scene, label: str) -> None:
+        """FitError naming ``label`` for a tolerance <= 0, non-finite values or a vehicle
+        the scene does not have."""
+        tol = getattr(self, "tolerance", None)
+        try:
+            ok = tol is not None and math.isfinite(float(tol)) and float(tol) > 0.0
+        except (TypeError, ValueError):
+            ok = False
+        if not ok:
+            raise FitError(
+                f"{label}: the tolerance must be a finite number > 0 ({self.unit}), got {tol!r}",
+                key=label,
+            )
+        v = getattr(self, "vehicle", None)
+        if v is not None:
+            names = [x.name for x in scene.vehicles]
+            if v not in names:
+                raise FitError(
+                    f"{label}: the scene has no vehicle {v!r} (its vehicles: "
+                    f"{', '.join(names)})",
+                    key=label,
+                )
+        imp = getattr(self, "impact", 1)
+        if isinstance(imp, bool) or not isinstance(imp, int) or imp < 1:
+            raise FitError(f"{label}: impact must be an integer >= 1, got {imp!r}", key=label)
+
+    def measured(self, columns: Mapping[str, np.ndarray], i: int) -> Array:
+        """The run's figure (in the item's unit) from batch columns (variant ``i``)."""
+        raise NotImplementedError
+
+    def from_result(self, result: Result) -> Array:
+        """The run's figure (in the item's unit) from a Result (NaN where it has none)."""
+        raise NotImplementedError
+
+    def target(self) -> Array:
+        raise NotImplementedError
+
+    def difference(self, measured: Array) -> Array:
+        """Residual in the item's unit (measured - evidence); NaN where the run has none."""
+        return np.asarray(measured, dtype=np.float64) - self.target()
+
+    def normalised(self, diff: Array) -> Array:
+        """The residual in tolerances; MISSING where the run gave nothing."""
+        out = np.asarray(diff, dtype=np.float64) / float(self.tolerance)  # type: ignore[attr-defined]
+        return np.where(np.isfinite(out), out, MISSING)
+
+
+def _col(columns: Mapping[str, np.ndarray], key: str, i: int) -> float:
+    c = columns.get(key)
+    return math.nan if c is None else float(c[i])
+
+
+@dataclass(frozen=True)
+class RestPosition(Evidence):
+    """Where ``vehicle``'s CG came to rest, (x, y) m in the world frame; tolerance m (per
+    coordinate)."""
+
+    vehicle: str
+    x: float
+    y: float
+    tolerance: float
+    unit: ClassVar[str] = "m"
+
+    @property
+    def components(self) -> tuple[str, ...]:
+        return ("x", "y")
+
+    def target(self) -> Array:
+        return np.array([self.x, self.y], dtype=np.float64)
+
+    def measured(self, columns: Mapping[str, np.ndarray], i: int) -> Array:
+        out = []
+        for c in ("x", "y"):
+            v = _col(columns, f"{self.vehicle}.rest_{c}", i)
+            out.append(v if math.isfinite(v) else _col(columns, f"{self.vehicle}.final_{c}", i))
+        return np.array(out)
+
+    def from_result(self, result: Result) -> Array:
+        p = result.trajectory(self.vehicle).position[-1]
+        return np.array([p[0], p[1]], dtype=np.float64)
+
+
+@dataclass(frozen=True)
+class RestHeading(Evidence):
+    """``vehicle``'s heading at rest (rad, yaw of the body x axis from world x,
+    counter-clockwise); tolerance rad. The residual is wrapped to (-pi, pi]."""
+
+    vehicle: str
+    heading: float
+    tolerance: float
+    unit: ClassVar[str] = "rad"
+
+    def target(self) -> Array:
+        return np.array([self.heading], dtype=np.float64)
+
+    def difference(self, measured: Array) -> Array:
+        d = float(np.asarray(measured)[0]) - self.heading
+        return np.array([_wrap(d) if math.isfinite(d) else math.nan])
+
+    def measured(self, columns: Mapping[str, np.ndarray], i: int) -> Array:
+        v = _col(columns, f"{self.vehicle}.rest_heading_deg", i)
+        if not math.isfinite(v):
+            v = _col(columns, f"{self.vehicle}.final_heading_deg", i)
+        return np.array([math.radians(v)])
+
+    def from_result(self, result: Result) -> Array:
+        from crashsim.result import _heading
+
+        return np.array([_heading(result.trajectory(self.vehicle).orientation[-1])])
+
+
+@dataclass(frozen=True)
+class EDRDeltaV(Evidence):
+    """An event data recorder's delta-V of ``vehicle`` in impact ``impact`` (the run's
+    k-th impulse exchange in time order, 1 = the first), in the vehicle's body frame at the exchange: ``longitudinal`` (x forward) and ``lateral``
+    (y, + to the left, ISO 8855; most EDRs report +right: give -lateral), m/s; tolerance
+    m/s (per component)."""
+
+    vehicle: str
+    longitudinal: float
+    lateral: float
+    tolerance: float
+    impact: int = 1
+    unit: ClassVar[str] = "m/s"
+
+    @property
+    def components(self) -> tuple[str, ...]:
+        return ("longitudinal", "lateral")
+
+    def target(self) -> Array:
+        return np.array([self.longitudinal, self.lateral], dtype=np.float64)
+
+    def measured(self, columns: Mapping[str, np.ndarray], i: int) -> Array:
+        pre = f"impact{self.impact}.{self.vehicle}."
+        return np.array([_col(columns, pre + "delta_v_long", i),
+                         _col(columns, pre + "delta_v_lat", i)])  # fmt: skip
+
+    def from_result(self, result: Result) -> Array:
+        if len(result.impacts) < self.impact:
+            return np.full(2, math.nan)
+        imp = result.impacts[self.impact - 1]
+        if self.vehicle not in imp.delta_v:
+            return np.full(2, math.nan)
+        body = np.asarray(result.delta_v_body(imp, self.vehicle), dtype=np.float64)
+        return body[:2].copy()
+
+
+@dataclass(frozen=True)
+class ImpactPoint(Evidence):
+    """Where impact ``impact`` happened, (x, y) m in the world frame (the exchange's overlap
+    centroid); tolerance m (per coordinate)."""
+
+    x: float
+    y: float
+    tolerance: float
+    impact: int = 1
+    unit: ClassVar[str] = "m"
+    uses_result: ClassVar[bool] = True
+
+    @property
+    def components(self) -> tuple[str, ...]:
+        return ("x", "y")
+
+    def target(self) -> Array:
+        return np.array([self.x, self.y], dtype=np.float64)
+
+    def from_result(self, result: Result) -> Array:
+        if len(result.impacts) < self.impact:
+            return np.full(2, math.nan)
+        c = result.impacts[self.impact - 1].centroid
+        return np.array([c[0], c[1]], dtype=np.float64)
+
+
+@dataclass(frozen=True)
+class TyreMark(Evidence):
+    """A tyre mark that ``vehicle``'s ``wheel`` ("FL", "front_left" or an index) left:
+    ``polyline`` (k, 2) points (m, world x, y). The residual is the mean distance (m) of the
+    polyline's points to the wheel's path over the run (its contact patch, seen from
+    above); tolerance m."""
+
+    vehicle: str
+    wheel: str | int
+    polyline: Any
+    tolerance: float
+    unit: ClassVar[str] = "m"
+    uses_result: ClassVar[bool] = True
+
+    def check(self, scene: Scene, label: str) -> None:
+        super().check(scene, label)
+        p = _finite(label, "polyline", self.polyline)
+        if p.ndim != 2 or p.shape[0] < 1 or p.shape[1] not in (2, 3):
+            raise FitError(
+                f"{label}: polyline must be (k, 2) points (m), got shape {p.shape}", key=label
+            )
+        v = next(x for x in scene.vehicles if x.name == self.vehicle)
+        if v.wheels is None:
+            raise FitError(f"{label}: vehicle {self.vehicle!r} has no wheels", key=label)
+
+    def target(self) -> Array:
+        return np.zeros(1)
+
+    def from_result(self, result: Result) -> Array:
+        path = np.asarray(result.wheel_path(self.vehicle, self.wheel), dtype=np.float64)[:, :2]
+        pts = np.asarray(self.polyline, dtype=np.float64)[:, :2]
+        return np.array([float(np.mean(_distances(pts, path)))])
+
+
+def _distances(points: Array, path: Array) -> Array:
+    """Distance (m) of each point (k, 2) to the polyline ``path`` (m, 2)."""
+    if len(path) == 1:
+        return np.linalg.norm(points - path[0], axis=1)
+    a, b = path[:-1], path[1:]  # (s, 2) segments
+    ab = b - a
+    length2 = np.einsum("ij,ij->i", ab, ab)
+    ap = points[:, None, :] - a[None, :, :]  # (k, s, 2)
+    t = np.einsum("ksj,sj->ks", ap, ab) / np.where(length2 > 0.0, length2, 1.0)
+    t = np.clip(t, 0.0, 1.0)
+    nearest = a[None] + t[..., None] * ab[None]
+    return np.min(np.linalg.norm(points[:, None, :] - nearest, axis=2), axis=1)
+
+
+@dataclass(frozen=True)
+class PostImpactSpeed(Evidence):
+    """``vehicle``'s CG speed (m/s) when it separates after impact ``impact`` (its first
+    separation at or after the exchange); tolerance m/s."""
+
+    vehicle: str
+    speed: float
+    tolerance: float
+    impact: int = 1
+    unit: ClassVar[str] = "m/s"
+    uses_result: ClassVar[bool] = True
+
+    def target(self) -> Array:
+        return np.array([self.speed], dtype=np.float64)
+
+    def from_result(self, result: Result) -> Array:
+        if len(result.impacts) < self.impact:
+            return np.array([math.nan])
+        t = result.impacts[self.impact - 1].time
+        for s in result.separations(self.vehicle):
+            if s.time >= t:
+                return np.array([s.speed])
+        return np.array([math.nan])
+
+
+_VALUES = {
+    RestPosition: ("x", "y"),
+    RestHeading: ("heading",),
+    EDRDeltaV: ("longitudinal", "lateral"),
+    ImpactPoint: ("x", "y"),
+    PostImpactSpeed: ("speed",),
+    TyreMark: (),
+}
+
+
+def check_evidence(scene: Scene, evidence: Sequence[Evidence]) -> list[str]:
+    """Check every item against the scene; their labels ("evidence[2] RestPosition(blue)").
+    FitError naming the item at fault."""
+    if isinstance(evidence, Evidence):
+        evidence = [evidence]
+    items = list(evidence)
+    if not items:
+        raise FitError("give at least one evidence item (crashsim.studies.evidence)")
+    labels = []
+    for k, e in enumerate(items):
+        if not isinstance(e, Evidence):
+            raise FitError(
+                f"evidence[{k}]: {e!r} is not an evidence item (RestPosition, RestHeading, "
+                "EDRDeltaV, ImpactPoint, TyreMark, PostImpactSpeed)",
+                key=f"evidence[{k}]",
+            )
+        label = f"evidence[{k}] {e.label}"
+        for name in _VALUES[type(e)]:
+            _finite(label, name, getattr(e, name))
+        e.check(scene, label)
+        labels.append(label)
+    return labels

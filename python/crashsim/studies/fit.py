@@ -1,0 +1,615 @@
+"""Fitting the unknowns of a scene to the evidence (the inverse problem; docs/fitting.md).
+
+    import crashsim as cs
+    from crashsim.studies.evidence import RestPosition, RestHeading
+    fit = cs.fit(scene, {"red.speed": (10, 25), "blue.heading": (1.2, 1.9)},
+                 [RestPosition("red", 12.1, 3.4, 0.3), RestHeading("red", 0.61, 0.05)])
+    fit.values, fit.ranges, fit.summary(), fit.plot("fit.png")
+
+Unknowns are parameter paths (crashsim.studies.paths, SI) with bounds (lo, hi); the evidence
+items (crashsim.studies.evidence) each give a residual divided by their tolerance, so the
+objective, the sum of their squares (chi^2), is dimensionless. The solver works in scaled
+unknowns u = (x - lo) / (hi - lo) in [0, 1]:
+
+- ``method="least_squares"``: scipy.optimize.least_squares (trust region reflective, bounds)
+  from ``start``, with a central-difference Jacobian whose 2k candidates run as one batch;
+- ``method="global"``: scipy.optimize.differential_evolution over the bounds, each
+  generation's population evaluated as one batch (``vectorized``), then polished by the
+  least-squares solve.
+
+Candidates run through the batch engine (crashsim.batch.run_batch) when every item reads
+the batch's columns (rest positions and headings, EDR delta-V); an impact point, a tyre mark
+or a post-impact speed needs each run's Result, and the candidates then run as Scenes
+(paths.apply_overrides, the same variants) on a thread pool. Ctrl-C stops the fit and returns
+the best candidate so far (``interrupted``).
+
+The uncertainty: the covariance (J^T J)^-1 of the Jacobian J (residuals in tolerances per SI
+unit of the unknowns) at the optimum, the tolerances taken as one standard deviation; the
+95 % range is +-1.96 sigma. A scan of the objective along each unknown (the others held at
+the optimum) checks it: its range is where chi^2 rises by at most 3.84 (95 % of chi^2 with
+one degree of freedom), which is narrower than the Jacobian's when unknowns are correlated.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import math
+import os
+import sys
+import threading
+import time
+import warnings
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from os import PathLike
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from crashsim.errors import CrashsimError, StudyError
+from crashsim.studies import paths
+from crashsim.studies.evidence import MISSING, Evidence, FitError, check_evidence
+
+if TYPE_CHECKING:
+    from crashsim.result import Result
+    from crashsim.scene import Scene
+
+__all__ = ["FitError", "FitResult", "ItemResidual", "fit"]
+
+Array = NDArray[np.float64]
+METHODS = ("least_squares", "global")
+CHI2_95 = 3.841458820694124  # 95 % quantile of chi^2 with one degree of freedom
+Z_95 = 1.959963984540054  # two-sided 95 % of the normal distribution
+
+
+class _Interrupted(Exception):
+    """Ctrl-C during an evaluation: the fit stops with the best so far."""
+
+
+@dataclass(frozen=True)
+class ItemResidual:
+    """One evidence item at the fit's optimum: ``label``, ``unit``, its ``components``
+    (e.g. ("x", "y")), the run's ``measured`` figure and the ``evidence``'s, the
+    ``residual`` (measured - evidence, in ``unit``) and ``normalised`` (in tolerances)."""
+
+    label: str
+    unit: str
+    components: tuple[str, ...]
+    measured: Array
+    evidence: Array
+    residual: Array
+    normalised: Array
+
+
+@dataclass
+class FitResult:
+    """The answer of :func:`fit` (SI units and radians).
+
+    ``values`` {path: best value}; ``start``, ``bounds``; ``objective`` chi^2 (sum of the
+    squared residuals in tolerances); ``residuals`` one ItemResidual per evidence item;
+    ``covariance`` (k, k) from the Jacobian at the optimum (None when it could not be
+    formed), ``sigma`` {path: standard deviation} (inf where the evidence does not fix the
+    unknown), ``ranges`` {path: (lo, hi)} the 95 % range +-1.96 sigma; ``scan`` {path: (values,
+    chi^2)} the objective along each unknown through the optimum and ``scan_ranges`` {path:
+    (lo, hi)} where it stays within 3.84 of its least (None when not scanned);
+    ``result`` the fitted run, ``scene`` the fitted scene; ``n_runs`` runs made;
+    ``interrupted`` (Ctrl-C: the best so far), ``message`` the solver's."""
+
+    names: list[str]
+    units: dict[str, str]
+    values: dict[str, float]
+    start: dict[str, float]
+    bounds: dict[str, tuple[float, float]]
+    objective: float
+    residuals: list[ItemResidual]
+    covariance: Array | None
+    sigma: dict[str, float]
+    ranges: dict[str, tuple[float, float]]
+    evidence: list[Evidence]
+    scene: Scene
+    result: Result | None
+    method: str
+    n_runs: int
+    interrupted: bool = False
+    message: str = ""
+    scan: dict[str, tuple[Array, Array]] | None = None
+    scan_ranges: dict[str, tuple[float, float]] | None = None
+    elapsed: float = 0.0
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def x(self) -> Array:
+        """The best values as an array in the order of ``names``."""
+        return np.array([self.values[n] for n in self.names])
+
+    def summary(self) -> str:
+        """The best values with their 95 % ranges, and every item's residual, as text."""
+        lines = [
+            f"fit ({self.method}): objective chi^2 = {self.objective:.4g} over "
+            f"{sum(len(r.normalised) for r in self.residuals)} residuals, {self.n_runs} runs, "
+            f"{self.elapsed:.1f} s" + (" -- INTERRUPTED: the best so far" if self.interrupted
+                                       else ""),
+            "",
+            f"{'unknown':<24} {'best':>12} {'95 % range (Jacobian)':>28} "
+            f"{'95 % range (scan)':>26}  unit",
+        ]
+        for n in self.names:
+            u = self.units[n]
+            lo, hi = self.ranges[n]
+            scan = self.scan_ranges.get(n) if self.scan_ranges else None
+            s = f"{scan[0]:.5g} .. {scan[1]:.5g}" if scan else "-"
+            lines.append(
+                f"{n:<24} {self.values[n]:>12.6g} {f'{lo:.5g} .. {hi:.5g}':>28} {s:>26}  {u}"
+            )
+        lines += ["", f"{'evidence':<36} {'component':<13} {'evidence':>10} {'fitted':>10} "
+                  f"{'residual':>10} {'/tol':>7}  unit"]  # fmt: skip
+        for r in self.residuals:
+            for k, c in enumerate(r.components):
+                lines.append(
+                    f"{r.label:<36} {c or '-':<13} {r.evidence[k]:>10.4g} {r.measured[k]:>10.4g} "
+                    f"{r.residual[k]:>10.3g} {r.normalised[k]:>7.2f}  {r.unit}"
+                )
+        if self.message:
+            lines += ["", f"solver: {self.message}"]
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        v = ", ".join(f"{n}={self.values[n]:.5g}" for n in self.names)
+        return f"FitResult({v}; chi2={self.objective:.4g}, runs={self.n_runs})"
+
+    def plot(self, path: str | PathLike[str] | None = None) -> Any:
+        """The fitted run over the evidence (top-down: paths, rest outlines and headings with
+        tolerance circles, marks, impact points) and the objective along each unknown around
+        the optimum; written to ``path`` (PNG, SVG, PDF) when given. Returns the Figure."""
+        from crashsim.studies.fitplot import plot_fit
+
+        return plot_fit(self, path)
+
+
+# -- the problem ------------------------------------------------------------------------------
+
+
+class _Problem:
+    """Evaluates candidates (rows of unknowns, SI) to residual vectors in tolerances."""
+
+    def __init__(
+        self,
+        scene: Scene,
+        names: list[str],
+        evidence: list[Evidence],
+        labels: list[str],
+        run: dict[str, Any],
+        threads: int | None,
+        progress: Callable[[int, float], None] | None,
+    ) -> None:
+        self.scene, self.names, self.evidence, self.labels = scene, names, evidence, labels
+        self.run_kw, self.threads, self.progress = run, threads, progress
+        self.sizes = [e.size for e in evidence]
+        self.m = sum(self.sizes)
+        self.use_result = any(e.uses_result for e in evidence)
+        self.max_impacts = max([1] + [int(getattr(e, "impact", 1)) for e in evidence])
+        self.cache: dict[bytes, Array] = {}
+        self.n_runs = 0
+        self.best_x: Array | None = None
+        self.best_r: Array | None = None
+        self.best = math.inf
+
+    def chi2(self, r: Array) -> float:
+        return float(np.dot(r, r))
+
+    def residuals(self, xs: Array) -> Array:
+        """(c, m) residuals (in tolerances) of (c, k) candidates; repeated ones from a cache."""
+        xs = np.atleast_2d(np.asarray(xs, dtype=np.float64))
+        keys = [x.tobytes() for x in xs]
+        todo = [i for i, k in enumerate(keys) if k not in self.cache]
+        todo = list(dict.fromkeys(todo))
+        unique: dict[bytes, int] = {}
+        for i in todo:
+            unique.setdefault(keys[i], i)
+        rows = list(unique.values())
+        if rows:
+            out = self._run(xs[rows])
+            for i, r in zip(rows, out, strict=True):
+                self.cache[keys[i]] = r
+                c = self.chi2(r)
+                if c < self.best:
+                    self.best, self.best_x, self.best_r = c, xs[i].copy(), r
+            self.n_runs += len(rows)
+            if self.progress is not None:
+                self.progress(self.n_runs, self.best)
+        return np.array([self.cache[k] for k in keys])
+
+    def _run(self, xs: Array) -> Array:
+        values = {n: xs[:, j] for j, n in enumerate(self.names)}
+        arrays = paths.overrides(self.scene, values, n=len(xs))
+        if self.use_result:
+            return self._run_results(arrays, len(xs))
+        from crashsim.batch import run_batch
+
+        kw = self.run_kw
+        duration = kw["max_duration"] if kw["until"] == "rest" else kw["duration"]
+        try:
+            br = run_batch(self.scene, arrays, duration=duration, dt=kw["dt"], until=kw["until"],
+                           threads=self.threads, max_impacts=self.max_impacts)  # fmt: skip
+        except KeyboardInterrupt as e:  # pragma: no cover - run_batch keeps Ctrl-C itself
+            raise _Interrupted from e
+        if br.interrupted:
+            raise _Interrupted
+        failed = {e.index for e in br.errors}
+        out = np.full((len(xs), self.m), MISSING)
+        for i in range(len(xs)):
+            if i in failed or not br.finished[i]:
+                continue
+            parts = [e.normalised(e.difference(e.measured(br.columns, i))) for e in self.evidence]
+            out[i] = np.concatenate(parts)
+        return out
+
+    def run_one(self, scene: Scene, stop: threading.Event | None = None) -> Result:
+        kw = self.run_kw
+
+        def check(_t: float) -> None:
+            if stop is not None and stop.is_set():
+                raise _Interrupted
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the residuals carry what the warnings say
+            if kw["until"] == "rest":
+                return scene.run(dt=kw["dt"], until="rest", max_duration=kw["max_duration"],
+                                 progress=check)  # fmt: skip
+            return scene.run(duration=kw["duration"], dt=kw["dt"], progress=check)
+
+    def from_result(self, result: Result) -> Array:
+        parts = [e.normalised(e.difference(e.from_result(result))) for e in self.evidence]
+        return np.concatenate(parts)
+
+    def _run_results(self, arrays: Mapping[str, Array], n: int) -> Array:
+        stop = threading.Event()
+
+        def one(i: int) -> Array:
+            try:
+                result = self.run_one(paths.apply_overrides(self.scene, arrays, i), stop)
+            except CrashsimError:
+                return np.full(self.m, MISSING)
+            return self.from_result(result)
+
+        workers = (os.cpu_count() or 1) if self.threads is None else self.threads
+        pool = concurrent.futures.ThreadPoolExecutor(max_workers=max(1, min(workers, n)))
+        try:
+            futures = [pool.submit(one, i) for i in range(n)]
+            return np.array([f.result() for f in futures])
+        except KeyboardInterrupt as e:
+            stop.set()
+            raise _Interrupted from e
+        finally:
+            pool.shutdown(wait=True, cancel_futures=True)
+
+
+class _Progress:
+    """A line on stderr: runs made and the best objective so far."""
+
+    def __init__(self) -> None:
+        self.last = 0.0
+
+    def __call__(self, runs: int, best: float) -> None:
+        now = time.monotonic()
+        if now - self.last >= 0.5:
+            self.last = now
+            sys.stderr.write(f"\rfit: {runs} runs, best chi^2 {best:.4g}   ")
+            sys.stderr.flush()
+
+    def close(self) -> None:
+        sys.stderr.write("\n")
+        sys.stderr.flush()
+
+
+# -- checks -----------------------------------------------------------------------------------
+
+
+def _check_unknowns(
+    scene: Scene, unknowns: Mapping[str, Any]
+) -> tuple[list[str], Array, Array, dict[str, str]]:
+    if not isinstance(unknowns, Mapping) or not unknowns:
+        raise FitError('give the unknowns as {path: (lo, hi)}, e.g. {"red.speed": (10, 25)}')
+    names, lo, hi, units = [], [], [], {}
+    for name, bounds in unknowns.items():
+        try:
+            p = paths.parse_path(scene, name)
+        except StudyError as e:
+            raise FitError(f"unknown {name!r}: {e}", key=str(name)) from e
+        try:
+            a, b = (float(v) for v in bounds)
+        except (TypeError, ValueError) as e:
+            raise FitError(
+                f"unknown {name!r}: bounds must be two numbers (lo, hi) in {p.unit}, got "
+                f"{bounds!r}",
+                key=name,
+            ) from e
+        if not (math.isfinite(a) and math.isfinite(b)) or a >= b:
+            raise FitError(
+                f"unknown {name!r}: bounds ({a:g}, {b:g}) {p.unit} need finite lo < hi",
+                key=name,
+            )
+        names.append(p.name)
+        lo.append(a)
+        hi.append(b)
+        units[p.name] = p.unit
+    if len(set(names)) != len(names):
+        raise FitError("an unknown is given twice")
+    paths.overrides(scene, {n: [0.5 * (a + b)] for n, a, b in zip(names, lo, hi, strict=True)},
+                    n=1)  # fmt: skip  (conflicting paths: StudyError naming them)
+    return names, np.array(lo), np.array(hi), units
+
+
+def _start(
+    scene: Scene, names: list[str], lo: Array, hi: Array, start: Mapping[str, float] | None
+) -> Array:
+    x0 = np.empty(len(names))
+    given = dict(start or {})
+    for k in given:
+        if k not in names:
+            raise FitError(f"start {k!r} is not one of the unknowns ({', '.join(names)})", key=k)
+    for j, n in enumerate(names):
+        if n in given:
+            v = float(given[n])
+            if not lo[j] <= v <= hi[j]:
+                raise FitError(
+                    f"start of {n!r} = {v:g} lies outside its bounds ({lo[j]:g}, {hi[j]:g})",
+                    key=n,
+                )
+        else:
+            try:
+                v = paths.base_value(scene, n)
+            except StudyError:
+                v = math.nan
+            if not (math.isfinite(v) and lo[j] <= v <= hi[j]):
+                v = 0.5 * (lo[j] + hi[j])
+        x0[j] = v
+    return x0
+
+
+# -- the solvers ------------------------------------------------------------------------------
+
+
+def _jacobian(prob: _Problem, u: Array, lo: Array, hi: Array, step: float) -> Array:
+    """(m, k) d residual / d u by central differences (one side at a bound), one batch."""
+    k = len(u)
+    pts, pairs = [], []
+    for j in range(k):
+        a, b = u.copy(), u.copy()
+        a[j] = min(1.0, u[j] + step)
+        b[j] = max(0.0, u[j] - step)
+        pts += [a, b]
+        pairs.append(a[j] - b[j])
+    r = prob.residuals(lo + np.array(pts) * (hi - lo))
+    return np.column_stack([(r[2 * j] - r[2 * j + 1]) / pairs[j] for j in range(k)])
+
+
+def _least_squares(
+    prob: _Problem, u0: Array, lo: Array, hi: Array, step: float, max_nfev: int
+) -> tuple[Array, str]:
+    from scipy.optimize import least_squares
+
+    def fun(u: Array) -> Array:
+        return prob.residuals(lo + u * (hi - lo))[0]
+
+    def jac(u: Array) -> Array:
+        return _jacobian(prob, u, lo, hi, step)
+
+    sol = least_squares(fun, np.clip(u0, 0.0, 1.0), jac=jac, bounds=(0.0, 1.0), method="trf",
+                        x_scale=1.0, xtol=1e-9, ftol=1e-12, gtol=1e-10,
+                        max_nfev=max_nfev)  # fmt: skip
+    return sol.x, str(sol.message)
+
+
+def _global(
+    prob: _Problem, k: int, lo: Array, hi: Array, seed: int | None, popsize: int, maxiter: int
+) -> tuple[Array, str]:
+    from scipy.optimize import differential_evolution
+
+    def objective(us: Array) -> Array:  # (k, S) -> (S,)
+        r = prob.residuals((lo[:, None] + us * (hi - lo)[:, None]).T)
+        return np.einsum("ij,ij->i", r, r)
+
+    sol = differential_evolution(objective, [(0.0, 1.0)] * k, vectorized=True,
+                                 updating="deferred", popsize=popsize, maxiter=maxiter,
+                                 seed=seed, polish=False, init="latinhypercube",
+                                 tol=1e-6)  # fmt: skip
+    return sol.x, str(sol.message)
+
+
+def _uncertainty(
+    prob: _Problem, best: Array, lo: Array, hi: Array, step: float
+) -> tuple[Array | None, Array]:
+    """Covariance (k, k) in SI of the unknowns and sigma (k,) from the Jacobian at ``best``."""
+    u = (best - lo) / (hi - lo)
+    jx = _jacobian(prob, u, lo, hi, step) / (hi - lo)  # residual per SI unit
+    jtj = jx.T @ jx
+    try:
+        s = np.linalg.svd(jtj, compute_uv=False)
+        if s[-1] <= s[0] * 1e-12 or not np.all(np.isfinite(jtj)):
+            raise np.linalg.LinAlgError
+        cov = np.linalg.inv(jtj)
+    except np.linalg.LinAlgError:
+        return None, np.full(len(best), math.inf)
+    return cov, np.sqrt(np.maximum(np.diag(cov), 0.0))
+
+
+def _scan(
+    prob: _Problem, names: list[str], best: Array, sigma: Array, lo: Array, hi: Array, points: int
+) -> tuple[dict[str, tuple[Array, Array]], dict[str, tuple[float, float]]]:
+    """chi^2 along each unknown through ``best`` over +-3 sigma (within the bounds), one batch;
+    the range where it stays within 3.84 of its least (the end of the scan where it does not
+    rise that far)."""
+    k = len(best)
+    grids = []
+    for j in range(k):
+        half = 3.0 * sigma[j] if math.isfinite(sigma[j]) else 0.5 * (hi[j] - lo[j])
+        half = min(half, hi[j] - lo[j])
+        g = np.linspace(max(lo[j], best[j] - half), min(hi[j], best[j] + half), points)
+        grids.append(np.unique(np.r_[g, best[j]]))
+    xs = []
+    for j in range(k):
+        for v in grids[j]:
+            x = best.copy()
+            x[j] = v
+            xs.append(x)
+    r = prob.residuals(np.array(xs))
+    chi = np.einsum("ij,ij->i", r, r)
+    scans: dict[str, tuple[Array, Array]] = {}
+    ranges: dict[str, tuple[float, float]] = {}
+    at = 0
+    for j, n in enumerate(names):
+        g = grids[j]
+        c = chi[at : at + len(g)]
+        at += len(g)
+        scans[n] = (g, c)
+        i0 = int(np.argmin(c))
+        level = c[i0] + CHI2_95
+
+        def crossing(idx: range) -> float:
+            prev = i0
+            for i in idx:
+                if c[i] > level:  # interpolate between prev (inside) and i (outside)
+                    f = (level - c[prev]) / (c[i] - c[prev])
+                    return float(g[prev] + f * (g[i] - g[prev]))
+                prev = i
+            return float(g[prev])
+
+        ranges[n] = (crossing(range(i0 - 1, -1, -1)), crossing(range(i0 + 1, len(g))))
+    return scans, ranges
+
+
+# -- the entry point --------------------------------------------------------------------------
+
+
+def fit(
+    scene: Scene,
+    unknowns: Mapping[str, tuple[float, float]],
+    evidence: Sequence[Evidence],
+    *,
+    method: str = "least_squares",
+    start: Mapping[str, float] | None = None,
+    duration: float | None = None,
+    dt: float = 1e-3,
+    until: str | None = "rest",
+    max_duration: float = 30.0,
+    progress: bool | Callable[[int, float], None] = True,
+    seed: int | None = None,
+    threads: int | None = None,
+    step: float = 1e-3,
+    max_nfev: int = 60,
+    popsize: int = 8,
+    maxiter: int = 30,
+    scan: bool = True,
+    scan_points: int = 9,
+) -> FitResult:
+    """Fit ``unknowns`` {path: (lo, hi)} (SI, crashsim.studies.paths) of ``scene`` to the
+    ``evidence`` items (crashsim.studies.evidence); see the module's text.
+
+    ``method``: "least_squares" (from ``start`` {path: value}, default the scene's own value
+    when inside the bounds, else the middle) or "global" (differential evolution, seeded by
+    ``seed``, ``popsize`` x k candidates a generation for at most ``maxiter`` generations,
+    then least squares). Runs: ``until="rest"`` (needs a ground) up to ``max_duration`` s,
+    or ``until=None`` for ``duration`` s; steps of ``dt`` s; ``threads`` (None: all cores).
+    ``step``: the Jacobian's difference step as a fraction of each unknown's range;
+    ``max_nfev``: the least-squares solve's evaluations at most. ``scan``: scan the
+    objective along each unknown (``scan_points`` per unknown) for the check and the
+    picture. ``progress``: True a line on stderr, a callable (runs, best chi^2), or False.
+    FitError (a StudyError) naming the unknown or evidence item for bad input."""
+    if method not in METHODS:
+        raise FitError(f"method {method!r} is unknown: use {' or '.join(METHODS)}")
+    if until not in (None, "rest"):
+        raise FitError(f'until = {until!r} is unknown: use until="rest" or None')
+    if until is None and duration is None:
+        raise FitError('give duration (s) for runs of a fixed length, or until="rest"')
+    if until == "rest" and scene.ground is None:
+        raise FitError('until="rest" needs a ground: give duration and until=None instead')
+    for what, v in (("dt", dt), ("max_duration", max_duration), ("step", step)):
+        if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+            raise FitError(f"{what} = {v!r} must be a number > 0")
+    names, lo, hi, units = _check_unknowns(scene, unknowns)
+    items = [evidence] if isinstance(evidence, Evidence) else list(evidence)
+    labels = check_evidence(scene, items)
+    x0 = _start(scene, names, lo, hi, start)
+    bar = _Progress() if progress is True else None
+    callback = bar if bar is not None else (progress if callable(progress) else None)
+    run = {"duration": duration, "dt": dt, "until": until, "max_duration": max_duration}
+    prob = _Problem(scene, names, items, labels, run, threads, callback)
+    began = time.monotonic()
+    interrupted = False
+    message = ""
+    best = x0.copy()
+    cov: Array | None = None
+    sigma = np.full(len(names), math.inf)
+    scans = scan_ranges = None
+    try:
+        u0 = (x0 - lo) / (hi - lo)
+        if method == "global":
+            u0, message = _global(prob, len(names), lo, hi, seed, popsize, maxiter)
+            message = f"differential evolution: {message}; "
+        u, m = _least_squares(prob, u0, lo, hi, step, max_nfev)
+        message += f"least squares: {m}"
+        best = lo + u * (hi - lo)
+        if prob.best_x is not None and prob.best < prob.chi2(prob.residuals(best[None])[0]):
+            best = prob.best_x.copy()
+        cov, sigma = _uncertainty(prob, best, lo, hi, step)
+        if scan:
+            scans, scan_ranges = _scan(prob, names, best, sigma, lo, hi, scan_points)
+    except (_Interrupted, KeyboardInterrupt):
+        interrupted = True
+        message += "interrupted (Ctrl-C): the best candidate so far"
+        if prob.best_x is not None:
+            best = prob.best_x.copy()
+    finally:
+        if bar is not None:
+            bar.close()
+    values = {n: float(v) for n, v in zip(names, best, strict=True)}
+    fitted = paths.with_(scene, values)
+    result = None
+    residuals: list[ItemResidual] = []
+    if not interrupted:
+        try:
+            result = prob.run_one(fitted)
+        except CrashsimError:
+            result = None
+    r_best = prob.residuals(best[None])[0] if not interrupted or prob.best_x is not None \
+        else np.full(prob.m, MISSING)  # fmt: skip
+    at = 0
+    for e, label in zip(items, labels, strict=True):
+        nr = r_best[at : at + e.size]
+        at += e.size
+        if result is not None:
+            measured = e.from_result(result)
+            diff = e.difference(measured)
+        else:
+            diff = nr * float(e.tolerance)  # type: ignore[attr-defined]
+            measured = e.target() + diff
+        residuals.append(ItemResidual(label, e.unit, e.components, np.asarray(measured, float),
+                                      e.target(), np.asarray(diff, float), nr))  # fmt: skip
+    ranges = {
+        n: (float(best[j] - Z_95 * sigma[j]), float(best[j] + Z_95 * sigma[j]))
+        for j, n in enumerate(names)
+    }
+    return FitResult(
+        names=names,
+        units=units,
+        values=values,
+        start={n: float(v) for n, v in zip(names, x0, strict=True)},
+        bounds={n: (float(a), float(b)) for n, a, b in zip(names, lo, hi, strict=True)},
+        objective=prob.chi2(r_best),
+        residuals=residuals,
+        covariance=cov,
+        sigma={n: float(s) for n, s in zip(names, sigma, strict=True)},
+        ranges=ranges,
+        evidence=items,
+        scene=fitted,
+        result=result,
+        method=method,
+        n_runs=prob.n_runs,
+        interrupted=interrupted,
+        message=message,
+        scan=scans,
+        scan_ranges=scan_ranges,
+        elapsed=time.monotonic() - began,
+    )
