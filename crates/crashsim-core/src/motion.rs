@@ -38,15 +38,6 @@ pub const MAX_SUBSTEP_RELAXATION: Real = 1.0;
 const BODY_CONTACT_FREQUENCY: Real = 20.0;
 /// Damping ratio of the body-ground contact.
 const BODY_CONTACT_DAMPING: Real = 0.5;
-/// The body-ground spring stiffens with depth d as `k d (1 + (d / this)^2)` (m): at rest
-/// (0.6 mm on a footprint) it is the linear 20 Hz spring to 4 %, while a landing is held far
-/// shallower: the SUV's roof landing after a kerb trip (examples/runout-rollover-kerb.toml)
-/// went 4.6 cm into the road with the linear spring, 2.9 cm with 10 mm here, 2.4 cm with
-/// 5 mm, 1.9 cm with 3 mm, and 1.4 cm once the damper stiffens with the spring (keeping the
-/// damping ratio; without it, boxes pushed sideways bounced on their edges into three late
-/// re-contacts in tests/dynamics.rs). At 2 cm the local frequency is 11.5 times the 20 Hz
-/// (1.4 rad per 1 ms sub-step, inside classical Runge-Kutta's 2.8).
-const BODY_CONTACT_STIFFENING_DEPTH: Real = 0.003;
 /// Below this sliding speed (m/s) body-ground friction fades linearly (no chatter at rest).
 pub const BODY_SLIP_SPEED: Real = 0.05;
 /// Points of the hull within this distance (m) of a wheel's tyre (radially) count as the
@@ -390,11 +381,7 @@ impl OnGround {
             }
             let vp = v + w.cross(&(p - x));
             let vn = vp.dot(&g.normal);
-            // The spring stiffens with depth; the damper with it, keeping the damping ratio
-            // at the local stiffness k (1 + 3 (d / d0)^2).
-            let r = (depth / BODY_CONTACT_STIFFENING_DEPTH).powi(2);
-            let damping = c.damping[k] * (1.0 + 3.0 * r).sqrt();
-            let fn_ = (c.stiffness[k] * depth * (1.0 + r) - damping * vn).max(0.0);
+            let fn_ = (c.stiffness[k] * depth - c.damping[k] * vn).max(0.0);
             let vt = vp - g.normal * vn;
             let slip = vt.norm();
             let ft = -vt * (mu * fn_ / slip.max(BODY_SLIP_SPEED));
