@@ -354,6 +354,7 @@ impl World {
             effective_mass: geometry.effective_mass,
             normal_time: geometry.normal_time.unwrap_or(self.time),
             notes,
+            orientation: [after[0].orientation, after[1].orientation],
         });
         self.pairs[pi].exchanges += 1;
         self.pairs[pi].phase = engaged;

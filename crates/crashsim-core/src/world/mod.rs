@@ -32,7 +32,9 @@ use crate::shape::MeshShape;
 use crate::stiffness::{Face, Stiffness};
 use crate::vehicle::VehicleSpec;
 
-pub use events::{ContactEvent, ContactEventKind, Impact, RunOutput};
+pub use events::{
+    degrees, heading, magnitude, pdof_deg, ContactEvent, ContactEventKind, Impact, RunOutput,
+};
 pub use stepper::{
     RunOptions, DEFAULT_MAX_HISTORY_BYTES, DEFAULT_SAMPLES, REST_SPEED, REST_TIME, REST_YAW_RATE,
 };
