@@ -18,6 +18,7 @@ pub mod math;
 pub mod motion;
 pub mod overlap;
 pub mod shape;
+pub mod spec;
 pub mod stiffness;
 pub mod triangle;
 pub mod vehicle;
@@ -29,6 +30,7 @@ pub use error::{Error, Result};
 pub use impulse::RestitutionMode;
 pub use mass::SolidProperties;
 pub use shape::MeshShape;
+pub use spec::{BodyMotion, BodySpec, ContactSpec, RunSpec, SceneSpec};
 pub use stiffness::{Face, FaceStiffness, Stiffness};
 pub use world::{
     ContactEvent, ContactEventKind, Impact, RunOptions, RunOutput, World, DEFAULT_MAX_HISTORY_BYTES,
