@@ -6,6 +6,7 @@
 //! [`world::World`] steps everything and logs every exchange. Frames and units: DESIGN.md
 //! section 1 (SI; world z up; body frame at the CG, x forward, y left, z up).
 
+pub mod batch;
 pub mod bisect;
 pub mod body;
 pub mod bvh;

@@ -300,7 +300,7 @@ impl SceneSpec {
 pub use document::{from_json, to_json};
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::math::{Point, Rotation, Vector};
 
