@@ -86,6 +86,9 @@ struct Pair {
     /// The closest pair of triangles (of body 1, body 2) at the pair's last distance query:
     /// the next query starts from it.
     closest: Option<(u32, u32)>,
+    /// A pair of triangles (of body 1, body 2) whose surfaces crossed at the engaged pair's
+    /// last overlap test: the next test tries it first (overlap.rs, shapes_overlap_hinted).
+    crossing: Option<(u32, u32)>,
 }
 
 /// How a body moves between exchanges.
@@ -224,6 +227,7 @@ impl World {
                 clear_until: Real::NEG_INFINITY,
                 lookahead: 1.0,
                 closest: None,
+                crossing: None,
             });
         }
         self.bodies.push(WorldBody {
