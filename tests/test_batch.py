@@ -235,6 +235,10 @@ def test_bad_overrides_are_refused_naming_the_key() -> None:
         run_batch(scene, duration=0.1, dt=1e-3)
     with pytest.raises(cs.ParameterError, match="threads"):
         run_batch(scene, n=2, duration=0.1, dt=1e-3, threads=0)
+    with pytest.raises(cs.ParameterError, match="dt"):
+        run_batch(scene, n=2, duration=0.1, dt=0.0)
+    with pytest.raises(cs.ParameterError, match="duration"):
+        run_batch(scene, n=2, duration="1 s", dt=1e-3)  # type: ignore[arg-type]
     # no overrides: n copies of the scene
     same = run_batch(scene, n=3, duration=0.3, dt=1e-3)
     assert np.unique(same.columns["impact1.time"]).size == 1

@@ -55,6 +55,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import ParameterError
+from crashsim.vehicles.vehicle import _as_float
 
 if TYPE_CHECKING:
     from crashsim.scene import Scene
@@ -144,8 +145,13 @@ def run_batch(
     max_impacts = _count(max_impacts, "max_impacts")
     if max_impacts < 0:
         raise ParameterError(f"max_impacts = {max_impacts} is invalid: give 0 or more")
-    if not math.isfinite(float(duration)) or not math.isfinite(float(dt)):
-        raise ParameterError(f"duration = {duration!r} and dt = {dt!r} must be finite (s)")
+    # the engine checks these per run; a batch says so once, before it starts
+    duration = _as_float(duration, "duration", "s")
+    dt = _as_float(dt, "dt", "s")
+    if not (math.isfinite(duration) and duration >= 0.0):
+        raise ParameterError(f"duration = {duration!r} is invalid: give a finite time >= 0 s")
+    if not (math.isfinite(dt) and dt > 0.0):
+        raise ParameterError(f"dt = {dt!r} is invalid: give a finite time step > 0 s")
     if until is None:
         spec = scene.to_spec(duration, dt)
     else:
