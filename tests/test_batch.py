@@ -239,6 +239,9 @@ def test_bad_overrides_are_refused_naming_the_key() -> None:
         run_batch(scene, n=2, duration=0.1, dt=0.0)
     with pytest.raises(cs.ParameterError, match="duration"):
         run_batch(scene, n=2, duration="1 s", dt=1e-3)  # type: ignore[arg-type]
+    empty = run_batch(scene, None, n=0, duration=0.1, dt=1e-3)
+    assert empty.n == 0 and all(c.shape == (0,) for c in empty.columns.values())
+    assert "impact1.red.pdof_deg" in empty.columns
     # no overrides: n copies of the scene
     same = run_batch(scene, n=3, duration=0.3, dt=1e-3)
     assert np.unique(same.columns["impact1.time"]).size == 1

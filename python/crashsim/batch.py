@@ -47,7 +47,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -74,7 +74,7 @@ class VariantError:
     message: str
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class BatchResult:
     """What :func:`run_batch` returns (pure data, picklable): ``n`` variants; ``columns``
     {name: (n,) array} in the order of the module's column list; ``errors`` the failed
@@ -83,9 +83,9 @@ class BatchResult:
 
     n: int
     columns: dict[str, NDArray[Any]]
-    errors: list[VariantError]
-    finished: NDArray[np.bool_]
-    interrupted: bool
+    errors: list[VariantError] = field(default_factory=list)
+    finished: NDArray[np.bool_] = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    interrupted: bool = False
 
 
 def _count(value: Any, name: str) -> int:
