@@ -1,4 +1,4 @@
-"""crashsim.batch.run_batch against the batch contract (notes/batch-contract.md): written
+"""crashsim.batch.run_batch against the batch contract (docs/batch-contract.md): written
 against the contract only, so they hold for the provisional pure-Python batch and for the
 batch engine that replaces it."""
 
@@ -80,7 +80,7 @@ def test_each_variant_equals_its_own_scene_run_bit_for_bit() -> None:
             assert b.columns[f"impact1.{name}.delta_v_x"][i] == dv[0]
             assert b.columns[f"impact1.{name}.delta_v_y"][i] == dv[1]
             assert b.columns[f"impact1.{name}.delta_v_long"][i] == body[0]
-            assert b.columns[f"impact1.{name}.delta_v_lat"][i] == body[1]  # y left
+            assert b.columns[f"impact1.{name}.delta_v_lat"][i] == -body[1]  # EDR: + right
             assert b.columns[f"impact1.{name}.pdof_deg"][i] == pdof(body)
             tr = r.trajectory(name)
             assert b.columns[f"{name}.final_x"][i] == tr.position[-1, 0]

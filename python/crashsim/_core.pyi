@@ -14,11 +14,14 @@ from numpy.typing import ArrayLike, NDArray
 
 __version__: str
 __all__ = [
+    "ContactParams",
     "CrashsimError",
+    "Impact",
     "InitialOverlapError",
     "InputError",
     "MeshError",
     "ParameterError",
+    "SceneSpec",
     "Shape",
     "SimulationError",
     "World",
@@ -26,6 +29,7 @@ __all__ = [
     "dynamics_defaults",
     "free_motion",
     "overlap_region",
+    "run_batch",
     "shapes_overlap",
     "solid_properties",
     "static_loads",
@@ -141,14 +145,82 @@ def free_motion(
     (position, orientation (w, x, y, z), velocity, angular_velocity), world frame."""
 
 @final
-class World:
-    """A set of rigid bodies with meshes and the contact parameters of each pair."""
+class ContactParams:
+    """One vehicle pair's contact parameters, checked by the engine when made (ranges in
+    crates/crashsim-core/src/contact.rs). Immutable; None takes the engine's default.
 
-    def __new__(cls) -> World: ...
+    depth_of_penetration: a time in s in [0, 0.060] (default 0.030) or "auto"
+    (sqrt(m'/k') per impact; needs stiffness on every face of both bodies).
+    restitution: in [0, 1] (default 0.1). friction: inter-vehicle, >= 0 (default 0.6).
+    restitution_mode: "total" (Kudlich-Slibar, restitution on the whole compression
+    impulse) or "normal" (Newton/Brach: on the normal relative velocity).
+    centroid: "auto" (centre of the overlap region in the contact frame), "stiffness" (that
+    centre moved along n so the crush splits as C1 : C2 = k2 : k1), "world" (the
+    fixed world point centroid_point, m) or "body" (centroid_point fixed in the frame of
+    body centroid_body, which must be one of the pair's).
+    normal: "horizontal" (horizontal part of the volume normal, tilted up by pitch rad, in
+    [-pi/2, pi/2], default 0), "volume" (the full 3-D volume normal) or "vector"
+    (normal_vector, world frame).
+    """
+
+    def __new__(
+        cls,
+        *,
+        depth_of_penetration: float | str | None = None,
+        restitution: float | None = None,
+        friction: float | None = None,
+        restitution_mode: str = "total",
+        centroid: str = "auto",
+        centroid_point: ArrayLike | None = None,
+        centroid_body: int | None = None,
+        normal: str = "horizontal",
+        normal_vector: ArrayLike | None = None,
+        pitch: float | None = None,
+    ) -> ContactParams: ...
     @property
-    def time(self) -> float: ...
+    def depth_of_penetration(self) -> float | str: ...
+    @property
+    def restitution(self) -> float: ...
+    @property
+    def friction(self) -> float: ...
+    @property
+    def restitution_mode(self) -> str: ...
+    @property
+    def centroid(self) -> str: ...
+    @property
+    def centroid_point(self) -> NDArray[np.float64] | None: ...
+    @property
+    def centroid_body(self) -> int | None: ...
+    @property
+    def normal(self) -> str: ...
+    @property
+    def normal_vector(self) -> NDArray[np.float64] | None: ...
+    @property
+    def pitch(self) -> float: ...
+    @property
+    def needs_stiffness(self) -> bool:
+        """True for depth_of_penetration "auto" or centroid "stiffness"."""
+    def __eq__(self, value: object, /) -> bool: ...
+    def __ne__(self, value: object, /) -> bool: ...
+    __hash__: None  # type: ignore[assignment]
+
+@final
+class SceneSpec:
+    """A whole scene as a value (the core's SceneSpec): bodies (moving, then fixed
+    obstacles, in the engine's order), face stiffness, the ground, wheels, tyres and driver
+    inputs, per-pair contact parameters and the run's options. Every value is checked by the
+    engine at the call that sets it. Serialisable: to_json / from_json (meshes as vertices
+    and triangles, each shared mesh once) and pickle, the same scene bit for bit."""
+
+    def __new__(cls) -> SceneSpec: ...
     @property
     def n_bodies(self) -> int: ...
+    @property
+    def names(self) -> list[str]:
+        """The bodies' names, in order ("body i" when none was given)."""
+    @property
+    def run_options(self) -> tuple[float, float, bool]:
+        """(duration s, dt s, until_rest) of the run."""
     def add_body(
         self,
         shape: Shape,
@@ -158,14 +230,17 @@ class World:
         orientation: ArrayLike,
         velocity: ArrayLike,
         angular_velocity: ArrayLike,
+        name: str | None = None,
     ) -> int:
-        """Add a body; returns its index. inertia: (3, 3) about the CG in the body frame (kg m^2);
-        position of the CG (m), orientation (w, x, y, z), velocity (m/s) and angular velocity
-        (rad/s) in the world frame."""
-    def add_obstacle(self, shape: Shape, position: ArrayLike, orientation: ArrayLike) -> int:
-        """Add a fixed obstacle (infinite mass and inertia, never moves) with its mesh at a pose
-        (position m, quaternion (w, x, y, z)); returns its index. Obstacles form no pair with
-        each other."""
+        """Add a moving body; returns its index. inertia: (3, 3) about the CG in the body
+        frame (kg m^2); position of the CG (m), orientation (w, x, y, z), velocity (m/s) and
+        angular velocity (rad/s) in the world frame."""
+    def add_obstacle(
+        self, shape: Shape, position: ArrayLike, orientation: ArrayLike, name: str | None = None
+    ) -> int:
+        """Add a fixed obstacle (infinite mass and inertia, never moves) with its mesh at a
+        pose (position m, quaternion (w, x, y, z)); returns its index. Obstacles form no pair
+        with each other."""
     def set_ground(
         self,
         *,
@@ -175,7 +250,7 @@ class World:
         body_friction: float | None = None,
         zones: list[tuple[ArrayLike, float]] = ...,
     ) -> None:
-        """Put the world on the ground (gravity along -z): the plane z = height (m), or a
+        """Put the scene on the ground (gravity along -z): the plane z = height (m), or a
         terrain mesh in world coordinates; tyre-road and body-ground friction (None: the
         engine's 0.8 and 0.45); friction zones as ((k, 2) polygon in m, friction)."""
     def set_vehicle(
@@ -201,36 +276,10 @@ class World:
         of (s, rad); per wheel braking None or ("fraction" | "deceleration", (k, 2) table of
         (s, fraction) or (s, m/s^2)) and drive-force tables (s, N); wheel-state switches
         (wheel, "time" | "exchange", when, "free" | "locked" | "braked", braked fraction)."""
-    def set_contact(
-        self,
-        body1: int,
-        body2: int,
-        *,
-        depth_of_penetration: float | str | None = None,
-        restitution: float = 0.1,
-        friction: float = 0.6,
-        restitution_mode: str = "total",
-        centroid: str = "auto",
-        centroid_point: ArrayLike | None = None,
-        centroid_body: int | None = None,
-        normal: str = "horizontal",
-        normal_vector: ArrayLike | None = None,
-        pitch: float = 0.0,
-    ) -> None:
-        """Parameters of the pair (body1, body2); every pair of bodies collides with the
-        defaults unless set here. The normal points from body1 into body2.
-
-        depth_of_penetration: a time in s in [0, 0.060] (None: 0.030) or "auto"
-        (sqrt(m'/k') per impact; needs stiffness on every face of both bodies).
-        restitution_mode: "total" (Kudlich-Slibar, restitution on the whole compression
-        impulse) or "normal" (Newton/Brach: on the normal relative velocity).
-        centroid: "auto" (centre of the overlap region in the contact frame), "stiffness" (that
-        centre moved along n so the crush splits as C1 : C2 = k2 : k1), "world" (the
-        fixed world point centroid_point) or "body" (centroid_point fixed in the frame of
-        body centroid_body, which must be body1 or body2).
-        normal: "horizontal" (horizontal part of the volume normal, tilted up by pitch rad),
-        "volume" (the full 3-D volume normal) or "vector" (normal_vector, world frame).
-        """
+    def set_contact(self, body1: int, body2: int, params: ContactParams) -> None:
+        """Parameters of the pair (body1, body2); every pair of bodies but two obstacles
+        collides with the defaults unless set here. The normal points from body1 into body2.
+        Face stiffness the parameters need is checked when the scene is built."""
     def set_stiffness(
         self,
         body: int,
@@ -241,6 +290,140 @@ class World:
         right: tuple[float, float] | None = None,
     ) -> None:
         """A body's face stiffness: each face (A, B) in (N/m, N/m^2), or None without data."""
+    def set_run(
+        self,
+        duration: float,
+        dt: float,
+        *,
+        record_interval: float | None = None,
+        max_history_bytes: int | None = None,
+        until_rest: bool = False,
+    ) -> None:
+        """The run: duration (s; with until_rest the longest it may take), largest step dt
+        (s), record_interval and max_history_bytes as World.run takes them. Default 1 s at
+        1 ms. Checked when the scene runs."""
+    def build(self) -> World:
+        """A fresh engine world holding the scene at t = 0 (every value checked)."""
+    def run(self, progress: Callable[[float], object] | None = None) -> dict[str, Any]:
+        """Build and run with the run's options; World.run's dict."""
+    def to_json(self) -> str:
+        """The scene as JSON text."""
+    @staticmethod
+    def from_json(text: str) -> SceneSpec:
+        """A scene from to_json's text, checked as the setup calls check (ParameterError,
+        MeshError)."""
+    @staticmethod
+    def _from_json_bytes(data: bytes) -> SceneSpec: ...
+    def __reduce__(self) -> tuple[Callable[[bytes], SceneSpec], tuple[bytes]]:
+        """Pickled as its JSON."""
+
+@final
+class Impact:
+    """One impulse exchange between body1 and body2 (world frame, SI; per-body values are
+    rows for body1 and body2). The normal points from body1 into body2; the impulse acts on
+    body2 (body1 gets its negative)."""
+
+    @property
+    def body1(self) -> int: ...
+    @property
+    def body2(self) -> int: ...
+    @property
+    def first_contact_time(self) -> float:
+        """When the timer started (s): the first overlap, or the closing again."""
+    @property
+    def time(self) -> float:
+        """The exchange instant (s)."""
+    @property
+    def depth_of_penetration(self) -> float: ...
+    @property
+    def depth_of_penetration_mode(self) -> str:
+        """"fixed" or "auto"."""
+    @property
+    def secondary(self) -> bool: ...
+    @property
+    def centroid(self) -> NDArray[np.float64]: ...
+    @property
+    def normal(self) -> NDArray[np.float64]: ...
+    @property
+    def impulse(self) -> NDArray[np.float64]: ...
+    @property
+    def sliding(self) -> bool: ...
+    @property
+    def velocity_before(self) -> NDArray[np.float64]:
+        """(2, 3) CG velocities (m/s)."""
+    @property
+    def velocity_after(self) -> NDArray[np.float64]: ...
+    @property
+    def angular_velocity_before(self) -> NDArray[np.float64]: ...
+    @property
+    def angular_velocity_after(self) -> NDArray[np.float64]: ...
+    @property
+    def delta_v_body(self) -> NDArray[np.float64]:
+        """(2, 3) each body's velocity change in its frame at the exchange (m/s; x forward,
+        y left, z up): the EDR components."""
+    @property
+    def pdof_deg(self) -> tuple[float | None, float | None]:
+        """Each body's SAE principal direction of force (deg in [0, 360)); None without a
+        horizontal delta-V."""
+    @property
+    def orientation(self) -> NDArray[np.float64]:
+        """(2, 4) orientations (w, x, y, z) at the exchange."""
+    @property
+    def relative_velocity_before(self) -> NDArray[np.float64]:
+        """(3,) body1's point velocity minus body2's at the centroid (m/s)."""
+    @property
+    def relative_velocity_after(self) -> NDArray[np.float64]: ...
+    @property
+    def energy_dissipated(self) -> float:
+        """J."""
+    @property
+    def region_points(self) -> NDArray[np.float64]:
+        """(p, 3) the overlap region S (m)."""
+    @property
+    def contact_frame(self) -> NDArray[np.float64]:
+        """(3, 3) rows n, t, b."""
+    @property
+    def region_min(self) -> NDArray[np.float64]: ...
+    @property
+    def region_max(self) -> NDArray[np.float64]: ...
+    @property
+    def struck_faces(self) -> tuple[str, str]: ...
+    @property
+    def overlap_width(self) -> float: ...
+    @property
+    def spring_rates(self) -> tuple[float, float] | None: ...
+    @property
+    def effective_mass(self) -> tuple[float, float]: ...
+    @property
+    def notes(self) -> list[str]: ...
+    @property
+    def normal_time(self) -> float:
+        """When the overlap's volume normal behind ``normal`` was taken (s)."""
+
+def run_batch(
+    spec: SceneSpec,
+    overrides: dict[str, ArrayLike] | None,
+    n: int,
+    *,
+    threads: int | None = None,
+    progress: Callable[[int, int], object] | None = None,
+    max_impacts: int = 2,
+) -> dict[str, Any]:
+    """Run n variants of spec (its run options), each single-threaded, on a pool of threads
+    (None: one per core), the GIL released; overrides: {key: (n, ...) array} (the keys and
+    shapes of python/crashsim/batch.py; an unknown key or a wrong shape is a ParameterError
+    naming it). progress(done, n) is called from the caller's thread; Ctrl-C stops the
+    batch and keeps what finished. Returns ``columns`` [(name, (n,) array)], ``errors``
+    [(index, kind, message)], ``finished`` (n,) bool, ``interrupted`` bool."""
+
+@final
+class World:
+    """A running world, made by SceneSpec.build()."""
+
+    @property
+    def time(self) -> float: ...
+    @property
+    def n_bodies(self) -> int: ...
     def run(
         self,
         duration: float,
@@ -263,19 +446,7 @@ class World:
         every exchange; the state at an exchange is the one after it); ``record_interval``
         the spacing of the kept step ends (s); ``position``,
         ``velocity``, ``angular_velocity`` (n_bodies, k, 3); ``orientation`` (n_bodies, k, 4);
-        ``impacts``: a list of dicts, one per impulse exchange, with keys
-        ``body1``, ``body2``, ``first_contact_time``, ``time``, ``depth_of_penetration``,
-        ``secondary`` (bool), ``centroid`` (3,), ``normal`` (3,), ``impulse`` (3,) the impulse
-        on body2 (body1 gets its negative), ``sliding`` (bool), ``velocity_before``,
-        ``velocity_after``, ``angular_velocity_before``, ``angular_velocity_after`` (2, 3)
-        rows for body1 and body2, ``relative_velocity_before``, ``relative_velocity_after``
-        (3,) velocity of body1's point minus body2's at the centroid, ``energy_dissipated``
-        (J), ``region_points`` (p, 3), ``contact_frame`` (3, 3) rows n, t, b,
-        ``region_min``, ``region_max`` (3,) extent of the region in the contact frame,
-        ``depth_of_penetration_mode`` ("fixed" or "auto"), ``struck_faces`` (face of body1,
-        face of body2), ``overlap_width`` (m), ``spring_rates`` ((k1, k2) N/m or None),
-        ``effective_mass`` ((m1, m2) kg along n at the centroid), ``notes`` (list of str),
-        ``normal_time`` (s: when the overlap's volume normal behind ``normal`` was taken);
+        ``impacts``: a list of Impact records, one per impulse exchange, in time order;
         ``contacts``: a list of dicts ``body1``, ``body2``, ``time``, ``kind``
         ("first_overlap", "closing_again", "separation" or "no_exchange") and ``reason``
         (str or None); the wheels of the bodies on the ground (W in all, body after body):

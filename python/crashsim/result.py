@@ -123,7 +123,12 @@ class Impact:
     ``notes`` are the engine's remarks (e.g. an automatic dt_p outside 10-60 ms);
     ``normal_time`` is when the overlap's volume normal behind ``normal`` was taken (s): for a
     first exchange, once the overlap is at most 2 cm deep (a deep, narrow overlap at the
-    exchange would turn it toward the side walls that sank into each other), else ``time``."""
+    exchange would turn it toward the side walls that sank into each other), else ``time``.
+    ``delta_v_body`` is each moving vehicle's delta-V in its body frame at the exchange (m/s;
+    x forward, y left, z up: an event data recorder's longitudinal is x, its lateral, +right,
+    is -y) and ``pdof_deg`` its SAE principal direction of force (deg in [0, 360), None
+    without a horizontal delta-V), both computed by the engine (the report and a batch's
+    columns read these)."""
 
     vehicles: tuple[str, str]
     bodies: tuple[int, int]  # the engine's body indices (order of Scene.add)
@@ -156,15 +161,18 @@ class Impact:
     notes: tuple[str, ...] = ()
     normal_time: float = float("nan")
     obstacle: str | None = None
+    delta_v_body: dict[str, Array] = field(default_factory=dict)
+    pdof_deg: dict[str, float | None] = field(default_factory=dict)
 
     @classmethod
     def from_core(
-        cls, raw: dict[str, Any], names: list[str], obstacles: Collection[str] = ()
+        cls, raw: _core.Impact, names: list[str], obstacles: Collection[str] = ()
     ) -> Impact:
-        """An Impact from one of the engine's impact dicts and the bodies' names (vehicles
-        then obstacles); ``obstacles`` names the fixed ones: their per-body entries
-        (delta-V, velocities) are left out and their effective mass is infinite."""
-        bodies = (int(raw["body1"]), int(raw["body2"]))
+        """An Impact from the engine's record of one exchange and the bodies' names
+        (vehicles then obstacles); ``obstacles`` names the fixed ones: their per-body entries
+        (delta-V, velocities) are left out and their effective mass is infinite. The one
+        place that reads the engine's impact records."""
+        bodies = (int(raw.body1), int(raw.body2))
         pair = (names[bodies[0]], names[bodies[1]])
         fixed = [n for n in pair if n in obstacles]
         moving = [n for n in pair if n not in obstacles]
@@ -174,43 +182,47 @@ class Impact:
             out = {pair[0]: _frozen(rows[0]), pair[1]: _frozen(rows[1])}
             return {k: v for k, v in out.items() if k in moving}
 
-        v0, v1 = per_vehicle(raw["velocity_before"]), per_vehicle(raw["velocity_after"])
-        w0 = per_vehicle(raw["angular_velocity_before"])
-        w1 = per_vehicle(raw["angular_velocity_after"])
+        v0, v1 = per_vehicle(raw.velocity_before), per_vehicle(raw.velocity_after)
+        w0 = per_vehicle(raw.angular_velocity_before)
+        w1 = per_vehicle(raw.angular_velocity_after)
+        pdof = dict(zip(pair, raw.pdof_deg, strict=True))
+        spring_rates = raw.spring_rates
         return cls(
             vehicles=pair,
             bodies=bodies,
-            first_contact_time=float(raw["first_contact_time"]),
-            time=float(raw["time"]),
-            depth_of_penetration=float(raw["depth_of_penetration"]),
-            secondary=bool(raw["secondary"]),
-            sliding=bool(raw["sliding"]),
-            centroid=_frozen(raw["centroid"]),
-            normal=_frozen(raw["normal"]),
-            impulse=_frozen(raw["impulse"]),
+            first_contact_time=float(raw.first_contact_time),
+            time=float(raw.time),
+            depth_of_penetration=float(raw.depth_of_penetration),
+            secondary=bool(raw.secondary),
+            sliding=bool(raw.sliding),
+            centroid=_frozen(raw.centroid),
+            normal=_frozen(raw.normal),
+            impulse=_frozen(raw.impulse),
             delta_v={k: _frozen(v1[k] - v0[k]) for k in moving},
             delta_omega={k: _frozen(w1[k] - w0[k]) for k in moving},
             velocity_before=v0,
             velocity_after=v1,
             angular_velocity_before=w0,
             angular_velocity_after=w1,
-            relative_velocity_before=_frozen(raw["relative_velocity_before"]),
-            relative_velocity_after=_frozen(raw["relative_velocity_after"]),
-            energy_dissipated=float(raw["energy_dissipated"]),
-            region_points=_frozen(np.reshape(raw["region_points"], (-1, 3))),
-            contact_frame=_frozen(raw["contact_frame"]),
-            region_min=_frozen(raw["region_min"]),
-            region_max=_frozen(raw["region_max"]),
-            depth_of_penetration_mode=str(raw["depth_of_penetration_mode"]),
-            struck_faces=dict(zip(pair, raw["struck_faces"], strict=True)),
-            overlap_width=float(raw["overlap_width"]),
+            relative_velocity_before=_frozen(raw.relative_velocity_before),
+            relative_velocity_after=_frozen(raw.relative_velocity_after),
+            energy_dissipated=float(raw.energy_dissipated),
+            region_points=_frozen(np.reshape(raw.region_points, (-1, 3))),
+            contact_frame=_frozen(raw.contact_frame),
+            region_min=_frozen(raw.region_min),
+            region_max=_frozen(raw.region_max),
+            depth_of_penetration_mode=str(raw.depth_of_penetration_mode),
+            struck_faces=dict(zip(pair, raw.struck_faces, strict=True)),
+            overlap_width=float(raw.overlap_width),
             spring_rates=None
-            if raw["spring_rates"] is None
-            else dict(zip(pair, map(float, raw["spring_rates"]), strict=True)),
-            effective_mass=dict(zip(pair, map(float, raw["effective_mass"]), strict=True)),
-            notes=tuple(raw["notes"]),
-            normal_time=float(raw["normal_time"]),
+            if spring_rates is None
+            else dict(zip(pair, map(float, spring_rates), strict=True)),
+            effective_mass=dict(zip(pair, map(float, raw.effective_mass), strict=True)),
+            notes=tuple(raw.notes),
+            normal_time=float(raw.normal_time),
             obstacle=fixed[0] if fixed else None,
+            delta_v_body=per_vehicle(raw.delta_v_body),
+            pdof_deg={k: None if pdof[k] is None else float(pdof[k]) for k in moving},
         )
 
     @property
@@ -228,7 +240,7 @@ class Impact:
         name = self._check(vehicle)
         if name == self.obstacle:
             raise SceneError(f"{name!r} is a fixed obstacle: it has no delta-V")
-        return float(np.linalg.norm(self.delta_v[name]))
+        return _magnitude(self.delta_v[name])
 
     @property
     def moving(self) -> tuple[str, ...]:
@@ -249,6 +261,8 @@ class Impact:
             value = getattr(self, f.name)
             if f.name == "obstacle" and value is None:
                 continue
+            if f.name in ("delta_v_body", "pdof_deg"):
+                continue  # the report's per-vehicle part gives them (analysis/report.py)
             if isinstance(value, np.ndarray):
                 out[f.name] = value.tolist()
             elif isinstance(value, dict):
@@ -314,9 +328,19 @@ class SeparationState(NamedTuple):
 
 
 def _heading(q: Array) -> float:
-    """Yaw of the body x axis from world x (rad), counter-clockwise seen from above."""
-    r = rotation_matrix(q)
-    return float(math.atan2(r[1, 0], r[0, 0]))
+    """Yaw of the body x axis from world x (rad), counter-clockwise seen from above:
+    atan2(R[1][0], R[0][0]) of the unit quaternion (w, x, y, z), in plain float arithmetic
+    (the core's `heading`, events.rs, is the same bits: a batch's heading columns equal it)."""
+    w, x, y, z = (float(c) for c in q)
+    return math.atan2(2.0 * (x * y + w * z), 1.0 - 2.0 * (y * y + z * z))
+
+
+def _magnitude(v: Any) -> float:
+    """|v| as sqrt(x x + y y + z z) in plain float arithmetic (m/s for a velocity): the
+    core's `magnitude` (events.rs) bit for bit, so a batch's speed and delta-V columns equal
+    what a Result gives."""
+    x, y, z = (float(c) for c in v)
+    return math.sqrt(x * x + y * y + z * z)
 
 
 def _path_length(points: Array) -> float:
@@ -582,8 +606,7 @@ class Result:
         name = impact._check(vehicle)
         if name == impact.obstacle:
             raise SceneError(f"{name!r} is a fixed obstacle: it has no delta-V")
-        q = self.state_at(name, impact.time)["orientation"]
-        return _frozen(rotation_matrix(q).T @ impact.delta_v[name])
+        return impact.delta_v_body[name]
 
     # -- the run-out (scenes with a ground) -----------------------------------------------
 

@@ -177,22 +177,24 @@ def _static_height(vehicle: Vehicle) -> float:
 
 def _check_state(position: Any, orientation: Any, velocity: Any, angular_velocity: Any) -> None:
     """The engine's checks of an initial state (ParameterError naming the bad input)."""
-    _core.World().add_body(
+    _core.SceneSpec().add_body(
         _probe_shape(), 1.0, _EYE3, position, orientation, velocity, angular_velocity
     )
 
 
-def _check_contact(kwargs: dict[str, Any]) -> None:
-    """The engine's checks of one pair's parameters (ParameterError naming the bad one).
-    Body indices in kwargs must be 0 (vehicle 1) or 1 (vehicle 2). The probe bodies have
-    stiffness on every face: whether the real vehicles have it is checked when the world is
-    built (_check_stiffness), with their names."""
-    world = _core.World()
-    probe = (0.0, 1.0)  # (A, B): any valid pair
-    for i in range(2):
-        world.add_body(_probe_shape(), 1.0, _EYE3, (0, 0, 0), (1, 0, 0, 0), (0, 0, 0), (0, 0, 0))
-        world.set_stiffness(i, **dict.fromkeys(FACES, probe))
-    world.set_contact(0, 1, **kwargs)
+CONTACT_KEYS = (
+    "depth_of_penetration",
+    "restitution",
+    "friction",
+    "restitution_mode",
+    "normal",
+    "pitch",
+    "centroid",
+)
+"""The seven contact parameters of a pair (meanings, units and ranges: :class:`Scene`)."""
+
+_DEFAULTS = _core.ContactParams()
+"""The engine's defaults of a pair's parameters (crates/crashsim-core/src/contact.rs)."""
 
 
 def _needs_stiffness(params: dict[str, Any]) -> bool:
@@ -256,25 +258,31 @@ class Scene:
 
     def __init__(
         self,
-        depth_of_penetration: float | Literal["auto"] = 0.030,
-        restitution: float = 0.1,
-        friction: float = 0.6,
-        restitution_mode: str = "total",
+        depth_of_penetration: float | Literal["auto"] = float(_DEFAULTS.depth_of_penetration),
+        restitution: float = _DEFAULTS.restitution,
+        friction: float = _DEFAULTS.friction,
+        restitution_mode: str = _DEFAULTS.restitution_mode,
         normal: NormalSpec = None,
-        pitch: float = 0.0,
+        pitch: float = _DEFAULTS.pitch,
         centroid: CentroidSpec = None,
         ground: Ground | None = None,
     ) -> None:
-        defaults = {
-            "depth_of_penetration": depth_of_penetration,
-            "restitution": restitution,
-            "friction": friction,
-            "restitution_mode": restitution_mode,
-            "normal": normal,
-            "pitch": pitch,
-            "centroid": centroid,
-        }
-        _check_contact(self._core_kwargs(defaults, None, check_only=True))
+        defaults = dict(
+            zip(
+                CONTACT_KEYS,
+                (
+                    depth_of_penetration,
+                    restitution,
+                    friction,
+                    restitution_mode,
+                    normal,
+                    pitch,
+                    centroid,
+                ),
+                strict=True,
+            )
+        )
+        self._core_params(defaults, None)  # the engine's checks, at the call
         self._defaults = defaults
         self._placements: list[_Placement] = []
         self._obstacles: list[_ObstaclePlacement] = []
@@ -393,7 +401,7 @@ class Scene:
         pos, flat = _position(position, orientation)
         q = _orientation(heading, orientation)
         try:
-            _core.World().add_obstacle(obstacle.shape, pos, q)
+            _core.SceneSpec().add_obstacle(obstacle.shape, pos, q)
         except ParameterError as e:
             raise ParameterError(f"obstacle {obstacle.name!r}: {e}") from e
         placement = _ObstaclePlacement(obstacle, _read_only(pos), _read_only(q), flat)
@@ -536,19 +544,25 @@ class Scene:
         if i >= n and j >= n:
             raise SceneError("two obstacles never meet: a contact needs a vehicle")
         names = (bodies[i].name, bodies[j].name)
-        given = {
-            "depth_of_penetration": depth_of_penetration,
-            "restitution": restitution,
-            "friction": friction,
-            "restitution_mode": restitution_mode,
-            "normal": normal,
-            "pitch": pitch,
-            "centroid": centroid,
-        }
+        given = dict(
+            zip(
+                CONTACT_KEYS,
+                (
+                    depth_of_penetration,
+                    restitution,
+                    friction,
+                    restitution_mode,
+                    normal,
+                    pitch,
+                    centroid,
+                ),
+                strict=True,
+            )
+        )
         overrides = dict(self._overrides.get(names, {}))
         overrides.update({k: v for k, v in given.items() if v is not UNSET})
         merged = {**self._defaults, **overrides}
-        _check_contact(self._core_kwargs(merged, (i, j), check_only=True))
+        self._core_params(merged, (i, j))
         _check_stiffness(merged, (bodies[i], bodies[j]))
         self._overrides.pop((names[1], names[0]), None)
         self._overrides[names] = overrides
@@ -579,12 +593,13 @@ class Scene:
         overrides = self._overrides.get(names, self._overrides.get(names[::-1], {}))
         return {**self._defaults, **overrides}
 
-    def _core_kwargs(
-        self, params: dict[str, Any], pair: tuple[int, int] | None, check_only: bool = False
-    ) -> dict[str, Any]:
-        """World.set_contact keywords for a pair of body indices (i, j). With check_only the
-        body indices become 0 and 1 (the probe world of _check_contact); pair None means the
-        scene defaults, before any vehicle is known."""
+    def _core_params(
+        self, params: dict[str, Any], pair: tuple[int, int] | None
+    ) -> _core.ContactParams:
+        """The engine's ContactParams of one pair (body indices (i, j)) from the scene's
+        parameter values, checked by the engine (ParameterError naming the bad one). Pair None
+        means the scene defaults, before any vehicle is known (a centroid fixed in a vehicle
+        is then checked as a point; its vehicle when a pair takes it)."""
         dtp = params["depth_of_penetration"]
         kw: dict[str, Any] = {
             "depth_of_penetration": dtp
@@ -622,7 +637,7 @@ class Scene:
             and len(centroid) == 2
             and isinstance(centroid[0], Vehicle | Obstacle | str)
         ):
-            if pair is None:  # a scene default fixed in a vehicle: checked per pair at run
+            if pair is None:  # a scene default fixed in a vehicle: checked per pair
                 kw.update(centroid="world", centroid_point=centroid[1])
             else:
                 body = self._index(centroid[0])
@@ -633,9 +648,7 @@ class Scene:
                         f"the centroid is fixed in {bodies[body].name!r}, "
                         f"which is not in the pair ({a!r}, {b!r}): fix it in one of the two"
                     )
-                kw["centroid"] = "body"
-                kw["centroid_body"] = pair.index(body) if check_only else body
-                kw["centroid_point"] = centroid[1]
+                kw.update(centroid="body", centroid_body=body, centroid_point=centroid[1])
         elif isinstance(centroid, str):
             raise ParameterError(
                 f"centroid = {centroid!r} is unknown: use None (automatic), 'stiffness', a world "
@@ -643,20 +656,36 @@ class Scene:
             )
         else:
             kw.update(centroid="world", centroid_point=centroid)
-        return kw
+        return _core.ContactParams(**kw)
 
     # -- running -------------------------------------------------------------------------
 
-    def build_world(self) -> _core.World:
-        """A fresh engine world holding this scene: vehicles in the order added, then the
-        obstacles, every pair with the defaults merged with its overrides, and, with a
-        ground, the ground and each vehicle's wheels, tyre and driver inputs."""
+    def to_spec(
+        self,
+        duration: float | None = None,
+        dt: float = 1e-3,
+        *,
+        until: Literal["rest"] | None = None,
+        max_duration: float | None = None,
+        record_interval: float | None = None,
+        max_history_bytes: int | None = None,
+    ) -> _core.SceneSpec:
+        """The scene as the engine's value (``_core.SceneSpec``): vehicles in the order added
+        (with their names), then the obstacles, every pair in :meth:`pairs` order with the
+        defaults merged with its overrides, face stiffness, and, with a ground, the ground and
+        each vehicle's wheels, tyre and driver inputs; the run's options as :meth:`run` takes
+        them. The one path from a scene to the engine: :meth:`run` and
+        :func:`crashsim.batch.run_batch` run this value. It serialises
+        (``to_json()``, ``_core.SceneSpec.from_json``) and pickles."""
+        settings = self._run_settings(
+            duration, dt, until, max_duration, record_interval, max_history_bytes
+        )
         if not self._placements:
             raise SceneError("the scene has no vehicles: add some with scene.add(...)")
-        world = _core.World()
+        spec = _core.SceneSpec()
         for p in self._placements:
             v = p.vehicle
-            world.add_body(
+            spec.add_body(
                 v.shape,
                 v.mass,
                 v.inertia,
@@ -664,22 +693,23 @@ class Scene:
                 p.orientation,
                 p.velocity,
                 p.angular_velocity,
+                name=v.name,
             )
         for o in self._obstacles:
-            world.add_obstacle(o.obstacle.shape, o.position, o.orientation)
-        for i, b in enumerate(self._bodies()):
+            spec.add_obstacle(o.obstacle.shape, o.position, o.orientation, name=o.obstacle.name)
+        bodies = self._bodies()
+        for i, b in enumerate(bodies):
             faces = b.stiffness
-            world.set_stiffness(
+            spec.set_stiffness(
                 i,
                 **{f: None if (s := faces.face(f)) is None else (s.A, s.B) for f in FACES},
             )
-        bodies = self._bodies()
         for a, b, params in self.pairs():
             i, j = self._index(a), self._index(b)
             _check_stiffness(params, (bodies[i], bodies[j]))
-            world.set_contact(i, j, **self._core_kwargs(params, (i, j)))
+            spec.set_contact(i, j, self._core_params(params, (i, j)))
         if self._ground is not None:
-            world.set_ground(**self._ground.core_kwargs())
+            spec.set_ground(**self._ground.core_kwargs())
             for i, p in enumerate(self._placements):
                 w = p.vehicle.wheels
                 if w is None:
@@ -688,10 +718,64 @@ class Scene:
                 what = f"vehicle {p.vehicle.name!r}"
                 inputs = {} if p.inputs is None else p.inputs.to_core(w, f"{what} inputs")
                 try:
-                    world.set_vehicle(i, **w.spec(p.vehicle.mass), **inputs)
+                    spec.set_vehicle(i, **w.spec(p.vehicle.mass), **inputs)
                 except ParameterError as e:  # pragma: no cover - checked when put together
                     raise ParameterError(f"{what}: {e}") from e
-        return world
+        duration_s, dt_s, until_rest, interval, max_bytes = settings
+        spec.set_run(
+            duration_s,
+            dt_s,
+            record_interval=interval,
+            max_history_bytes=max_bytes,
+            until_rest=until_rest,
+        )
+        return spec
+
+    def build_world(self) -> _core.World:
+        """A fresh engine world holding this scene (``to_spec().build()``)."""
+        return self.to_spec().build()
+
+    def _run_settings(
+        self,
+        duration: float | None,
+        dt: float,
+        until: str | None,
+        max_duration: float | None,
+        record_interval: float | None,
+        max_history_bytes: int | None,
+    ) -> tuple[float, float, bool, float | None, int | None]:
+        """(duration s, dt s, until rest, record_interval s, max_history_bytes) of a run,
+        checked as :meth:`run` documents."""
+        if until is not None and until != "rest":
+            raise ParameterError(f'until = {until!r} is unknown: use until="rest" or a duration')
+        if until == "rest":
+            if self._ground is None:
+                raise SceneError(
+                    "a run until rest needs a ground (without one nothing slows the vehicles): "
+                    "set scene.ground = crashsim.Ground(...)"
+                )
+            if duration is not None and max_duration is not None:
+                raise ParameterError('with until="rest" give max_duration (or duration), not both')
+            limit = max_duration if max_duration is not None else duration
+            duration = DEFAULT_MAX_DURATION if limit is None else limit
+        elif max_duration is not None:
+            raise ParameterError('max_duration is for until="rest": give duration instead')
+        duration = _as_float(1.0 if duration is None else duration, "duration", "s")
+        dt = _as_float(dt, "dt", "s")
+        if record_interval is not None:
+            record_interval = _as_float(record_interval, "record_interval", "s")
+        if max_history_bytes is not None and (
+            isinstance(max_history_bytes, bool)
+            or not isinstance(max_history_bytes, int | np.integer)
+            or max_history_bytes < 1
+        ):
+            raise ParameterError(
+                f"max_history_bytes = {max_history_bytes!r} is invalid: give a positive whole "
+                "number of bytes (e.g. 2**30)"
+            )
+        if max_history_bytes is not None:
+            max_history_bytes = int(max_history_bytes)
+        return duration, dt, until == "rest", record_interval, max_history_bytes
 
     def _check_terrain_under(self, p: _Placement, wheels: Wheels) -> None:
         """SceneError when a wheel starts over a hole in the terrain."""
@@ -740,41 +824,17 @@ class Scene:
         first overlap and every exchange are kept whatever the interval. A run whose history
         would exceed ``max_history_bytes`` (default 2**30, 1 GiB) is refused before it starts
         with a ParameterError that gives the interval that fits."""
-        if until is not None and until != "rest":
-            raise ParameterError(f'until = {until!r} is unknown: use until="rest" or a duration')
-        if until == "rest":
-            if self._ground is None:
-                raise SceneError(
-                    "a run until rest needs a ground (without one nothing slows the vehicles): "
-                    "set scene.ground = crashsim.Ground(...)"
-                )
-            if duration is not None and max_duration is not None:
-                raise ParameterError('with until="rest" give max_duration (or duration), not both')
-            limit = max_duration if max_duration is not None else duration
-            duration = DEFAULT_MAX_DURATION if limit is None else limit
-        elif max_duration is not None:
-            raise ParameterError('max_duration is for until="rest": give duration instead')
-        duration = _as_float(1.0 if duration is None else duration, "duration", "s")
-        dt = _as_float(dt, "dt", "s")
-        if record_interval is not None:
-            record_interval = _as_float(record_interval, "record_interval", "s")
-        if max_history_bytes is not None and (
-            isinstance(max_history_bytes, bool)
-            or not isinstance(max_history_bytes, int | np.integer)
-            or max_history_bytes < 1
-        ):
-            raise ParameterError(
-                f"max_history_bytes = {max_history_bytes!r} is invalid: give a positive whole "
-                "number of bytes (e.g. 2**30)"
-            )
-        world = self.build_world()
+        spec = self.to_spec(
+            duration,
+            dt,
+            until=until,
+            max_duration=max_duration,
+            record_interval=record_interval,
+            max_history_bytes=max_history_bytes,
+        )
+        duration, dt, _ = spec.run_options
         try:
-            if until == "rest":
-                raw = world.run(
-                    duration, dt, progress, record_interval, max_history_bytes, until_rest=True
-                )
-            else:
-                raw = world.run(duration, dt, progress, record_interval, max_history_bytes)
+            raw = spec.run(progress)
         except InitialOverlapError as e:
             raise self._named_overlap_error(e) from e
         except SimulationError as e:
@@ -823,9 +883,7 @@ class Scene:
             return error
         vehicle = self._placements[i].vehicle
         wheel = vehicle.wheels.names[k] if vehicle.wheels is not None else f"wheel {k}"
-        return SimulationError(
-            f"vehicle {vehicle.name!r} ({wheel}) left the terrain {m.group(3)}"
-        )
+        return SimulationError(f"vehicle {vehicle.name!r} ({wheel}) left the terrain {m.group(3)}")
 
     def _named_overlap_error(self, error: InitialOverlapError) -> InitialOverlapError:
         """The engine's error with the vehicles' names instead of body indices."""

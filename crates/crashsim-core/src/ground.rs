@@ -136,6 +136,11 @@ impl Ground {
         Ok(self)
     }
 
+    /// Tyre-road friction outside every zone.
+    pub fn tyre_friction(&self) -> Real {
+        self.tyre_friction
+    }
+
     /// The surface.
     pub fn surface(&self) -> &Surface {
         &self.surface

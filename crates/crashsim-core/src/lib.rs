@@ -6,6 +6,7 @@
 //! [`world::World`] steps everything and logs every exchange. Frames and units: DESIGN.md
 //! section 1 (SI; world z up; body frame at the CG, x forward, y left, z up).
 
+pub mod batch;
 pub mod bisect;
 pub mod body;
 pub mod bvh;
@@ -18,6 +19,7 @@ pub mod math;
 pub mod motion;
 pub mod overlap;
 pub mod shape;
+pub mod spec;
 pub mod stiffness;
 pub mod triangle;
 pub mod vehicle;
@@ -29,6 +31,7 @@ pub use error::{Error, Result};
 pub use impulse::RestitutionMode;
 pub use mass::SolidProperties;
 pub use shape::MeshShape;
+pub use spec::{BodyMotion, BodySpec, ContactSpec, RunSpec, SceneSpec};
 pub use stiffness::{Face, FaceStiffness, Stiffness};
 pub use world::{
     ContactEvent, ContactEventKind, Impact, RunOptions, RunOutput, World, DEFAULT_MAX_HISTORY_BYTES,

@@ -154,6 +154,7 @@ fn a_history_above_the_limit_is_refused_before_the_run_with_the_interval_that_fi
         record_interval: Some(1e-3),
         max_history_bytes: 1 << 20,
         until_rest: false,
+        history: true,
     };
     let err = w
         .run_with_options(100.0, 1e-3, &every_step, &mut |_| true)
@@ -180,6 +181,7 @@ fn a_history_above_the_limit_is_refused_before_the_run_with_the_interval_that_fi
         record_interval: Some(fits),
         max_history_bytes: 1 << 20,
         until_rest: false,
+        history: true,
     };
     let out = w.run_with_options(100.0, 1e-3, &ok, &mut |_| true).unwrap();
     assert!((out.len() * (8 + 2 * 104)) as u64 <= 1 << 20);

@@ -3,9 +3,8 @@
 use core::math::{Isometry, Matrix, Point, Rotation, Vector};
 use crashsim_core as core;
 use numpy::ndarray::{Array1, Array2};
-use numpy::{AllowTypeChange, IntoPyArray, PyArrayLike1, PyArrayLike2};
+use numpy::{AllowTypeChange, PyArrayLike1, PyArrayLike2};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 use crate::errors;
 
@@ -122,10 +121,6 @@ pub fn vector_to_array(v: &Vector) -> Array1<f64> {
     Array1::from_iter(v.iter().copied())
 }
 
-fn pair_rows(v: &[Vector; 2]) -> Array2<f64> {
-    Array2::from_shape_fn((2, 3), |(i, k)| v[i][k])
-}
-
 /// The depth of penetration from a time in s, "auto", or None (the default).
 fn depth_of_penetration(value: Option<&Bound<'_, PyAny>>) -> PyResult<core::DepthOfPenetration> {
     let Some(value) = value.filter(|v| !v.is_none()) else {
@@ -216,86 +211,6 @@ pub fn contact_params(
         centroid,
         normal,
     })
-}
-
-/// One impact as a dict of floats, bools and numpy arrays.
-pub fn impact_to_dict<'py>(py: Python<'py>, imp: &core::Impact) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("body1", imp.body1)?;
-    d.set_item("body2", imp.body2)?;
-    d.set_item("first_contact_time", imp.first_contact_time)?;
-    d.set_item("time", imp.time)?;
-    d.set_item("depth_of_penetration", imp.depth_of_penetration)?;
-    d.set_item(
-        "depth_of_penetration_mode",
-        match imp.depth_of_penetration_mode {
-            core::DepthOfPenetration::Fixed(_) => "fixed",
-            core::DepthOfPenetration::Auto => "auto",
-        },
-    )?;
-    d.set_item("secondary", imp.secondary)?;
-    d.set_item(
-        "centroid",
-        vector_to_array(&imp.centroid.coords).into_pyarray(py),
-    )?;
-    d.set_item("normal", vector_to_array(&imp.normal).into_pyarray(py))?;
-    d.set_item("impulse", vector_to_array(&imp.impulse).into_pyarray(py))?;
-    d.set_item("sliding", imp.sliding)?;
-    d.set_item(
-        "velocity_before",
-        pair_rows(&imp.velocity_before).into_pyarray(py),
-    )?;
-    d.set_item(
-        "velocity_after",
-        pair_rows(&imp.velocity_after).into_pyarray(py),
-    )?;
-    d.set_item(
-        "angular_velocity_before",
-        pair_rows(&imp.angular_velocity_before).into_pyarray(py),
-    )?;
-    d.set_item(
-        "angular_velocity_after",
-        pair_rows(&imp.angular_velocity_after).into_pyarray(py),
-    )?;
-    d.set_item(
-        "relative_velocity_before",
-        vector_to_array(&imp.relative_velocity_before).into_pyarray(py),
-    )?;
-    d.set_item(
-        "relative_velocity_after",
-        vector_to_array(&imp.relative_velocity_after).into_pyarray(py),
-    )?;
-    d.set_item("energy_dissipated", imp.energy_dissipated)?;
-    d.set_item(
-        "region_points",
-        points_to_array(&imp.region_points).into_pyarray(py),
-    )?;
-    let f = &imp.contact_frame;
-    d.set_item(
-        "contact_frame",
-        Array2::from_shape_fn((3, 3), |(i, j)| f[(i, j)]).into_pyarray(py),
-    )?;
-    d.set_item(
-        "region_min",
-        vector_to_array(&imp.region_min).into_pyarray(py),
-    )?;
-    d.set_item(
-        "region_max",
-        vector_to_array(&imp.region_max).into_pyarray(py),
-    )?;
-    d.set_item(
-        "struck_faces",
-        (imp.struck_faces[0].name(), imp.struck_faces[1].name()),
-    )?;
-    d.set_item("overlap_width", imp.overlap_width)?;
-    d.set_item("spring_rates", imp.spring_rates.map(|[a, b]| (a, b)))?;
-    d.set_item(
-        "effective_mass",
-        (imp.effective_mass[0], imp.effective_mass[1]),
-    )?;
-    d.set_item("notes", imp.notes.clone())?;
-    d.set_item("normal_time", imp.normal_time)?;
-    Ok(d)
 }
 
 /// A face's (A, B) pair (N/m, N/m^2) or None.

@@ -4,9 +4,12 @@
 //! runs, and core errors mapped in one place ([`errors::to_py`]) onto the Python exception
 //! tree rooted at `CrashsimError`. No physics lives here.
 
+mod batch;
 mod convert;
 mod errors;
 mod ground;
+mod records;
+mod spec;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Arc;
@@ -17,7 +20,8 @@ use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use convert::{matrix3, pose, rotation, triangles as to_triangles, vector3, vertices as to_points};
+use convert::{pose, triangles as to_triangles, vector3, vertices as to_points};
+use spec::body_input;
 
 /// Runs engine code, turning a panic into a SimulationError instead of letting it cross.
 fn guarded<T>(f: impl FnOnce() -> core::Result<T>) -> core::Result<T> {
@@ -35,8 +39,8 @@ fn guarded<T>(f: impl FnOnce() -> core::Result<T>) -> core::Result<T> {
 
 /// An immutable triangle mesh in a body frame (m) with its bounding-volume hierarchy.
 #[pyclass(frozen, module = "crashsim._core")]
-struct Shape {
-    inner: Arc<core::MeshShape>,
+pub struct Shape {
+    pub(crate) inner: Arc<core::MeshShape>,
 }
 
 #[pymethods]
@@ -212,41 +216,14 @@ fn overlap_region<'py>(
     Ok(d)
 }
 
-/// Checked mass properties and state of a body from Python values (SI, world frame).
-fn body_input(
-    mass: f64,
-    inertia: &Bound<'_, PyAny>,
-    position: &Bound<'_, PyAny>,
-    orientation: &Bound<'_, PyAny>,
-    velocity: &Bound<'_, PyAny>,
-    angular_velocity: &Bound<'_, PyAny>,
-) -> PyResult<(core::MassProperties, core::BodyState)> {
-    let props =
-        core::MassProperties::new(mass, matrix3(inertia, "inertia")?).map_err(errors::to_py)?;
-    let state = core::BodyState {
-        position: vector3(position, "position")?.into(),
-        orientation: rotation(orientation)?,
-        velocity: vector3(velocity, "velocity")?,
-        angular_velocity: vector3(angular_velocity, "angular_velocity")?,
-    };
-    Ok((props, state))
-}
-
-/// A set of rigid bodies with meshes and the contact parameters of each pair.
+/// A running world: made by SceneSpec.build() (the one path from a scene to the engine).
 #[pyclass(module = "crashsim._core")]
-struct World {
-    inner: core::World,
+pub struct World {
+    pub(crate) inner: core::World,
 }
 
 #[pymethods]
 impl World {
-    #[new]
-    fn new() -> Self {
-        World {
-            inner: core::World::new(),
-        }
-    }
-
     #[getter]
     fn time(&self) -> f64 {
         self.inner.time()
@@ -255,165 +232,6 @@ impl World {
     #[getter]
     fn n_bodies(&self) -> usize {
         self.inner.body_count()
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    fn add_body(
-        &mut self,
-        shape: &Shape,
-        mass: f64,
-        inertia: &Bound<'_, PyAny>,
-        position: &Bound<'_, PyAny>,
-        orientation: &Bound<'_, PyAny>,
-        velocity: &Bound<'_, PyAny>,
-        angular_velocity: &Bound<'_, PyAny>,
-    ) -> PyResult<usize> {
-        let (props, state) = body_input(
-            mass,
-            inertia,
-            position,
-            orientation,
-            velocity,
-            angular_velocity,
-        )?;
-        self.inner
-            .add_body(shape.inner.clone(), props, &state)
-            .map_err(errors::to_py)
-    }
-
-    /// Adds a fixed obstacle (infinite mass, never moves) with its mesh at a pose; returns
-    /// its index.
-    fn add_obstacle(
-        &mut self,
-        shape: &Shape,
-        position: &Bound<'_, PyAny>,
-        orientation: &Bound<'_, PyAny>,
-    ) -> PyResult<usize> {
-        let pose = convert::pose(position, orientation)?;
-        self.inner
-            .add_obstacle(shape.inner.clone(), &pose)
-            .map_err(errors::to_py)
-    }
-
-    /// Puts the world on the ground: the plane z = height, or a terrain mesh (world
-    /// coordinates), with tyre-road and body-ground friction and friction zones
-    /// ((k, 2) polygon, friction).
-    #[pyo3(signature = (*, height = 0.0, terrain = None, tyre_friction = None, body_friction = None, zones = Vec::new()))]
-    fn set_ground(
-        &mut self,
-        height: f64,
-        terrain: Option<&Shape>,
-        tyre_friction: Option<f64>,
-        body_friction: Option<f64>,
-        zones: Vec<(Bound<'_, PyAny>, f64)>,
-    ) -> PyResult<()> {
-        let g = ground::ground(
-            height,
-            terrain.map(|t| t.inner.clone()),
-            tyre_friction.unwrap_or(core::ground::DEFAULT_TYRE_FRICTION),
-            body_friction.unwrap_or(core::ground::DEFAULT_BODY_FRICTION),
-            &zones,
-        )?;
-        self.inner.set_ground(g).map_err(errors::to_py)
-    }
-
-    /// Gives a body wheels (centres (n, 3) body frame at static ride height, radii, steerable,
-    /// static loads, spring rates, damping), a tyre (a dict), and driver inputs: the
-    /// road-wheel steering table (k, 2), per wheel braking (None or ("fraction" |
-    /// "deceleration", table)) and drive-force tables, and wheel-state switches.
-    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new()))]
-    #[allow(clippy::too_many_arguments)]
-    fn set_vehicle(
-        &mut self,
-        body: usize,
-        centers: &Bound<'_, PyAny>,
-        radii: &Bound<'_, PyAny>,
-        steerable: &Bound<'_, PyAny>,
-        static_loads: &Bound<'_, PyAny>,
-        spring_rates: &Bound<'_, PyAny>,
-        damping: &Bound<'_, PyAny>,
-        tyre: Option<&Bound<'_, PyDict>>,
-        steer: Option<&Bound<'_, PyAny>>,
-        brake: Vec<Option<(String, Bound<'_, PyAny>)>>,
-        drive: Vec<Option<Bound<'_, PyAny>>>,
-        switches: Vec<Bound<'_, PyAny>>,
-    ) -> PyResult<()> {
-        let spec = ground::vehicle(
-            centers,
-            radii,
-            steerable,
-            static_loads,
-            spring_rates,
-            damping,
-            tyre,
-            steer,
-            brake,
-            drive,
-            switches,
-        )?;
-        self.inner.set_vehicle(body, spec).map_err(errors::to_py)
-    }
-
-    #[pyo3(signature = (
-        body1, body2, *, depth_of_penetration = None, restitution = 0.1, friction = 0.6,
-        restitution_mode = "total", centroid = "auto", centroid_point = None,
-        centroid_body = None, normal = "horizontal", normal_vector = None, pitch = 0.0
-    ))]
-    #[allow(clippy::too_many_arguments)]
-    fn set_contact(
-        &mut self,
-        body1: usize,
-        body2: usize,
-        depth_of_penetration: Option<&Bound<'_, PyAny>>,
-        restitution: f64,
-        friction: f64,
-        restitution_mode: &str,
-        centroid: &str,
-        centroid_point: Option<&Bound<'_, PyAny>>,
-        centroid_body: Option<usize>,
-        normal: &str,
-        normal_vector: Option<&Bound<'_, PyAny>>,
-        pitch: f64,
-    ) -> PyResult<()> {
-        let params = convert::contact_params(
-            depth_of_penetration,
-            restitution,
-            friction,
-            restitution_mode,
-            centroid,
-            centroid_point,
-            centroid_body,
-            normal,
-            normal_vector,
-            pitch,
-        )?;
-        self.inner
-            .set_contact(body1, body2, params)
-            .map_err(errors::to_py)
-    }
-
-    /// Sets a body's face stiffness: each face (A, B) in (N/m, N/m^2) or None.
-    #[pyo3(signature = (body, *, front = None, rear = None, left = None, right = None))]
-    fn set_stiffness(
-        &mut self,
-        body: usize,
-        front: Option<&Bound<'_, PyAny>>,
-        rear: Option<&Bound<'_, PyAny>>,
-        left: Option<&Bound<'_, PyAny>>,
-        right: Option<&Bound<'_, PyAny>>,
-    ) -> PyResult<()> {
-        let mut s = core::Stiffness::none();
-        for (face, value) in [
-            (core::Face::Front, front),
-            (core::Face::Rear, rear),
-            (core::Face::Left, left),
-            (core::Face::Right, right),
-        ] {
-            if let Some(f) = convert::face_stiffness(value, face.name())? {
-                s = s.with(face, f);
-            }
-        }
-        self.inner.set_stiffness(body, s).map_err(errors::to_py)
     }
 
     /// Advances the world by `duration` s with steps of at most `dt` s. `progress`, if given,
@@ -438,38 +256,51 @@ impl World {
             record_interval,
             max_history_bytes: max_history_bytes.unwrap_or(core::DEFAULT_MAX_HISTORY_BYTES),
             until_rest,
+            history: true,
         };
-        let world = &mut self.inner;
-        let mut failure: Option<PyErr> = None;
-        let out = py.detach(|| {
-            let mut last = std::time::Instant::now();
-            let mut hook = |t: f64| -> bool {
-                if last.elapsed().as_secs_f64() < 0.1 {
-                    return true;
-                }
-                last = std::time::Instant::now();
-                Python::attach(|py| {
-                    let called = py.check_signals().and_then(|()| match &progress {
-                        Some(f) => f.call1(py, (t,)).map(|_| ()),
-                        None => Ok(()),
-                    });
-                    match called {
-                        Ok(()) => true,
-                        Err(e) => {
-                            failure = Some(e);
-                            false
-                        }
-                    }
-                })
-            };
-            guarded(|| world.run_with_options(duration, dt, &options, &mut hook))
-        });
-        if let Some(e) = failure {
-            return Err(e);
-        }
-        let out = out.map_err(errors::to_py)?;
-        run_output_to_dict(py, &out, self.inner.body_count())
+        run_world(py, &mut self.inner, duration, dt, &options, progress)
     }
+}
+
+/// Runs a world with the GIL released: `progress(t)` and Ctrl-C looked at every 0.1 s of wall
+/// time; the run's output as a dict (the stub of World.run describes it).
+pub(crate) fn run_world<'py>(
+    py: Python<'py>,
+    world: &mut core::World,
+    duration: f64,
+    dt: f64,
+    options: &core::RunOptions,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mut failure: Option<PyErr> = None;
+    let out = py.detach(|| {
+        let mut last = std::time::Instant::now();
+        let mut hook = |t: f64| -> bool {
+            if last.elapsed().as_secs_f64() < 0.1 {
+                return true;
+            }
+            last = std::time::Instant::now();
+            Python::attach(|py| {
+                let called = py.check_signals().and_then(|()| match &progress {
+                    Some(f) => f.call1(py, (t,)).map(|_| ()),
+                    None => Ok(()),
+                });
+                match called {
+                    Ok(()) => true,
+                    Err(e) => {
+                        failure = Some(e);
+                        false
+                    }
+                }
+            })
+        };
+        guarded(|| world.run_with_options(duration, dt, options, &mut hook))
+    });
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    let out = out.map_err(errors::to_py)?;
+    run_output_to_dict(py, &out, world.body_count())
 }
 
 fn run_output_to_dict<'py>(
@@ -521,7 +352,7 @@ fn run_output_to_dict<'py>(
     )?;
     let impacts = PyList::empty(py);
     for imp in &out.impacts {
-        impacts.append(convert::impact_to_dict(py, imp)?)?;
+        impacts.append(Bound::new(py, records::Impact { inner: imp.clone() })?)?;
     }
     d.set_item("impacts", impacts)?;
     let contacts = PyList::empty(py);
@@ -763,6 +594,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     m.add_class::<Shape>()?;
     m.add_class::<World>()?;
+    m.add_class::<spec::SceneSpec>()?;
+    m.add_class::<spec::ContactParams>()?;
+    m.add_class::<records::Impact>()?;
+    m.add_function(wrap_pyfunction!(batch::run_batch, m)?)?;
     m.add_function(wrap_pyfunction!(shapes_overlap, m)?)?;
     m.add_function(wrap_pyfunction!(overlap_region, m)?)?;
     m.add_function(wrap_pyfunction!(free_motion, m)?)?;

@@ -615,8 +615,9 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
             total_crush,
         )
         dv = np.asarray(impact.delta_v[name], dtype=np.float64)
-        dv_body = rotation.T @ dv
-        pdof_deg = pdof(dv_body)
+        # the engine's EDR frame and PDOF (events.rs): a batch's columns are the same bits
+        dv_body = np.asarray(impact.delta_v_body[name], dtype=np.float64)
+        pdof_deg = impact.pdof_deg[name]
         v0 = np.asarray(impact.velocity_before[name], dtype=np.float64)
         v1 = np.asarray(impact.velocity_after[name], dtype=np.float64)
         w0 = np.asarray(impact.angular_velocity_before[name], dtype=np.float64)
@@ -640,7 +641,7 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
                 longitudinal=float(dv_body[0]),
                 lateral=float(-dv_body[1]),
                 vertical=float(dv_body[2]),
-                delta_v_magnitude=float(np.linalg.norm(dv)),
+                delta_v_magnitude=impact.speed_change(name),
                 pdof_deg=pdof_deg,
                 clock=clock_direction(pdof_deg),
                 yaw_rate_change=math.degrees(float(w1[2] - w0[2])),

@@ -155,7 +155,7 @@ class Ground:
         )
         self.zones: tuple[FrictionZone, ...] = tuple(_zone(z, k) for k, z in enumerate(zones))
         try:
-            _core.World().set_ground(**self.core_kwargs())
+            _core.SceneSpec().set_ground(**self.core_kwargs())
         except MeshError as e:
             raise MeshError(f"the terrain ({self.terrain_source}): {e}") from e
         except ParameterError as e:
@@ -176,7 +176,7 @@ class Ground:
         return ParameterError(f"ground: {text}")
 
     def core_kwargs(self) -> dict[str, Any]:
-        """World.set_ground keywords (frictions left None take the engine's defaults)."""
+        """SceneSpec.set_ground keywords (frictions left None take the engine's defaults)."""
         defaults = _core.dynamics_defaults()
         out: dict[str, Any] = {
             "tyre_friction": defaults["tyre_friction"] if self.friction is None else self.friction,

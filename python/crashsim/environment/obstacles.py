@@ -264,7 +264,7 @@ class Obstacle:
         return other
 
     def stiffness_faces(self) -> dict[str, tuple[float, float] | None]:
-        """World.set_stiffness keywords."""
+        """SceneSpec.set_stiffness keywords."""
         return {f: None if (s := self._stiffness.face(f)) is None else (s.A, s.B) for f in FACES}
 
     def __repr__(self) -> str:

@@ -7,8 +7,8 @@ item                   residual (in its unit; divided by ``tolerance``)   tolera
 RestPosition           rest CG (x, y) minus (x, y)                        m
 RestHeading            rest heading minus heading, wrapped to (-pi, pi]   rad
 EDRDeltaV              impact ``impact``'s delta-V in the body frame       m/s
-                       (longitudinal: x forward; lateral: y, + to the
-                       left, ISO 8855; an EDR's +right lateral is -y)
+                       (longitudinal + forward, lateral + to the
+                       right, as event data recorders report them: -y of ISO 8855)
 ImpactPoint            impact ``impact``'s centroid (x, y) minus (x, y)    m
 TyreMark               mean 2-D distance of the mark's points to the       m
                        wheel's path (its contact patch over the run)
@@ -218,9 +218,10 @@ class RestHeading(Evidence):
 @dataclass(frozen=True)
 class EDRDeltaV(Evidence):
     """An event data recorder's delta-V of ``vehicle`` in impact ``impact`` (the run's
-    k-th impulse exchange in time order, 1 = the first), in the vehicle's body frame at the exchange: ``longitudinal`` (x forward) and ``lateral``
-    (y, + to the left, ISO 8855; most EDRs report +right: give -lateral), m/s; tolerance
-    m/s (per component)."""
+    k-th impulse exchange in time order, 1 = the first), in the vehicle's body frame at the
+    exchange, as event data recorders report it: ``longitudinal`` (+ forward) and ``lateral``
+    (+ to the right, i.e. -y of ISO 8855's x forward, y left), m/s; tolerance m/s (per
+    component). The batch's ``delta_v_long`` / ``delta_v_lat`` columns, the same numbers."""
 
     vehicle: str
     longitudinal: float
@@ -248,7 +249,7 @@ class EDRDeltaV(Evidence):
         if self.vehicle not in imp.delta_v:
             return np.full(2, math.nan)
         body = np.asarray(result.delta_v_body(imp, self.vehicle), dtype=np.float64)
-        return body[:2].copy()
+        return np.array([body[0], -body[1]])  # EDR: lateral + right
 
 
 @dataclass(frozen=True)

@@ -266,7 +266,7 @@ class DriverInputs:
         )
 
     def to_core(self, wheels: Wheels, what: str = "inputs") -> dict[str, Any]:
-        """World.set_vehicle keywords (steer, brake, drive, switches) for these wheels,
+        """SceneSpec.set_vehicle keywords (steer, brake, drive, switches) for these wheels,
         checked by the engine; ``what`` names the vehicle in messages."""
         n = len(wheels)
         brake: list[tuple[str, Array] | None] = [None] * n

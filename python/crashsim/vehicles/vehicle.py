@@ -99,7 +99,7 @@ def _as_float(value: Any, name: str, unit: str) -> float:
 def _check_mass_properties(mass: float, inertia: ArrayLike) -> None:
     """Raises ParameterError unless mass (kg) is finite and positive and inertia (kg m^2) is
     a finite, symmetric, positive definite 3x3 tensor: the engine's own checks."""
-    _core.World().add_body(_probe_shape(), mass, inertia, _ZERO3, _IDENTITY, _ZERO3, _ZERO3)
+    _core.SceneSpec().add_body(_probe_shape(), mass, inertia, _ZERO3, _IDENTITY, _ZERO3, _ZERO3)
 
 
 def _point(value: ArrayLike, name: str) -> Array:

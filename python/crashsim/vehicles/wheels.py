@@ -92,12 +92,12 @@ def _renamed(error: ParameterError, names: Sequence[str], prefix: str = "") -> P
 # -- the engine as a checker --------------------------------------------------------------------
 
 
-def _probe_world(half: Array, mass: float) -> _core.World:
-    """A world with one box body of half-extents ``half`` (m) centred on its CG."""
+def _probe_world(half: Array, mass: float) -> _core.SceneSpec:
+    """A scene spec with one box body of half-extents ``half`` (m) centred on its CG."""
     import trimesh
 
     box = trimesh.creation.box(extents=2.0 * np.maximum(half, 1e-3))
-    world = _core.World()
+    world = _core.SceneSpec()
     shape = _core.Shape(np.asarray(box.vertices, dtype=np.float64), np.asarray(box.faces))
     inertia = np.eye(3) * mass
     world.add_body(shape, mass, inertia, (0, 0, 0), (1, 0, 0, 0), (0, 0, 0), (0, 0, 0))
@@ -186,7 +186,7 @@ class Tyre:
             raise ParameterError(f"tyre: {err}") from err
 
     def to_core(self) -> dict[str, Any]:
-        """The dict World.set_vehicle takes (fields left None are omitted: engine defaults)."""
+        """The dict SceneSpec.set_vehicle takes (fields left None are omitted: engine defaults)."""
         out: dict[str, Any] = {"model": self.model}
         for k in ("saturation_angle", "b", "c", "e", "relaxation_length", "rolling_resistance"):
             value = getattr(self, k)
@@ -459,14 +459,14 @@ class Wheels:
         self.spec(1.0)
         self._check(self._probe(), 1.0, "")
 
-    def _probe(self) -> _core.World:
-        """A world with a box body around these wheels, of 1 kg."""
+    def _probe(self) -> _core.SceneSpec:
+        """A scene spec with a box body around these wheels, of 1 kg."""
         lo = np.min(self._centers, axis=0) - np.max(self._radii)
         hi = np.max(self._centers, axis=0) + np.max(self._radii)
         return _probe_world(np.maximum(np.abs(lo), np.abs(hi)) + 0.01, 1.0)
 
     def check_inputs(self, **inputs: Any) -> None:
-        """The engine's checks of driver inputs (World.set_vehicle's steer, brake, drive,
+        """The engine's checks of driver inputs (SceneSpec.set_vehicle's steer, brake, drive,
         switches) on these wheels; the engine's ParameterError otherwise."""
         self._probe().set_vehicle(0, **self.spec(1.0), **inputs)
 
@@ -533,7 +533,7 @@ class Wheels:
             raise _renamed(e, self._names) from e
 
     def spec(self, mass: float) -> dict[str, Any]:
-        """World.set_vehicle keywords (centers, radii, steerable, static_loads, spring_rates,
+        """SceneSpec.set_vehicle keywords (centers, radii, steerable, static_loads, spring_rates,
         damping, tyre) for a vehicle of ``mass`` kg."""
         loads = self.static_loads(mass)
         d = _defaults()
@@ -560,7 +560,7 @@ class Wheels:
             "tyre": self.tyre.to_core(),
         }
 
-    def _check(self, world: _core.World, mass: float, prefix: str) -> None:
+    def _check(self, world: _core.SceneSpec, mass: float, prefix: str) -> None:
         try:
             world.set_vehicle(0, **self.spec(mass))
         except ParameterError as e:
@@ -570,7 +570,7 @@ class Wheels:
         """The engine's checks of these wheels on a body (its shape, body frame, and mass in
         kg): wheels inside the body's outline, loads carrying the weight. ``what`` names the
         vehicle in the message."""
-        world = _core.World()
+        world = _core.SceneSpec()
         world.add_body(shape, mass, np.eye(3) * mass, (0, 0, 0), (1, 0, 0, 0), (0, 0, 0), (0, 0, 0))
         self._check(world, mass, f"{what}: ")
 

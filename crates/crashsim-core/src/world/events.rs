@@ -2,7 +2,7 @@
 
 use crate::body::BodyState;
 use crate::contact::DepthOfPenetration;
-use crate::math::{Matrix, Point, Real, Vector};
+use crate::math::{Matrix, Point, Real, Rotation, Vector};
 use crate::motion::WheelSample;
 use crate::stiffness::Face;
 
@@ -94,6 +94,74 @@ pub struct Impact {
     pub normal_time: Real,
     /// Remarks on this exchange (e.g. an automatic dt_p outside the typical 10-60 ms).
     pub notes: Vec<String>,
+    /// Orientations of bodies 1 and 2 at the exchange (body -> world; an impulse does not
+    /// change them): the frames of [`Impact::delta_v_body`].
+    pub orientation: [Rotation; 2],
+}
+
+impl Impact {
+    /// Body `k`'s (0: body 1, 1: body 2) CG velocity change, world (m/s).
+    pub fn delta_v(&self, k: usize) -> Vector {
+        self.velocity_after[k] - self.velocity_before[k]
+    }
+
+    /// Body `k`'s velocity change in its body frame at the exchange (m/s; ISO 8855: x
+    /// forward, y left, z up; an event data recorder's lateral, +right, is -y). The one
+    /// computation behind the report's EDR components and a batch's columns.
+    pub fn delta_v_body(&self, k: usize) -> Vector {
+        self.orientation[k].inverse_transform_vector(&self.delta_v(k))
+    }
+
+    /// Body `k`'s principal direction of force (SAE J224, deg in [0, 360)): see [`pdof_deg`].
+    pub fn pdof_deg(&self, k: usize) -> Option<Real> {
+        pdof_deg(&self.delta_v_body(k))
+    }
+}
+
+/// |v| as sqrt(x x + y y + z z) in that order (m/s for a velocity): the one definition of a
+/// speed or a delta-V magnitude, so Python (plain float arithmetic, result.py `_magnitude`)
+/// gives the same bits.
+pub fn magnitude(v: &Vector) -> Real {
+    (v.x * v.x + v.y * v.y + v.z * v.z).sqrt()
+}
+
+/// Degrees from radians, as Python's `math.degrees` (x * (180 / pi)).
+pub fn degrees(rad: Real) -> Real {
+    rad * (180.0 / std::f64::consts::PI)
+}
+
+/// Python's float `x % 360.0` (the result takes the divisor's sign; -0.0 becomes 0.0).
+fn modulo_360(x: Real) -> Real {
+    let r = x % 360.0;
+    if r == 0.0 {
+        0.0
+    } else if r < 0.0 {
+        r + 360.0
+    } else {
+        r
+    }
+}
+
+/// The SAE principal direction of force (deg, in [0, 360)) from a delta-V in the ISO body
+/// frame (m/s): the direction FROM which the force acts, in the body's x-y plane, clockwise
+/// seen from above from straight ahead (0 ahead, 90 right, 180 behind, 270 left):
+/// atan2(dv_y, -dv_x). None without a horizontal part (exactly zero, or below 1e-12 of
+/// |delta-V|). Bit for bit the arithmetic of analysis/report.py's `pdof`.
+pub fn pdof_deg(dv_body: &Vector) -> Option<Real> {
+    let horizontal = dv_body.x.hypot(dv_body.y);
+    if horizontal == 0.0 || horizontal <= 1e-12 * magnitude(dv_body) {
+        return None;
+    }
+    let angle = modulo_360(degrees(dv_body.y.atan2(-dv_body.x)));
+    Some(if angle >= 360.0 { 0.0 } else { angle })
+}
+
+/// Yaw of a body's x axis from world x (rad, counter-clockwise seen from above, in
+/// (-pi, pi]): atan2(R[1][0], R[0][0]) of the unit quaternion, in the arithmetic of
+/// result.py's `_heading`.
+pub fn heading(q: &Rotation) -> Real {
+    let (w, x, y, z) = (q.w, q.i, q.j, q.k);
+    (2.0 * (x * y + w * z)).atan2(1.0 - 2.0 * (y * y + z * z))
 }
 
 /// What a run returns: samples of every body's state and the logs.

@@ -9,7 +9,7 @@ use crate::contact::{
 };
 use crate::impulse::ImpulseProblem;
 use crate::math::{Point, Real, Vector};
-use crate::overlap::{overlap_region, shapes_overlap, QueryWorkspace};
+use crate::overlap::{overlap_region, shapes_overlap, shapes_overlap_hinted, QueryWorkspace};
 
 use super::events::{ContactEvent, ContactEventKind, Impact, RunOutput};
 
@@ -354,6 +354,7 @@ impl World {
             effective_mass: geometry.effective_mass,
             normal_time: geometry.normal_time.unwrap_or(self.time),
             notes,
+            orientation: [after[0].orientation, after[1].orientation],
         });
         self.pairs[pi].exchanges += 1;
         self.pairs[pi].phase = engaged;
@@ -387,13 +388,17 @@ impl World {
         };
         let (i1, i2) = (pair.body1, pair.body2);
         let (a, b) = (&self.bodies[i1], &self.bodies[i2]);
-        if !shapes_overlap(
+        let mut hint = pair.crossing;
+        let overlapping = shapes_overlap_hinted(
             &a.shape,
             &a.body.pose(),
             &b.shape,
             &b.body.pose(),
             &mut self.ws,
-        ) {
+            &mut hint,
+        );
+        self.pairs[pi].crossing = hint;
+        if !overlapping {
             // Bisect the separation instant backwards from now (bodies move freely here).
             let (s1, s2) = (self.bodies[i1].shape.clone(), self.bodies[i2].shape.clone());
             let mut ws = std::mem::take(&mut self.ws);

@@ -32,7 +32,9 @@ use crate::shape::MeshShape;
 use crate::stiffness::{Face, Stiffness};
 use crate::vehicle::VehicleSpec;
 
-pub use events::{ContactEvent, ContactEventKind, Impact, RunOutput};
+pub use events::{
+    degrees, heading, magnitude, pdof_deg, ContactEvent, ContactEventKind, Impact, RunOutput,
+};
 pub use stepper::{
     RunOptions, DEFAULT_MAX_HISTORY_BYTES, DEFAULT_SAMPLES, REST_SPEED, REST_TIME, REST_YAW_RATE,
 };
@@ -88,6 +90,9 @@ struct Pair {
     /// (infinite before any), and how many capped queries have followed it (see
     /// first_contact.rs: GAP_FRACTION).
     gap: (Real, u32),
+    /// A pair of triangles (of body 1, body 2) whose surfaces crossed at the engaged pair's
+    /// last overlap test: the next test tries it first (overlap.rs, shapes_overlap_hinted).
+    crossing: Option<(u32, u32)>,
 }
 
 /// How a body moves between exchanges.
@@ -227,6 +232,7 @@ impl World {
                 lookahead: 1.0,
                 closest: None,
                 gap: (Real::INFINITY, 0),
+                crossing: None,
             });
         }
         self.bodies.push(WorldBody {

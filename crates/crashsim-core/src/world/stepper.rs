@@ -59,6 +59,11 @@ pub struct RunOptions {
     /// ([`SETTLED_ANGULAR_SPEED`]); the duration is then the longest the run may take. Needs
     /// a ground.
     pub until_rest: bool,
+    /// Keep the history of states (default true). False keeps only the last sample (the end
+    /// of the run) besides the impacts, the contact log and the rest times: what a batch's
+    /// summary needs, in memory that does not grow with the run. The run itself is the same
+    /// bits either way (recording only reads the state).
+    pub history: bool,
 }
 
 impl Default for RunOptions {
@@ -67,6 +72,7 @@ impl Default for RunOptions {
             record_interval: None,
             max_history_bytes: DEFAULT_MAX_HISTORY_BYTES,
             until_rest: false,
+            history: true,
         }
     }
 }
@@ -196,7 +202,9 @@ impl World {
             .map(|i| self.wheel_count(i))
             .collect();
         let wheels: usize = wheel_counts.iter().sum();
-        options.check_size(steps, stride, dt, self.bodies.len(), wheels)?;
+        if options.history {
+            options.check_size(steps, stride, dt, self.bodies.len(), wheels)?;
+        }
         let t_start = self.time;
         let t_end = t_start + duration;
         let mut out = RunOutput {
@@ -206,7 +214,11 @@ impl World {
             record_interval: stride as Real * dt,
             ..RunOutput::default()
         };
-        let samples = steps / stride + 8;
+        let samples = if options.history {
+            steps / stride + 8
+        } else {
+            1
+        };
         out.times
             .try_reserve_exact(samples)
             .map_err(|_| out_of_memory(self.time))?;
@@ -216,7 +228,9 @@ impl World {
         out.wheels
             .try_reserve_exact(samples * wheels)
             .map_err(|_| out_of_memory(self.time))?;
-        self.record(&mut out)?;
+        if options.history {
+            self.record(&mut out)?;
+        }
         // Events at the current instant per pair, to stop a pair that makes no progress.
         let mut at_instant = (self.time, vec![0usize; self.pairs.len()]);
         let mut k = 1usize;
@@ -273,7 +287,9 @@ impl World {
                 });
                 self.pairs[pi].exchanges = 0;
                 self.start_timer(pi, self.time, None, &mut out);
-                self.record(&mut out)?;
+                if options.history {
+                    self.record(&mut out)?;
+                }
                 continue;
             }
             let t_prev = self.time;
@@ -295,7 +311,7 @@ impl World {
             self.track_rest(&mut slow_since, &mut stopped_at);
             let on_grid = target == grid;
             let event = out.impacts.len() > impacts || out.contacts.len() > contacts;
-            if !on_grid || event || k % stride == 0 || k >= steps {
+            if options.history && (!on_grid || event || k % stride == 0 || k >= steps) {
                 self.record(&mut out)?;
             }
             if on_grid {

@@ -1,0 +1,709 @@
+//! A [`SceneSpec`] as a serde document (feature `serde`) and JSON through serde_json.
+//!
+//! The document mirrors the spec with plain values: meshes once each (shared meshes are
+//! written once and referred to by index) as vertices (m) and triangles; quaternions as
+//! (w, x, y, z); matrices as rows; every enum externally tagged in snake case. Reading it
+//! back goes through the same constructors and checks as the setup methods (a document
+//! edited by hand gets the engine's messages), and gives the same bits: meshes rebuild the
+//! same hierarchy, a unit quaternion is kept as written (another is normalised), the inertia
+//! is the spec's own (already symmetric).
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use super::{BodyMotion, RunSpec, SceneSpec};
+use crate::body::{BodyState, MassProperties};
+use crate::contact::{CentroidMode, ContactParams, DepthOfPenetration, NormalMode};
+use crate::error::{Error, Result};
+use crate::ground::{FrictionZone, Ground, Surface};
+use crate::impulse::RestitutionMode;
+use crate::math::{Isometry, Matrix, Point, Real, Rotation, Vector};
+use crate::shape::MeshShape;
+use crate::stiffness::{Face, FaceStiffness, Stiffness};
+use crate::vehicle::{
+    Braking, DriverInputs, Table, Trigger, Tyre, TyreModel, VehicleSpec, WheelSpec, WheelState,
+    WheelSwitch,
+};
+use crate::world::RunOptions;
+
+/// The document's format name and version (a reader refuses others).
+const FORMAT: &str = "crashsim-scene-spec";
+const VERSION: u32 = 1;
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Document {
+    format: String,
+    version: u32,
+    meshes: Vec<MeshDoc>,
+    bodies: Vec<BodyDoc>,
+    contacts: Vec<ContactDoc>,
+    ground: Option<GroundDoc>,
+    run: RunDoc,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MeshDoc {
+    vertices: Vec<[Real; 3]>,
+    triangles: Vec<[u32; 3]>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BodyDoc {
+    name: String,
+    mesh: usize,
+    /// (A N/m, B N/m^2) per face: front, rear, left, right.
+    stiffness: [Option<[Real; 2]>; 4],
+    motion: MotionDoc,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+enum MotionDoc {
+    Moving {
+        mass: Real,
+        inertia: [[Real; 3]; 3],
+        position: [Real; 3],
+        orientation: [Real; 4],
+        velocity: [Real; 3],
+        angular_velocity: [Real; 3],
+        vehicle: Option<VehicleDoc>,
+    },
+    Fixed {
+        position: [Real; 3],
+        orientation: [Real; 4],
+    },
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct VehicleDoc {
+    wheels: Vec<WheelDoc>,
+    tyre: TyreDoc,
+    steer: Option<Vec<[Real; 2]>>,
+    brake: Vec<Option<BrakeDoc>>,
+    drive: Vec<Option<Vec<[Real; 2]>>>,
+    switches: Vec<SwitchDoc>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WheelDoc {
+    center: [Real; 3],
+    radius: Real,
+    steerable: bool,
+    static_load: Real,
+    spring_rate: Real,
+    damping: Real,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TyreDoc {
+    model: TyreModelDoc,
+    relaxation_length: Real,
+    rolling_resistance: Real,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+enum TyreModelDoc {
+    Linear { saturation_angle: Real },
+    MagicFormula { b: Real, c: Real, e: Real },
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+enum BrakeDoc {
+    Fraction(Vec<[Real; 2]>),
+    Deceleration(Vec<[Real; 2]>),
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SwitchDoc {
+    wheel: usize,
+    at: TriggerDoc,
+    state: WheelStateDoc,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+enum TriggerDoc {
+    Time(Real),
+    Exchange(usize),
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+enum WheelStateDoc {
+    Free,
+    Locked,
+    Braked(Real),
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ContactDoc {
+    body1: usize,
+    body2: usize,
+    params: ParamsDoc,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ParamsDoc {
+    depth_of_penetration: DepthDoc,
+    restitution: Real,
+    friction: Real,
+    restitution_mode: ModeDoc,
+    centroid: CentroidDoc,
+    normal: NormalDoc,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+enum DepthDoc {
+    Fixed(Real),
+    Auto,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum ModeDoc {
+    Total,
+    Normal,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+enum CentroidDoc {
+    Auto,
+    Stiffness,
+    World([Real; 3]),
+    Body { body: usize, point: [Real; 3] },
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+enum NormalDoc {
+    Horizontal { pitch: Real },
+    Volume,
+    Vector([Real; 3]),
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GroundDoc {
+    surface: SurfaceDoc,
+    tyre_friction: Real,
+    body_friction: Real,
+    zones: Vec<ZoneDoc>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+enum SurfaceDoc {
+    Plane { height: Real },
+    Terrain { mesh: usize },
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ZoneDoc {
+    polygon: Vec<[Real; 2]>,
+    friction: Real,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RunDoc {
+    duration: Real,
+    dt: Real,
+    record_interval: Option<Real>,
+    max_history_bytes: u64,
+    until_rest: bool,
+    history: bool,
+}
+
+// -- spec -> document ------------------------------------------------------------------------
+
+/// The meshes written so far (each `Arc` once).
+#[derive(Default)]
+struct Meshes {
+    shapes: Vec<Arc<MeshShape>>,
+}
+
+impl Meshes {
+    fn index(&mut self, shape: &Arc<MeshShape>) -> usize {
+        if let Some(k) = self.shapes.iter().position(|s| Arc::ptr_eq(s, shape)) {
+            return k;
+        }
+        self.shapes.push(shape.clone());
+        self.shapes.len() - 1
+    }
+}
+
+fn v3(v: &Vector) -> [Real; 3] {
+    [v.x, v.y, v.z]
+}
+
+fn quat(q: &Rotation) -> [Real; 4] {
+    [q.w, q.i, q.j, q.k]
+}
+
+fn table(t: &Table) -> Vec<[Real; 2]> {
+    t.points().map(|(a, b)| [a, b]).collect()
+}
+
+fn vehicle_doc(v: &VehicleSpec) -> VehicleDoc {
+    VehicleDoc {
+        wheels: v
+            .wheels
+            .iter()
+            .map(|w| WheelDoc {
+                center: v3(&w.center.coords),
+                radius: w.radius,
+                steerable: w.steerable,
+                static_load: w.static_load,
+                spring_rate: w.spring_rate,
+                damping: w.damping,
+            })
+            .collect(),
+        tyre: TyreDoc {
+            model: match v.tyre.model {
+                TyreModel::Linear { saturation_angle } => TyreModelDoc::Linear { saturation_angle },
+                TyreModel::MagicFormula { b, c, e } => TyreModelDoc::MagicFormula { b, c, e },
+            },
+            relaxation_length: v.tyre.relaxation_length,
+            rolling_resistance: v.tyre.rolling_resistance,
+        },
+        steer: v.inputs.steer.as_ref().map(table),
+        brake: v
+            .inputs
+            .brake
+            .iter()
+            .map(|b| {
+                b.as_ref().map(|b| match b {
+                    Braking::Fraction(t) => BrakeDoc::Fraction(table(t)),
+                    Braking::Deceleration(t) => BrakeDoc::Deceleration(table(t)),
+                })
+            })
+            .collect(),
+        drive: v
+            .inputs
+            .drive
+            .iter()
+            .map(|d| d.as_ref().map(table))
+            .collect(),
+        switches: v
+            .inputs
+            .switches
+            .iter()
+            .map(|s| SwitchDoc {
+                wheel: s.wheel,
+                at: match s.at {
+                    Trigger::Time(t) => TriggerDoc::Time(t),
+                    Trigger::Exchange(k) => TriggerDoc::Exchange(k),
+                },
+                state: match s.state {
+                    WheelState::Free => WheelStateDoc::Free,
+                    WheelState::Locked => WheelStateDoc::Locked,
+                    WheelState::Braked(f) => WheelStateDoc::Braked(f),
+                },
+            })
+            .collect(),
+    }
+}
+
+fn params_doc(p: &ContactParams) -> ParamsDoc {
+    ParamsDoc {
+        depth_of_penetration: match p.depth_of_penetration {
+            DepthOfPenetration::Fixed(t) => DepthDoc::Fixed(t),
+            DepthOfPenetration::Auto => DepthDoc::Auto,
+        },
+        restitution: p.restitution,
+        friction: p.friction,
+        restitution_mode: match p.restitution_mode {
+            RestitutionMode::Total => ModeDoc::Total,
+            RestitutionMode::Normal => ModeDoc::Normal,
+        },
+        centroid: match &p.centroid {
+            CentroidMode::Auto => CentroidDoc::Auto,
+            CentroidMode::Stiffness => CentroidDoc::Stiffness,
+            CentroidMode::World(q) => CentroidDoc::World(v3(&q.coords)),
+            CentroidMode::Body { body, point } => CentroidDoc::Body {
+                body: *body,
+                point: v3(&point.coords),
+            },
+        },
+        normal: match &p.normal {
+            NormalMode::Horizontal { pitch } => NormalDoc::Horizontal { pitch: *pitch },
+            NormalMode::Volume => NormalDoc::Volume,
+            NormalMode::Fixed(v) => NormalDoc::Vector(v3(v)),
+        },
+    }
+}
+
+fn document(spec: &SceneSpec) -> Document {
+    let mut meshes = Meshes::default();
+    let bodies = spec
+        .bodies
+        .iter()
+        .map(|b| BodyDoc {
+            name: b.name.clone(),
+            mesh: meshes.index(&b.shape),
+            stiffness: Face::ALL.map(|f| b.stiffness.face(f).map(|s| [s.a, s.b])),
+            motion: match &b.motion {
+                BodyMotion::Moving {
+                    props,
+                    state,
+                    vehicle,
+                } => {
+                    let i = props.inertia();
+                    MotionDoc::Moving {
+                        mass: props.mass(),
+                        inertia: [0, 1, 2].map(|r| [i[(r, 0)], i[(r, 1)], i[(r, 2)]]),
+                        position: v3(&state.position.coords),
+                        orientation: quat(&state.orientation),
+                        velocity: v3(&state.velocity),
+                        angular_velocity: v3(&state.angular_velocity),
+                        vehicle: vehicle.as_ref().map(vehicle_doc),
+                    }
+                }
+                BodyMotion::Fixed { pose } => MotionDoc::Fixed {
+                    position: v3(&pose.translation.vector),
+                    orientation: quat(&pose.rotation),
+                },
+            },
+        })
+        .collect();
+    let ground = spec.ground.as_ref().map(|g| GroundDoc {
+        surface: match g.surface() {
+            Surface::Plane { height } => SurfaceDoc::Plane { height: *height },
+            Surface::Terrain(mesh) => SurfaceDoc::Terrain {
+                mesh: meshes.index(mesh),
+            },
+        },
+        tyre_friction: g.tyre_friction(),
+        body_friction: g.body_friction(),
+        zones: g
+            .zones()
+            .iter()
+            .map(|z| ZoneDoc {
+                polygon: z.polygon.clone(),
+                friction: z.friction,
+            })
+            .collect(),
+    });
+    let o = &spec.run.options;
+    Document {
+        format: FORMAT.into(),
+        version: VERSION,
+        meshes: meshes
+            .shapes
+            .iter()
+            .map(|s| MeshDoc {
+                vertices: s.vertices().iter().map(|p| v3(&p.coords)).collect(),
+                triangles: s.triangles().to_vec(),
+            })
+            .collect(),
+        bodies,
+        contacts: spec
+            .contacts
+            .iter()
+            .map(|c| ContactDoc {
+                body1: c.body1,
+                body2: c.body2,
+                params: params_doc(&c.params),
+            })
+            .collect(),
+        ground,
+        run: RunDoc {
+            duration: spec.run.duration,
+            dt: spec.run.dt,
+            record_interval: o.record_interval,
+            max_history_bytes: o.max_history_bytes,
+            until_rest: o.until_rest,
+            history: o.history,
+        },
+    }
+}
+
+// -- document -> spec ------------------------------------------------------------------------
+
+fn point(a: [Real; 3]) -> Point {
+    Point::new(a[0], a[1], a[2])
+}
+
+/// A rotation from (w, x, y, z): kept bit for bit when it is a unit quaternion to round-off,
+/// normalised otherwise; zero or non-finite is an error.
+fn rotation(q: [Real; 4]) -> Result<Rotation> {
+    let q = nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]);
+    let norm = q.norm();
+    if !norm.is_finite() || norm == 0.0 {
+        return Err(Error::Parameter(
+            "orientation must be a finite, non-zero quaternion (w, x, y, z)".into(),
+        ));
+    }
+    if (norm - 1.0).abs() <= 1e-12 {
+        Ok(Rotation::new_unchecked(q))
+    } else {
+        Ok(Rotation::new_normalize(q))
+    }
+}
+
+fn points(what: &str, rows: &[[Real; 2]]) -> Result<Table> {
+    let p: Vec<(Real, Real)> = rows.iter().map(|r| (r[0], r[1])).collect();
+    Table::new(what, &p)
+}
+
+fn vehicle(v: VehicleDoc) -> Result<VehicleSpec> {
+    let wheels = v
+        .wheels
+        .iter()
+        .map(|w| WheelSpec {
+            center: point(w.center),
+            radius: w.radius,
+            steerable: w.steerable,
+            static_load: w.static_load,
+            spring_rate: w.spring_rate,
+            damping: w.damping,
+        })
+        .collect();
+    let tyre = Tyre {
+        model: match v.tyre.model {
+            TyreModelDoc::Linear { saturation_angle } => TyreModel::Linear { saturation_angle },
+            TyreModelDoc::MagicFormula { b, c, e } => TyreModel::MagicFormula { b, c, e },
+        },
+        relaxation_length: v.tyre.relaxation_length,
+        rolling_resistance: v.tyre.rolling_resistance,
+    };
+    let mut brake = Vec::with_capacity(v.brake.len());
+    for (k, b) in v.brake.iter().enumerate() {
+        let what = format!("wheel {k} braking");
+        brake.push(match b {
+            None => None,
+            Some(BrakeDoc::Fraction(t)) => Some(Braking::Fraction(points(&what, t)?)),
+            Some(BrakeDoc::Deceleration(t)) => Some(Braking::Deceleration(points(&what, t)?)),
+        });
+    }
+    let mut drive = Vec::with_capacity(v.drive.len());
+    for (k, d) in v.drive.iter().enumerate() {
+        drive.push(match d {
+            None => None,
+            Some(t) => Some(points(&format!("wheel {k} drive force"), t)?),
+        });
+    }
+    let inputs = DriverInputs {
+        steer: v.steer.map(|t| points("steering", &t)).transpose()?,
+        brake,
+        drive,
+        switches: v
+            .switches
+            .iter()
+            .map(|s| WheelSwitch {
+                wheel: s.wheel,
+                at: match s.at {
+                    TriggerDoc::Time(t) => Trigger::Time(t),
+                    TriggerDoc::Exchange(k) => Trigger::Exchange(k),
+                },
+                state: match s.state {
+                    WheelStateDoc::Free => WheelState::Free,
+                    WheelStateDoc::Locked => WheelState::Locked,
+                    WheelStateDoc::Braked(f) => WheelState::Braked(f),
+                },
+            })
+            .collect(),
+    };
+    Ok(VehicleSpec {
+        wheels,
+        tyre,
+        inputs,
+    })
+}
+
+fn params(p: ParamsDoc) -> ContactParams {
+    ContactParams {
+        depth_of_penetration: match p.depth_of_penetration {
+            DepthDoc::Fixed(t) => DepthOfPenetration::Fixed(t),
+            DepthDoc::Auto => DepthOfPenetration::Auto,
+        },
+        restitution: p.restitution,
+        friction: p.friction,
+        restitution_mode: match p.restitution_mode {
+            ModeDoc::Total => RestitutionMode::Total,
+            ModeDoc::Normal => RestitutionMode::Normal,
+        },
+        centroid: match p.centroid {
+            CentroidDoc::Auto => CentroidMode::Auto,
+            CentroidDoc::Stiffness => CentroidMode::Stiffness,
+            CentroidDoc::World(q) => CentroidMode::World(point(q)),
+            CentroidDoc::Body { body, point: q } => CentroidMode::Body {
+                body,
+                point: point(q),
+            },
+        },
+        normal: match p.normal {
+            NormalDoc::Horizontal { pitch } => NormalMode::Horizontal { pitch },
+            NormalDoc::Volume => NormalMode::Volume,
+            NormalDoc::Vector(v) => NormalMode::Fixed(Vector::new(v[0], v[1], v[2])),
+        },
+    }
+}
+
+fn spec(doc: Document) -> Result<SceneSpec> {
+    if doc.format != FORMAT || doc.version != VERSION {
+        return Err(Error::Parameter(format!(
+            "not a scene spec this engine reads: format {:?} version {} (expected {FORMAT:?} \
+             version {VERSION})",
+            doc.format, doc.version
+        )));
+    }
+    let mut shapes = Vec::with_capacity(doc.meshes.len());
+    for (k, m) in doc.meshes.into_iter().enumerate() {
+        let v = m.vertices.into_iter().map(point).collect();
+        let shape = MeshShape::new(v, m.triangles)
+            .map_err(|e| Error::Mesh(format!("scene spec mesh {k}: {e}")))?;
+        shapes.push(Arc::new(shape));
+    }
+    let mesh = |k: usize| -> Result<Arc<MeshShape>> {
+        shapes.get(k).cloned().ok_or_else(|| {
+            Error::Parameter(format!(
+                "the scene spec refers to mesh {k} but has {} meshes",
+                shapes.len()
+            ))
+        })
+    };
+    let mut out = SceneSpec::new();
+    for b in doc.bodies {
+        let shape = mesh(b.mesh)?;
+        let name = Some(b.name);
+        let i = match b.motion {
+            MotionDoc::Moving {
+                mass,
+                inertia,
+                position,
+                orientation,
+                velocity,
+                angular_velocity,
+                vehicle: v,
+            } => {
+                let props = MassProperties::new(mass, Matrix::from_fn(|r, c| inertia[r][c]))?;
+                let state = BodyState {
+                    position: point(position),
+                    orientation: rotation(orientation)?,
+                    velocity: point(velocity).coords,
+                    angular_velocity: point(angular_velocity).coords,
+                };
+                let i = out.add_body(name, shape, props, state)?;
+                if let Some(v) = v {
+                    out.set_vehicle(i, vehicle(v)?)?;
+                }
+                i
+            }
+            MotionDoc::Fixed {
+                position,
+                orientation,
+            } => {
+                let pose = Isometry::from_parts(point(position).into(), rotation(orientation)?);
+                out.add_obstacle(name, shape, pose)?
+            }
+        };
+        let mut s = Stiffness::none();
+        for (face, value) in Face::ALL.iter().zip(b.stiffness) {
+            if let Some([a, bb]) = value {
+                s = s.with(*face, FaceStiffness::new(a, bb)?);
+            }
+        }
+        out.set_stiffness(i, s)?;
+    }
+    for c in doc.contacts {
+        out.set_contact(c.body1, c.body2, params(c.params))?;
+    }
+    if let Some(g) = doc.ground {
+        let base = match g.surface {
+            SurfaceDoc::Plane { height } => Ground::plane(height)?,
+            SurfaceDoc::Terrain { mesh: k } => Ground::terrain(mesh(k)?)?,
+        };
+        let zones = g
+            .zones
+            .into_iter()
+            .map(|z| FrictionZone {
+                polygon: z.polygon,
+                friction: z.friction,
+            })
+            .collect();
+        out.set_ground(
+            base.with_friction(g.tyre_friction, g.body_friction)?
+                .with_zones(zones)?,
+        );
+    }
+    out.run = RunSpec {
+        duration: doc.run.duration,
+        dt: doc.run.dt,
+        options: RunOptions {
+            record_interval: doc.run.record_interval,
+            max_history_bytes: doc.run.max_history_bytes,
+            until_rest: doc.run.until_rest,
+            history: doc.run.history,
+        },
+    };
+    Ok(out)
+}
+
+/// The spec as JSON text.
+pub fn to_json(spec: &SceneSpec) -> String {
+    serde_json::to_string(&document(spec)).expect("a scene spec document always serialises")
+}
+
+/// A spec from JSON text (a ParameterError, or a MeshError for a broken mesh, says what is
+/// wrong).
+pub fn from_json(text: &str) -> Result<SceneSpec> {
+    let doc: Document = serde_json::from_str(text)
+        .map_err(|e| Error::Parameter(format!("the scene spec JSON is invalid: {e}")))?;
+    spec(doc)
+}
+
+impl Serialize for SceneSpec {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        document(self).serialize(s)
+    }
+}
+
+impl<'de> Deserialize<'de> for SceneSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let doc = Document::deserialize(d)?;
+        spec(doc).map_err(serde::de::Error::custom)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn json_round_trip_runs_the_same_bits() {
+        let mut s = crate::spec::tests::head_on();
+        s.bodies[1].stiffness =
+            Stiffness::none().with(Face::Front, FaceStiffness::new(1.0, 2.0).unwrap());
+        let text = to_json(&s);
+        let back = from_json(&text).unwrap();
+        assert_eq!(to_json(&back), text);
+        assert_eq!(back.run().unwrap(), s.run().unwrap());
+        // one mesh shared by both bodies is written once
+        assert_eq!(document(&s).meshes.len(), 1);
+        assert!(Arc::ptr_eq(&back.bodies[0].shape, &back.bodies[1].shape));
+    }
+
+    #[test]
+    fn a_bad_document_is_a_typed_error() {
+        assert!(matches!(from_json("{"), Err(Error::Parameter(_))));
+        let s = crate::spec::tests::head_on();
+        let text = to_json(&s).replace("\"restitution\":0.1", "\"restitution\":3.0");
+        assert!(matches!(from_json(&text), Err(Error::Parameter(m)) if m.contains("restitution")));
+    }
+}

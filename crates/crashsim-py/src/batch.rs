@@ -1,0 +1,129 @@
+//! `run_batch`: the core's batch with the GIL released, numpy columns out. The batch runs on
+//! its own thread pool while the caller's thread polls every 50 ms: Ctrl-C (or an exception
+//! from `progress`) sets the core's interrupt flag, `progress(done, n)` is called from here.
+
+use std::sync::atomic::Ordering;
+use std::time::Duration;
+
+use crashsim_core as core;
+use numpy::{AllowTypeChange, IntoPyArray, PyArrayLikeDyn};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::errors;
+use crate::spec::SceneSpec;
+
+/// How often the caller's thread looks at the batch (progress, Ctrl-C).
+const POLL: Duration = Duration::from_millis(50);
+
+/// Runs n variants of `spec` (see the stub and python/crashsim/batch.py).
+#[pyfunction]
+#[pyo3(signature = (spec, overrides, n, *, threads = None, progress = None, max_impacts = 2))]
+pub fn run_batch<'py>(
+    py: Python<'py>,
+    spec: &SceneSpec,
+    overrides: Option<&Bound<'py, PyDict>>,
+    n: usize,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+    max_impacts: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mut given = Vec::new();
+    if let Some(d) = overrides {
+        for (key, value) in d.iter() {
+            let name: String = key
+                .extract()
+                .map_err(|_| errors::parameter(format!("override keys are strings, got {key}")))?;
+            let a: PyArrayLikeDyn<'_, f64, AllowTypeChange> = value.extract().map_err(|_| {
+                errors::parameter(format!("override {name:?} must be an array of numbers"))
+            })?;
+            let a = a.as_array();
+            given.push((name, a.shape().to_vec(), a.iter().copied().collect()));
+        }
+    }
+    if threads == Some(0) {
+        return Err(errors::parameter(
+            "threads = 0 is invalid: give at least 1 (None: one per core)".into(),
+        ));
+    }
+    let base = &spec.inner;
+    let o = core::batch::Overrides::new(base, n, given).map_err(errors::to_py)?;
+    let options = core::batch::BatchOptions {
+        threads: threads.unwrap_or(0),
+        max_impacts,
+    };
+    let control = core::batch::Control::default();
+    let mut failure: Option<PyErr> = None;
+    let out = py.detach(|| {
+        std::thread::scope(|s| {
+            let worker = s.spawn(|| core::batch::run_batch(base, &o, &options, &control));
+            let mut reported = usize::MAX;
+            loop {
+                std::thread::sleep(POLL);
+                let finished = worker.is_finished();
+                let done = control.done.load(Ordering::Relaxed);
+                Python::attach(|py| {
+                    if failure.is_none() {
+                        if let Err(e) = py.check_signals() {
+                            // Ctrl-C: keep what finished
+                            control.interrupt.store(true, Ordering::Relaxed);
+                            if !e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                                failure = Some(e);
+                            }
+                        }
+                    }
+                    if let (Some(f), true) = (&progress, done != reported && failure.is_none()) {
+                        reported = done;
+                        if let Err(e) = f.call1(py, (done, n)) {
+                            control.interrupt.store(true, Ordering::Relaxed);
+                            // Ctrl-C while the callback ran: keep what finished, as above
+                            if !e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                                failure = Some(e);
+                            }
+                        }
+                    }
+                });
+                if finished {
+                    break;
+                }
+            }
+            worker.join()
+        })
+    });
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    let out = match out {
+        Ok(r) => r.map_err(errors::to_py)?,
+        Err(_) => {
+            return Err(errors::to_py(core::Error::Simulation(
+                "internal engine error (the batch's thread panicked); please report it".into(),
+            )))
+        }
+    };
+    let d = PyDict::new(py);
+    let columns = PyList::empty(py);
+    for (name, values) in out.columns.columns {
+        let array = match values {
+            core::batch::Values::Float(v) => v.into_pyarray(py).into_any(),
+            core::batch::Values::Int(v) => v.into_pyarray(py).into_any(),
+        };
+        columns.append((name, array))?;
+    }
+    d.set_item("columns", columns)?;
+    let errs = PyList::empty(py);
+    for e in out.errors {
+        errs.append((
+            e.index,
+            core::batch::kind_name(&e.error),
+            e.error.to_string(),
+        ))?;
+    }
+    d.set_item("errors", errs)?;
+    d.set_item("finished", out.finished.into_pyarray(py))?;
+    // Ctrl-C counts even when it came as the last variants finished: the caller (a study
+    // running chunks) must stop too.
+    let ctrl_c = control.interrupt.load(Ordering::Relaxed);
+    d.set_item("interrupted", out.interrupted || ctrl_c)?;
+    Ok(d)
+}
