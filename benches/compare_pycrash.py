@@ -229,6 +229,7 @@ class Crashsim:
         brake: float | np.ndarray | None = None,
         switches: list[tuple[int, str, float, str, float]] | None = None,
         rolling_resistance: float = 0.0,
+        relaxation_length: float | None = None,
     ) -> int:
         """A car at rest on its springs at pos (m), heading yaw (rad), rolling at speed (m/s);
         steer a (k, 2) table of (s, road-wheel rad); brake a (k, 2) table of (s, fraction of
@@ -245,7 +246,11 @@ class Crashsim:
             static_loads=self.loads,
             spring_rates=self.spring_rates,
             damping=self.damping,
-            tyre={"model": "linear", "rolling_resistance": rolling_resistance},
+            tyre={
+                "model": "linear",
+                "rolling_resistance": rolling_resistance,
+                **({"relaxation_length": relaxation_length} if relaxation_length else {}),
+            },
             steer=steer,
             brake=[("fraction", np.asarray(brake))] * 4 if brake is not None else [],
             switches=switches or [],
@@ -694,7 +699,13 @@ def make_lane(side: Crashsim, dt_pc: float) -> Case:
     out = w.run(duration, DT)
     spec = single_spec("lane", duration, dt_pc, CORNER_SPEED, steer=steer)
     title = "3b. lane change: one sine period of steer, 0.3 g quasi-static, 2.5 s, 20 m/s"
-    return Case("lane", title, out, 0.0, spec, steer)
+    case = Case("lane", title, out, 0.0, spec, steer)
+    # the same with a 10x shorter relaxation length, for the notes: the tread's damper leads
+    # the slip angle by 2 sqrt(sigma alpha_sat / (mu g)), 94 ms at 0.1 m, 30 ms at 0.01 m
+    w = side.world()
+    side.add_car(w, (0.0, 0.0), 0.0, CORNER_SPEED, steer=steer, relaxation_length=0.01)
+    case.extra["short_relaxation"] = w.run(duration, DT)
+    return case
 
 
 def make_brake_turn(side: Crashsim, dt_pc: float) -> Case:
@@ -704,7 +715,7 @@ def make_brake_turn(side: Crashsim, dt_pc: float) -> Case:
     brake = steer_table([(0.0, 0.0), (TURN_BRAKE_AT, 0.0), (t1, TURN_BRAKE)])
     w = side.world()
     side.add_car(w, (0.0, 0.0), 0.0, CORNER_SPEED, steer=steer, brake=brake)
-    out = w.run(20.0, DT)
+    out = w.run(20.0, DT, until_rest=True)
     rest = out["rest"][0] or float(out["t"][-1])
     spec = single_spec(
         "brake_turn", round(rest + 1.0, 2), dt_pc, CORNER_SPEED, steer=steer, brake=brake
@@ -846,14 +857,28 @@ class Row:
     pc: float | None
     ref: float | None = None
     fmt: str = ".3f"
+    # how the last three columns compare: "rel" in percent, "abs" as a difference in the
+    # unit; "auto": abs for times, angles, percentages, positions and offsets, else rel
+    diff: str = "auto"
+
+    def __post_init__(self) -> None:
+        if self.diff == "auto":
+            absolute = self.unit in ("s", "deg", "%") or any(
+                w in self.what for w in ("position", "offset", "from the ref")
+            )
+            self.diff = "abs" if absolute else "rel"
 
 
 def _fmt(v: float | None, fmt: str) -> str:
     return "-" if v is None or not math.isfinite(v) else format(v, fmt)
 
 
-def _pct(v: float | None, ref: float | None) -> str:
-    if v is None or ref is None or not math.isfinite(v) or ref == 0:
+def _pct(v: float | None, ref: float | None, row: Row | None = None) -> str:
+    if v is None or ref is None or not math.isfinite(v) or not math.isfinite(ref):
+        return "-"
+    if row is not None and row.diff == "abs":
+        return f"{v - ref:+{row.fmt}} {row.unit}"
+    if ref == 0:
         return "-"
     return f"{100 * (v / ref - 1):+.2f} %"
 
@@ -876,9 +901,9 @@ def print_rows(title: str, rows: list[Row], ref_name: str, md: list[str]) -> Non
             _fmt(r.cs, r.fmt),
             _fmt(r.pc, r.fmt),
             _fmt(r.ref, r.fmt),
-            _pct(r.cs, r.ref),
-            _pct(r.pc, r.ref),
-            _pct(r.pc, r.cs),
+            _pct(r.cs, r.ref, r),
+            _pct(r.pc, r.ref, r),
+            _pct(r.pc, r.cs, r),
         ]
         print(
             f"  {r.what:<44} {r.unit:<6} {cells[0]:>10} {cells[1]:>10} {cells[2]:>12} "
@@ -903,7 +928,7 @@ def skid_rows(case: Case) -> list[Row]:
         Row("distance to the first stop (< 0.05 m/s)", "m", first[0][1], first[1][1], d_first),
         Row("time to the first stop", "s", first[0][0], first[1][0], t_first),
         Row("distance at rest (rest criterion)", "m", rest[0][1], rest[1][1], d_ref),
-        Row("time to rest (slow for 0.2 s, from its start)", "s", rest[0][0], rest[1][0], t_ref),
+        Row("time to rest (slow for 0.2 s)", "s", rest[0][0], rest[1][0], t_ref),
         Row(
             "largest backward speed after the stop",
             "m/s",
@@ -1197,15 +1222,33 @@ def impact_rows(case: Case) -> list[Row]:
                     *(float(getattr(tr, attr)[k]) for tr, k in zip(trs, ks, strict=True)),
                 )
             )
+        yaws = [math.degrees(float(tr.yaw[k])) for tr, k in zip(trs, ks, strict=True)]
+        rows.append(Row(f"{name}: heading at rest", "deg", *yaws, fmt=".2f"))
+        ref = trs[2]
+        gaps = [
+            float(np.hypot(tr.x[k] - ref.x[ks[2]], tr.y[k] - ref.y[ks[2]]))
+            for tr, k in zip(trs, ks, strict=True)
+        ]
+        rows.append(
+            Row(f"{name}: rest position's distance from the ref's", "m", gaps[0], gaps[1], 0.0)
+        )
         rows.append(
             Row(
-                f"{name}: heading at rest",
+                f"{name}: heading at rest minus the ref's",
                 "deg",
-                *(math.degrees(float(tr.yaw[k])) for tr, k in zip(trs, ks, strict=True)),
-                fmt=".2f",
+                yaws[0] - yaws[2],
+                yaws[1] - yaws[2],
+                0.0,
+                ".2f",
             )
         )
     return rows
+
+
+def rest_pose(tr: Trace) -> tuple[float, float, float]:
+    """(x, y, heading in deg) at rest, or at the end if the trace never rests."""
+    k = tr.at(tr.rest) if tr.rest is not None else len(tr.t) - 1
+    return float(tr.x[k]), float(tr.y[k]), math.degrees(float(tr.yaw[k]))
 
 
 # -- speed -----------------------------------------------------------------------------------
@@ -1243,8 +1286,8 @@ def plot(cases: dict[str, Case], path: Path) -> None:
     matplotlib.use("Agg")
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(15, 9.5), layout="constrained")
-    axes = fig.subplots(2, 3)
+    fig = Figure(figsize=(15, 13), layout="constrained")
+    axes = fig.subplots(3, 3)
     cs_style = {"color": "tab:blue", "lw": 1.6, "label": "crashsim"}
     pc_style = {"color": "tab:red", "lw": 1.2, "ls": "--", "label": "pycrash"}
     ref_style = {"color": "k", "lw": 0.9, "ls": ":"}
@@ -1292,9 +1335,38 @@ def plot(cases: dict[str, Case], path: Path) -> None:
                 xlim=(0.3, 2.0),
             )
             ax.legend(fontsize=8)
+    if "lane" in cases:
+        c = cases["lane"]
+        lin = c.extra["linear"]
+        for ax, key, scale, lab in (
+            (axes[1, 1], "r", 180 / math.pi, "r (deg/s)"),
+            (axes[1, 2], "ay", 1 / G, "a_y (g)"),
+        ):
+            for tr, st in ((c.cs[0], cs_style), (c.pc[0], pc_style)):
+                ax.plot(tr.t, getattr(tr, key) * scale, **st)
+            ax.plot(lin["t"], lin[key] * scale, label="linear single-track", **ref_style)
+            ax.plot(
+                c.steer[:, 0],
+                np.degrees(c.steer[:, 1]) * (10 if key == "r" else 0.1),
+                color="0.6",
+                lw=0.8,
+                label="steer (deg) x 10" if key == "r" else "steer (deg) / 10",
+            )
+            ax.set(title=f"3b. lane change: {lab.split()[0]}", xlabel="t (s)", ylabel=lab)
+            ax.legend(fontsize=8)
     if "brake_turn" in cases:
-        ax = axes[1, 1]
         c = cases["brake_turn"]
+        ax = axes[2, 1]
+        for tr, st in ((c.cs[0], cs_style), (c.pc[0], pc_style)):
+            ax.plot(tr.t, np.degrees(tr.r), **st)
+        ax.axvline(TURN_BRAKE_AT, color="0.6", lw=0.8)
+        ax.set(
+            title="4. braking in a turn: yaw rate (line: brakes on)",
+            xlabel="t (s)",
+            ylabel="r (deg/s)",
+        )
+        ax.legend(fontsize=8)
+        ax = axes[2, 0]
         for tr, st in ((c.cs[0], cs_style), (c.pc[0], pc_style)):
             ax.plot(tr.x, tr.y, **st)
             k = tr.at(TURN_BRAKE_AT)
@@ -1307,7 +1379,7 @@ def plot(cases: dict[str, Case], path: Path) -> None:
         )
         ax.legend(fontsize=8)
     if "impact" in cases:
-        ax = axes[1, 2]
+        ax = axes[2, 2]
         c = cases["impact"]
         planar = [crashsim_trace(c.extra["planar"], b, CAR) for b in (0, 1)]
         pl_style = {"color": "tab:green", "lw": 1.0, "ls": ":", "label": "crashsim, planar impulse"}
@@ -1558,6 +1630,17 @@ def case_notes(case: Case) -> list[str]:
         ref_pc = case.extra.get("corner_ref_pc")
         if ref_pc is not None:
             notes.append(f"the single-track gain with pycrash's own u and K: {ref_pc:.4f} 1/s")
+    if case.name == "lane" and "short_relaxation" in case.extra:
+        tr = crashsim_trace(case.extra["short_relaxation"], 0, CAR)
+        pk = peaks(tr.t, tr.r, LANE_AT)
+        pa = peaks(tr.t, tr.ay, LANE_AT)
+        notes.append(
+            "crashsim with relaxation length 0.01 m instead of 0.1 (the tread damper's lead "
+            f"30 ms instead of 94): yaw-rate peaks {math.degrees(pk[0][0]):.4f} at "
+            f"{pk[0][1]:.3f} s and {math.degrees(pk[1][0]):.4f} deg/s at {pk[1][1]:.3f} s, "
+            f"lat. acc. peaks {pa[0][0] / G:.4f} and {pa[1][0] / G:.4f} g, lateral offset "
+            f"{float(tr.y[-1]):.3f} m"
+        )
     if case.name == "brake_turn":
         shares = []
         for tr in (case.cs[0], case.pc[0]):
@@ -1642,6 +1725,22 @@ def speed_section(
                     f"{_fmt_time(res['drawing_time'] / dur)}/s more"
                 )
             summary.append((key, dt, ratio))
+            if dt != DT and key in cases and cases[key].spec["dt"] == DT:
+                # what the coarser step changes in pycrash's own results
+                diffs = []
+                for b, (coarse, fine) in enumerate(
+                    zip(res["models"], pc_out["cases"][key]["models"], strict=True)
+                ):
+                    pc, pf = rest_pose(pycrash_trace(coarse)), rest_pose(pycrash_trace(fine))
+                    diffs.append(
+                        f"{'AB'[b] if len(res['models']) > 1 else 'car'} "
+                        f"{math.hypot(pc[0] - pf[0], pc[1] - pf[1]):.3f} m, "
+                        f"{pc[2] - pf[2]:+.2f} deg"
+                    )
+                lines.append(
+                    f"  {'':<34} {'':>6} {'':>22}   pycrash at 10 ms against its 1 ms run, rest "
+                    f"pose: {'; '.join(diffs)}"
+                )
     for key, dt, ratio in summary:
         if key == "impact":
             verdict = "met" if ratio >= 1000 else "MISSED"
