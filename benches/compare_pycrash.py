@@ -934,6 +934,7 @@ def skid_rows(case: Case) -> list[Row]:
             "m/s",
             *(float(max(0.0, -tr.u.min())) for tr in (case.cs[0], case.pc[0])),
             None,
+            diff="abs",
         ),
     ]
 
