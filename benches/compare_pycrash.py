@@ -37,8 +37,9 @@ It runs in this process when ``import pycrash`` works, else in the interpreter g
 times the cases itself. pycrash 0.0.18 needs pandas < 3; set it up with
 ``python3 -m venv /tmp/pycrash-venv && /tmp/pycrash-venv/bin/pip install pycrash==0.0.18``.
 
-    python3 benches/compare_pycrash.py                 # every case; about 10 min (pycrash)
-    python3 benches/compare_pycrash.py --quick         # pycrash at 10 ms, 1 repeat; ~2 min
+    python3 benches/compare_pycrash.py                 # every case; about 20 min (pycrash)
+    python3 benches/compare_pycrash.py --pycrash-repeats 1   # pycrash timed once: ~12 min
+    python3 benches/compare_pycrash.py --quick         # pycrash at 10 ms, once; ~2 min
     python3 benches/compare_pycrash.py --only skid,corner --plot out/compare_pycrash.png
 
 Results and the differences explained: benches/COMPARISON.md, section "pycrash: vehicle
@@ -1459,7 +1460,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--only", default=",".join(CASES), help=f"comma-separated of {CASES}")
     ap.add_argument("--repeats", type=int, help="crashsim timing repeats (default 15; quick 5)")
     ap.add_argument(
-        "--pycrash-repeats", type=int, help="pycrash timing repeats at 10 ms (default 3; quick 1)"
+        "--pycrash-repeats", type=int, help="pycrash runs of each timed scene (default 3; quick 1)"
     )
     ap.add_argument("--pycrash-python", help=f"interpreter with pycrash ({DEFAULT_PYCRASH_PYTHON})")
     ap.add_argument("--plot", type=Path, help="write the traces to this PNG")
@@ -1488,6 +1489,11 @@ def main(argv: list[str] | None = None) -> int:
         "impact": lambda: make_impact(side, dt_pc, 1),
     }
     cases = {name: makers[name]() for name in only if name in makers}
+    if "speed" in only:
+        # the skid's and the impact's runs at the case step are also timed: repeat them
+        for name in ("skid", "impact"):
+            if name in cases:
+                cases[name].spec["repeats"] = pc_repeats
     specs = [c.spec for c in cases.values()]
     speed_specs: list[dict[str, Any]] = []
     if "speed" in only:
@@ -1499,7 +1505,7 @@ def main(argv: list[str] | None = None) -> int:
         speed_specs.append(s10)
         if "skid" not in cases and not args.quick:
             s1 = copy.deepcopy(skid.spec)
-            s1.update(name="speed_skid_1ms", dt=DT, repeats=1)
+            s1.update(name="speed_skid_1ms", dt=DT, repeats=pc_repeats)
             speed_specs.append(s1)
         imp = cases.get("impact") or make_impact(side, dt_pc, 1)
         i10 = impact_spec(
@@ -1508,7 +1514,7 @@ def main(argv: list[str] | None = None) -> int:
         i10["name"] = "speed_impact_10ms"
         speed_specs.append(i10)
         if "impact" not in cases and not args.quick:
-            i1 = impact_spec(imp.cs_out, DT, imp.spec["duration"], 1)
+            i1 = impact_spec(imp.cs_out, DT, imp.spec["duration"], pc_repeats)
             i1["name"] = "speed_impact_1ms"
             speed_specs.append(i1)
 
