@@ -37,8 +37,8 @@ It runs in this process when ``import pycrash`` works, else in the interpreter g
 times the cases itself. pycrash 0.0.18 needs pandas < 3; set it up with
 ``python3 -m venv /tmp/pycrash-venv && /tmp/pycrash-venv/bin/pip install pycrash==0.0.18``.
 
-    python3 benches/compare_pycrash.py                 # every case; about 20 min (pycrash)
-    python3 benches/compare_pycrash.py --pycrash-repeats 1   # pycrash timed once: ~12 min
+    python3 benches/compare_pycrash.py                 # every case; about 15 min (pycrash)
+    python3 benches/compare_pycrash.py --pycrash-repeats 1   # pycrash timed once: ~10 min
     python3 benches/compare_pycrash.py --quick         # pycrash at 10 ms, once; ~2 min
     python3 benches/compare_pycrash.py --only skid,corner --plot out/compare_pycrash.png
 
@@ -1700,7 +1700,8 @@ def speed_section(
         "6. speed: wall time per simulated second, median of repeats (crashsim: World.run until "
         "rest, timed before and after pycrash; pycrash: vehicle_model, or Impact + simulate, "
         "without the drawing data)",
-        f"  {'scene':<34} {'step':>6} {'crashsim':>22} {'pycrash':>26} {'ratio pc/cs':>12}",
+        f"  {'scene':<34} {'step':>6} {'crashsim':>22} {'pycrash':>26} {'ratio pc/cs':>12} "
+        "[range over single runs]",
     ]
     summary = []
     for key, label in (
@@ -1721,10 +1722,14 @@ def speed_section(
             pts = res["times"]
             pc_per = statistics.median(pts) / dur
             ratio = pc_per / cs_per
+            # the widest the ratio could be from single runs: slowest pycrash / fastest
+            # crashsim and the other way round
+            lo = min(pts) / dur / (max(ts) / sim)
+            hi = max(pts) / dur / (min(ts) / sim)
             lines.append(
                 f"  {label:<34} {dt * 1e3:>4g} ms {_fmt_time(cs_per):>10}/s (n={len(ts)}, "
                 f"{sim:.2f} s) {_fmt_time(pc_per):>10}/s (n={len(pts)}, {dur:.2f} s) "
-                f"{ratio:>10,.0f}x"
+                f"{ratio:>10,.0f}x [{lo:,.0f}-{hi:,.0f}]"
             )
             if "drawing_time" in res:
                 where = "SingleMotion" if key == "skid" else "simulate()"
@@ -1758,6 +1763,8 @@ def speed_section(
             )
     if quick:
         lines.append("  (--quick: pycrash at 10 ms only)")
+    load = os.getloadavg()
+    lines.append(f"  load average at the end {load[0]:.2f} / {load[1]:.2f} / {load[2]:.2f}")
     return lines
 
 
