@@ -4,6 +4,17 @@
 # the core's cargo tests and the pytest suite. Meshes are read from ../shared/meshes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The case viewer's browser tests (tests/test_view.py) need Debian's chromium and its driver;
+# libjs-three is the three.js r111 the viewer vendors (python/crashsim/io/viewer/static/three).
+# Installed only when missing, and only as root (elsewhere the tests say what is missing).
+missing=()
+for pkg in chromium chromium-driver libjs-three; do
+    dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")
+done
+if [ ${#missing[@]} -gt 0 ] && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
 python3 -m pip install --quiet ".[test]"
 cargo test --workspace --exclude crashsim-py --quiet
 # Run pytest from tests/ so the installed package (not the source tree) is imported.

@@ -65,6 +65,11 @@ EXPECTED = {
     "lb/in^2": LBF / INCH**2,
     "lbf/in^2": LBF / INCH**2,
     "psi": LBF / INCH**2,
+    "m/s^2": 1.0,
+    "ft/s^2": cs.ft(1.0),
+    "Hz": 1.0,
+    "N s/m": 1.0,
+    "kN s/m": 1000.0,
 }
 
 # crashsim.units' own helpers: the factor is exactly the helper's value of 1.

@@ -19,6 +19,7 @@ LBF = 4.4482216152605
 LBM = 0.45359237
 IN = 0.0254
 FACTOR = {
+    "m": 1.0,
     "kg": 1.0,
     "lb": LBM,
     "in": IN,
@@ -115,7 +116,7 @@ def test_every_number_finite_positive_with_finite_positive_sd():
         if fig.sd is not None:
             assert math.isfinite(fig.sd) and fig.sd > 0.0, (name, key)
         n += 1
-    assert n == 7 * 14
+    assert n == 7 * 17
 
 
 @pytest.mark.parametrize("name", list(PLAUSIBLE))
@@ -235,3 +236,25 @@ def test_hand_worked_conversions():
     assert bus.wheelbase.value == pytest.approx(7.20725, rel=REL)
     # 28,250 lb = 12,813.9844525 kg
     assert bus.mass.value == pytest.approx(12813.9844525, rel=REL)
+
+
+def test_track_and_tyre_radius_follow_their_stated_derivations():
+    """Track = width x the mean track/width ratio of the three CommonRoad vehicles
+    (shared/data/reference-cases.md section 3, written out here); tyre radius = half the
+    published overall diameter where one is given."""
+    raw = _raw()["classes"]
+    front = (1.390 / 1.674 + 1.387 / 1.610 + 1.574 / 1.844) / 3
+    rear = (1.423 / 1.674 + 1.364 / 1.610 + 1.544 / 1.844) / 3
+    for name, vc in vd.vehicle_classes().items():
+        for key, ratio in (("track_front", front), ("track_rear", rear)):
+            assert raw[name][key]["width_ratio"] == pytest.approx(ratio, rel=REL)
+            assert getattr(vc, key).value == pytest.approx(ratio * vc.width.value, rel=REL)
+            assert getattr(vc, key).derived
+        assert 0.75 * vc.width.value < vc.track_front.value < vc.width.value
+        radius = vc.tyre_radius
+        assert 0.25 < radius.value < 0.6, name
+        diameter = raw[name]["tyre_radius"].get("diameter")
+        if diameter is not None:
+            assert radius.value == pytest.approx(diameter["value"] * IN / 2, rel=REL)
+    # the suv's Explorer tyre: 235/75R15, 28.9 in overall -> 0.36703 m
+    assert vd.vehicle_class("suv").tyre_radius.value == pytest.approx(0.36703, rel=1e-12)

@@ -18,9 +18,14 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use crashsim_core::ground::Ground;
 use crashsim_core::impulse::ImpulseProblem;
 use crashsim_core::math::{Aabb, Isometry, Matrix, Point, Real, Rotation, Vector};
 use crashsim_core::overlap::{shapes_overlap, QueryWorkspace};
+use crashsim_core::vehicle::{
+    static_loads, DriverInputs, Trigger, Tyre, VehicleSpec, WheelSpec, WheelState, WheelSwitch,
+    DEFAULT_DAMPING_RATIO, DEFAULT_NATURAL_FREQUENCY, GRAVITY,
+};
 use crashsim_core::world::NORMAL_DEPTH;
 use crashsim_core::{
     BodyState, ContactEventKind, ContactParams, DepthOfPenetration, Impact, MassProperties,
@@ -471,6 +476,57 @@ impl Vehicle {
     }
 }
 
+/// Four wheels under a vehicle's box, locked from its first exchange (see
+/// [`Scene::ground_world`]).
+pub fn wheels_of(v: &Vehicle) -> VehicleSpec {
+    let b = v.shape.aabb();
+    let (wb, track, radius) = (
+        0.6 * (b.maxs.x - b.mins.x),
+        0.85 * (b.maxs.y - b.mins.y),
+        0.3,
+    );
+    let cx = 0.5 * (b.maxs.x + b.mins.x);
+    let xy = [
+        [cx + wb / 2.0, track / 2.0],
+        [cx + wb / 2.0, -track / 2.0],
+        [cx - wb / 2.0, track / 2.0],
+        [cx - wb / 2.0, -track / 2.0],
+    ];
+    let loads = static_loads(&xy, v.props.mass() * GRAVITY).expect("the CG is over the wheels");
+    let wheels = xy
+        .iter()
+        .zip(&loads)
+        .enumerate()
+        .map(|(k, (p, f))| {
+            let c = Point::new(p[0], p[1], radius - v.cg_height);
+            WheelSpec::sprung(
+                c,
+                radius,
+                k < 2,
+                *f,
+                DEFAULT_NATURAL_FREQUENCY,
+                DEFAULT_DAMPING_RATIO,
+            )
+            .expect("valid wheel")
+        })
+        .collect();
+    let switches = (0..4)
+        .map(|wheel| WheelSwitch {
+            wheel,
+            at: Trigger::Exchange(1),
+            state: WheelState::Locked,
+        })
+        .collect();
+    VehicleSpec {
+        wheels,
+        tyre: Tyre::default(),
+        inputs: DriverInputs {
+            switches,
+            ..DriverInputs::default()
+        },
+    }
+}
+
 /// Length of the box of a shape along its body x (m).
 fn length(shape: &MeshShape) -> Real {
     shape.aabb().maxs.x - shape.aabb().mins.x
@@ -744,6 +800,26 @@ impl Scene {
     /// [`WHOLE_DURATION`] s at [`DT`].
     pub fn whole_world(&self) -> World {
         self.world_at(-WHOLE_LEAD)
+    }
+
+    /// The whole scene on the ground: [`Scene::whole_world`]'s bodies on the plane z = 0,
+    /// each on four wheels (wheelbase 0.6 and track 0.85 of its box, tyre radius 0.3 m,
+    /// static loads from the CG, the engine's default suspension and tyre), every wheel
+    /// locked from the vehicle's first exchange; to run until rest.
+    pub fn ground_world(&self) -> World {
+        let mut w = World::new();
+        let p = &self.placement;
+        let states = [p.state_a(-WHOLE_LEAD), p.state_b()];
+        for (i, v) in self.vehicles().iter().enumerate() {
+            w.add_body(v.shape.clone(), v.props.clone(), &states[i])
+                .expect("valid body");
+            w.set_vehicle(i, wheels_of(v)).expect("valid wheels");
+        }
+        w.set_contact(0, 1, ContactParams::default())
+            .expect("valid contact");
+        w.set_ground(Ground::default()).expect("the plane z = 0");
+        w.run(0.0, DT).expect("the vehicles start apart");
+        w
     }
 
     /// The impulse problem of the scene's exchange, rebuilt from the logged impact.

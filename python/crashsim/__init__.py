@@ -18,6 +18,7 @@ from crashsim.analysis.crosscheck import CrossCheck, cross_check
 from crashsim.analysis.montecarlo import dtp_montecarlo
 from crashsim.analysis.report import Report, build_report
 from crashsim.analysis.report import build_report as report
+from crashsim.environment import FrictionZone, Ground, Obstacle, surfaces
 from crashsim.errors import (
     CrashsimError,
     InitialOverlapError,
@@ -30,9 +31,18 @@ from crashsim.errors import (
 )
 from crashsim.io import export, scenefile
 from crashsim.io.export import export_frames, export_glb
+from crashsim.io.viewer import view
 from crashsim.plots import plot_impact, plot_trajectories
-from crashsim.result import ContactEvent, Impact, Result, Trajectory
-from crashsim.scene import DepthOfPenetrationWarning, Scene
+from crashsim.result import (
+    ContactEvent,
+    Impact,
+    RestState,
+    Result,
+    SeparationState,
+    Trajectory,
+    WheelRecord,
+)
+from crashsim.scene import DepthOfPenetrationWarning, RestNotReachedWarning, Scene
 from crashsim.units import (
     deg,
     ft,
@@ -48,10 +58,12 @@ from crashsim.units import (
     to_mph,
 )
 from crashsim.vehicles import generator, meshio, vehicle_data
+from crashsim.vehicles.inputs import Brake, DriverInputs
 from crashsim.vehicles.meshio import MeshQuality, load_mesh, mesh_quality
 from crashsim.vehicles.stiffness import FaceStiffness, Stiffness
 from crashsim.vehicles.vehicle import Vehicle
 from crashsim.vehicles.vehicle_data import VehicleClass, vehicle_class, vehicle_classes
+from crashsim.vehicles.wheels import Tyre, Wheels
 
 __all__ = [
     "__version__",
@@ -62,6 +74,18 @@ __all__ = [
     "Impact",
     "Trajectory",
     "ContactEvent",
+    "RestState",
+    "SeparationState",
+    "WheelRecord",
+    "RestNotReachedWarning",
+    "Ground",
+    "FrictionZone",
+    "Obstacle",
+    "Wheels",
+    "Tyre",
+    "DriverInputs",
+    "Brake",
+    "surfaces",
     "Stiffness",
     "FaceStiffness",
     "VehicleClass",
@@ -77,6 +101,7 @@ __all__ = [
     "plot_trajectories",
     "export_glb",
     "export_frames",
+    "view",
     "dtp_montecarlo",
     "CrossCheck",
     "cross_check",

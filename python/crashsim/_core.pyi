@@ -121,7 +121,7 @@ def suspension(
 def dynamics_defaults() -> dict[str, float]:
     """The engine's defaults for the ground, wheels and tyres (gravity, natural_frequency,
     damping_ratio, saturation_angle, relaxation_length, rolling_resistance, tyre_friction,
-    body_friction) and its rest thresholds (rest_speed m/s, rest_yaw_rate rad/s,
+    body_friction, magic_formula_b, magic_formula_c, magic_formula_e) and its rest thresholds (rest_speed m/s, rest_yaw_rate rad/s,
     rest_time s)."""
 
 def free_motion(
@@ -167,13 +167,13 @@ class World:
         *,
         height: float = 0.0,
         terrain: Shape | None = None,
-        tyre_friction: float = 0.8,
-        body_friction: float = 0.45,
+        tyre_friction: float | None = None,
+        body_friction: float | None = None,
         zones: list[tuple[ArrayLike, float]] = ...,
     ) -> None:
         """Put the world on the ground (gravity along -z): the plane z = height (m), or a
-        terrain mesh in world coordinates; tyre-road and body-ground friction; friction zones
-        as ((k, 2) polygon in m, friction)."""
+        terrain mesh in world coordinates; tyre-road and body-ground friction (None: the
+        engine's 0.8 and 0.45); friction zones as ((k, 2) polygon in m, friction)."""
     def set_vehicle(
         self,
         body: int,

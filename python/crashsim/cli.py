@@ -2,7 +2,11 @@
 
 ``crashsim run case.toml`` loads a scene file (crashsim.io.scenefile; docs/scene-format.md), runs
 it, prints the report's summary table and writes report.json, the time histories (CSV), the
-top-down pictures (PNG) and the 3-D motion (GLB) into a folder.
+top-down pictures (PNG) and the 3-D motion (GLB) into a folder; with ``--html`` also the case
+page (one offline HTML file: the 3-D scene, a timeline and the report; crashsim.io.viewer).
+
+``crashsim view out/report.json`` writes the case page of a run from the report.json that
+``crashsim run --out`` wrote and the files beside it (the time histories and the meshes).
 
 ``crashsim check case.toml`` runs a scene file and checks the engine's first overlaps against
 the independent python-fcl cross-check; it fails (exit 1) when they disagree.
@@ -47,6 +51,7 @@ from crashsim.analysis.report import build_report
 from crashsim.errors import CrashsimError, InputError, ParameterError, SimulationError
 from crashsim.io.export import export_glb
 from crashsim.io.scenefile import SceneFile, load_scene, parse_quantity
+from crashsim.io.viewer import PAGE_FILE, view, view_report
 from crashsim.plots import plot_impact, plot_trajectories
 from crashsim.result import Result
 from crashsim.scene import Scene
@@ -322,7 +327,8 @@ def _summary_and_json(result: Result, json_path: Path | None) -> str:
 
 
 def _simulate(args: argparse.Namespace, case: SceneFile) -> Result:
-    duration = case.run.duration if args.duration is None else args.duration
+    # until rest, --duration overrides the longest run (the file's max_duration)
+    duration = case.run.longest if args.duration is None else args.duration
     dt = case.run.dt if args.dt is None else args.dt
     bar = ProgressBar(duration, sys.stderr) if args.progress or sys.stderr.isatty() else None
     done = False
@@ -400,6 +406,7 @@ def _make(out: Path) -> None:
 def _run(args: argparse.Namespace) -> int:
     case = load_scene(args.scene)
     out = _out_dir(args, case)  # checked before the run, made after it
+    html = _html_path(args, out)  # the case page's path, checked before the run too
     print(_header(case))
     result = _simulate(args, case)
     _make(out)
@@ -416,6 +423,8 @@ def _run(args: argparse.Namespace) -> int:
         written += _pictures(result, out)
     if want.glb and not args.no_pictures:
         written += _glb(result, out)
+    if html is not None:
+        written.append(view(result, html, title=case.title or None))
     # printed last: the files are complete even when the reader of stdout stops early
     print(summary)
     if not result.impacts:
@@ -424,10 +433,36 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _html_path(args: argparse.Namespace, out: Path) -> Path | None:
+    """Where ``--html`` puts the case page (None without it): PAGE_FILE in the output
+    folder, or the path given; a given path's folder must exist and take files."""
+    if args.html is None:
+        return None
+    if args.html is True:
+        return out / PAGE_FILE
+    path = Path(args.html)
+    if path.suffix.lower() not in (".html", ".htm"):
+        raise ParameterError(f"--html {args.html}: give a path ending in .html (or no path)")
+    if not path.parent.is_dir():
+        raise ParameterError(f"--html {args.html}: the folder {path.parent} does not exist")
+    _check_writable(path.parent)
+    return path
+
+
+def _view(args: argparse.Namespace) -> int:
+    path = view_report(args.report, args.out)
+    print(f"wrote: {path}")
+    return 0
+
+
 def _pictures(result: Result, out: Path) -> list[Path]:
     plot_trajectories(result, out / TRAJECTORIES_FILE)
     paths = [out / TRAJECTORIES_FILE]
-    for k in range(len(result.impacts)):
+    for k, imp in enumerate(result.impacts):
+        if imp.obstacle is not None:
+            # plot_impact draws two vehicles; an obstacle's picture is not made yet
+            print(f"impact {k + 1} is with the fixed obstacle {imp.obstacle!r}: no picture of it")
+            continue
         path = out / f"impact-{k + 1}.png"
         plot_impact(result, path, impact=k)
         paths.append(path)
@@ -514,7 +549,8 @@ def _scene_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--duration",
         type=_duration,
-        help='simulated time ("0.5 s" or seconds), overriding the file\'s run.duration',
+        help='simulated time ("0.5 s" or seconds), overriding the file\'s run.duration (or '
+        "its run.max_duration when it runs until rest)",
     )
     p.add_argument(
         "--record-interval",
@@ -559,7 +595,31 @@ def _parser() -> argparse.ArgumentParser:
         action="store_true",
         help="write neither the PNG pictures nor the GLB motion (faster)",
     )
+    run.add_argument(
+        "--html",
+        nargs="?",
+        const=True,
+        metavar="PATH",
+        help=f"also write the case page (one offline HTML file: 3-D scene, timeline, report): "
+        f"{PAGE_FILE} in the output folder, or PATH (docs/viewer.md)",
+    )
     run.set_defaults(func=_run)
+    view_cmd = sub.add_parser(
+        "view",
+        help="write the case page (offline HTML) of a report.json written by `run --out`",
+        description="Writes the case page of a run (docs/viewer.md) from the report.json "
+        "that `crashsim run --out DIR` wrote and the files beside it: time-histories.csv (the "
+        "motion) and the meshes (the report's own, when written with meshes, else motion.glb).",
+        epilog="Exit codes: 0 success, 1 writing the page failed, 2 bad input (a missing or "
+        "malformed report or file beside it, an unwritable --out).",
+    )
+    view_cmd.add_argument("report", type=Path, help="the report.json of a run")
+    view_cmd.add_argument(
+        "--out",
+        metavar="PATH",
+        help=f"the page to write (default: {PAGE_FILE} beside the report)",
+    )
+    view_cmd.set_defaults(func=_view)
     check = sub.add_parser(
         "check",
         help="run a scene file and cross-check its first overlaps with python-fcl",

@@ -1,12 +1,20 @@
-"""Run results: impacts (one per impulse exchange), trajectories and the contact log.
+"""Run results: impacts (one per impulse exchange), trajectories, the contact log and, for a
+scene with a ground, the wheels' records, tyre marks and rest positions.
 
 Everything is SI and world frame unless a name says otherwise: positions m, velocities m/s,
-angular velocities rad/s, impulses N s, energies J, times s, quaternions (w, x, y, z)
-rotating body-frame vectors into the world. Arrays are read-only.
+angular velocities rad/s, impulses N s, energies J, forces N, times s, quaternions (w, x, y,
+z) rotating body-frame vectors into the world. Arrays are read-only.
+
+Bodies are the vehicles (``Result.vehicles``, in the order added) and the fixed obstacles
+(``Result.obstacles``, after them): both have trajectories (an obstacle's never changes);
+an impact may pair a vehicle with an obstacle (``Impact.obstacle``), which has no delta-V
+and an infinite effective mass.
 """
 
 from __future__ import annotations
 
+import math
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, NamedTuple
 
@@ -19,7 +27,15 @@ from crashsim.errors import SceneError
 if TYPE_CHECKING:
     from crashsim.vehicles.vehicle import Vehicle
 
-__all__ = ["ContactEvent", "Impact", "Result", "Trajectory"]
+__all__ = [
+    "ContactEvent",
+    "Impact",
+    "RestState",
+    "Result",
+    "SeparationState",
+    "Trajectory",
+    "WheelRecord",
+]
 
 Array = NDArray[np.float64]
 
@@ -33,6 +49,11 @@ def _frozen(a: Any) -> Array:
 def _name_of(vehicle: Any) -> str:
     """A vehicle's name from a name or a Vehicle."""
     return vehicle if isinstance(vehicle, str) else str(getattr(vehicle, "name", vehicle))
+
+
+def _finite_or_none(x: Any) -> Any:
+    """None for an infinite float (JSON has no Infinity), else x."""
+    return None if isinstance(x, float) and not math.isfinite(x) else x
 
 
 def rotation_matrix(q: Array) -> Array:
@@ -134,16 +155,24 @@ class Impact:
     effective_mass: dict[str, float] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
     normal_time: float = float("nan")
+    obstacle: str | None = None
 
     @classmethod
-    def from_core(cls, raw: dict[str, Any], names: list[str]) -> Impact:
-        """An Impact from one of the engine's impact dicts and the vehicles' names."""
+    def from_core(
+        cls, raw: dict[str, Any], names: list[str], obstacles: Collection[str] = ()
+    ) -> Impact:
+        """An Impact from one of the engine's impact dicts and the bodies' names (vehicles
+        then obstacles); ``obstacles`` names the fixed ones: their per-body entries
+        (delta-V, velocities) are left out and their effective mass is infinite."""
         bodies = (int(raw["body1"]), int(raw["body2"]))
         pair = (names[bodies[0]], names[bodies[1]])
+        fixed = [n for n in pair if n in obstacles]
+        moving = [n for n in pair if n not in obstacles]
 
         def per_vehicle(rows: Any) -> dict[str, Array]:
             rows = np.asarray(rows, dtype=np.float64)
-            return {pair[0]: _frozen(rows[0]), pair[1]: _frozen(rows[1])}
+            out = {pair[0]: _frozen(rows[0]), pair[1]: _frozen(rows[1])}
+            return {k: v for k, v in out.items() if k in moving}
 
         v0, v1 = per_vehicle(raw["velocity_before"]), per_vehicle(raw["velocity_after"])
         w0 = per_vehicle(raw["angular_velocity_before"])
@@ -159,8 +188,8 @@ class Impact:
             centroid=_frozen(raw["centroid"]),
             normal=_frozen(raw["normal"]),
             impulse=_frozen(raw["impulse"]),
-            delta_v={k: _frozen(v1[k] - v0[k]) for k in pair},
-            delta_omega={k: _frozen(w1[k] - w0[k]) for k in pair},
+            delta_v={k: _frozen(v1[k] - v0[k]) for k in moving},
+            delta_omega={k: _frozen(w1[k] - w0[k]) for k in moving},
             velocity_before=v0,
             velocity_after=v1,
             angular_velocity_before=w0,
@@ -181,6 +210,7 @@ class Impact:
             effective_mass=dict(zip(pair, map(float, raw["effective_mass"]), strict=True)),
             notes=tuple(raw["notes"]),
             normal_time=float(raw["normal_time"]),
+            obstacle=fixed[0] if fixed else None,
         )
 
     @property
@@ -194,8 +224,16 @@ class Impact:
         return self.impulse if name == self.vehicles[1] else _frozen(-self.impulse)
 
     def speed_change(self, vehicle: Any) -> float:
-        """|delta-V| of a vehicle's CG (m/s)."""
-        return float(np.linalg.norm(self.delta_v[self._check(vehicle)]))
+        """|delta-V| of a vehicle's CG (m/s). SceneError for an obstacle (it has none)."""
+        name = self._check(vehicle)
+        if name == self.obstacle:
+            raise SceneError(f"{name!r} is a fixed obstacle: it has no delta-V")
+        return float(np.linalg.norm(self.delta_v[name]))
+
+    @property
+    def moving(self) -> tuple[str, ...]:
+        """The pair's moving bodies (both, or the vehicle of a vehicle-obstacle pair)."""
+        return tuple(n for n in self.vehicles if n != self.obstacle)
 
     def _check(self, vehicle: Any) -> str:
         name = _name_of(vehicle)
@@ -204,15 +242,19 @@ class Impact:
         return name
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON-friendly copy (lists, floats, bools, str)."""
+        """A JSON-friendly copy (lists, floats, bools, str; an obstacle's infinite effective
+        mass is None, so the JSON stays valid)."""
         out: dict[str, Any] = {}
         for f in fields(self):
             value = getattr(self, f.name)
+            if f.name == "obstacle" and value is None:
+                continue
             if isinstance(value, np.ndarray):
                 out[f.name] = value.tolist()
             elif isinstance(value, dict):
                 out[f.name] = {
-                    k: v.tolist() if isinstance(v, np.ndarray) else v for k, v in value.items()
+                    k: v.tolist() if isinstance(v, np.ndarray) else _finite_or_none(v)
+                    for k, v in value.items()
                 }
             elif isinstance(value, tuple):
                 out[f.name] = list(value)
@@ -221,12 +263,89 @@ class Impact:
         return out
 
 
+class WheelRecord(NamedTuple):
+    """One vehicle's wheels over a run on the ground (world frame, SI): ``names`` (n,) in the
+    engine's order; at the sample times ``t`` (k,): ``contact`` (n, k, 3) where each tyre
+    meets the ground (m; the point below the wheel centre when the wheel is in the air),
+    ``load`` (n, k) its normal load (N, 0 in the air), ``force`` (n, k, 3) the ground's force
+    on the tyre (N: normal plus tyre forces), ``sliding`` (n, k) True where the contact patch
+    slides at the friction limit (it leaves a tyre mark)."""
+
+    names: tuple[str, ...]
+    t: Array
+    contact: Array
+    load: Array
+    force: Array
+    sliding: NDArray[np.bool_]
+
+
+class RestState(NamedTuple):
+    """Where and when a vehicle came to rest (world frame, SI).
+
+    ``time``: when it became slow for good (speed and yaw rate below the engine's rest
+    thresholds from then to the end; s). ``position`` (3,) of the CG and ``heading`` (rad,
+    yaw of the body x axis from world x, counter-clockwise) at the end of the run.
+    ``distance``: path length of the CG from the start to the end (m); ``displacement``:
+    straight-line distance of the CG from its start (m). ``last_exchange``: the time of the
+    vehicle's last impulse exchange (None without one), with ``distance_from_exchange`` and
+    ``displacement_from_exchange`` (m) measured from there."""
+
+    time: float
+    position: Array
+    heading: float
+    distance: float
+    displacement: float
+    last_exchange: float | None
+    distance_from_exchange: float | None
+    displacement_from_exchange: float | None
+
+
+class SeparationState(NamedTuple):
+    """A vehicle's state when a pair it belongs to stops overlapping (world frame, SI):
+    ``time`` (s), ``other`` (the other vehicle or obstacle), ``velocity`` (3,) of the CG
+    (m/s), ``speed`` (m/s), ``angular_velocity`` (3,) (rad/s), ``heading`` (rad)."""
+
+    time: float
+    other: str
+    velocity: Array
+    speed: float
+    angular_velocity: Array
+    heading: float
+
+
+def _heading(q: Array) -> float:
+    """Yaw of the body x axis from world x (rad), counter-clockwise seen from above."""
+    r = rotation_matrix(q)
+    return float(math.atan2(r[1, 0], r[0, 0]))
+
+
+def _path_length(points: Array) -> float:
+    return float(np.sum(np.linalg.norm(np.diff(points, axis=0), axis=1))) if len(points) else 0.0
+
+
+def _slerp(q0: Array, q1: Array, s: float) -> Array:
+    """Spherical linear interpolation of unit quaternions (shortest arc), s in [0, 1]."""
+    q0 = q0 / np.linalg.norm(q0)
+    q1 = q1 / np.linalg.norm(q1)
+    d = float(q0 @ q1)
+    if d < 0.0:
+        q1, d = -q1, -d
+    if d > 1.0 - 1e-12:
+        q = q0 + s * (q1 - q0)
+        return q / np.linalg.norm(q)
+    theta = math.acos(min(1.0, d))
+    return (math.sin((1.0 - s) * theta) * q0 + math.sin(s * theta) * q1) / math.sin(theta)
+
+
 class Result:
     """What a run returns: ``impacts`` (Impact list, in time order), ``contacts`` (the
-    ContactEvent log), ``vehicles`` (names in the order added), ``t`` (sample times, s),
-    per-vehicle trajectories, ``scene`` (the Scene that ran, None for a bare result), the
-    run's ``duration``, largest step ``dt`` and ``record_interval`` (the spacing of the kept
-    step samples) (s; None when not known)."""
+    ContactEvent log), ``vehicles`` (names in the order added), ``obstacles`` (the fixed
+    obstacles' names; ``bodies`` = vehicles then obstacles, the engine's order), ``t``
+    (sample times, s), per-body trajectories, ``scene`` (the Scene that ran, None for a bare
+    result), the run's ``duration``, largest step ``dt`` and ``record_interval`` (the spacing
+    of the kept step samples) (s; None when not known), and ``on_ground`` (True when the
+    scene had a ground: then :meth:`wheels`, :meth:`wheel_path`, :meth:`tyre_marks` and
+    :meth:`rest` describe the run-out)."""
 
     def __init__(
         self,
@@ -236,37 +355,82 @@ class Result:
         duration: float | None = None,
         dt: float | None = None,
         record_interval: float | None = None,
+        obstacles: Sequence[str] = (),
+        wheel_names: Mapping[str, Sequence[str]] | None = None,
+        on_ground: bool = False,
     ) -> None:
-        self.vehicles: list[str] = list(names)
+        self.bodies: list[str] = list(names)
+        self.obstacles: list[str] = list(obstacles)
+        self.vehicles: list[str] = [n for n in names if n not in self.obstacles]
         self.scene = scene
         self.duration = duration
         self.dt = dt
         # Interval between kept step samples (s); events are always kept.
         self.record_interval = record_interval
+        self.on_ground = bool(on_ground)
         self.t: Array = _frozen(raw["t"])
-        self._position = _frozen(raw["position"])  # (n_vehicles, k, 3)
-        self._orientation = _frozen(raw["orientation"])  # (n_vehicles, k, 4)
+        self._position = _frozen(raw["position"])  # (n_bodies, k, 3)
+        self._orientation = _frozen(raw["orientation"])  # (n_bodies, k, 4)
         self._velocity = _frozen(raw["velocity"])
         self._angular_velocity = _frozen(raw["angular_velocity"])
-        self.impacts: list[Impact] = [Impact.from_core(r, self.vehicles) for r in raw["impacts"]]
+        self.impacts: list[Impact] = [
+            Impact.from_core(r, self.bodies, self.obstacles) for r in raw["impacts"]
+        ]
         self.contacts: list[ContactEvent] = [
             ContactEvent(
-                vehicles=(self.vehicles[int(c["body1"])], self.vehicles[int(c["body2"])]),
+                vehicles=(self.bodies[int(c["body1"])], self.bodies[int(c["body2"])]),
                 time=float(c["time"]),
                 kind=str(c["kind"]),
                 reason=None if c.get("reason") is None else str(c["reason"]),
             )
             for c in raw["contacts"]
         ]
+        # Wheels: the engine's rows are body after body.
+        self._wheels: dict[str, WheelRecord] = {}
+        counts = [int(c) for c in raw.get("wheel_counts", [])]
+        names_of = dict(wheel_names or {})
+        row = 0
+        for i, n in enumerate(counts):
+            if n == 0:
+                continue
+            name = self.bodies[i]
+            wheel = tuple(names_of.get(name, [f"wheel_{k}" for k in range(n)]))
+            sel = slice(row, row + n)
+            self._wheels[name] = WheelRecord(
+                names=wheel,
+                t=self.t,
+                contact=_frozen(raw["wheel_contact"][sel]),
+                load=_frozen(raw["wheel_load"][sel]),
+                force=_frozen(raw["wheel_force"][sel]),
+                sliding=_frozen_bool(raw["wheel_sliding"][sel]),
+            )
+            row += n
+        rest = list(raw.get("rest", [None] * len(self.bodies)))
+        self._rest_time: dict[str, float | None] = {
+            name: None if r is None else float(r)
+            for name, r in zip(self.bodies, rest, strict=False)
+        }
 
     def _index(self, vehicle: Any) -> int:
         name = _name_of(vehicle)
-        if name not in self.vehicles:
+        if name not in self.bodies:
             raise SceneError(f"no vehicle named {name!r} in this result: {self.vehicles}")
-        return self.vehicles.index(name)
+        return self.bodies.index(name)
+
+    def is_obstacle(self, name: Any) -> bool:
+        """True when the named body is a fixed obstacle (SceneError for an unknown name)."""
+        self._index(name)
+        return _name_of(name) in self.obstacles
+
+    def _vehicle_name(self, vehicle: Any) -> str:
+        name = _name_of(vehicle)
+        self._index(name)
+        if name in self.obstacles:
+            raise SceneError(f"{name!r} is a fixed obstacle, not a vehicle")
+        return name
 
     def trajectory(self, vehicle: Any) -> Trajectory:
-        """The samples of one vehicle (name or Vehicle)."""
+        """The samples of one vehicle or obstacle (name or object)."""
         i = self._index(vehicle)
         return Trajectory(
             t=self.t,
@@ -296,17 +460,34 @@ class Result:
         }
 
     def vehicle(self, vehicle: Any) -> Vehicle:
-        """The Vehicle object (mesh, mass properties, stiffness) of a name."""
-        i = self._index(vehicle)
+        """The Vehicle object (mesh, mass properties, stiffness, wheels) of a name."""
+        name = self._vehicle_name(vehicle)
         if self.scene is None:
             raise SceneError("this result has no scene, so no vehicle objects")
-        return self.scene.vehicles[i]
+        return self.scene.vehicles[self.vehicles.index(name)]
+
+    def obstacle(self, name: Any) -> Any:
+        """The Obstacle object (mesh, stiffness) of a name."""
+        key = _name_of(name)
+        if key not in self.obstacles:
+            raise SceneError(f"no obstacle named {key!r} in this result: {self.obstacles}")
+        if self.scene is None:
+            raise SceneError("this result has no scene, so no obstacle objects")
+        return self.scene.obstacles[self.obstacles.index(key)]
 
     def state(self, vehicle: Any, time: float) -> dict[str, Array]:
-        """A vehicle's state at any ``time`` (s) in the run: the last sample at or before it
-        carried forward by torque-free motion (exact: nothing else acts between samples).
-        At an exchange instant this is the state after the exchange; ask for
-        ``impact.time`` minus a hair (or use ``state_before``) for the one before."""
+        """A vehicle's state at any ``time`` (s) in the run.
+
+        Without a ground (``on_ground`` False): the last sample at or before it carried
+        forward by torque-free motion (exact: nothing else acts between samples). With a
+        ground, forces act between samples, so the state is interpolated between the two
+        samples around ``time``: cubic Hermite on the position with the sampled velocities
+        as its slopes (the velocity just before an exchange at the later sample), linear on
+        the velocities, spherical linear (slerp) on the orientation
+        and linear on the angular velocity (an approximation whose error shrinks with the
+        sample spacing, ``record_interval``). At an exchange instant this is the state after
+        the exchange; ask for ``impact.time`` minus a hair (or use ``state_before``) for the
+        one before."""
         tr = self.trajectory(vehicle)
         if not tr.t[0] <= time <= tr.t[-1]:
             raise SceneError(f"t = {time!r} s is outside the run [{tr.t[0]}, {tr.t[-1]}] s")
@@ -317,8 +498,10 @@ class Result:
             "velocity": tr.velocity[k],
             "angular_velocity": tr.angular_velocity[k],
         }
-        if tr.t[k] == time:
+        if tr.t[k] == time or self.is_obstacle(vehicle):
             return sample
+        if self.on_ground:
+            return self._interpolated(tr, k, float(time), self._before(_name_of(vehicle), k))
         v = self.vehicle(vehicle)
         p, q, vel, w = _core.free_motion(
             v.mass,
@@ -336,11 +519,46 @@ class Result:
             "angular_velocity": _frozen(w),
         }
 
+    def _before(self, name: str, k: int) -> tuple[Array, Array] | None:
+        """(velocity, angular velocity) of a vehicle just before an exchange at sample k + 1
+        (its samples hold the state after it), or None when no exchange of it is there."""
+        t1 = float(self.t[k + 1])
+        for imp in self.impacts:
+            if imp.time == t1 and name in imp.delta_v:
+                return imp.velocity_before[name], imp.angular_velocity_before[name]
+        return None
+
+    @staticmethod
+    def _interpolated(
+        tr: Trajectory, k: int, time: float, before: tuple[Array, Array] | None = None
+    ) -> dict[str, Array]:
+        """Between samples k and k + 1: Hermite position, slerp orientation, linear rates;
+        ``before``: the rates just before an exchange at sample k + 1 (its sample holds the
+        rates after it)."""
+        t0, t1 = float(tr.t[k]), float(tr.t[k + 1])
+        h = t1 - t0
+        s = (time - t0) / h
+        h00, h10 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s
+        h01, h11 = -2 * s**3 + 3 * s**2, s**3 - s**2
+        p0, p1 = tr.position[k], tr.position[k + 1]
+        v0, v1 = tr.velocity[k], tr.velocity[k + 1]
+        w0, w1 = tr.angular_velocity[k], tr.angular_velocity[k + 1]
+        if before is not None:
+            v1, w1 = before
+        return {
+            "position": _frozen(h00 * p0 + h10 * h * v0 + h01 * p1 + h11 * h * v1),
+            "orientation": _frozen(_slerp(tr.orientation[k], tr.orientation[k + 1], s)),
+            "velocity": _frozen((1 - s) * v0 + s * v1),
+            "angular_velocity": _frozen((1 - s) * w0 + s * w1),
+        }
+
     def state_before(self, vehicle: Any, impact: Impact) -> dict[str, Array]:
         """A vehicle's state just before an impact's exchange (same pose; the velocities
         before the impulse)."""
         name = impact._check(vehicle)
         after = self.state_at(name, impact.time)
+        if name == impact.obstacle:
+            return after
         return {
             "position": after["position"],
             "orientation": after["orientation"],
@@ -353,21 +571,147 @@ class Result:
         s = self.state(vehicle, time)
         return s["position"], _frozen(rotation_matrix(s["orientation"]))
 
+    def heading(self, vehicle: Any, time: float) -> float:
+        """Yaw of the body x axis from world x at ``time`` (rad, counter-clockwise seen from
+        above, in (-pi, pi])."""
+        return _heading(self.state(vehicle, time)["orientation"])
+
     def delta_v_body(self, impact: Impact, vehicle: Any) -> Array:
         """An impact's delta-V of a vehicle in its body frame at the exchange (m/s; ISO 8855:
         x forward, y left, z up; event data recorders report lateral +right, i.e. -y)."""
         name = impact._check(vehicle)
+        if name == impact.obstacle:
+            raise SceneError(f"{name!r} is a fixed obstacle: it has no delta-V")
         q = self.state_at(name, impact.time)["orientation"]
         return _frozen(rotation_matrix(q).T @ impact.delta_v[name])
 
+    # -- the run-out (scenes with a ground) -----------------------------------------------
+
+    def wheels(self, vehicle: Any) -> WheelRecord:
+        """A vehicle's wheel records (see WheelRecord). SceneError for a vehicle without
+        wheels or a run without ground."""
+        name = self._vehicle_name(vehicle)
+        if name not in self._wheels:
+            why = "the scene had no ground" if not self.on_ground else "it has no wheels"
+            raise SceneError(f"vehicle {name!r} has no wheel records: {why}")
+        return self._wheels[name]
+
+    def _wheel(self, record: WheelRecord, wheel: Any) -> int:
+        from crashsim.vehicles.wheels import ABBREVIATIONS
+
+        if isinstance(wheel, int | np.integer) and not isinstance(wheel, bool):
+            if 0 <= int(wheel) < len(record.names):
+                return int(wheel)
+        elif isinstance(wheel, str):
+            key = ABBREVIATIONS.get(wheel.strip().upper(), wheel.strip().lower())
+            if key in record.names:
+                return record.names.index(key)
+        raise SceneError(f"unknown wheel {wheel!r}: the wheels are {', '.join(record.names)}")
+
+    def wheel_path(self, vehicle: Any, wheel: Any) -> Array:
+        """(k, 3) where one wheel's tyre met the ground at each sample time ``t`` (m, world):
+        the path of its contact patch. ``wheel``: a name ("front_left"), a short name ("FL")
+        or an index."""
+        record = self.wheels(vehicle)
+        return record.contact[self._wheel(record, wheel)]
+
+    def tyre_marks(self, vehicle: Any, min_length: float = 0.0) -> dict[str, list[Array]]:
+        """The stretches where each wheel's contact patch slid at the friction limit (skid
+        and yaw marks): {wheel name: [polyline (m, 3) of contact points (m, world), ...]},
+        each polyline the consecutive samples of one stretch (at least 2 points and at least
+        ``min_length`` m long), in time order; wheels without marks map to []."""
+        record = self.wheels(vehicle)
+        out: dict[str, list[Array]] = {}
+        for w, name in enumerate(record.names):
+            marks: list[Array] = []
+            sliding = np.asarray(record.sliding[w], dtype=bool)
+            edges = np.flatnonzero(np.diff(np.r_[0, sliding.astype(np.int8), 0]))
+            for a, b in zip(edges[::2], edges[1::2], strict=True):
+                if b - a < 2:
+                    continue
+                line = record.contact[w, a:b]
+                if _path_length(line) >= min_length:
+                    marks.append(_frozen(line))
+            out[name] = marks
+        return out
+
+    def rest(self, vehicle: Any) -> RestState | None:
+        """Where and when a vehicle came to rest (RestState), or None when it was still
+        moving at the end of the run (or the scene had no ground)."""
+        name = self._vehicle_name(vehicle)
+        time = self._rest_time.get(name)
+        if time is None:
+            return None
+        tr = self.trajectory(name)
+        last = None
+        for imp in self.impacts:
+            if name in imp.vehicles:
+                last = imp.time
+        start = tr.position[0]
+        end = tr.position[-1]
+        if last is None:
+            from_exchange = displaced = None
+        else:
+            k = int(np.searchsorted(tr.t, last, side="left"))
+            from_exchange = _path_length(tr.position[k:])
+            displaced = float(np.linalg.norm(end - tr.position[k]))
+        return RestState(
+            time=time,
+            position=end,
+            heading=_heading(tr.orientation[-1]),
+            distance=_path_length(tr.position),
+            displacement=float(np.linalg.norm(end - start)),
+            last_exchange=last,
+            distance_from_exchange=from_exchange,
+            displacement_from_exchange=displaced,
+        )
+
+    def separations(self, vehicle: Any) -> list[SeparationState]:
+        """A vehicle's state at every separation (a pair it belongs to stops overlapping),
+        in time order: the speeds at separation."""
+        name = self._vehicle_name(vehicle)
+        out = []
+        for c in self.contacts:
+            if c.kind != "separation" or name not in c.vehicles:
+                continue
+            s = self.state(name, c.time)
+            other = c.vehicles[1] if c.vehicles[0] == name else c.vehicles[0]
+            out.append(
+                SeparationState(
+                    time=c.time,
+                    other=other,
+                    velocity=s["velocity"],
+                    speed=float(np.linalg.norm(s["velocity"])),
+                    angular_velocity=s["angular_velocity"],
+                    heading=_heading(s["orientation"]),
+                )
+            )
+        return out
+
     def to_dict(self, trajectories: bool = False) -> dict[str, Any]:
-        """A JSON-friendly copy: vehicles, impacts, contacts and, when asked, trajectories
-        ({name: {"t": [...], "position": [...], ...}})."""
+        """A JSON-friendly copy: vehicles, impacts, contacts, obstacles (when there are any),
+        rest states (runs on the ground) and, when asked, trajectories ({name: {"t": [...],
+        "position": [...], ...}})."""
         out: dict[str, Any] = {
             "vehicles": list(self.vehicles),
             "impacts": [i.to_dict() for i in self.impacts],
             "contacts": [c.to_dict() for c in self.contacts],
         }
+        if self.obstacles:
+            out["obstacles"] = list(self.obstacles)
+        if self.on_ground:
+            rest: dict[str, Any] = {}
+            for name in self.vehicles:
+                r = self.rest(name)
+                rest[name] = (
+                    None
+                    if r is None
+                    else {
+                        k: v.tolist() if isinstance(v, np.ndarray) else v
+                        for k, v in r._asdict().items()
+                    }
+                )
+            out["rest"] = rest
         if trajectories:
             out["trajectories"] = {
                 name: {k: v.tolist() for k, v in self.trajectory(name)._asdict().items()}
@@ -376,7 +720,14 @@ class Result:
         return out
 
     def __repr__(self) -> str:
+        extra = f", obstacles={self.obstacles}" if self.obstacles else ""
         return (
-            f"Result(vehicles={self.vehicles}, samples={self.t.size}, "
+            f"Result(vehicles={self.vehicles}{extra}, samples={self.t.size}, "
             f"impacts={len(self.impacts)}, contacts={len(self.contacts)})"
         )
+
+
+def _frozen_bool(a: Any) -> NDArray[np.bool_]:
+    out = np.array(a, dtype=bool)
+    out.setflags(write=False)
+    return out

@@ -11,8 +11,10 @@ ranges and their messages live in one place (crates/crashsim-core).
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 import math
+import re
 import warnings
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
@@ -23,12 +25,24 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
-from crashsim.errors import InitialOverlapError, ParameterError, SceneError
+from crashsim.environment.ground import Ground
+from crashsim.environment.obstacles import Obstacle
+from crashsim.errors import InitialOverlapError, ParameterError, SceneError, SimulationError
 from crashsim.result import Result
+from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.stiffness import FACES
 from crashsim.vehicles.vehicle import Vehicle, _as_float, _probe_shape
+from crashsim.vehicles.wheels import Wheels
 
-__all__ = ["DepthOfPenetrationWarning", "Scene"]
+__all__ = ["DEFAULT_MAX_DURATION", "DepthOfPenetrationWarning", "RestNotReachedWarning", "Scene"]
+
+DEFAULT_MAX_DURATION = 60.0
+"""Longest run (s) of ``Scene.run(until="rest")`` when no max_duration is given."""
+
+
+class RestNotReachedWarning(UserWarning):
+    """A run until rest ended at its max_duration with a vehicle still moving (its
+    ``Result.rest`` is None): raise max_duration."""
 
 
 class DepthOfPenetrationWarning(UserWarning):
@@ -37,7 +51,7 @@ class DepthOfPenetrationWarning(UserWarning):
 
 
 Array = NDArray[np.float64]
-VehicleRef: TypeAlias = Vehicle | str
+VehicleRef: TypeAlias = Vehicle | Obstacle | str
 # None: horizontal part of the volume normal tilted by pitch; "volume": the full 3-D one;
 # a 3-vector: a fixed world direction from vehicle 1 into vehicle 2.
 NormalSpec: TypeAlias = None | Literal["horizontal", "volume"] | ArrayLike
@@ -98,6 +112,23 @@ def _orientation(heading: float | None, orientation: ArrayLike | None) -> Any:
     return _quaternion_from_matrix(o) if o.shape == (3, 3) else o
 
 
+def _position(position: ArrayLike, orientation: ArrayLike | None) -> tuple[Any, bool]:
+    """(position, True) with z = 0 for now when only (x, y) is given (the caller puts it on
+    the ground); the position as given otherwise (the engine checks it)."""
+    try:
+        p = np.asarray(position, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        return position, False
+    if p.size == 2:
+        if orientation is not None:
+            raise ParameterError(
+                "with an orientation give the position's x, y and z (m): only a heading "
+                "leaves z to the ground"
+            )
+        return np.array([p[0], p[1], 0.0]), True
+    return position, False
+
+
 def _read_only(a: ArrayLike) -> Array:
     out = np.array(a, dtype=np.float64)
     out.setflags(write=False)
@@ -113,6 +144,35 @@ class _Placement:
     orientation: Array  # (w, x, y, z), body -> world
     velocity: Array  # CG, m/s
     angular_velocity: Array  # rad/s
+    inputs: DriverInputs | None = None
+    # Given as (x, y): z is the CG's static height above the ground there (re-read when the
+    # scene's ground changes; without a ground the model frame's ground on z = 0).
+    z_from_ground: bool = False
+    # The heading-only orientation and the (x, y) given (a vehicle on wheels on a terrain is
+    # tilted to it, which moves its CG a little off (x, y)).
+    level: Array | None = None
+    anchor: tuple[float, float] | None = None
+
+
+@dataclass(frozen=True)
+class _ObstaclePlacement:
+    """An obstacle and its pose (world frame, SI)."""
+
+    obstacle: Obstacle
+    position: Array  # the obstacle frame's origin, m
+    orientation: Array  # (w, x, y, z)
+    z_from_ground: bool = False
+
+
+def _static_height(vehicle: Vehicle) -> float:
+    """The CG's height above level ground at static ride height (m): its wheels', else the
+    model frame's (ground at z = 0)."""
+    w = vehicle.wheels
+    if w is None:
+        return float(vehicle.cg[2])
+    if w.cg_height is not None:
+        return float(w.cg_height)
+    return float(np.mean(w.radii - w.centers[:, 2]))
 
 
 def _check_state(position: Any, orientation: Any, velocity: Any, angular_velocity: Any) -> None:
@@ -141,13 +201,22 @@ def _needs_stiffness(params: dict[str, Any]) -> bool:
     ) or (isinstance(params["centroid"], str) and params["centroid"] == "stiffness")
 
 
-def _check_stiffness(params: dict[str, Any], vehicles: tuple[Vehicle, Vehicle]) -> None:
+def _check_stiffness(
+    params: dict[str, Any], vehicles: tuple[Vehicle | Obstacle, Vehicle | Obstacle]
+) -> None:
     """ParameterError when the pair's parameters need face stiffness a vehicle lacks."""
     if not _needs_stiffness(params):
         return
     for v in vehicles:
         missing = [f for f in FACES if v.stiffness.face(f) is None]
         if missing:
+            if isinstance(v, Obstacle):
+                raise ParameterError(
+                    f"obstacle {v.name!r} has no stiffness on its {', '.join(missing)} "
+                    'face(s): depth_of_penetration="auto" and centroid="stiffness" need CRASH3 '
+                    "A and B on every face: give the obstacle stiffness=(A, B), or use a fixed "
+                    "depth of penetration for its pairs"
+                )
             raise ParameterError(
                 f"vehicle {v.name!r} has no stiffness on its {', '.join(missing)} face(s): "
                 'depth_of_penetration="auto" and centroid="stiffness" need CRASH3 A and B on '
@@ -176,6 +245,13 @@ class Scene:
       the normal so the crush splits as C1 : C2 = k2 : k1; needs face stiffness), a world
       point (m), or ``(vehicle_or_name, (x, y, z))``, a point fixed in that vehicle's body
       frame (m from its CG).
+
+    ``ground``: a :class:`crashsim.Ground` (or set ``scene.ground`` later): the vehicles then
+    move under gravity on their wheels (:meth:`crashsim.Vehicle.with_wheels`; a vehicle
+    without wheels slides on its body) with their driver inputs, and runs may go on until
+    every vehicle is at rest. Without a ground every body moves torque-free between
+    exchanges, exactly as before. Fixed obstacles are added with :meth:`add_obstacle`; they
+    pair with every vehicle (never with each other) and take the pair parameters like one.
     """
 
     def __init__(
@@ -187,6 +263,7 @@ class Scene:
         normal: NormalSpec = None,
         pitch: float = 0.0,
         centroid: CentroidSpec = None,
+        ground: Ground | None = None,
     ) -> None:
         defaults = {
             "depth_of_penetration": depth_of_penetration,
@@ -200,8 +277,143 @@ class Scene:
         _check_contact(self._core_kwargs(defaults, None, check_only=True))
         self._defaults = defaults
         self._placements: list[_Placement] = []
+        self._obstacles: list[_ObstaclePlacement] = []
         # (name1, name2) -> overridden parameters; the normal points from name1 into name2.
         self._overrides: dict[tuple[str, str], dict[str, Any]] = {}
+        self._ground: Ground | None = None
+        self.ground = ground
+
+    # -- ground and obstacles ------------------------------------------------------------
+
+    @property
+    def ground(self) -> Ground | None:
+        """The ground (a :class:`crashsim.Ground`), or None: torque-free motion between
+        exchanges. Setting it re-reads the heights of the vehicles and obstacles placed at
+        (x, y) only."""
+        return self._ground
+
+    @ground.setter
+    def ground(self, ground: Ground | None) -> None:
+        if ground is not None and not isinstance(ground, Ground):
+            raise SceneError(f"ground must be a crashsim.Ground or None, got {ground!r}")
+        self._ground = ground
+        self._placements = [
+            p if not p.z_from_ground else self._resting(p) for p in self._placements
+        ]
+        self._obstacles = [p if not p.z_from_ground else self._grounded(p) for p in self._obstacles]
+
+    def _ground_height(self, x: float, y: float, what: str) -> float:
+        """The ground's height at (x, y) (0 without a ground); SceneError off the terrain."""
+        if self._ground is None:
+            return 0.0
+        h = self._ground.height_at(x, y)
+        if h is None:
+            raise SceneError(
+                f"{what} at ({x:.2f}, {y:.2f}) m has no ground under it: the terrain does not "
+                "reach there (extend it, or place it on the terrain)"
+            )
+        return h
+
+    def _resting(self, p: _Placement) -> _Placement:
+        """p with its CG at its static height above the ground at its (x, y); a vehicle on
+        wheels on a terrain is also tilted so its wheels stand on the plane fitted through
+        the terrain's heights under them."""
+        x, y = (float(p.position[0]), float(p.position[1])) if p.anchor is None else p.anchor
+        what = f"vehicle {p.vehicle.name!r}"
+        level = p.orientation if p.level is None else p.level
+        wheels = p.vehicle.wheels
+        h = _static_height(p.vehicle)
+        if self._ground is None or self._ground.terrain is None or wheels is None:
+            z = self._ground_height(x, y, what)
+            return dataclasses.replace(
+                p,
+                position=_read_only([x, y, z + h]),
+                orientation=level,
+                level=level,
+                anchor=(x, y),
+            )
+        from crashsim.result import rotation_matrix
+
+        yaw = rotation_matrix(level)
+        feet = np.array([x, y]) + wheels.contact_points()[:, :2] @ yaw[:2, :2].T
+        heights = []
+        for k, (fx, fy) in enumerate(feet):
+            height = self._ground.height_at(fx, fy)
+            if height is None:
+                raise SceneError(
+                    f"{what} wheel {wheels.names[k]!r} at ({fx:.2f}, {fy:.2f}) m has no ground "
+                    "under it: the terrain does not reach there (extend it, or place the "
+                    "vehicle on it)"
+                )
+            heights.append(height)
+        # the plane z = a + b x + c y through the ground under the wheels (least squares)
+        design = np.c_[np.ones(len(feet)), feet]
+        a, b, c = np.linalg.lstsq(design, np.asarray(heights), rcond=None)[0]
+        n = np.array([-b, -c, 1.0]) / math.sqrt(b * b + c * c + 1.0)
+        axis = np.cross([0.0, 0.0, 1.0], n)
+        sin, cos = float(np.linalg.norm(axis)), float(n[2])
+        tilt = np.eye(3)
+        if sin > 0.0:
+            k_ = axis / sin
+            cross = np.array([[0, -k_[2], k_[1]], [k_[2], 0, -k_[0]], [-k_[1], k_[0], 0]])
+            tilt = np.eye(3) + sin * cross + (1.0 - cos) * cross @ cross
+        q = _quaternion_from_matrix(tilt @ yaw)
+        cg = np.array([x, y, a + b * x + c * y]) + h * n
+        return dataclasses.replace(
+            p, position=_read_only(cg), orientation=_read_only(q), level=level, anchor=(x, y)
+        )
+
+    def _grounded(self, p: _ObstaclePlacement) -> _ObstaclePlacement:
+        x, y = float(p.position[0]), float(p.position[1])
+        z = self._ground_height(x, y, f"obstacle {p.obstacle.name!r}")
+        return dataclasses.replace(p, position=_read_only([x, y, z]))
+
+    @property
+    def obstacles(self) -> list[Obstacle]:
+        """The fixed obstacles, in the order added (the engine's bodies after the
+        vehicles)."""
+        return [p.obstacle for p in self._obstacles]
+
+    def add_obstacle(
+        self,
+        obstacle: Obstacle,
+        position: ArrayLike,
+        heading: float | None = None,
+        orientation: ArrayLike | None = None,
+    ) -> Scene:
+        """Place a fixed obstacle; returns the scene. ``position``: where its frame's origin
+        (the middle of its base, for the primitives) goes (m, world); with (x, y) only, on
+        the ground there (z = 0 without a ground). ``heading``: yaw of its frame about world
+        z (rad), or ``orientation`` (quaternion (w, x, y, z) or 3x3 rotation)."""
+        if not isinstance(obstacle, Obstacle):
+            raise TypeError(
+                f"add_obstacle() needs a crashsim.Obstacle, got {type(obstacle).__name__}"
+            )
+        self._check_name(obstacle.name, obstacle, "an obstacle")
+        pos, flat = _position(position, orientation)
+        q = _orientation(heading, orientation)
+        try:
+            _core.World().add_obstacle(obstacle.shape, pos, q)
+        except ParameterError as e:
+            raise ParameterError(f"obstacle {obstacle.name!r}: {e}") from e
+        placement = _ObstaclePlacement(obstacle, _read_only(pos), _read_only(q), flat)
+        self._obstacles.append(self._grounded(placement) if flat else placement)
+        return self
+
+    def _check_name(self, name: str, thing: object, what: str) -> None:
+        for p in self._placements:
+            if p.vehicle is thing:
+                raise SceneError(f"vehicle {name!r} is already in the scene")
+        for o in self._obstacles:
+            if o.obstacle is thing:
+                raise SceneError(f"obstacle {name!r} is already in the scene")
+        taken = [p.vehicle.name for p in self._placements]
+        taken += [o.obstacle.name for o in self._obstacles]
+        if name in taken:
+            raise SceneError(
+                f"{what} named {name!r} is already in the scene: names must be unique among "
+                "vehicles and obstacles (use .renamed(...) for a second copy)"
+            )
 
     # -- vehicles ------------------------------------------------------------------------
 
@@ -229,46 +441,70 @@ class Scene:
         velocity: ArrayLike = (0.0, 0.0, 0.0),
         angular_velocity: ArrayLike = (0.0, 0.0, 0.0),
         orientation: ArrayLike | None = None,
+        inputs: DriverInputs | None = None,
     ) -> Scene:
         """Place a vehicle; returns the scene (calls chain).
 
-        position: the CG in the world (m). heading: yaw about world z (rad; 0 = body x along
-        world x), or instead orientation: a quaternion (w, x, y, z) or a 3x3 rotation matrix
-        (body -> world). velocity (m/s) and angular_velocity (rad/s): world frame.
+        position: the CG in the world (m); in a scene with a ground (set it first), (x, y)
+        only (with a heading) puts the CG at its static height above the ground at (x, y):
+        the wheels' CG height, else the model frame's ground (z = 0) on the ground; on a
+        terrain a vehicle on wheels is also tilted to the plane fitted through the ground
+        under its wheels (pitch and roll; the heading kept).
+        heading: yaw about world z (rad; 0 = body x along world x), or instead orientation: a
+        quaternion (w, x, y, z) or a 3x3 rotation matrix (body -> world). velocity (m/s) and
+        angular_velocity (rad/s): world frame. inputs: the driver's
+        (:class:`crashsim.DriverInputs`; needs wheels; used when the scene has a ground).
         """
         if not isinstance(vehicle, Vehicle):
             raise TypeError(f"add() needs a crashsim.Vehicle, got {type(vehicle).__name__}")
-        for p in self._placements:
-            if p.vehicle is vehicle:
-                raise SceneError(f"vehicle {vehicle.name!r} is already in the scene")
-            if p.vehicle.name == vehicle.name:
-                raise SceneError(
-                    f"a vehicle named {vehicle.name!r} is already in the scene: names must be "
-                    "unique (use vehicle.renamed(...) for a second copy)"
-                )
+        self._check_name(vehicle.name, vehicle, "a vehicle")
+        pos, flat = position, False
+        if self._ground is not None:  # without a ground the engine wants x, y and z
+            pos, flat = _position(position, orientation)
         q = _orientation(heading, orientation)
-        _check_state(position, q, velocity, angular_velocity)
-        self._placements.append(
-            _Placement(
-                vehicle=vehicle,
-                position=_read_only(position),
-                orientation=_read_only(q),
-                velocity=_read_only(velocity),
-                angular_velocity=_read_only(angular_velocity),
-            )
+        _check_state(pos, q, velocity, angular_velocity)
+        if inputs is not None:
+            if not isinstance(inputs, DriverInputs):
+                raise SceneError(f"inputs must be a crashsim.DriverInputs, got {inputs!r}")
+            if vehicle.wheels is None:
+                raise SceneError(
+                    f"vehicle {vehicle.name!r} has driver inputs but no wheels: give it wheels "
+                    "(vehicle.with_wheels(...)) or drop the inputs"
+                )
+            inputs.to_core(vehicle.wheels, f"vehicle {vehicle.name!r} inputs")
+        placement = _Placement(
+            vehicle=vehicle,
+            position=_read_only(pos),
+            orientation=_read_only(q),
+            velocity=_read_only(velocity),
+            angular_velocity=_read_only(angular_velocity),
+            inputs=inputs,
+            z_from_ground=flat,
         )
+        self._placements.append(self._resting(placement) if flat else placement)
         return self
 
+    def inputs(self, vehicle: VehicleRef) -> DriverInputs | None:
+        """A vehicle's driver inputs (None without)."""
+        i = self._index(vehicle)
+        if i >= len(self._placements):
+            raise SceneError("an obstacle has no driver inputs")
+        return self._placements[i].inputs
+
+    def _bodies(self) -> list[Vehicle | Obstacle]:
+        """Vehicles then obstacles: the engine's bodies in order."""
+        return [p.vehicle for p in self._placements] + [o.obstacle for o in self._obstacles]
+
     def _index(self, vehicle: VehicleRef) -> int:
-        """Index of a vehicle (object or name) in the scene."""
-        for i, p in enumerate(self._placements):
+        """The engine's index of a vehicle or obstacle (object or name) in the scene."""
+        for i, b in enumerate(self._bodies()):
             if isinstance(vehicle, str):
-                if p.vehicle.name == vehicle:
+                if b.name == vehicle:
                     return i
-            elif p.vehicle is vehicle:
+            elif b is vehicle:
                 return i
         name = vehicle if isinstance(vehicle, str) else getattr(vehicle, "name", vehicle)
-        known = [p.vehicle.name for p in self._placements]
+        known = [b.name for b in self._bodies()]
         raise SceneError(
             f"vehicle {name!r} is not in the scene (it holds {known}): add it with scene.add"
         )
@@ -295,7 +531,11 @@ class Scene:
         i, j = self._index(vehicle1), self._index(vehicle2)
         if i == j:
             raise SceneError("a contact needs two different vehicles")
-        names = (self._placements[i].vehicle.name, self._placements[j].vehicle.name)
+        bodies = self._bodies()
+        n = len(self._placements)
+        if i >= n and j >= n:
+            raise SceneError("two obstacles never meet: a contact needs a vehicle")
+        names = (bodies[i].name, bodies[j].name)
         given = {
             "depth_of_penetration": depth_of_penetration,
             "restitution": restitution,
@@ -309,7 +549,7 @@ class Scene:
         overrides.update({k: v for k, v in given.items() if v is not UNSET})
         merged = {**self._defaults, **overrides}
         _check_contact(self._core_kwargs(merged, (i, j), check_only=True))
-        _check_stiffness(merged, (self._placements[i].vehicle, self._placements[j].vehicle))
+        _check_stiffness(merged, (bodies[i], bodies[j]))
         self._overrides.pop((names[1], names[0]), None)
         self._overrides[names] = overrides
         return self
@@ -318,9 +558,12 @@ class Scene:
         """Every pair of vehicles as the engine gets it: (vehicle 1, vehicle 2, parameters),
         vehicle 1 being the one the normal points away from (the first argument of the last
         :meth:`contact` call for the pair, else the one added first)."""
-        names = [p.vehicle.name for p in self._placements]
+        names = [b.name for b in self._bodies()]
+        n = len(self._placements)
         out = []
         for i, j in combinations(range(len(names)), 2):
+            if i >= n and j >= n:
+                continue  # two obstacles never meet
             a, b = names[i], names[j]
             if (b, a) in self._overrides:
                 a, b = b, a
@@ -331,7 +574,8 @@ class Scene:
         """The parameters the pair will run with (defaults merged with overrides), as seen
         from vehicle1 (the normal points from vehicle1 into vehicle2 when set that way)."""
         i, j = self._index(vehicle1), self._index(vehicle2)
-        names = (self._placements[i].vehicle.name, self._placements[j].vehicle.name)
+        bodies = self._bodies()
+        names = (bodies[i].name, bodies[j].name)
         overrides = self._overrides.get(names, self._overrides.get(names[::-1], {}))
         return {**self._defaults, **overrides}
 
@@ -376,16 +620,17 @@ class Scene:
         elif (
             isinstance(centroid, tuple | list)
             and len(centroid) == 2
-            and isinstance(centroid[0], Vehicle | str)
+            and isinstance(centroid[0], Vehicle | Obstacle | str)
         ):
             if pair is None:  # a scene default fixed in a vehicle: checked per pair at run
                 kw.update(centroid="world", centroid_point=centroid[1])
             else:
                 body = self._index(centroid[0])
                 if body not in pair:
-                    a, b = (self._placements[k].vehicle.name for k in pair)
+                    bodies = self._bodies()
+                    a, b = (bodies[k].name for k in pair)
                     raise SceneError(
-                        f"the centroid is fixed in {self._placements[body].vehicle.name!r}, "
+                        f"the centroid is fixed in {bodies[body].name!r}, "
                         f"which is not in the pair ({a!r}, {b!r}): fix it in one of the two"
                     )
                 kw["centroid"] = "body"
@@ -403,12 +648,13 @@ class Scene:
     # -- running -------------------------------------------------------------------------
 
     def build_world(self) -> _core.World:
-        """A fresh engine world holding this scene: bodies in the order added, and every pair
-        with the defaults merged with its overrides."""
+        """A fresh engine world holding this scene: vehicles in the order added, then the
+        obstacles, every pair with the defaults merged with its overrides, and, with a
+        ground, the ground and each vehicle's wheels, tyre and driver inputs."""
         if not self._placements:
             raise SceneError("the scene has no vehicles: add some with scene.add(...)")
         world = _core.World()
-        for i, p in enumerate(self._placements):
+        for p in self._placements:
             v = p.vehicle
             world.add_body(
                 v.shape,
@@ -419,31 +665,74 @@ class Scene:
                 p.velocity,
                 p.angular_velocity,
             )
-            faces = v.stiffness
+        for o in self._obstacles:
+            world.add_obstacle(o.obstacle.shape, o.position, o.orientation)
+        for i, b in enumerate(self._bodies()):
+            faces = b.stiffness
             world.set_stiffness(
                 i,
                 **{f: None if (s := faces.face(f)) is None else (s.A, s.B) for f in FACES},
             )
+        bodies = self._bodies()
         for a, b, params in self.pairs():
             i, j = self._index(a), self._index(b)
-            _check_stiffness(params, (self._placements[i].vehicle, self._placements[j].vehicle))
+            _check_stiffness(params, (bodies[i], bodies[j]))
             world.set_contact(i, j, **self._core_kwargs(params, (i, j)))
+        if self._ground is not None:
+            world.set_ground(**self._ground.core_kwargs())
+            for i, p in enumerate(self._placements):
+                w = p.vehicle.wheels
+                if w is None:
+                    continue
+                self._check_terrain_under(p, w)
+                what = f"vehicle {p.vehicle.name!r}"
+                inputs = {} if p.inputs is None else p.inputs.to_core(w, f"{what} inputs")
+                try:
+                    world.set_vehicle(i, **w.spec(p.vehicle.mass), **inputs)
+                except ParameterError as e:  # pragma: no cover - checked when put together
+                    raise ParameterError(f"{what}: {e}") from e
         return world
+
+    def _check_terrain_under(self, p: _Placement, wheels: Wheels) -> None:
+        """SceneError when a wheel starts over a hole in the terrain."""
+        ground = self._ground
+        if ground is None or ground.terrain is None:
+            return
+        from crashsim.result import rotation_matrix
+
+        r = rotation_matrix(p.orientation)
+        points = p.position + wheels.contact_points() @ r.T
+        for k in ground.holes(points):
+            x, y = points[k][:2]
+            raise SceneError(
+                f"vehicle {p.vehicle.name!r} wheel {wheels.names[k]!r} starts at "
+                f"({x:.2f}, {y:.2f}) m where the terrain has no surface: extend the terrain "
+                "under the vehicle, or move the vehicle onto it"
+            )
 
     def run(
         self,
-        duration: float = 1.0,
+        duration: float | None = None,
         dt: float = 1e-3,
         progress: Callable[[float], object] | None = None,
         record_interval: float | None = None,
         max_history_bytes: int | None = None,
+        *,
+        until: Literal["rest"] | None = None,
+        max_duration: float | None = None,
     ) -> Result:
-        """Run the scene from t = 0 for ``duration`` s with steps of at most ``dt`` s.
+        """Run the scene from t = 0 for ``duration`` s (default 1 s) with steps of at most
+        ``dt`` s; or, with ``until="rest"`` (needs a ground), until every vehicle is at rest
+        (the engine's rest thresholds, ``crashsim.vehicles.wheels.dynamics_defaults()``) or
+        ``max_duration`` s have passed (default DEFAULT_MAX_DURATION, 60 s; ``duration`` may
+        stand for it), with a RestNotReachedWarning when a vehicle is still moving then.
 
         Every call starts afresh from the initial states (a new engine world). Raises
-        InitialOverlapError when two vehicles already overlap at t = 0. ``progress``, if
-        given, is called with the simulated time reached (s) about every 0.1 s of wall time;
-        it cannot change the results (an exception it raises stops the run).
+        InitialOverlapError when two bodies already overlap at t = 0, SceneError when a wheel
+        starts over a hole in a terrain, SimulationError (naming the vehicle and wheel) when a
+        wheel leaves the terrain during the run. ``progress``, if given, is called with the
+        simulated time reached (s) about every 0.1 s of wall time; it cannot change the
+        results (an exception it raises stops the run; so does Ctrl-C).
 
         The result keeps every step's states unless the run is long: ``record_interval`` (s,
         rounded down to whole steps) spaces the kept samples (default: every step for runs
@@ -451,7 +740,21 @@ class Scene:
         first overlap and every exchange are kept whatever the interval. A run whose history
         would exceed ``max_history_bytes`` (default 2**30, 1 GiB) is refused before it starts
         with a ParameterError that gives the interval that fits."""
-        duration = _as_float(duration, "duration", "s")
+        if until is not None and until != "rest":
+            raise ParameterError(f'until = {until!r} is unknown: use until="rest" or a duration')
+        if until == "rest":
+            if self._ground is None:
+                raise SceneError(
+                    "a run until rest needs a ground (without one nothing slows the vehicles): "
+                    "set scene.ground = crashsim.Ground(...)"
+                )
+            if duration is not None and max_duration is not None:
+                raise ParameterError('with until="rest" give max_duration (or duration), not both')
+            limit = max_duration if max_duration is not None else duration
+            duration = DEFAULT_MAX_DURATION if limit is None else limit
+        elif max_duration is not None:
+            raise ParameterError('max_duration is for until="rest": give duration instead')
+        duration = _as_float(1.0 if duration is None else duration, "duration", "s")
         dt = _as_float(dt, "dt", "s")
         if record_interval is not None:
             record_interval = _as_float(record_interval, "record_interval", "s")
@@ -466,16 +769,30 @@ class Scene:
             )
         world = self.build_world()
         try:
-            raw = world.run(duration, dt, progress, record_interval, max_history_bytes)
+            if until == "rest":
+                raw = world.run(
+                    duration, dt, progress, record_interval, max_history_bytes, until_rest=True
+                )
+            else:
+                raw = world.run(duration, dt, progress, record_interval, max_history_bytes)
         except InitialOverlapError as e:
             raise self._named_overlap_error(e) from e
+        except SimulationError as e:
+            raise self._named_simulation_error(e) from e
         result = Result(
             raw,
-            [p.vehicle.name for p in self._placements],
+            [b.name for b in self._bodies()],
             scene=self,
             duration=duration,
             dt=dt,
             record_interval=float(raw["record_interval"]),
+            obstacles=[o.obstacle.name for o in self._obstacles],
+            wheel_names={
+                p.vehicle.name: p.vehicle.wheels.names
+                for p in self._placements
+                if p.vehicle.wheels is not None
+            },
+            on_ground=self._ground is not None,
         )
         for imp in result.impacts:
             for note in imp.notes:
@@ -484,21 +801,42 @@ class Scene:
                     DepthOfPenetrationWarning,
                     stacklevel=2,
                 )
+        if until == "rest":
+            moving = [n for n in result.vehicles if result.rest(n) is None]
+            if moving:
+                warnings.warn(
+                    f"the run reached max_duration = {duration:g} s with {moving} still "
+                    "moving: their rest is None; raise max_duration",
+                    RestNotReachedWarning,
+                    stacklevel=2,
+                )
         return result
+
+    def _named_simulation_error(self, error: SimulationError) -> SimulationError:
+        """The engine's error with the vehicle's and wheel's names ("body i: wheel k left the
+        terrain ...": the bodies are the placements in order)."""
+        m = re.match(r"body (\d+): wheel (\d+) left the terrain (.*)", str(error), re.DOTALL)
+        if m is None:
+            return error
+        i, k = int(m.group(1)), int(m.group(2))
+        if i >= len(self._placements):
+            return error
+        vehicle = self._placements[i].vehicle
+        wheel = vehicle.wheels.names[k] if vehicle.wheels is not None else f"wheel {k}"
+        return SimulationError(
+            f"vehicle {vehicle.name!r} ({wheel}) left the terrain {m.group(3)}"
+        )
 
     def _named_overlap_error(self, error: InitialOverlapError) -> InitialOverlapError:
         """The engine's error with the vehicles' names instead of body indices."""
         pairs = []
-        for a, b in combinations(self._placements, 2):
-            if _core.shapes_overlap(
-                a.vehicle.shape,
-                a.position,
-                a.orientation,
-                b.vehicle.shape,
-                b.position,
-                b.orientation,
-            ):
-                pairs.append(f"{a.vehicle.name!r} and {b.vehicle.name!r}")
+        placed = [(p.vehicle, p.position, p.orientation) for p in self._placements]
+        placed += [(o.obstacle, o.position, o.orientation) for o in self._obstacles]
+        for a, b in combinations(placed, 2):
+            if isinstance(a[0], Obstacle) and isinstance(b[0], Obstacle):
+                continue
+            if _core.shapes_overlap(a[0].shape, a[1], a[2], b[0].shape, b[1], b[2]):
+                pairs.append(f"{a[0].name!r} and {b[0].name!r}")
         if not pairs:
             return error
         return InitialOverlapError(
@@ -508,4 +846,9 @@ class Scene:
 
     def __repr__(self) -> str:
         names = [p.vehicle.name for p in self._placements]
-        return f"Scene(vehicles={names}, defaults={self._defaults})"
+        extra = ""
+        if self._obstacles:
+            extra += f", obstacles={[o.obstacle.name for o in self._obstacles]}"
+        if self._ground is not None:
+            extra += f", ground={self._ground!r}"
+        return f"Scene(vehicles={names}{extra}, defaults={self._defaults})"

@@ -103,9 +103,9 @@ pub fn tyre(d: Option<&Bound<'_, PyDict>>) -> PyResult<Tyre> {
             saturation_angle: get("saturation_angle")?.unwrap_or(10f64.to_radians()),
         },
         "magic_formula" => TyreModel::MagicFormula {
-            b: get("b")?.unwrap_or(10.0),
-            c: get("c")?.unwrap_or(1.9),
-            e: get("e")?.unwrap_or(0.97),
+            b: get("b")?.unwrap_or(core::vehicle::MAGIC_FORMULA_DEFAULTS[0]),
+            c: get("c")?.unwrap_or(core::vehicle::MAGIC_FORMULA_DEFAULTS[1]),
+            e: get("e")?.unwrap_or(core::vehicle::MAGIC_FORMULA_DEFAULTS[2]),
         },
         other => {
             return Err(errors::parameter(format!(

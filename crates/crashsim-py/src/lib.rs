@@ -282,20 +282,20 @@ impl World {
     /// Puts the world on the ground: the plane z = height, or a terrain mesh (world
     /// coordinates), with tyre-road and body-ground friction and friction zones
     /// ((k, 2) polygon, friction).
-    #[pyo3(signature = (*, height = 0.0, terrain = None, tyre_friction = 0.8, body_friction = 0.45, zones = Vec::new()))]
+    #[pyo3(signature = (*, height = 0.0, terrain = None, tyre_friction = None, body_friction = None, zones = Vec::new()))]
     fn set_ground(
         &mut self,
         height: f64,
         terrain: Option<&Shape>,
-        tyre_friction: f64,
-        body_friction: f64,
+        tyre_friction: Option<f64>,
+        body_friction: Option<f64>,
         zones: Vec<(Bound<'_, PyAny>, f64)>,
     ) -> PyResult<()> {
         let g = ground::ground(
             height,
             terrain.map(|t| t.inner.clone()),
-            tyre_friction,
-            body_friction,
+            tyre_friction.unwrap_or(core::ground::DEFAULT_TYRE_FRICTION),
+            body_friction.unwrap_or(core::ground::DEFAULT_BODY_FRICTION),
             &zones,
         )?;
         self.inner.set_ground(g).map_err(errors::to_py)
@@ -731,6 +731,10 @@ fn dynamics_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("rolling_resistance", t.rolling_resistance)?;
     d.set_item("tyre_friction", core::ground::DEFAULT_TYRE_FRICTION)?;
     d.set_item("body_friction", core::ground::DEFAULT_BODY_FRICTION)?;
+    let [b, c, e] = core::vehicle::MAGIC_FORMULA_DEFAULTS;
+    d.set_item("magic_formula_b", b)?;
+    d.set_item("magic_formula_c", c)?;
+    d.set_item("magic_formula_e", e)?;
     d.set_item("rest_speed", core::world::REST_SPEED)?;
     d.set_item("rest_yaw_rate", core::world::REST_YAW_RATE)?;
     d.set_item("rest_time", core::world::REST_TIME)?;

@@ -183,8 +183,9 @@ def _fcl() -> Any:
     return fcl
 
 
-def _model(vehicle: Vehicle) -> Any:
-    """The vehicle's engine mesh (body frame, m) as an fcl.BVHModel, built once."""
+def _model(vehicle: Any) -> Any:
+    """The engine mesh of a Vehicle or Obstacle (its frame, m) as an fcl.BVHModel, built
+    once."""
     model = _MODELS.get(vehicle)
     if model is None:
         fcl = _fcl()
@@ -332,6 +333,10 @@ def _free_pose(result: Result, name: str, t0: float, t: float) -> Pose:
     before t0 (the first sample when t0 is the run's start) carried by torque-free motion,
     so no exchange at or after t0 acts (exact; the engine's own free-motion integrator)."""
     tr = result.trajectory(name)
+    if result.is_obstacle(name):  # fixed
+        return np.asarray(tr.position[0]), np.asarray(tr.orientation[0])
+    if result.on_ground:  # forces act between samples: the run's own (interpolated) pose
+        return _pose(result, name, t)
     k = max(int(np.searchsorted(tr.t, t0, side="left")) - 1, 0)
     v = result.vehicle(name)
     p, q, _, _ = _core.free_motion(
@@ -346,13 +351,18 @@ def _free_pose(result: Result, name: str, t0: float, t: float) -> Pose:
     return np.asarray(p, dtype=np.float64), np.asarray(q, dtype=np.float64)
 
 
+def _body(result: Result, name: str) -> Any:
+    """The Vehicle or Obstacle of a name (both have the engine's shape)."""
+    return result.obstacle(name) if result.is_obstacle(name) else result.vehicle(name)
+
+
 def _pose(result: Result, name: str, t: float) -> Pose:
     """The run's pose at t (s): Result.state (positions are continuous through exchanges)."""
     s = result.state(name, t)
     return np.asarray(s["position"]), np.asarray(s["orientation"])
 
 
-def _one_inside(vehicles: tuple[Vehicle, Vehicle], poses: tuple[Pose, Pose]) -> bool:
+def _one_inside(vehicles: tuple[Any, Any], poses: tuple[Pose, Pose]) -> bool:
     """The engine's own test (surfaces crossing or one mesh inside the other)."""
     (p1, q1), (p2, q2) = poses
     return bool(_core.shapes_overlap(vehicles[0].shape, p1, q1, vehicles[1].shape, p2, q2))
@@ -388,7 +398,7 @@ def _first_overlaps(result: Result) -> list[tuple[tuple[str, str], float]]:
 def _check_first_overlap(
     result: Result, pair: tuple[str, str], t0: float, delta: float, max_pairs: int
 ) -> Check:
-    vehicles = (result.vehicle(pair[0]), result.vehicle(pair[1]))
+    vehicles = (_body(result, pair[0]), _body(result, pair[1]))
     models = (_model(vehicles[0]), _model(vehicles[1]))
     t_start = float(result.t[0])
     t_before = max(t0 - delta, t_start)
@@ -444,7 +454,7 @@ def _check_region(
     result: Result, imp: Impact, abs_tol: float, rel_tol: float, max_pairs: int
 ) -> Check:
     pair = imp.vehicles
-    vehicles = (result.vehicle(pair[0]), result.vehicle(pair[1]))
+    vehicles = (_body(result, pair[0]), _body(result, pair[1]))
     models = (_model(vehicles[0]), _model(vehicles[1]))
     poses = (_pose(result, pair[0], imp.time), _pose(result, pair[1], imp.time))
     lo, hi = np.asarray(imp.region_min), np.asarray(imp.region_max)

@@ -51,7 +51,8 @@ class Engagement:
     first is the primary unless the engagement's first timer ended without an impulse);
     ``causes`` {index of each secondary exchange: why the pair closed again}; ``no_exchange``
     ((time s, the engine's reason), ...) of timers that expired without an impulse;
-    ``delta_v`` {name: summed delta-V of the CG over the exchanges, world, m/s};
+    ``delta_v`` {name: summed delta-V of the CG over the exchanges, world, m/s; a fixed
+    obstacle has none};
     ``energy_dissipated`` the exchanges' sum (J)."""
 
     vehicles: tuple[str, str]
@@ -110,6 +111,8 @@ def secondary_cause(result: Result, index: int) -> str:
 def _summed(result: Result, indices: list[int], names: tuple[str, str]) -> dict[str, Array]:
     out = {}
     for name in names:
+        if name in result.obstacles:  # a fixed obstacle has no delta-V
+            continue
         total = np.zeros(3)
         for i in indices:
             total = total + result.impacts[i].delta_v[name]

@@ -50,6 +50,7 @@ __all__ = [
     "SCHEMA_VERSION",
     "DeformationReport",
     "ImpactReport",
+    "ObstacleImpactReport",
     "Report",
     "VehicleImpactReport",
     "build_report",
@@ -69,6 +70,7 @@ FULL, SLIDING = "full", "sliding"
 BY_STIFFNESS = "stiffness"
 UNKNOWN = "unknown"
 EQUAL_SHARES = "equal (stiffness unknown)"
+RIGID_OBSTACLE = "rigid obstacle"
 
 UNITS = {
     "length": "m",
@@ -333,6 +335,34 @@ class VehicleImpactReport:
 
 
 @dataclass(frozen=True)
+class ObstacleImpactReport:
+    """The fixed obstacle's side of an exchange with a vehicle: ``name``, ``role`` (1 or 2
+    in the pair), ``struck_face`` (of its own frame), ``spring_rate`` (k = B W, N/m; None
+    without stiffness), ``centroid_body`` (the centroid in the obstacle's frame, m). It has
+    an infinite mass (``effective_mass`` is None in the JSON), never moves and has no
+    delta-V."""
+
+    name: str
+    role: int
+    struck_face: str
+    spring_rate: float | None
+    centroid_body: Array
+
+    def __post_init__(self) -> None:
+        _freeze_arrays(self)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "name": self.name,
+            "role": int(self.role),
+            "struck_face": self.struck_face,
+            "effective_mass": None,
+            "spring_rate": _opt(self.spring_rate),
+            "centroid_body": _vec(self.centroid_body),
+        }
+
+
+@dataclass(frozen=True)
 class ImpactReport:
     """One impulse exchange (SI, world frame).
 
@@ -346,9 +376,12 @@ class ImpactReport:
     ``contact_frame`` rows n, t, b. ``impulse`` on vehicle 2 (N s) and its magnitude.
     ``impact_type`` "full" or "sliding". ``closing_speed``: the normal relative velocity at
     the centroid before the exchange (m/s, > 0 closing). ``energy_dissipated`` (J) and
-    ``energy_split_basis`` ("stiffness" or "unknown"). ``overlap_depth`` (along n) and
-    ``overlap_width`` (along t), m. ``parties``: the two VehicleImpactReports, vehicle 1
-    first. ``notes``: the engine's remarks and the report's."""
+    ``energy_split_basis`` ("stiffness", "unknown", or "rigid obstacle": a fixed obstacle
+    without stiffness data for both parties takes none of the crush and energy).
+    ``overlap_depth`` (along n) and ``overlap_width`` (along t), m. ``parties``: the
+    VehicleImpactReports of the moving vehicles, vehicle 1 first (one when the other party
+    is a fixed obstacle, described by ``obstacle``: its mass is infinite, so m' is the
+    vehicle's effective mass). ``notes``: the engine's remarks and the report's."""
 
     number: int
     vehicles: tuple[str, str]
@@ -373,8 +406,9 @@ class ImpactReport:
     overlap_width: float
     region_min: Array
     region_max: Array
-    parties: tuple[VehicleImpactReport, VehicleImpactReport]
+    parties: tuple[VehicleImpactReport, ...]
     notes: tuple[str, ...] = ()
+    obstacle: ObstacleImpactReport | None = None
 
     def __post_init__(self) -> None:
         _freeze_arrays(self)
@@ -413,14 +447,28 @@ class ImpactReport:
             },
             "centroid": {
                 "world": _vec(self.centroid),
-                "body": {p.name: _vec(p.centroid_body) for p in self.parties},
+                "body": {
+                    n: _vec(
+                        self.obstacle.centroid_body
+                        if self.obstacle is not None and n == self.obstacle.name
+                        else self.vehicle(n).centroid_body
+                    )
+                    for n in self.vehicles
+                },
             },
             "normal": _vec(self.normal),
             "contact_frame": _mat(self.contact_frame),
             "impulse": {"on_vehicle_2": _vec(self.impulse), "magnitude": self.impulse_magnitude},
             "impact_type": self.impact_type,
             "closing_speed": float(self.closing_speed),
-            "struck_faces": {p.name: p.struck_face for p in self.parties},
+            "struck_faces": {
+                n: (
+                    self.obstacle.struck_face
+                    if self.obstacle is not None and n == self.obstacle.name
+                    else self.vehicle(n).struck_face
+                )
+                for n in self.vehicles
+            },
             "overlap": {
                 "depth_along_normal": float(self.overlap_depth),
                 "width": float(self.overlap_width),
@@ -433,6 +481,7 @@ class ImpactReport:
             },
             "parties": [p.to_dict() for p in self.parties],
             "notes": list(self.notes),
+            **({} if self.obstacle is None else {"obstacle": self.obstacle.to_dict()}),
         }
 
 
@@ -501,7 +550,10 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
     rates = impact.spring_rates
     k = None if rates is None else (float(rates[names[0]]), float(rates[names[1]]))
     m_eff = (float(impact.effective_mass[names[0]]), float(impact.effective_mass[names[1]]))
-    reduced = float(penetration.reduced_mass(*m_eff))
+    if impact.obstacle is not None:  # infinite mass: m' = m1 m2 / (m1 + m2) -> the vehicle's
+        reduced = m_eff[1] if names[0] == impact.obstacle else m_eff[0]
+    else:
+        reduced = float(penetration.reduced_mass(*m_eff))
     notes = list(impact.notes)
     if k is not None and k[0] > 0.0 and k[1] > 0.0:
         series = float(penetration.series_stiffness(*k))
@@ -509,6 +561,17 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
         # E1 = E k2 / (k1 + k2): the softer vehicle absorbs more (equal spring forces)
         shares = (k[1] / (k[0] + k[1]), k[0] / (k[0] + k[1]))
         basis, crush_basis = BY_STIFFNESS, BY_STIFFNESS
+    elif impact.obstacle is not None:
+        # Without both stiffnesses the obstacle counts as rigid: the vehicle takes the whole
+        # crush and energy (its EES is then the equivalent barrier speed).
+        series, implied, k = None, None, None
+        vehicle_first = names[0] != impact.obstacle
+        shares = (1.0, 0.0) if vehicle_first else (0.0, 1.0)
+        basis, crush_basis = RIGID_OBSTACLE, RIGID_OBSTACLE
+        notes.append(
+            f"{impact.obstacle} taken as rigid (no stiffness for both parties): the vehicle "
+            "takes all the crush and dissipated energy"
+        )
     else:
         series, implied, k = None, None, None
         shares, basis, crush_basis = (0.5, 0.5), UNKNOWN, EQUAL_SHARES
@@ -522,11 +585,21 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
         )
         total_crush = 0.0
     parties = []
+    obstacle = None
     for role, name in enumerate(names, start=1):
-        vehicle = result.vehicle(name)
         position, rotation = (
             np.asarray(a, dtype=np.float64) for a in result.pose(name, impact.time)
         )
+        if name == impact.obstacle:
+            obstacle = ObstacleImpactReport(
+                name=name,
+                role=role,
+                struck_face=str(impact.struck_faces.get(name, UNKNOWN)),
+                spring_rate=None if k is None else k[role - 1],
+                centroid_body=rotation.T @ (p - position),
+            )
+            continue
+        vehicle = result.vehicle(name)
         direction = n if role == 1 else -n
         deformation = _deformation(
             vehicle,
@@ -606,8 +679,9 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
         overlap_width=float(impact.overlap_width),
         region_min=np.asarray(impact.region_min, dtype=np.float64),
         region_max=np.asarray(impact.region_max, dtype=np.float64),
-        parties=(parties[0], parties[1]),
+        parties=tuple(parties),
         notes=tuple(notes),
+        obstacle=obstacle,
     )
 
 
@@ -676,13 +750,29 @@ def _scene_record(result: Result, include_meshes: bool) -> dict[str, Any]:
                 },
             }
         )
-    return {
+    out: dict[str, Any] = {
         "vehicles": vehicles,
         "contact": {
             "defaults": _plain(scene.defaults),
             "pairs": _contact_pairs(scene),
         },
     }
+    if result.obstacles:
+        out["obstacles"] = []
+        for name in result.obstacles:
+            o = result.obstacle(name)
+            tr = result.trajectory(name)
+            out["obstacles"].append(
+                {
+                    "name": name,
+                    "kind": o.kind,
+                    "stiffness": _plain(o.stiffness.to_dict()),
+                    "position": _vec(tr.position[0]),
+                    "orientation": _vec(tr.orientation[0]),
+                    "extents": _vec(o.extents),
+                }
+            )
+    return out
 
 
 def build_report(result: Result) -> Report:
@@ -769,6 +859,8 @@ def _engagement_lines(e: Engagement, impacts: list[ImpactReport]) -> list[str]:
     lines = [head + f"; {which}"]
     summed = []
     for name in e.vehicles:
+        if name not in e.delta_v:  # a fixed obstacle
+            continue
         dv = float(np.linalg.norm(e.delta_v[name]))
         summed.append(
             f"{name} {_fmt(dv, 3)} m/s ({_fmt(to_kmh(dv), 2)} km/h, {_fmt(to_mph(dv), 2)} mph)"
@@ -825,7 +917,9 @@ def _impact_lines(imp: ImpactReport, primary: int | None = None) -> list[str]:
         f"|J| = {_fmt(imp.impulse_magnitude, 1)} N s; closing speed "
         f"{_fmt(imp.closing_speed, 3)} m/s",
         f"  energy dissipated {_fmt(imp.energy_dissipated, 1)} J, split by stiffness: "
-        + ("yes" if imp.energy_split_basis == BY_STIFFNESS else "unknown")
+        + {BY_STIFFNESS: "yes", RIGID_OBSTACLE: "all to the vehicle (rigid obstacle)"}.get(
+            imp.energy_split_basis, "unknown"
+        )
         + f"; overlap depth along n {_fmt(imp.overlap_depth, 4)} m, "
         + f"width {_fmt(imp.overlap_width, 4)} m",
     ]
@@ -834,6 +928,12 @@ def _impact_lines(imp: ImpactReport, primary: int | None = None) -> list[str]:
         lines.append(
             f"  centroid in {p.name}'s body frame {_fmt3(cb, 4)} m"
             f" (x fwd, y left, z up from the CG); struck face: {p.struck_face}"
+        )
+    if imp.obstacle is not None:
+        o = imp.obstacle
+        lines.append(
+            f"  {o.name} is a fixed obstacle (infinite mass, no delta-V); centroid in its "
+            f"frame {_fmt3(o.centroid_body, 4)} m; struck face: {o.struck_face}"
         )
     lines.append("")
     lines += _table(
@@ -997,6 +1097,8 @@ class Report:
                 "dt": None if r.dt is None else float(r.dt),
                 "end_time": float(r.t[-1]),
                 "samples": int(r.t.size),
+                # optional: a run on the ground (its states between samples are interpolated)
+                **({"on_ground": True} if getattr(r, "on_ground", False) else {}),
             },
             "impacts": [imp.to_dict() for imp in self.impacts],
             "contacts": [_plain(c.to_dict()) for c in r.contacts],

@@ -44,15 +44,19 @@ from typing import Any, NoReturn
 import numpy as np
 from numpy.typing import NDArray
 
+from crashsim.environment.ground import FrictionZone, Ground
+from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import CrashsimError, ParameterError, SceneError
 from crashsim.result import Result
-from crashsim.scene import Scene
+from crashsim.scene import DEFAULT_MAX_DURATION, Scene
 from crashsim.units import FOOT, MILE_PER_HOUR, POUND
 from crashsim.vehicles.generator import PRESETS, SHAPE_PARAMETERS
+from crashsim.vehicles.inputs import Brake, DriverInputs
 from crashsim.vehicles.meshio import axes_rotation, unit_scale
 from crashsim.vehicles.stiffness import FACES
 from crashsim.vehicles.vehicle import SOLIDS, Vehicle
 from crashsim.vehicles.vehicle_data import vehicle_class
+from crashsim.vehicles.wheels import TYRE_MODELS, Tyre
 
 __all__ = [
     "DIMENSIONS",
@@ -130,8 +134,11 @@ DIMENSIONS: dict[str, str] = {
     "angular velocity": "rad/s",
     "force": "N",
     "moment of inertia": "kg m^2",
-    "force per width": "N/m",  # CRASH3 A
+    "force per width": "N/m",  # CRASH3 A; also a spring rate (force per deflection)
     "force per width per crush": "N/m^2",  # CRASH3 B
+    "acceleration": "m/s^2",
+    "frequency": "Hz",
+    "damping": "N s/m",
 }
 
 UNITS: dict[str, Unit] = {
@@ -184,6 +191,14 @@ UNITS: dict[str, Unit] = {
     "lb/in^2": Unit("force per width per crush", POUND_FORCE / INCH**2),
     "lbf/in^2": Unit("force per width per crush", POUND_FORCE / INCH**2),
     "psi": Unit("force per width per crush", POUND_FORCE / INCH**2),
+    # acceleration (a braking deceleration)
+    "m/s^2": Unit("acceleration", 1.0),
+    "ft/s^2": Unit("acceleration", FOOT),
+    # frequency (a suspension's natural frequency)
+    "Hz": Unit("frequency", 1.0),
+    # damping (a suspension's damper)
+    "N s/m": Unit("damping", 1.0),
+    "kN s/m": Unit("damping", 1000.0),
 }
 
 # Other spellings of the units above, after whitespace is collapsed and "*", "·" become " ".
@@ -194,7 +209,10 @@ _ALIASES: dict[str, str] = {
     "°/s": "deg/s",
     "kmh": "km/h",
     "km/hr": "km/h",
-    "m/s^2": "",  # not a unit of any quantity here: reported as unknown
+    "m/s2": "m/s^2",
+    "ft/s2": "ft/s^2",
+    "Ns/m": "N s/m",
+    "kNs/m": "kN s/m",
     "kg m2": "kg m^2",
     "kg m²": "kg m^2",
     "slug ft2": "slug ft^2",
@@ -250,6 +268,9 @@ def _example(dimension: str) -> str:
         "moment of inertia": '"2500 kg m^2"',
         "force per width": '"356 lb/in"',
         "force per width per crush": '"34 lb/in^2"',
+        "acceleration": '"7 m/s^2"',
+        "frequency": '"1.3 Hz"',
+        "damping": '"2000 N s/m"',
     }[dimension]
 
 
@@ -304,11 +325,22 @@ def parse_quantity(value: Any, dimension: str) -> float:
 class RunSettings:
     """The run: ``duration`` (s) simulated from t = 0 with steps of at most ``dt`` (s), keeping
     a sample every ``record_interval`` (s; None: the engine's default, every step for runs of
-    at most 100,000 steps)."""
+    at most 100,000 steps). With ``until`` = "rest" (a scene with a ground) the run goes on
+    until every vehicle is at rest or ``max_duration`` (s; None: the Scene's default, 60 s)
+    has passed."""
 
     duration: float = 1.0
     dt: float = 1e-3
     record_interval: float | None = None
+    until: str | None = None
+    max_duration: float | None = None
+
+    @property
+    def longest(self) -> float:
+        """The longest the run may take (s): duration, or max_duration until rest."""
+        if self.until == "rest":
+            return DEFAULT_MAX_DURATION if self.max_duration is None else self.max_duration
+        return self.duration
 
 
 @dataclass(frozen=True)
@@ -348,14 +380,22 @@ class SceneFile:
         record_interval: float | None = None,
     ) -> Result:
         """Run the scene with the file's settings (``duration``, ``dt``, ``record_interval`` in
-        s override them)."""
+        s override them; until rest, ``duration`` overrides max_duration)."""
+        interval = self.run.record_interval if record_interval is None else record_interval
+        step = self.run.dt if dt is None else dt
+        if self.run.until == "rest":
+            return self.scene.run(
+                dt=step,
+                progress=progress,
+                record_interval=interval,
+                until="rest",
+                max_duration=self.run.longest if duration is None else duration,
+            )
         return self.scene.run(
             duration=self.run.duration if duration is None else duration,
-            dt=self.run.dt if dt is None else dt,
+            dt=step,
             progress=progress,
-            record_interval=self.run.record_interval
-            if record_interval is None
-            else record_interval,
+            record_interval=interval,
         )
 
 
@@ -586,8 +626,10 @@ TOP_KEYS = (
     "pairs",
     "vehicles",
     "output",
+    "ground",
+    "obstacles",
 )
-RUN_KEYS = ("duration", "dt", "record_interval")
+RUN_KEYS = ("duration", "dt", "record_interval", "until", "max_duration")
 OUTPUT_KEYS = ("dir", "report", "csv", "pictures", "glb")
 CONTACT_KEYS = (
     "depth_of_penetration",
@@ -616,7 +658,48 @@ VEHICLE_KEYS = (
     "direction",
     "angular_velocity",
     "yaw_rate",
+    "wheels",
+    "tyre",
+    "inputs",
 )
+GROUND_KEYS = ("height", "terrain", "friction", "body_friction", "zones")
+TERRAIN_KEYS = ("file", "units", "up", "forward")
+ZONE_KEYS = ("polygon", "friction", "name")
+_OBSTACLE_SHAPES = ("wall", "pole", "barrier", "kerb", "tree", "mesh")
+OBSTACLE_KEYS = ("name", *_OBSTACLE_SHAPES, "position", "heading", "stiffness")
+OBSTACLE_SHAPE_KEYS = {
+    "wall": ("length", "thickness", "height"),
+    "pole": ("diameter", "height"),
+    "barrier": ("length", "height", "base_width", "top_width"),
+    "kerb": ("length", "height", "width"),
+    "tree": ("diameter", "height"),
+}
+WHEEL_KEYS = (
+    "wheelbase",
+    "track",
+    "radius",
+    "cg_to_front_axle",
+    "cg_height",
+    "steer",
+    "natural_frequency",
+    "damping_ratio",
+    "spring_rates",
+    "damping",
+)
+TYRE_KEYS = (
+    "model",
+    "saturation_angle",
+    "b",
+    "c",
+    "e",
+    "relaxation_length",
+    "rolling_resistance",
+)
+INPUT_KEYS = ("steer", "steering_wheel", "steering_ratio", "brake", "drive", "wheel_states")
+BRAKE_KEYS = ("time", "fraction", "deceleration", "wheels")
+DRIVE_KEYS = ("time", "force", "wheels")
+STEER_KEYS = ("time", "angle")
+STATE_KEYS = ("wheel", "state", "time", "exchange", "fraction")
 _BOX_KEYS = ("length", "width", "height", "ground_clearance")
 MESH_KEYS = ("file", "units", "up", "forward", "ground", "center", "solid")
 GENERATE_KEYS = ("preset", "length", "width", "height", "wheelbase", *SHAPE_PARAMETERS)
@@ -715,6 +798,10 @@ def _reject(t: _Table, keys: tuple[str, ...], why: str) -> None:
 
 
 def _vehicle(t: _Table, base: Path) -> Vehicle:
+    return _wheels(t, _body(t, base))
+
+
+def _body(t: _Table, base: Path) -> Vehicle:
     name = t.string("name")
     if not name.strip():
         t.fail("name", "a vehicle needs a non-empty name")
@@ -866,8 +953,10 @@ def _place(t: _Table, scene: Scene, vehicle: Vehicle) -> None:
     if position.size == 2:
         if orientation is not None:
             t.fail("position", "with an orientation give all of x, y, z (m)")
-        # the model frame's ground (z = 0) on the world's ground: the CG at its own height
-        position = np.array([*position, vehicle.cg[2]])
+        if scene.ground is None:
+            # the model frame's ground (z = 0) on the world's ground: the CG at its own height
+            position = np.array([*position, vehicle.cg[2]])
+        # with a ground, the scene puts the CG at its static height above it
     if t.has("velocity") and (t.has("speed") or t.has("direction")):
         t.fail("velocity", "give velocity, or speed and direction, not both")
     if t.has("direction") and not t.has("speed"):
@@ -894,6 +983,7 @@ def _place(t: _Table, scene: Scene, vehicle: Vehicle) -> None:
         t.taken.add("yaw_rate")
     else:
         omega = np.array([0.0, 0.0, t.quantity("yaw_rate", "angular velocity", 0.0)])
+    inputs = _inputs(t)
     _wrap(
         t,
         None,
@@ -904,8 +994,267 @@ def _place(t: _Table, scene: Scene, vehicle: Vehicle) -> None:
             orientation=orientation,
             velocity=velocity,
             angular_velocity=omega,
+            inputs=inputs,
         ),
     )
+
+
+# -- wheels, tyre and driver inputs ----------------------------------------------------------
+
+
+def _axle_pair(t: _Table, k: str, dimension: str | None) -> Any:
+    """One quantity, or a list [front, rear] (or one per wheel) of them."""
+    value = t.raw(k)
+    if isinstance(value, list):
+        return t.vector(k, dimension, sizes=(2, 4))
+    if dimension is None:
+        return t.number(k)
+    return t.quantity(k, dimension, low="> 0")
+
+
+def _wheels(t: _Table, vehicle: Vehicle) -> Vehicle:
+    """The vehicle with its [vehicles.wheels] and [vehicles.tyre] tables applied."""
+    w = t.table("wheels", WHEEL_KEYS)
+    ty = t.table("tyre", TYRE_KEYS)
+    if w is None and ty is None:
+        return vehicle
+    tyre = None
+    if ty is not None:
+        values: dict[str, Any] = {"model": ty.string("model", "linear", choices=TYRE_MODELS)}
+        if ty.has("saturation_angle"):
+            values["saturation_angle"] = ty.quantity("saturation_angle", "angle", low="> 0")
+        for k in ("b", "c", "e", "rolling_resistance"):
+            if ty.has(k):
+                values[k] = ty.number(k)
+            ty.taken.add(k)
+        if ty.has("relaxation_length"):
+            values["relaxation_length"] = ty.quantity("relaxation_length", "length", low="> 0")
+        ty.taken.add("relaxation_length")
+        ty.finish()
+        tyre = _wrap(ty, None, lambda: Tyre(**values))
+    if w is None:
+        if vehicle.wheels is None:
+            t.fail("tyre", "a tyre needs wheels: add a [vehicles.wheels] table")
+        return _wrap(t, "tyre", lambda: vehicle.with_wheels(vehicle.wheels, tyre=tyre))
+    given: dict[str, Any] = {}
+    for k in ("wheelbase", "cg_to_front_axle", "cg_height"):
+        if w.has(k):
+            given[k] = w.quantity(k, "length", low="> 0")
+        w.taken.add(k)
+    for k in ("track", "radius"):
+        if w.has(k):
+            given[k] = _axle_pair(w, k, "length")
+        w.taken.add(k)
+    if w.has("steer"):
+        given["steer"] = w.string("steer", choices=("front", "rear", "both", "none"))
+    if w.has("natural_frequency"):
+        given["natural_frequency"] = _axle_pair(w, "natural_frequency", "frequency")
+    if w.has("damping_ratio"):
+        given["damping_ratio"] = _axle_pair(w, "damping_ratio", None)
+    if w.has("spring_rates"):
+        given["spring_rates"] = _axle_pair(w, "spring_rates", "force per width")
+    if w.has("damping"):
+        given["damping"] = _axle_pair(w, "damping", "damping")
+    w.taken.update(WHEEL_KEYS)
+    w.finish()
+    old = vehicle.wheels
+    if old is not None and old.wheelbase is not None:  # a generated vehicle: change some
+        assert old.track is not None
+        base = {
+            "wheelbase": old.wheelbase,
+            "track": old.track,
+            "radius": (float(old.radii[0]), float(old.radii[-1])),
+            "cg_to_front_axle": old.cg_to_front_axle,
+            "cg_height": old.cg_height,
+        }
+        given = {**base, **given}
+        if tyre is None:
+            tyre = old.tyre
+    return _wrap(t, "wheels", lambda: vehicle.with_wheels(tyre=tyre, **given))
+
+
+def _rows(t: _Table, k: str, keys: tuple[str, ...]) -> list[_Table]:
+    return t.tables(k, keys) if t.has(k) else []
+
+
+def _angle_table(rows: list[_Table]) -> list[tuple[float, float]]:
+    out = []
+    for r in rows:
+        out.append((r.quantity("time", "time"), r.quantity("angle", "angle")))
+        r.finish()
+    return out
+
+
+def _inputs(t: _Table) -> DriverInputs | None:
+    """The [vehicles.inputs] table: tables of rows with units."""
+    i = t.table("inputs", INPUT_KEYS)
+    if i is None:
+        return None
+    kwargs: dict[str, Any] = {}
+    steer = _angle_table(_rows(i, "steer", STEER_KEYS))
+    wheel = _angle_table(_rows(i, "steering_wheel", STEER_KEYS))
+    if steer:
+        kwargs["steer"] = steer
+    if wheel:
+        kwargs["steering_wheel"] = wheel
+    if i.has("steering_ratio"):
+        kwargs["steering_ratio"] = i.number("steering_ratio")
+    i.taken.add("steering_ratio")
+    brakes: dict[str, tuple[str, list[tuple[float, float]]]] = {}
+    for r in _rows(i, "brake", BRAKE_KEYS):
+        kinds = [k for k in ("fraction", "deceleration") if r.has(k)]
+        if len(kinds) != 1:
+            r.fail(None, "give fraction (of the friction, 0-1) or deceleration, one of them")
+        kind = kinds[0]
+        value = r.number(kind) if kind == "fraction" else r.quantity(kind, "acceleration")
+        r.taken.update(("fraction", "deceleration"))
+        where = r.string("wheels", "all")
+        row = (r.quantity("time", "time"), value)
+        r.finish()
+        if where in brakes and brakes[where][0] != kind:
+            r.fail(kind, f'the brake rows of "{where}" mix fraction and deceleration')
+        brakes.setdefault(where, (kind, []))[1].append(row)
+    if brakes:
+        kwargs["brake"] = {w: Brake(k, np.array(rows)) for w, (k, rows) in brakes.items()}
+    drives: dict[str, list[tuple[float, float]]] = {}
+    for r in _rows(i, "drive", DRIVE_KEYS):
+        where = r.string("wheels", "all")
+        drives.setdefault(where, []).append(
+            (r.quantity("time", "time"), r.quantity("force", "force"))
+        )
+        r.finish()
+    if drives:
+        kwargs["drive"] = drives
+    states = []
+    for r in _rows(i, "wheel_states", STATE_KEYS):
+        wheel = r.string("wheel")
+        state = r.string("state", choices=("free", "locked", "braked"))
+        if r.has("time") == r.has("exchange"):
+            r.fail(None, "give time (the switch's time) or exchange (its exchange, from 1)")
+        if r.has("time"):
+            at: Any = r.quantity("time", "time")
+        else:
+            n = r.raw("exchange")
+            if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+                r.fail("exchange", f"expected a whole number from 1, got {_show(n)}")
+            at = ("exchange", n)
+        r.taken.update(("time", "exchange"))
+        fraction = r.number("fraction", 1.0)
+        r.finish()
+        states.append((wheel, state, at, fraction))
+    if states:
+        kwargs["wheel_states"] = states
+    i.taken.update(INPUT_KEYS)
+    i.finish()
+    return _wrap(i, None, lambda: DriverInputs(**kwargs))
+
+
+# -- ground and obstacles ----------------------------------------------------------------------
+
+
+def _ground(t: _Table | None, base: Path) -> Ground | None:
+    if t is None:
+        return None
+    kwargs: dict[str, Any] = {}
+    if t.has("height") and t.has("terrain"):
+        t.fail("terrain", "give height (a plane) or terrain (a mesh), not both")
+    if t.has("height"):
+        kwargs["height"] = t.quantity("height", "length")
+    t.taken.add("height")
+    if t.has("terrain"):
+        value = t.raw("terrain")
+        if isinstance(value, str):
+            name, where, key = value, t, "terrain"
+        else:
+            m = t.table("terrain", TERRAIN_KEYS)
+            assert m is not None
+            name, where, key = m.string("file"), m, "file"
+            if m.has("units"):
+                kwargs["units"] = m.raw("units")
+            m.taken.add("units")
+            for k in ("up", "forward"):
+                if m.has(k):
+                    kwargs[k] = m.string(k)
+            m.finish()
+        path = Path(name).expanduser()
+        path = path if path.is_absolute() else base / path
+        if not path.is_file():
+            where.fail(
+                key,
+                f'terrain file "{name}" does not exist (looked for {path.resolve()}); paths are '
+                "relative to the scene file",
+            )
+        kwargs["terrain"] = path
+    t.taken.add("terrain")
+    for k in ("friction", "body_friction"):
+        if t.has(k):
+            value = t.raw(k)
+            kwargs[k] = value if isinstance(value, str) else t.number(k)
+        t.taken.add(k)
+    zones = []
+    for z in t.tables("zones", ZONE_KEYS):
+        value = z.raw("polygon")
+        if not isinstance(value, list) or len(value) < 3:
+            z.fail("polygon", f"expected 3 or more corners [x, y] (lengths), got {_show(value)}")
+        corners = [
+            _Table({f"polygon[{c}]": v}, z.path, z.file).vector(f"polygon[{c}]", "length", (2,))
+            for c, v in enumerate(value)
+        ]
+        mu = z.raw("friction")
+        mu = mu if isinstance(mu, str) else z.number("friction")
+        name = z.string("name", None)
+        z.finish()
+        zones.append(_wrap(z, None, lambda c=corners, mu=mu, n=name: FrictionZone(c, mu, n)))
+    kwargs["zones"] = zones
+    t.finish()
+    return _wrap(t, None, lambda: Ground(**kwargs))
+
+
+def _obstacle(t: _Table, scene: Scene, base: Path) -> None:
+    name = t.string("name")
+    if not name.strip():
+        t.fail("name", "an obstacle needs a non-empty name")
+    given = [g for g in _OBSTACLE_SHAPES if t.has(g)]
+    t.taken.update(_OBSTACLE_SHAPES)
+    if len(given) != 1:
+        what = "none" if not given else " and ".join(given)
+        t.fail(None, f"give exactly one of {', '.join(_OBSTACLE_SHAPES)} (got {what})")
+    kind = given[0]
+    stiffness: Any = None
+    if t.has("stiffness"):
+        value = t.raw("stiffness")
+        if isinstance(value, dict) and set(value) <= {"A", "B"}:
+            f = t.table("stiffness", ("A", "B"))
+            assert f is not None
+            stiffness = (
+                f.quantity("A", "force per width", 0.0, low=">= 0"),
+                f.quantity("B", "force per width per crush", low="> 0"),
+            )
+            f.finish()
+        else:
+            stiffness = _stiffness(t)
+    t.taken.add("stiffness")
+    if kind == "mesh":
+        options, file = _mesh_options(t, base)
+        options.pop("solid", None)
+        obstacle = _wrap(
+            t, "mesh", lambda: Obstacle.from_mesh(file, name=name, stiffness=stiffness, **options)
+        )
+    else:
+        shape = t.table(kind, OBSTACLE_SHAPE_KEYS[kind])
+        if shape is None:
+            t.fail(kind, "expected a table of its dimensions (lengths)")
+        dims = {k: shape.quantity(k, "length", low="> 0") for k in shape.data}
+        shape.finish()
+        obstacle = _wrap(
+            t,
+            kind,
+            lambda: getattr(Obstacle, kind)(name=name, stiffness=stiffness, **dims),
+        )
+    position = t.vector("position", "length", sizes=(2, 3))
+    heading = t.quantity("heading", "angle", 0.0)
+    t.finish()
+    _wrap(t, None, lambda: scene.add_obstacle(obstacle, position, heading=heading))
 
 
 def _contact_values(t: _Table, names: list[str]) -> dict[str, Any]:
@@ -982,10 +1331,17 @@ def _run(t: _Table | None) -> RunSettings:
     if t is None:
         return RunSettings()
     default = RunSettings()
+    until = t.string("until", None, choices=("rest",))
+    if until is None and t.has("max_duration"):
+        t.fail("max_duration", 'max_duration is for until = "rest": give duration instead')
+    if until is not None and t.has("duration"):
+        t.fail("duration", 'with until = "rest" give max_duration (the longest run), not duration')
     run = RunSettings(
         duration=t.quantity("duration", "time", default.duration, low="> 0"),
         dt=t.quantity("dt", "time", default.dt, low="> 0"),
         record_interval=t.quantity("record_interval", "time", None, low="> 0"),
+        until=until,
+        max_duration=t.quantity("max_duration", "time", None, low="> 0"),
     )
     t.finish()
     return run
@@ -1084,15 +1440,30 @@ def loads_scene(
                 "name", f'a vehicle named "{name}" is already in the scene: names must be unique'
             )
         names.append(name)
+    obstacle_tables = top.tables("obstacles", OBSTACLE_KEYS)
+    for o in obstacle_tables:
+        name = o.string("name")
+        if name in names:
+            o.fail(
+                "name",
+                f'a vehicle or obstacle named "{name}" is already in the scene: names must be '
+                "unique",
+            )
+        names.append(name)
     scene = _defaults(top.table("contact", CONTACT_KEYS), names)
+    scene.ground = _ground(top.table("ground", GROUND_KEYS), base)
     for v in vehicle_tables:
         vehicle = _vehicle(v, base)
         _place(v, scene, vehicle)
         v.finish()
+    for o in obstacle_tables:
+        _obstacle(o, scene, base)
     seen: set[frozenset[str]] = set()
     for p in top.tables("pairs", ("vehicles", *CONTACT_KEYS)):
         _pair(p, scene, names, seen)
     run = _run(top.table("run", RUN_KEYS))
+    if run.until == "rest" and scene.ground is None:
+        top.fail("run.until", "a run until rest needs a ground: add a [ground] table")
     output = _output(top.table("output", OUTPUT_KEYS), base)
     top.finish()
     _check_stiffness_needs(top, scene)

@@ -51,6 +51,7 @@ from crashsim.vehicles.meshio import (
 )
 from crashsim.vehicles.stiffness import FACES, Stiffness
 from crashsim.vehicles.vehicle_data import ALIASES, VehicleClass, vehicle_class
+from crashsim.vehicles.wheels import Tyre, Wheels
 
 __all__ = ["Vehicle", "solid_properties"]
 
@@ -421,6 +422,7 @@ class Vehicle:
         self._quality: MeshQuality | None = None
         self._shape: _core.Shape | None = None
         self._generator_params: BodyParams | None = None
+        self._wheels: Wheels | None = None
 
     # -- constructors --------------------------------------------------------------------
 
@@ -442,6 +444,11 @@ class Vehicle:
         ground: bool = False,
         center: bool = False,
         stiffness: Stiffness | dict[str, Any] | None = None,
+        track: float | tuple[float, float] | None = None,
+        wheel_radius: float | tuple[float, float] | None = None,
+        cg_to_front_axle: float | None = None,
+        tyre: Tyre | dict[str, Any] | None = None,
+        wheels: Wheels | None = None,
     ) -> Vehicle:
         """A vehicle from a mesh file (any format trimesh reads; a scene is flattened with
         its node transforms) or a trimesh.Trimesh / trimesh.Scene.
@@ -465,16 +472,25 @@ class Vehicle:
         wheel gaps, the underbody and a pickup's bed) or "closed shells" (union of the closed
         shells; open shells ignored, overlaps counted twice).
         stiffness: face stiffness, see crashsim.vehicles.stiffness.Stiffness.coerce.
+
+        Wheels (for a scene with a ground; see :meth:`with_wheels`): ``wheelbase``,
+        ``track`` (one or (front, rear)), ``wheel_radius`` (tyre radius, one or (front,
+        rear)) and ``cg_to_front_axle`` (m), all four, and optionally ``tyre``; or a ready
+        :class:`crashsim.vehicles.wheels.Wheels` as ``wheels``. The CG's height above the
+        ground is its model-frame z (the model frame's ground is z = 0: load with
+        ground=True if the file's is not).
         """
         mass_kg, mass_source = _mass(mass, weight_lb)
         stiff = Stiffness.coerce(stiffness)
+        wheel_keys = _wheel_keys(wheelbase, track, wheel_radius, cg_to_front_axle, tyre, wheels)
         if solid not in SOLIDS:
             raise ParameterError(f"solid = {solid!r} is unknown: use one of {', '.join(SOLIDS)}")
         cg_mode = _mode(cg, "cg", ("mesh",))
         inertia_mode = _mode(inertia, "inertia", ("mesh", "empirical"))
-        if wheelbase is not None and inertia_mode != "empirical":
+        if wheelbase is not None and inertia_mode != "empirical" and wheel_keys is None:
             raise ParameterError(
-                'wheelbase is only used by inertia="empirical": drop it or ask for that rule'
+                'wheelbase is only used by inertia="empirical" and by wheels: drop it, ask for '
+                "that rule, or give the wheels' track, wheel_radius and cg_to_front_axle too"
             )
         if inertia_mode == "empirical" and wheelbase is None:
             raise ParameterError('inertia="empirical" needs the wheelbase (m): give wheelbase=')
@@ -520,6 +536,8 @@ class Vehicle:
                 mesh, mass_kg, cg_v, inertia_v, name=name, sources=sources, stiffness=stiff
             )
         vehicle._mass_source, vehicle._details = mass_source, details
+        if wheel_keys is not None:
+            vehicle = vehicle.with_wheels(**wheel_keys)
         findings = plausibility.size_findings(
             mesh.extents, scale, units_name, axes_rotation(up, forward)
         )
@@ -546,6 +564,11 @@ class Vehicle:
         weight_lb: float | None = None,
         wheelbase: float | None = None,
         stiffness: Stiffness | dict[str, Any] | None = None,
+        track: float | tuple[float, float] | None = None,
+        wheel_radius: float | tuple[float, float] | None = None,
+        cg_to_front_axle: float | None = None,
+        tyre: Tyre | dict[str, Any] | None = None,
+        wheels: Wheels | None = None,
     ) -> Vehicle:
         """A closed box (m) in the model frame: x in [-L/2, L/2], y in [-W/2, W/2],
         z in [ground_clearance, ground_clearance + height].
@@ -556,7 +579,11 @@ class Vehicle:
         (m/12 (W^2 + H^2), ...), moved to the CG by the parallel-axis theorem when cg_height
         is given; "empirical": :func:`empirical_inertia` with ``wheelbase`` (m); or (3, 3).
         stiffness: face stiffness, see crashsim.vehicles.stiffness.Stiffness.coerce.
+        Wheels: ``wheelbase``, ``track``, ``wheel_radius`` and ``cg_to_front_axle`` (m), and
+        optionally ``tyre``, or ``wheels`` (see :meth:`from_mesh`, :meth:`with_wheels`); a
+        box on wheels needs ground_clearance > 0 (its underside would rest on the road).
         """
+        wheel_keys = _wheel_keys(wheelbase, track, wheel_radius, cg_to_front_axle, tyre, wheels)
         named = {"length": length, "width": width, "height": height}
         dims = np.array([_as_float(v, k, "m") for k, v in named.items()])
         if not np.all(np.isfinite(dims)) or np.any(dims <= 0.0):
@@ -579,9 +606,16 @@ class Vehicle:
         mass_kg, mass_source = _mass(mass, weight_lb)
         stiff = Stiffness.coerce(stiffness)
         inertia_mode = _mode(inertia, "inertia", ("mesh", "empirical"))
-        if wheelbase is not None and inertia_mode != "empirical":
+        if wheelbase is not None and inertia_mode != "empirical" and wheel_keys is None:
             raise ParameterError(
-                'wheelbase is only used by inertia="empirical": drop it or ask for that rule'
+                'wheelbase is only used by inertia="empirical" and by wheels: drop it, ask for '
+                "that rule, or give the wheels' track, wheel_radius and cg_to_front_axle too"
+            )
+        if wheel_keys is not None and clearance <= 0.0:
+            raise ParameterError(
+                "a box on wheels needs ground_clearance > 0 m: with 0 its underside rests on "
+                "the road and the body, not the wheels, would carry it (give e.g. "
+                "ground_clearance=0.15)"
             )
         centre = np.array([0.0, 0.0, clearance + dims[2] / 2.0])
         mesh = trimesh.creation.box(extents=dims)
@@ -611,6 +645,8 @@ class Vehicle:
                 mesh, mass_kg, cg, inertia_v, name=name or "box", sources=sources, stiffness=stiff
             )
         vehicle._mass_source, vehicle._details = mass_source, details
+        if wheel_keys is not None:
+            vehicle = vehicle.with_wheels(**wheel_keys)
         return vehicle
 
     @classmethod
@@ -629,6 +665,8 @@ class Vehicle:
         inertia: ArrayLike | str | None = None,
         stiffness: Stiffness | dict[str, Any] | None = None,
         resolution: float = 1.0,
+        track: float | tuple[float, float] | None = None,
+        tyre: Tyre | dict[str, Any] | None = None,
         **shape: float,
     ) -> Vehicle:
         """A vehicle of a built-in class on a generated body: ``cs.Vehicle.generate("sedan")``
@@ -665,8 +703,16 @@ class Vehicle:
         given; a given value replaces all of them (see crashsim.vehicles.stiffness.Stiffness.coerce;
         to change one face, start from ``vehicle_class(preset).stiffness.to_dict()``).
 
+        Wheels (used when the scene has a ground): the body's axles (front_overhang,
+        wheelbase) and tyre radius (the ``wheel_radius`` shape parameter: the arches are made
+        for it), the class's track (:attr:`VehicleClass.track_front`, ``track_rear``) scaled
+        to the width unless ``track`` (m, one or (front, rear)) is given, the front axle
+        steering, springs at the engine's natural frequency and damping ratio, and ``tyre``
+        (default: the reconstruction tyre). :meth:`with_wheels` changes them.
+
         ``sources`` names the origin of every number ("cg", "inertia", "mass", "dimensions",
-        "body", "stiffness") and ``summary()`` prints them; ``generator_params`` keeps the
+        "body", "stiffness"; the wheels' is ``wheels.source``) and ``summary()`` prints
+        them; ``generator_params`` keeps the
         BodyParams. Raises ParameterError for an unknown preset (listing the presets), a bad
         number, or dimensions that give no valid body (the generator's message).
         """
@@ -769,6 +815,26 @@ class Vehicle:
             )
         vehicle._mass_source, vehicle._details = mass_source, details
         vehicle._generator_params = params
+        w_ratio = params.width / vc.width.value
+        if track is None:
+            track_v: float | tuple[float, float] = (
+                vc.track_front.value * w_ratio,
+                vc.track_rear.value * w_ratio,
+            )
+            wheel_source = f"track: {table}" + _scaled_to(("width", w_ratio, params.width, "m"))
+        else:
+            track_v, wheel_source = track, "track: user"
+        wheel_source += "; axles and tyre radius: the generated body"
+        front_axle = params.length / 2.0 - params.front_overhang
+        vehicle = vehicle.with_wheels(
+            wheelbase=params.wheelbase,
+            track=track_v,
+            radius=params.wheel_radius,
+            cg_to_front_axle=front_axle - float(vehicle.cg[0]),
+            cg_height=float(vehicle.cg[2]),
+            tyre=tyre,
+            source=wheel_source,
+        )
         findings = plausibility.size_findings(mesh.extents)
         findings += plausibility.check_density(
             mass_kg, volume, "the generated body's solid", findings
@@ -854,9 +920,102 @@ class Vehicle:
             self._shape = _core.Shape(self.body_vertices, faces)
         return self._shape
 
-    def renamed(self, name: str) -> Vehicle:
-        """The same vehicle under another name (shares the mesh, the engine's shape, the
-        stiffness and the quality report), e.g. to put two identical cars in one scene."""
+    @property
+    def wheels(self) -> Wheels | None:
+        """The wheels and tyre (a :class:`crashsim.vehicles.wheels.Wheels`), used when the scene
+        has a ground; None for a vehicle without wheels (it then slides on its body there)."""
+        return self._wheels
+
+    def with_wheels(
+        self,
+        wheels: Wheels | None = None,
+        *,
+        wheelbase: float | None = None,
+        track: float | tuple[float, float] | None = None,
+        radius: float | tuple[float, float] | None = None,
+        cg_to_front_axle: float | None = None,
+        cg_height: float | None = None,
+        tyre: Tyre | dict[str, Any] | None = None,
+        source: str | None = None,
+        **springs: Any,
+    ) -> Vehicle:
+        """The same vehicle on wheels (a new Vehicle; this one is unchanged).
+
+        Either a ready :class:`crashsim.vehicles.wheels.Wheels`, or its numbers: ``wheelbase``,
+        ``track`` (one or (front, rear)), ``radius`` (tyre radius, one or (front, rear)) and
+        ``cg_to_front_axle`` (m), with ``cg_height`` (m above the ground; default the CG's
+        model-frame z, the model frame's ground being z = 0), ``tyre`` and the springs
+        (``natural_frequency``, ``damping_ratio``, ``spring_rates``, ``damping``, ``steer``:
+        see Wheels). The wheels' centre line is the mesh's (its bounding box's middle in y).
+        With ``wheels`` given, ``tyre`` (if given) replaces its tyre.
+
+        The engine checks them on this body: ParameterError naming the vehicle and the wheel
+        for a wheel outside the body's outline, a CG not over the wheels, a negative rate, ...
+        """
+        if wheels is None:
+            given = {
+                "wheelbase": wheelbase,
+                "track": track,
+                "radius": radius,
+                "cg_to_front_axle": cg_to_front_axle,
+            }
+            missing = [k for k, v in given.items() if v is None]
+            if missing:
+                raise ParameterError(
+                    f"vehicle {self._name!r}: wheels need {', '.join(missing)} (m): give "
+                    "wheelbase, track, radius and cg_to_front_axle, or a crashsim.Wheels"
+                )
+            if cg_height is None:
+                cg_height = float(self._cg[2])
+                if cg_height <= 0.0:
+                    raise ParameterError(
+                        f"vehicle {self._name!r}: its CG is {cg_height:.3f} m above the model "
+                        "frame's ground (z = 0): the mesh is not standing on z = 0; load it "
+                        "with ground=True, or give cg_height (m above the ground)"
+                    )
+            lo, hi = self._mesh.bounds
+            centerline = float(lo[1] + hi[1]) / 2.0 - float(self._cg[1])
+            try:
+                wheels = Wheels(
+                    wheelbase,  # type: ignore[arg-type]
+                    track,  # type: ignore[arg-type]
+                    cg_to_front_axle,  # type: ignore[arg-type]
+                    cg_height,
+                    radius,  # type: ignore[arg-type]
+                    centerline_y=centerline,
+                    tyre=tyre,
+                    **springs,
+                )
+            except ParameterError as e:
+                raise ParameterError(f"vehicle {self._name!r}: {e}") from e
+        else:
+            if not isinstance(wheels, Wheels):
+                raise ParameterError(
+                    f"wheels must be a crashsim.Wheels, got {type(wheels).__name__}"
+                )
+            extra = {"wheelbase": wheelbase, "track": track, "radius": radius}
+            extra.update(cg_to_front_axle=cg_to_front_axle, cg_height=cg_height, **springs)
+            clash = [k for k, v in extra.items() if v is not None]
+            if clash:
+                raise ParameterError(
+                    f"give a Wheels or its numbers, not both ({', '.join(clash)} given too)"
+                )
+            if tyre is not None:
+                import copy
+
+                wheels = copy.copy(wheels)
+                wheels.tyre = Tyre.coerce(tyre)
+        wheels.check_on(self.shape, self._mass, f"vehicle {self._name!r}")
+        if source is not None:
+            import copy
+
+            wheels = copy.copy(wheels)
+            wheels.source = source
+        other = self._copy(self._name)
+        other._wheels = wheels
+        return other
+
+    def _copy(self, name: str) -> Vehicle:
         other = Vehicle(
             self._mesh,
             self._mass,
@@ -870,7 +1029,14 @@ class Vehicle:
         other._quality = self._quality
         other._generator_params = self._generator_params
         other._shape = self.shape
+        other._wheels = self._wheels
         return other
+
+    def renamed(self, name: str) -> Vehicle:
+        """The same vehicle under another name (shares the mesh, the engine's shape, the
+        stiffness, the wheels and the quality report), e.g. to put two identical cars in one
+        scene."""
+        return self._copy(name)
 
     def summary(self) -> str:
         """A short human-readable description with the origin of every number."""
@@ -907,6 +1073,18 @@ class Vehicle:
                 f"  [dimensions: {self._sources.get('dimensions', USER)}; shape: "
                 f"{self._sources.get('body', USER)}]"
             )
+        w = self._wheels
+        if w is not None:
+            if w.wheelbase is not None and w.track is not None:
+                layout = (
+                    f"wheelbase {w.wheelbase:.3f} m, track {w.track[0]:.3f} / {w.track[1]:.3f} "
+                    f"m, CG {w.cg_to_front_axle:.3f} m behind the front axle and "
+                    f"{w.cg_height:.3f} m above the ground, tyre radius "
+                    f"{float(w.radii[0]):.3f} / {float(w.radii[-1]):.3f} m"
+                )
+            else:
+                layout = f"{len(w)} wheels ({', '.join(w.names)})"
+            lines.append(f"  wheels: {layout}, tyre {w.tyre.model}  [{w.source}]")
         stiffness_line = "  stiffness: " + ("; ".join(faces) if faces else "no data")
         if "stiffness" in self._sources:
             stiffness_line += f"  [{self._sources['stiffness']}]"
@@ -921,6 +1099,35 @@ class Vehicle:
 
 
 _INERTIA_WORDS = ("class", "mesh", "empirical")
+
+
+def _wheel_keys(
+    wheelbase: Any, track: Any, wheel_radius: Any, cg_to_front_axle: Any, tyre: Any, wheels: Any
+) -> dict[str, Any] | None:
+    """with_wheels keywords from a constructor's wheel keywords; None when no wheels are
+    asked for (none of track, wheel_radius, cg_to_front_axle, tyre, wheels given)."""
+    if wheels is not None:
+        if any(v is not None for v in (track, wheel_radius, cg_to_front_axle)):
+            raise ParameterError(
+                "give wheels or track, wheel_radius and cg_to_front_axle, not both"
+            )
+        return {"wheels": wheels, "tyre": tyre}
+    asked = {"track": track, "wheel_radius": wheel_radius, "cg_to_front_axle": cg_to_front_axle}
+    if all(v is None for v in asked.values()) and tyre is None:
+        return None
+    missing = [k for k, v in {"wheelbase": wheelbase, **asked}.items() if v is None]
+    if missing:
+        raise ParameterError(
+            f"wheels need wheelbase, track, wheel_radius and cg_to_front_axle (m): "
+            f"{', '.join(missing)} missing"
+        )
+    return {
+        "wheelbase": wheelbase,
+        "track": track,
+        "radius": wheel_radius,
+        "cg_to_front_axle": cg_to_front_axle,
+        "tyre": tyre,
+    }
 
 
 def _preset_class(preset: Any) -> tuple[VehicleClass, str]:

@@ -12,7 +12,9 @@ classes and faces: those values are flagged as derived).
 Lengths follow the vehicle body frame (ISO 8855: x forward, y left, z up): ``length`` along x,
 ``width`` along y, ``height`` along z, ``cg_to_front_axle`` along x from the centre of mass to the
 front axle, ``cg_height`` above the ground. ``yaw_inertia`` is about the vertical axis through the
-centre of mass. Crush stiffness per face: force per unit width F/W = A + B C (see
+centre of mass. ``track_front`` and ``track_rear`` are the distances
+between the wheel centres of an axle (along y); ``tyre_radius`` is the tyre's rolling radius
+(m). Crush stiffness per face: force per unit width F/W = A + B C (see
 :mod:`crashsim.vehicles.stiffness`); the "side" face gives both "left" and "right".
 """
 
@@ -49,6 +51,9 @@ _FIELDS = (
     "cg_to_front_axle",
     "cg_height",
     "yaw_inertia",
+    "track_front",
+    "track_rear",
+    "tyre_radius",
 )
 _FACES = ("front", "rear", "side")
 
@@ -107,6 +112,9 @@ class VehicleClass:
     cg_to_front_axle: Figure
     cg_height: Figure
     yaw_inertia: Figure
+    track_front: Figure
+    track_rear: Figure
+    tyre_radius: Figure
     front: FaceData
     rear: FaceData
     side: FaceData

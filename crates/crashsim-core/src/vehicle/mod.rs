@@ -8,7 +8,7 @@ pub mod tyre;
 pub mod wheel;
 
 pub use inputs::{Braking, DriverInputs, Table, Trigger, WheelState, WheelSwitch};
-pub use tyre::{Tyre, TyreForce, TyreModel, WheelAction};
+pub use tyre::{Tyre, TyreForce, TyreModel, WheelAction, MAGIC_FORMULA_DEFAULTS};
 pub use wheel::{
     static_loads, WheelSpec, DEFAULT_DAMPING_RATIO, DEFAULT_NATURAL_FREQUENCY, GRAVITY,
 };

@@ -47,6 +47,11 @@ const ROLLING_RESISTANCE_SPEED: Real = 0.1;
 /// there), with the tread deflected sigma times this (3.5 cm at sigma 0.1 m).
 const MAGIC_FORMULA_MAX_SLIP: Real = 0.35;
 
+/// A typical dry passenger tyre's Magic Formula factors (B 1/rad, C, E) (Pacejka, Tire and
+/// Vehicle Dynamics, 3rd ed., ch. 4): the defaults of [`TyreModel::MagicFormula`] where a
+/// caller gives none.
+pub const MAGIC_FORMULA_DEFAULTS: [Real; 3] = [10.0, 1.9, 0.97];
+
 /// The force law of a tyre.
 #[derive(Clone, Debug, PartialEq)]
 pub enum TyreModel {

@@ -9,9 +9,8 @@ use super::{Motion, Pair, World, TIME_TOLERANCE};
 use crate::bisect::bisect;
 use crate::error::{Error, Result};
 use crate::math::{Aabb, Isometry, Point, Real, Vector};
-use crate::motion::MAX_SUBSTEP;
 use crate::overlap::{
-    overlap_region, shapes_overlap, surface_distance, surfaces_intersect, QueryWorkspace,
+    overlap_region, shapes_overlap, surface_distance_from, surfaces_intersect, QueryWorkspace,
 };
 
 /// Smallest conservative-advancement step (s), and as a fraction of the step searched:
@@ -21,6 +20,13 @@ const MIN_ADVANCE_FRACTION: Real = 1e-3;
 /// A bound on a body's acceleration on the ground (m/s^2) for how far its path bends away
 /// from its chord within a step: tyre friction and gravity give at most a few g.
 const CHORD_ACCELERATION: Real = 100.0;
+/// What a first-contact search found: the instant (an offset from now, s) if any, the time
+/// (s) before which the pair is certified clear, and the closest pair of triangles met.
+type Search = (Option<Real>, Real, Option<(u32, u32)>);
+
+/// The farthest a pair's first distance query looks ahead, in steps: far enough that a pair
+/// drifting apart is queried a few times, near enough that the query stays cheap.
+const MAX_LOOKAHEAD: Real = 64.0;
 /// Most conservative-advancement iterations in one step before giving up.
 const MAX_ADVANCE_ITERATIONS: usize = 100_000;
 
@@ -57,21 +63,23 @@ impl World {
         match wb.motion {
             Motion::Free => (0.0, wb.body.angular_speed_bound()),
             Motion::Fixed => (0.0, 0.0),
-            Motion::OnGround(_) => {
-                let n = (span / MAX_SUBSTEP).ceil().max(1.0) as usize;
-                let (v0, w0) = (wb.body.velocity(), wb.body.angular_velocity());
-                let (mut dv, mut w, mut step_v, mut step_w) = (0.0, w0.norm(), 0.0, 0.0);
-                let (mut prev_v, mut prev_w) = (v0, w0);
-                for k in 1..=n {
-                    let b = self.predicted(i, span * k as Real / n as Real);
-                    let (v, wk) = (b.velocity(), b.angular_velocity());
-                    dv = Real::max(dv, (v - v0).norm());
-                    w = w.max(wk.norm());
-                    step_v = Real::max(step_v, (v - prev_v).norm());
-                    step_w = Real::max(step_w, (wk - prev_w).norm());
-                    (prev_v, prev_w) = (v, wk);
+            Motion::OnGround(ref g) => {
+                let ground = self
+                    .ground
+                    .as_ref()
+                    .expect("a body on the ground has a ground");
+                match g.motion_bound(&wb.body, ground, self.time, span) {
+                    Ok(bound) => bound,
+                    Err(e) => {
+                        // A wheel leaves the terrain ahead: the stepper reports it.
+                        let e = match e {
+                            Error::Simulation(m) => Error::Simulation(format!("body {i}: {m}")),
+                            other => other,
+                        };
+                        self.deferred.lock().expect("not poisoned").get_or_insert(e);
+                        (Real::INFINITY, Real::INFINITY)
+                    }
                 }
-                (dv + step_v, w + step_w)
             }
         }
     }
@@ -128,29 +136,52 @@ impl World {
         span: Real,
         poll: &mut dyn FnMut(Real) -> bool,
     ) -> Result<Option<Real>> {
+        let pair = &self.pairs[pi];
+        if pair.clear_until >= self.time + span {
+            return Ok(None); // certified clear: no mesh query
+        }
         let mut ws = std::mem::take(&mut self.ws);
         let found = self.first_contact_with(pi, span, poll, &mut ws);
         self.ws = ws;
-        found
+        let (found, clear, closest) = found?;
+        let pair = &mut self.pairs[pi];
+        pair.closest = closest.or(pair.closest);
+        let horizon = span * pair.lookahead;
+        pair.clear_until = clear;
+        if clear >= self.time + horizon * (1.0 - 1e-6) {
+            pair.lookahead = (pair.lookahead * 2.0).min(MAX_LOOKAHEAD); // it held: look further
+        } else if clear < self.time + 2.0 * span {
+            pair.lookahead = 1.0; // the surfaces are close
+        }
+        Ok(found)
     }
 
-    /// [`World::first_contact`] with a query workspace of its own.
+    /// [`World::first_contact`] with a query workspace of its own; also returns the time
+    /// (s) before which the pair is certified clear.
+    ///
+    /// The certificate: the first distance query reaches `lookahead` spans ahead (its cap is
+    /// the distance the surfaces can close over that horizon); a distance d with a speed
+    /// bound S valid over the horizon (exact for torque-free and fixed bodies, whose bound
+    /// holds for ever; predicted over the horizon for a body on the ground) means no contact
+    /// for d / S. Steps inside it make no mesh query.
     fn first_contact_with(
         &self,
         pi: usize,
         span: Real,
         poll: &mut dyn FnMut(Real) -> bool,
         ws: &mut QueryWorkspace,
-    ) -> Result<Option<Real>> {
+    ) -> Result<Search> {
         let pair = self.pairs[pi].clone();
+        let mut closest = pair.closest;
+        let none = Real::NEG_INFINITY;
         if span <= 0.0 {
-            return Ok(None);
+            return Ok((None, none, closest));
         }
         if !self
             .swept_box(pair.body1, span)
             .intersects(&self.swept_box(pair.body2, span))
         {
-            return Ok(None);
+            return Ok((None, self.time + span, closest));
         }
         let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
         let (s1, s2) = (wb1.shape.clone(), wb2.shape.clone());
@@ -165,8 +196,25 @@ impl World {
             + w1 * s1.radius()
             + w2 * s2.radius();
         if speed == 0.0 {
-            return Ok(None);
+            return Ok((None, self.time + span, closest));
         }
+        // The horizon of the first query and the speed bound over it.
+        let on_ground = [pair.body1, pair.body2]
+            .iter()
+            .any(|&i| matches!(self.bodies[i].motion, Motion::OnGround(_)));
+        let horizon = span * pair.lookahead;
+        let horizon_speed = if on_ground && pair.lookahead > 1.0 {
+            let (dv1, w1) = self.motion_bound(pair.body1, horizon);
+            let (dv2, w2) = self.motion_bound(pair.body2, horizon);
+            ((wb1.body.velocity() - wb2.body.velocity()).norm()
+                + dv1
+                + dv2
+                + w1 * s1.radius()
+                + w2 * s2.radius())
+            .max(speed)
+        } else {
+            speed
+        };
         let mut lo = 0.0; // offset from self.time known apart
         let mut t = 0.0;
         let min_advance = MIN_ADVANCE.max(MIN_ADVANCE_FRACTION * span);
@@ -175,8 +223,15 @@ impl World {
                 return Err(interrupted(self.time));
             }
             let (p1, p2) = self.poses_after(&pair, t);
-            let cap = (span - t) * speed * (1.0 + 1e-9) + 1e-12;
-            let d = surface_distance(&s1, &p1, &s2, &p2, cap, ws);
+            let cap = if t == 0.0 {
+                (span * speed).max(horizon * horizon_speed) * (1.0 + 1e-9) + 1e-12
+            } else {
+                (span - t) * speed * (1.0 + 1e-9) + 1e-12
+            };
+            let (d, near) = surface_distance_from(&s1, &p1, &s2, &p2, cap, closest, ws);
+            self.distance_queries
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            closest = near.or(closest);
             // Zero distance without a crossing is a touch (e.g. coplanar faces on the ground):
             // not an overlap, so keep advancing by the smallest step.
             if d == 0.0 && surfaces_intersect(&s1, &p1, &s2, &p2, ws) {
@@ -193,21 +248,26 @@ impl World {
                     !overlap_region(&s1, &p1, &s2, &p2).is_empty()
                 };
                 if overlaps(hi) {
-                    return Ok(Some(hi));
+                    return Ok((Some(hi), none, closest));
                 }
                 // The surfaces only touch at hi; the overlap starts later, if at all.
                 if hi < t && overlaps(t) {
-                    return Ok(Some(bisect(hi, t, TIME_TOLERANCE, overlaps)));
+                    return Ok((Some(bisect(hi, t, TIME_TOLERANCE, overlaps)), none, closest));
                 }
                 if t >= span {
-                    return Ok(None);
+                    return Ok((None, self.time + span, closest));
                 }
                 lo = t;
                 t = (t + min_advance).min(span);
                 continue;
             }
             if t >= span || t + d / speed > span {
-                return Ok(None);
+                let clear = if t == 0.0 {
+                    (d / horizon_speed).min(horizon)
+                } else {
+                    span
+                };
+                return Ok((None, self.time + clear.max(span), closest));
             }
             lo = t;
             t = (t + (d / speed).max(min_advance)).min(span);

@@ -7,7 +7,7 @@ use crate::bisect::bisect;
 use crate::body::RigidBody;
 use crate::contact::{
     CentroidMode, NormalMode, MAX_DEPTH_OF_PENETRATION, NORMAL_COLLAPSE, NORMAL_FOOTPRINT,
-    NORMAL_PROBES, TYPICAL_DEPTH_OF_PENETRATION,
+    NORMAL_PROBES, NORMAL_PROBE_RATIO, TYPICAL_DEPTH_OF_PENETRATION,
 };
 use crate::math::{Matrix, Point, Real, Vector};
 use crate::overlap::{overlap_region, OverlapRegion};
@@ -113,7 +113,7 @@ impl World {
     ///    above (a narrow overlap is read deeper: bisection on the footprint, to 1e-6 s; one
     ///    that ends first, where its footprint is largest among FOOTPRINT_SAMPLES samples);
     /// 2. but no deeper than where its vector area is still sound: at least NORMAL_COLLAPSE
-    ///    of the largest at NORMAL_PROBES shallower depths NORMAL_DEPTH / 2^k, and within
+    ///    of the largest at NORMAL_PROBES shallower depths NORMAL_DEPTH / 4^k, and within
     ///    acos(-NORMAL_COLLAPSE) = 120 deg of the shallowest overlap's normal (else a thin
     ///    part was cut through, or a small one is wholly inside: the deepest sound probe).
     pub(super) fn early_normal(
@@ -157,7 +157,7 @@ impl World {
         // scrape along the sides) is neither.
         let mut probes = Vec::with_capacity(NORMAL_PROBES);
         for k in 1..=NORMAL_PROBES {
-            let dt = dt0 * (0.5 as Real).powi(k as i32);
+            let dt = dt0 / NORMAL_PROBE_RATIO.powi(k as i32);
             let (r, b1, _) = region_at(dt);
             probes.push((dt, r, b1));
         }

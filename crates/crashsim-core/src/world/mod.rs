@@ -18,6 +18,7 @@ mod first_contact;
 mod geometry;
 mod stepper;
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 use crate::body::{BodyState, MassProperties, RigidBody};
@@ -73,6 +74,16 @@ struct Pair {
     params: ContactParams,
     phase: Phase,
     exchanges: usize,
+    /// Before this time (s) the apart pair cannot touch: certified by a distance and a speed
+    /// bound that holds until then (see first_contact.rs). Forgotten when either body's
+    /// motion jumps (an exchange) or the pair leaves its apart phase.
+    clear_until: Real,
+    /// How many steps ahead (a power of two) the pair's distance query certifies: doubled
+    /// while the certificates hold for longer, back to one when the surfaces come close.
+    lookahead: Real,
+    /// The closest pair of triangles (of body 1, body 2) at the pair's last distance query:
+    /// the next query starts from it.
+    closest: Option<(u32, u32)>,
 }
 
 /// How a body moves between exchanges.
@@ -111,7 +122,26 @@ pub struct World {
     /// An error met inside a prediction that cannot return one (a wheel off the terrain in a
     /// bisection); the stepper returns it after the step.
     deferred: Mutex<Option<Error>>,
+    /// Distance queries between meshes made by the first-contact search so far (a count for
+    /// tests and benchmarks: a step with every pair out of reach makes none).
+    distance_queries: AtomicU64,
+    /// The latest predictions of bodies on the ground (each an integration of its own):
+    /// a step asks for the same ones several times (swept box, speed bound, search, advance).
+    predictions: Mutex<Vec<Prediction>>,
 }
+
+/// A body on the ground as predicted `dt` s after `time` (keys as bits: exact matches only).
+#[derive(Clone, Debug)]
+struct Prediction {
+    body: usize,
+    time: u64,
+    dt: u64,
+    state: RigidBody,
+    motion: OnGround,
+}
+
+/// How many predictions are kept.
+const PREDICTIONS_KEPT: usize = 32;
 
 impl World {
     /// An empty world at t = 0.
@@ -122,6 +152,11 @@ impl World {
     /// Current time (s).
     pub fn time(&self) -> Real {
         self.time
+    }
+
+    /// Distance queries between meshes the first-contact search has made so far.
+    pub fn distance_queries(&self) -> u64 {
+        self.distance_queries.load(Ordering::Relaxed)
     }
 
     /// Number of bodies.
@@ -184,6 +219,9 @@ impl World {
                 params: ContactParams::default(),
                 phase: Phase::Apart,
                 exchanges: 0,
+                clear_until: Real::NEG_INFINITY,
+                lookahead: 1.0,
+                closest: None,
             });
         }
         self.bodies.push(WorldBody {
@@ -268,6 +306,16 @@ impl World {
         Ok(())
     }
 
+    /// Forgets the clearance certificates of every pair with body `i` (its motion jumped).
+    fn forget_clearance(&mut self, i: usize) {
+        for p in &mut self.pairs {
+            if p.body1 == i || p.body2 == i {
+                p.clear_until = Real::NEG_INFINITY;
+                p.lookahead = 1.0;
+            }
+        }
+    }
+
     /// Body `i` as it will be `dt` s from now (or was, for dt < 0, within the current step),
     /// moving as the run moves it. For a body on the ground an error (a wheel off the
     /// terrain) is kept for the stepper and the torque-free prediction returned meanwhile.
@@ -276,6 +324,27 @@ impl World {
         match &wb.motion {
             Motion::Free => wb.body.advanced(dt),
             Motion::Fixed => wb.body.clone(),
+            Motion::OnGround(_) => self
+                .predicted_on_ground(i, dt)
+                .map_or_else(|| wb.body.advanced(dt), |p| p.state),
+        }
+    }
+
+    /// A prediction of body `i` (on the ground) `dt` s from now, from the kept ones when
+    /// there; None (the error kept for the stepper) when a wheel leaves the terrain.
+    fn predicted_on_ground(&self, i: usize, dt: Real) -> Option<Prediction> {
+        let (time, dt_bits) = (self.time.to_bits(), dt.to_bits());
+        {
+            let kept = self.predictions.lock().expect("not poisoned");
+            if let Some(p) = kept
+                .iter()
+                .find(|p| p.body == i && p.time == time && p.dt == dt_bits)
+            {
+                return Some(p.clone());
+            }
+        }
+        let wb = &self.bodies[i];
+        match &wb.motion {
             Motion::OnGround(g) => {
                 let ground = self
                     .ground
@@ -295,12 +364,34 @@ impl World {
                     (b.clone(), g0.as_ref().clone(), *t0, self.time + dt - t0)
                 };
                 if let Err(e) = motion.advance(&mut body, ground, from, span.max(0.0)) {
+                    let e = match e {
+                        Error::Simulation(m) => Error::Simulation(format!("body {i}: {m}")),
+                        other => other,
+                    };
                     self.deferred.lock().expect("not poisoned").get_or_insert(e);
-                    return wb.body.advanced(dt);
+                    return None;
                 }
-                body
+                let p = Prediction {
+                    body: i,
+                    time,
+                    dt: dt_bits,
+                    state: body,
+                    motion,
+                };
+                let mut kept = self.predictions.lock().expect("not poisoned");
+                if kept.len() >= PREDICTIONS_KEPT {
+                    kept.remove(0);
+                }
+                kept.push(p.clone());
+                Some(p)
             }
+            _ => None,
         }
+    }
+
+    /// Forgets every kept prediction (a body's state jumped at the current time).
+    fn forget_predictions(&self) {
+        self.predictions.lock().expect("not poisoned").clear();
     }
 
     /// Sets body `i`'s face stiffness (used by automatic dt_p, the stiffness centroid and

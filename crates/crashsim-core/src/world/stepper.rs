@@ -27,12 +27,21 @@ pub const DEFAULT_SAMPLES: usize = 100_000;
 /// same size while it is built, so a run's peak is about twice this.
 pub const DEFAULT_MAX_HISTORY_BYTES: u64 = 1 << 30;
 
-/// A vehicle is at rest once its CG speed stays below this (m/s) ...
+/// A vehicle is at rest once its CG speed along the ground stays below this (m/s) ...
 pub const REST_SPEED: Real = 0.05;
 /// ... and its yaw rate below this (rad/s, 0.5 deg/s) ...
 pub const REST_YAW_RATE: Real = 0.5 * std::f64::consts::PI / 180.0;
 /// ... for this long (s) (DESIGN.md section 5).
 pub const REST_TIME: Real = 0.2;
+/// A body faster than this along the ground (m/s) is moving again: its time to rest starts
+/// over.
+pub const MOVING_SPEED: Real = 10.0 * REST_SPEED;
+/// A run until rest stops once, besides, every body on the ground has settled: its CG speed
+/// (vertical too) below REST_SPEED and its angular speed about every axis below this (rad/s,
+/// 2 deg/s). Speed and yaw rate alone stopped a run while the car still rocked on its springs
+/// after a skid (wheel loads 5 % off the axle shares); the rest time reported is the one of
+/// travel and yaw.
+pub const SETTLED_ANGULAR_SPEED: Real = 2.0 * std::f64::consts::PI / 180.0;
 
 /// How a run stops and keeps its history of states.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,9 +54,10 @@ pub struct RunOptions {
     /// Largest history a run may keep (bytes, default [`DEFAULT_MAX_HISTORY_BYTES`]): a run
     /// whose estimate is larger is refused before it starts, with the interval that fits.
     pub max_history_bytes: u64,
-    /// Stop as soon as every body on the ground is at rest (speed below [`REST_SPEED`] and
-    /// yaw rate below [`REST_YAW_RATE`] for [`REST_TIME`]); the duration is then the
-    /// longest the run may take. Needs a ground.
+    /// Stop as soon as every body on the ground is at rest (speed along the ground below
+    /// [`REST_SPEED`] and yaw rate below [`REST_YAW_RATE`] for [`REST_TIME`]) and settled
+    /// ([`SETTLED_ANGULAR_SPEED`]); the duration is then the longest the run may take. Needs
+    /// a ground.
     pub until_rest: bool,
 }
 
@@ -212,6 +222,8 @@ impl World {
         let mut k = 1usize;
         // Since when each body has been slow enough to be at rest (s), if it is.
         let mut slow_since: Vec<Option<Real>> = vec![None; self.bodies.len()];
+        // When each body on the ground first came to rest after it last moved (s).
+        let mut stopped_at: Vec<Option<Real>> = vec![None; self.bodies.len()];
         while self.time < t_end {
             if options.until_rest && self.all_at_rest(&slow_since) {
                 break;
@@ -280,7 +292,7 @@ impl World {
             if let Some(e) = self.deferred.lock().expect("not poisoned").take() {
                 return Err(e);
             }
-            self.track_rest(&mut slow_since);
+            self.track_rest(&mut slow_since, &mut stopped_at);
             let on_grid = target == grid;
             let event = out.impacts.len() > impacts || out.contacts.len() > contacts;
             if !on_grid || event || k % stride == 0 || k >= steps {
@@ -298,34 +310,49 @@ impl World {
             if matches!(self.bodies[i].motion, Motion::OnGround(_))
                 && since.is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12)
             {
-                out.rest[i] = *since;
+                out.rest[i] = stopped_at[i].or(*since);
             }
         }
         self.step_start = None;
         Ok(out)
     }
 
-    /// Updates since when each body on the ground has been slow enough to be at rest.
-    fn track_rest(&self, slow_since: &mut [Option<Real>]) {
+    /// Updates since when each body on the ground has been slow enough to be at rest, and when
+    /// it first came to rest after it last moved (faster than [`MOVING_SPEED`] or yawing
+    /// faster than ten times [`REST_YAW_RATE`]): the time to rest reported, which the rock on
+    /// the springs after a skid (a few cm/s back and forth) does not push back.
+    fn track_rest(&self, slow_since: &mut [Option<Real>], stopped_at: &mut [Option<Real>]) {
         for (i, wb) in self.bodies.iter().enumerate() {
             if !matches!(wb.motion, Motion::OnGround(_)) {
                 continue;
             }
-            let slow = wb.body.velocity().norm() < REST_SPEED
-                && wb.body.angular_velocity().z.abs() < REST_YAW_RATE;
+            // Travel along the ground and yaw: the bounce and rock on the springs after a stop
+            // are settling, not travel (they are waited for before a run until rest stops).
+            let v = wb.body.velocity();
+            let slow =
+                v.x.hypot(v.y) < REST_SPEED && wb.body.angular_velocity().z.abs() < REST_YAW_RATE;
             slow_since[i] = if slow {
                 slow_since[i].or(Some(self.time))
             } else {
                 None
             };
+            let yaw = wb.body.angular_velocity().z.abs();
+            if v.x.hypot(v.y) > MOVING_SPEED || yaw > 10.0 * REST_YAW_RATE {
+                stopped_at[i] = None;
+            } else if slow && stopped_at[i].is_none() {
+                stopped_at[i] = Some(self.time);
+            }
         }
     }
 
-    /// True when every body on the ground has been slow for [`REST_TIME`].
+    /// True when every body on the ground has been slow for [`REST_TIME`] and has settled
+    /// (angular speed below [`SETTLED_ANGULAR_SPEED`]).
     fn all_at_rest(&self, slow_since: &[Option<Real>]) -> bool {
         self.bodies.iter().enumerate().all(|(i, wb)| {
             !matches!(wb.motion, Motion::OnGround(_))
-                || slow_since[i].is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12)
+                || (slow_since[i].is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12)
+                    && wb.body.velocity().norm() < REST_SPEED
+                    && wb.body.angular_velocity().norm() < SETTLED_ANGULAR_SPEED)
         })
     }
 
@@ -375,18 +402,23 @@ impl World {
 
     /// Moves every body on by `dt` s from now (> 0), as [`World::predicted`] does.
     fn move_bodies(&mut self, dt: Real) -> Result<()> {
-        let time = self.time;
-        for wb in &mut self.bodies {
+        for i in 0..self.bodies.len() {
+            if matches!(self.bodies[i].motion, Motion::OnGround(_)) {
+                // The prediction the step's search made is the same integration.
+                let p = self.predicted_on_ground(i, dt);
+                if let Some(e) = self.deferred.lock().expect("not poisoned").take() {
+                    return Err(e);
+                }
+                let p = p.expect("a failed prediction leaves its error");
+                let wb = &mut self.bodies[i];
+                wb.body = p.state;
+                wb.motion = Motion::OnGround(Box::new(p.motion));
+                continue;
+            }
+            let wb = &mut self.bodies[i];
             match &mut wb.motion {
                 Motion::Free => wb.body.advance(dt),
-                Motion::Fixed => {}
-                Motion::OnGround(g) => {
-                    let ground = self
-                        .ground
-                        .as_ref()
-                        .expect("a body on the ground has a ground");
-                    g.advance(&mut wb.body, ground, time, dt)?;
-                }
+                Motion::Fixed | Motion::OnGround(_) => {}
             }
         }
         Ok(())

@@ -1,0 +1,338 @@
+"""Driver inputs: steering, braking and drive force as time tables, and wheel states.
+
+Every table is a list of (time s, value) rows, linear between rows and held beyond its ends;
+times must increase. SI units: angles in rad (+ to the left, i.e. counter-clockwise seen from
+above), forces in N, decelerations in m/s^2, braking fractions in [0, 1] of the friction
+available at the wheel. A single number stands for a constant table.
+
+Wheels are named as in :mod:`crashsim.vehicles.wheels` ("front_left" or "FL", ...; an index
+for a custom layout), axles "front" and "rear", and "all" means every wheel. The engine
+checks the tables and ranges (increasing times, road-wheel angles within 60 deg, fractions in
+[0, 1], ...); its messages are passed on naming the table.
+
+    DriverInputs(
+        steering_wheel=[(0.0, 0.0), (0.5, deg(90))], steering_ratio=16.0,
+        brake={"front": [(0.2, 0.0), (0.4, 1.0)], "rear": [(0.2, 0.0), (0.4, 0.7)]},
+        wheel_states=[("FL", "locked", "exchange 1")],
+    )
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, TypeAlias
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from crashsim.errors import ParameterError
+from crashsim.vehicles.wheels import Wheels, check_with_engine
+
+__all__ = ["Brake", "DriverInputs", "TableLike", "WheelStateSwitch"]
+
+Array = NDArray[np.float64]
+TableLike: TypeAlias = float | ArrayLike
+"""A number (constant) or rows (time s, value)."""
+
+STATES = ("free", "locked", "braked")
+
+
+def _table(value: Any, name: str) -> Array:
+    """(k, 2) rows from a number or rows, checked by the engine (increasing times, finite
+    numbers); ParameterError naming the table otherwise."""
+    if isinstance(value, bool | str):
+        raise ParameterError(f"the {name} table must be numbers, got {value!r}")
+    try:
+        a = np.array(value, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise ParameterError(
+            f"the {name} table must be rows of (time s, value), got {value!r}"
+        ) from e
+    if a.ndim == 0:
+        a = np.array([[0.0, float(a)]])
+    if a.ndim != 2 or a.shape[1] != 2 or len(a) == 0:
+        raise ParameterError(
+            f"the {name} table must be rows of (time s, value), got shape {a.shape}"
+        )
+    try:
+        check_with_engine(drive=[a, None, None, None])
+    except ParameterError as e:
+        text = str(e).replace("wheel 0 drive force", name)
+        raise ParameterError(text) from e
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True)
+class Brake:
+    """A braking demand: ``kind`` "fraction" (of the friction available at the wheel, 0-1)
+    or "deceleration" (m/s^2: each wheel's force at most its load times demand / g, so every
+    wheel braked this way decelerates the vehicle at the demand while friction allows), and
+    its ``table`` of (time s, value) rows."""
+
+    kind: str
+    table: Array
+
+    @classmethod
+    def fraction(cls, table: TableLike) -> Brake:
+        """Braking at a fraction of the available friction (0 = none, 1 = at the limit)."""
+        return cls("fraction", _table(table, "braking fraction"))
+
+    @classmethod
+    def deceleration(cls, table: TableLike) -> Brake:
+        """Braking at a deceleration demand (m/s^2)."""
+        return cls("deceleration", _table(table, "braking deceleration"))
+
+
+def _brake(value: Any, name: str) -> Brake:
+    if isinstance(value, Brake):
+        if value.kind not in ("fraction", "deceleration"):
+            raise ParameterError(
+                f"{name}: braking is a 'fraction' of the friction or a 'deceleration', not "
+                f"{value.kind!r}"
+            )
+        return Brake(value.kind, _table(value.table, name))
+    return Brake("fraction", _table(value, name))
+
+
+@dataclass(frozen=True)
+class WheelStateSwitch:
+    """From ``at`` on, ``wheel`` (a name, an axle, "all" or an index) is ``state``: "free",
+    "locked" or "braked" at ``fraction`` of the friction (a wheel jammed by the crush).
+    ``at`` is a time (s) or ("exchange", n): the vehicle's n-th impulse exchange (1 = its
+    first), whichever the other party."""
+
+    wheel: str | int
+    state: str
+    at: float | tuple[str, int]
+    fraction: float = 1.0
+
+
+def _switch(value: Any, k: int) -> WheelStateSwitch:
+    if isinstance(value, WheelStateSwitch):
+        item = value
+    else:
+        if not isinstance(value, tuple | list) or len(value) not in (3, 4):
+            raise ParameterError(
+                f"wheel_states[{k}] must be (wheel, state, at) or (wheel, 'braked', at, "
+                f"fraction), got {value!r}"
+            )
+        item = WheelStateSwitch(*value)
+    state = item.state.strip().lower() if isinstance(item.state, str) else item.state
+    if state not in STATES:
+        raise ParameterError(
+            f"wheel_states[{k}]: state {item.state!r} is unknown: use 'free', 'locked' or "
+            "'braked' (with a fraction)"
+        )
+    at = item.at
+    if isinstance(at, str):
+        m = re.fullmatch(r"\s*exchange\s*(\d*)\s*", at.lower())
+        if m is None:
+            raise ParameterError(
+                f"wheel_states[{k}]: at = {at!r} is unknown: give a time (s), 'exchange' "
+                "(the vehicle's first) or 'exchange N'"
+            )
+        at = ("exchange", int(m.group(1) or 1))
+        if at[1] < 1:
+            raise ParameterError(
+                f"wheel_states[{k}]: exchange {at[1]}: exchanges count from 1 (the first)"
+            )
+    elif isinstance(at, tuple | list):
+        if len(at) != 2 or at[0] != "exchange" or isinstance(at[1], bool):
+            raise ParameterError(f"wheel_states[{k}]: at = {at!r}: give ('exchange', n)")
+        n = at[1]
+        if not isinstance(n, int | np.integer) or n < 1:
+            raise ParameterError(
+                f"wheel_states[{k}]: exchange {n!r}: exchanges count from 1 (a whole number)"
+            )
+        at = ("exchange", int(n))
+    else:
+        if isinstance(at, bool):
+            raise ParameterError(f"wheel_states[{k}]: at must be a time (s), got {at!r}")
+        try:
+            at = float(at)
+        except (TypeError, ValueError) as e:
+            raise ParameterError(
+                f"wheel_states[{k}]: at must be a time (s) or an exchange, got {at!r}"
+            ) from e
+        if not math.isfinite(at):
+            raise ParameterError(f"wheel_states[{k}]: time {at} is not a finite number of s")
+    try:
+        fraction = float(item.fraction)
+    except (TypeError, ValueError) as e:
+        raise ParameterError(f"wheel_states[{k}]: fraction must be a number in [0, 1]") from e
+    if state != "braked" and fraction != 1.0:
+        raise ParameterError(f"wheel_states[{k}]: a fraction is for the 'braked' state only")
+    if not 0.0 <= fraction <= 1.0:
+        raise ParameterError(
+            f"wheel_states[{k}]: braked fraction = {fraction} is invalid: it must lie in [0, 1]"
+        )
+    return WheelStateSwitch(item.wheel, state, at, fraction)
+
+
+def _targets(wheels: Wheels, key: str | int, what: str) -> tuple[int, ...]:
+    """The wheel indices a key names: a wheel, an axle or "all"."""
+    if isinstance(key, str) and key.strip().lower() == "all":
+        return tuple(range(len(wheels)))
+    if isinstance(key, str) and key.strip().lower() in ("front", "rear"):
+        return wheels.axle(key.strip().lower())
+    try:
+        return (wheels.index(key),)
+    except ParameterError as e:
+        raise ParameterError(f"{what}: {e}") from e
+
+
+class DriverInputs:
+    """A vehicle's driver inputs and wheel states (SI; see the module docstring).
+
+    - ``steer``: road-wheel angle of the steerable wheels (rad, + left), a table or a number;
+      or ``steering_wheel`` (rad) with ``steering_ratio`` (steering-wheel angle per road-wheel
+      angle, e.g. 16).
+    - ``brake``: a table of fractions (or a :class:`Brake`) for every wheel, or a mapping
+      from wheels, axles or "all" to tables or Brakes.
+    - ``drive``: drive force (N, + forward): a table for the whole vehicle (split equally
+      over every wheel), or a mapping from axles (the axle's total, split equally between
+      its wheels), wheels or "all" to tables.
+    - ``wheel_states``: (wheel, state, at) or (wheel, "braked", at, fraction) switches (see
+      :class:`WheelStateSwitch`); later ones win; every wheel starts free.
+
+    Tables are checked here (ParameterError naming the table); the rest (wheel names, the
+    steering range, fractions in [0, 1]) when a vehicle's wheels are known
+    (:meth:`to_core`, called by :meth:`crashsim.Scene.add`).
+    """
+
+    def __init__(
+        self,
+        *,
+        steer: TableLike | None = None,
+        steering_wheel: TableLike | None = None,
+        steering_ratio: float | None = None,
+        brake: TableLike | Brake | Mapping[str | int, TableLike | Brake] | None = None,
+        drive: TableLike | Mapping[str | int, TableLike] | None = None,
+        wheel_states: Sequence[Any] = (),
+    ) -> None:
+        if steer is not None and steering_wheel is not None:
+            raise ParameterError("give steer (road-wheel angle) or steering_wheel, not both")
+        self.steering_ratio: float | None = None
+        self.steering_wheel: Array | None = None
+        self.steer: Array | None = None
+        if steering_wheel is not None:
+            if steering_ratio is None:
+                raise ParameterError(
+                    "steering_wheel needs the steering_ratio (steering-wheel angle per road-"
+                    "wheel angle, about 15-20 for a car)"
+                )
+            ratio = float(steering_ratio)
+            if not math.isfinite(ratio) or ratio <= 0.0:
+                raise ParameterError(
+                    f"steering_ratio = {steering_ratio} is invalid: it must be > 0 (about 16)"
+                )
+            self.steering_ratio = ratio
+            self.steering_wheel = _table(steering_wheel, "steering_wheel")
+            road = self.steering_wheel.copy()
+            road[:, 1] /= ratio
+            road.setflags(write=False)
+            self.steer = road
+        elif steering_ratio is not None:
+            raise ParameterError("steering_ratio is for steering_wheel: drop it or give that")
+        elif steer is not None:
+            self.steer = _table(steer, "steer")
+        self.brake: dict[str | int, Brake] = {}
+        if isinstance(brake, Mapping):
+            for key, b in brake.items():
+                self.brake[key] = _brake(b, f"brake[{key!r}]")
+        elif brake is not None:
+            self.brake["all"] = _brake(brake, "brake")
+        self.drive: dict[str | int, Array] = {}
+        self._drive_total = False
+        if isinstance(drive, Mapping):
+            for key, d in drive.items():
+                self.drive[key] = _table(d, f"drive[{key!r}]")
+        elif drive is not None:
+            self.drive["all"] = _table(drive, "drive")
+            self._drive_total = True
+        if isinstance(wheel_states, str | WheelStateSwitch) or (
+            isinstance(wheel_states, tuple) and wheel_states and isinstance(wheel_states[0], str)
+        ):
+            raise ParameterError(
+                "wheel_states must be a list of (wheel, state, at) switches, e.g. "
+                "[('FL', 'locked', 0.0)]"
+            )
+        self.wheel_states: tuple[WheelStateSwitch, ...] = tuple(
+            _switch(s, k) for k, s in enumerate(wheel_states)
+        )
+
+    def to_core(self, wheels: Wheels, what: str = "inputs") -> dict[str, Any]:
+        """World.set_vehicle keywords (steer, brake, drive, switches) for these wheels,
+        checked by the engine; ``what`` names the vehicle in messages."""
+        n = len(wheels)
+        brake: list[tuple[str, Array] | None] = [None] * n
+        # "all" first, then axles, then wheels: the most specific key wins.
+        order = sorted(self.brake, key=lambda k: _rank(k))
+        for key in order:
+            b = self.brake[key]
+            for i in _targets(wheels, key, f"{what}: brake[{key!r}]"):
+                brake[i] = (b.kind, b.table)
+        drive: list[Array | None] = [None] * n
+        for key in sorted(self.drive, key=lambda k: _rank(k)):
+            targets = _targets(wheels, key, f"{what}: drive[{key!r}]")
+            table = self.drive[key]
+            share = 1.0 if isinstance(key, int) or _rank(key) == 2 else 1.0 / len(targets)
+            for i in targets:
+                t = table.copy()
+                t[:, 1] *= share
+                drive[i] = t
+        switches = []
+        for k, s in enumerate(self.wheel_states):
+            for i in _targets(wheels, s.wheel, f"{what}: wheel_states[{k}]"):
+                if isinstance(s.at, tuple):
+                    switches.append((i, "exchange", float(s.at[1]), s.state, s.fraction))
+                else:
+                    switches.append((i, "time", float(s.at), s.state, s.fraction))
+        out: dict[str, Any] = {"switches": switches}
+        if self.steer is not None:
+            out["steer"] = self.steer
+        if any(b is not None for b in brake):
+            out["brake"] = brake
+        if any(d is not None for d in drive):
+            out["drive"] = drive
+        try:
+            wheels.check_inputs(**out)
+        except ParameterError as e:
+            text = str(e)
+            if self.steering_wheel is not None and "steering angle" in text:
+                text += f" (steering_wheel / steering_ratio {self.steering_ratio:g})"
+            raise ParameterError(f"{what}: {_named(text, wheels)}") from e
+        return out
+
+    def __repr__(self) -> str:
+        parts = []
+        if self.steer is not None:
+            parts.append(f"steer={len(self.steer)} rows")
+        if self.brake:
+            parts.append(f"brake={list(self.brake)}")
+        if self.drive:
+            parts.append(f"drive={list(self.drive)}")
+        if self.wheel_states:
+            parts.append(f"wheel_states={len(self.wheel_states)}")
+        return f"DriverInputs({', '.join(parts)})"
+
+
+def _rank(key: str | int) -> int:
+    """0 for "all", 1 for an axle, 2 for a wheel."""
+    if isinstance(key, str) and key.strip().lower() == "all":
+        return 0
+    if isinstance(key, str) and key.strip().lower() in ("front", "rear"):
+        return 1
+    return 2
+
+
+def _named(text: str, wheels: Wheels) -> str:
+    def name(m: re.Match[str]) -> str:
+        k = int(m.group(1))
+        return f"wheel {wheels.names[k]!r}" if 0 <= k < len(wheels) else m.group(0)
+
+    return re.sub(r"\bwheel (\d+)\b", name, text)

@@ -1,0 +1,602 @@
+"""Wheels and tyres: what a vehicle stands and runs on when the scene has a ground.
+
+Frames and units: SI. Wheel centres are in the vehicle's body frame (ISO 8855: origin at the
+CG, x forward, y left, z up; m) at static ride height, so a wheel of radius R under a CG at
+height h above level ground has its centre at z = R - h. Each wheel is a vertical
+spring-damper whose preload is its static load (the axle shares of the weight, from the
+engine's ``_core.static_loads``); its rate and damping come from a natural frequency and a
+damping ratio (``_core.suspension``) unless given. The engine's defaults (1.3 Hz, 0.3, the
+tyre's saturation angle, relaxation length and rolling resistance) are read from
+``_core.dynamics_defaults()``: this module repeats none of them.
+
+The usual four wheels are named ``front_left``, ``front_right``, ``rear_left``,
+``rear_right`` (also ``FL``, ``FR``, ``RL``, ``RR``), in that order (the engine's wheel
+indices); the axles are ``front`` and ``rear``. The engine checks every number (positive
+radii and rates, a CG over the wheels, wheels inside the body's outline); its messages are
+passed on with the wheels' names.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import re
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from crashsim import _core
+from crashsim.errors import ParameterError
+
+__all__ = [
+    "ABBREVIATIONS",
+    "AXLES",
+    "STANDARD_NAMES",
+    "TYRE_MODELS",
+    "Tyre",
+    "Wheels",
+    "dynamics_defaults",
+]
+
+Array = NDArray[np.float64]
+
+STANDARD_NAMES = ("front_left", "front_right", "rear_left", "rear_right")
+"""The names of the usual four wheels, in the engine's order."""
+ABBREVIATIONS = {"FL": "front_left", "FR": "front_right", "RL": "rear_left", "RR": "rear_right"}
+"""Short names of the usual four wheels."""
+AXLES = {"front": ("front_left", "front_right"), "rear": ("rear_left", "rear_right")}
+"""The wheels of each axle of the usual four."""
+TYRE_MODELS = ("linear", "magic_formula")
+"""The tyre models: the reconstruction tyre and Pacejka's Magic Formula."""
+
+
+@functools.cache
+def _defaults() -> dict[str, float]:
+    return dict(_core.dynamics_defaults())
+
+
+def dynamics_defaults() -> dict[str, float]:
+    """The engine's defaults for the ground, wheels and tyres, and its rest thresholds
+    (``_core.dynamics_defaults()``): gravity (m/s^2), natural_frequency (Hz),
+    damping_ratio, saturation_angle (rad), relaxation_length (m), rolling_resistance,
+    tyre_friction, body_friction, rest_speed (m/s), rest_yaw_rate (rad/s), rest_time (s)."""
+    return dict(_defaults())
+
+
+def _number(value: Any, name: str, unit: str) -> float:
+    if isinstance(value, bool | str):
+        raise ParameterError(f"{name} must be a number ({unit}), got {value!r}")
+    try:
+        x = float(value)
+    except (TypeError, ValueError) as e:
+        raise ParameterError(f"{name} must be a number ({unit}), got {value!r}") from e
+    if not math.isfinite(x):
+        raise ParameterError(f"{name} = {x} is invalid: give a finite number ({unit})")
+    return x
+
+
+def _renamed(error: ParameterError, names: Sequence[str], prefix: str = "") -> ParameterError:
+    """The engine's message with 'wheel k' replaced by the wheel's name."""
+
+    def name(m: re.Match[str]) -> str:
+        k = int(m.group(1))
+        return f"wheel {names[k]!r}" if 0 <= k < len(names) else m.group(0)
+
+    text = re.sub(r"\bwheel (\d+)\b", name, str(error))
+    return ParameterError(prefix + text)
+
+
+# -- the engine as a checker --------------------------------------------------------------------
+
+
+def _probe_world(half: Array, mass: float) -> _core.World:
+    """A world with one box body of half-extents ``half`` (m) centred on its CG."""
+    import trimesh
+
+    box = trimesh.creation.box(extents=2.0 * np.maximum(half, 1e-3))
+    world = _core.World()
+    shape = _core.Shape(np.asarray(box.vertices, dtype=np.float64), np.asarray(box.faces))
+    inertia = np.eye(3) * mass
+    world.add_body(shape, mass, inertia, (0, 0, 0), (1, 0, 0, 0), (0, 0, 0), (0, 0, 0))
+    return world
+
+
+def _probe_spec() -> dict[str, Any]:
+    """set_vehicle keywords of a valid four-wheeled probe of 1 kg (checking tyres and
+    inputs)."""
+    xy = np.array([[1.0, 0.5], [1.0, -0.5], [-1.0, 0.5], [-1.0, -0.5]])
+    loads = _core.static_loads(xy, _defaults()["gravity"])
+    rates = [_core.suspension(float(f)) for f in loads]
+    return {
+        "centers": np.c_[xy, np.full(4, -0.2)],
+        "radii": np.full(4, 0.3),
+        "steerable": [True, True, False, False],
+        "static_loads": loads,
+        "spring_rates": [r[0] for r in rates],
+        "damping": [r[1] for r in rates],
+    }
+
+
+def check_with_engine(**kwargs: Any) -> None:
+    """Ask the engine to check a tyre or driver inputs (set_vehicle keywords) on a probe
+    vehicle of four wheels; ParameterError with the engine's message otherwise."""
+    world = _probe_world(np.array([1.5, 1.0, 0.5]), 1.0)
+    world.set_vehicle(0, **{**_probe_spec(), **kwargs})
+
+
+# -- tyres ----------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Tyre:
+    """The tyre on every wheel of a vehicle.
+
+    ``model``: "linear" (default: the reconstruction tyre, lateral force linear in the slip
+    angle up to ``saturation_angle`` (rad), then mu Fz, the resultant inside the friction
+    circle) or "magic_formula" (Pacejka's D sin(C atan(B a - E (B a - atan(B a)))) with
+    D = mu Fz, factors ``b`` (1/rad), ``c``, ``e``). ``relaxation_length`` (m) and
+    ``rolling_resistance`` (force / load) apply to both. A field left None takes the
+    engine's default (:meth:`resolved` shows them; :func:`dynamics_defaults`).
+    """
+
+    model: str = "linear"
+    saturation_angle: float | None = None
+    b: float | None = None
+    c: float | None = None
+    e: float | None = None
+    relaxation_length: float | None = None
+    rolling_resistance: float | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.model, str) or self.model not in TYRE_MODELS:
+            raise ParameterError(
+                f"tyre model {self.model!r} is unknown: use 'linear' (the reconstruction "
+                "tyre) or 'magic_formula'"
+            )
+        units = {
+            "saturation_angle": "rad",
+            "b": "1/rad",
+            "c": "1",
+            "e": "1",
+            "relaxation_length": "m",
+            "rolling_resistance": "1",
+        }
+        for name, unit in units.items():
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, _number(value, f"tyre {name}", unit))
+        if self.model == "linear":
+            given = [k for k in ("b", "c", "e") if getattr(self, k) is not None]
+            if given:
+                raise ParameterError(
+                    f"tyre {', '.join(given)} belong to model 'magic_formula', not 'linear': "
+                    "give model='magic_formula' or drop them"
+                )
+        elif self.saturation_angle is not None:
+            raise ParameterError(
+                "tyre saturation_angle belongs to model 'linear' (the reconstruction tyre): "
+                "the Magic Formula's shape comes from b, c and e"
+            )
+        try:
+            check_with_engine(tyre=self.to_core())
+        except ParameterError as err:
+            raise ParameterError(f"tyre: {err}") from err
+
+    def to_core(self) -> dict[str, Any]:
+        """The dict World.set_vehicle takes (fields left None are omitted: engine defaults)."""
+        out: dict[str, Any] = {"model": self.model}
+        for k in ("saturation_angle", "b", "c", "e", "relaxation_length", "rolling_resistance"):
+            value = getattr(self, k)
+            if value is not None:
+                out[k] = value
+        return out
+
+    def resolved(self) -> dict[str, Any]:
+        """Every parameter as the engine runs it: the given ones and the engine's defaults
+        for the others (the Magic Formula's b, c, e defaults are not exported by the engine:
+        None when not given)."""
+        d = _defaults()
+        out: dict[str, Any] = {"model": self.model}
+        if self.model == "linear":
+            out["saturation_angle"] = (
+                d["saturation_angle"] if self.saturation_angle is None else self.saturation_angle
+            )
+        else:
+            out.update(b=self.b, c=self.c, e=self.e)
+        for k in ("relaxation_length", "rolling_resistance"):
+            value = getattr(self, k)
+            out[k] = d[k] if value is None else value
+        return out
+
+    @classmethod
+    def coerce(cls, value: Tyre | dict[str, Any] | None) -> Tyre:
+        """A Tyre from a Tyre, a dict of its fields, or None (the default tyre)."""
+        if value is None:
+            return cls()
+        if isinstance(value, Tyre):
+            return value
+        if isinstance(value, dict):
+            unknown = sorted(set(value) - {f for f in cls.__dataclass_fields__})
+            if unknown:
+                raise ParameterError(
+                    f"unknown tyre parameter(s) {', '.join(unknown)}: the tyre's parameters are "
+                    f"{', '.join(cls.__dataclass_fields__)}"
+                )
+            return cls(**value)
+        raise ParameterError(f"tyre must be a crashsim.Tyre or a dict, got {value!r}")
+
+
+# -- wheels ---------------------------------------------------------------------------------------
+
+
+def _pair(value: Any, name: str, unit: str) -> tuple[float, float]:
+    """(front, rear) from one number or two."""
+    if isinstance(value, tuple | list | np.ndarray) and not isinstance(value, str):
+        items = list(np.asarray(value, dtype=object).reshape(-1))
+        if len(items) != 2:
+            raise ParameterError(
+                f"{name} must be one number or (front, rear) ({unit}), got {len(items)} values"
+            )
+        return _number(items[0], f"{name} (front)", unit), _number(items[1], f"{name} (rear)", unit)
+    x = _number(value, name, unit)
+    return x, x
+
+
+def _per_wheel(
+    value: Any, name: str, unit: str, n: int, axles: Sequence[int] | None
+) -> Array | None:
+    """None, or one value per wheel from one number, (front, rear) (axle wheels only) or
+    one per wheel."""
+    if value is None:
+        return None
+    if isinstance(value, str | bool):
+        raise ParameterError(f"{name} must be numbers ({unit}), got {value!r}")
+    try:
+        a = np.asarray(value, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError) as e:
+        raise ParameterError(f"{name} must be numbers ({unit}), got {value!r}") from e
+    if a.size == 1:
+        return np.full(n, float(a[0]))
+    if a.size == 2 and axles is not None:
+        return np.asarray([a[i] for i in axles], dtype=np.float64)
+    if a.size == n:
+        return a
+    shapes = "one number, (front, rear) or one per wheel" if axles is not None else "one number"
+    raise ParameterError(f"{name} must be {shapes} ({n} wheels), got {a.size} values ({unit})")
+
+
+class Wheels:
+    """A vehicle's wheels (body frame, SI): names, centres at static ride height, tyre radii,
+    which ones steer, their springs and dampers, and the tyre.
+
+    The usual four (this constructor): ``wheelbase`` (m), ``track`` (m; one number or
+    (front, rear)), ``cg_to_front_axle`` (m, from the CG forward to the front axle),
+    ``cg_height`` (m, the CG above level ground at static ride height) and ``radius`` (m,
+    tyre radius; one number or (front, rear)). ``steer``: the steerable axle ("front",
+    "rear", "both" or "none"). ``centerline_y``: the body-frame y of the wheels' centre
+    line (m; 0 when the CG is on it). Springs: ``natural_frequency`` (Hz) and
+    ``damping_ratio`` (one number or (front, rear); None: the engine's defaults), or
+    explicit ``spring_rates`` (N/m) and ``damping`` (N s/m) (one number, (front, rear) or
+    one per wheel), which take precedence. ``tyre``: a :class:`Tyre` (or a dict of its
+    fields). Other layouts: :meth:`custom`. ``source`` says where the numbers came from
+    ("user", or the class table for a generated vehicle).
+
+    Raises ParameterError naming the wheel for a bad number (a negative rate, a radius <= 0)
+    or a CG that is not over the wheels (the engine's checks); wheels outside the body are
+    found when the wheels are put on a vehicle (:meth:`crashsim.Vehicle.with_wheels`).
+    """
+
+    def __init__(
+        self,
+        wheelbase: float,
+        track: float | tuple[float, float],
+        cg_to_front_axle: float,
+        cg_height: float,
+        radius: float | tuple[float, float],
+        *,
+        steer: str = "front",
+        centerline_y: float = 0.0,
+        natural_frequency: float | tuple[float, float] | None = None,
+        damping_ratio: float | tuple[float, float] | None = None,
+        spring_rates: ArrayLike | None = None,
+        damping: ArrayLike | None = None,
+        tyre: Tyre | dict[str, Any] | None = None,
+    ) -> None:
+        wb = _number(wheelbase, "wheelbase", "m")
+        a = _number(cg_to_front_axle, "cg_to_front_axle", "m")
+        h = _number(cg_height, "cg_height", "m")
+        yc = _number(centerline_y, "centerline_y", "m")
+        tf, tr = _pair(track, "track", "m")
+        rf, rr = _pair(radius, "radius", "m")
+        for what, x in (("wheelbase", wb), ("track", min(tf, tr)), ("cg_height", h)):
+            if x <= 0.0:
+                raise ParameterError(f"{what} = {x} m is invalid: it must be > 0 m")
+        if not 0.0 < a < wb:
+            raise ParameterError(
+                f"cg_to_front_axle = {a} m with wheelbase = {wb} m: the CG is not over the "
+                "wheels; it must lie between the axles (0 < cg_to_front_axle < wheelbase)"
+            )
+        if steer not in ("front", "rear", "both", "none"):
+            raise ParameterError(
+                f"steer = {steer!r} is unknown: the steerable axle is 'front', 'rear', 'both' "
+                "or 'none'"
+            )
+        x = np.array([a, a, a - wb, a - wb])
+        y = yc + np.array([tf, -tf, tr, -tr]) / 2.0
+        radii = np.array([rf, rf, rr, rr])
+        centers = np.c_[x, y, radii - h]
+        steerable = (steer in ("front", "both"),) * 2 + (steer in ("rear", "both"),) * 2
+        self._init(
+            STANDARD_NAMES,
+            centers,
+            radii,
+            steerable,
+            natural_frequency,
+            damping_ratio,
+            spring_rates,
+            damping,
+            tyre,
+            axles=(0, 0, 1, 1),
+        )
+        self.wheelbase: float | None = wb
+        self.track: tuple[float, float] | None = (tf, tr)
+        self.cg_to_front_axle: float | None = a
+        self.cg_height: float | None = h
+        self.steer: str = steer
+
+    @classmethod
+    def from_class(
+        cls,
+        vehicle_class: str,
+        *,
+        wheelbase: float | None = None,
+        width: float | None = None,
+        cg_to_front_axle: float | None = None,
+        cg_height: float | None = None,
+        **kwargs: Any,
+    ) -> Wheels:
+        """The usual four wheels of a built-in vehicle class
+        (:func:`crashsim.vehicles.vehicle_data.vehicle_class`): its wheelbase, CG position,
+        CG height, front and rear track and tyre radius (docs/vehicle-data.md). Given
+        ``wheelbase`` or ``width`` (m), the CG's distance to the front axle scales with the
+        wheelbase and the tracks with the width; ``cg_to_front_axle`` and ``cg_height``
+        replace the class's; other keywords as for the constructor (``radius``, ``tyre``,
+        springs)."""
+        from crashsim.vehicles.vehicle_data import vehicle_class as lookup
+
+        vc = lookup(vehicle_class)
+        wb = vc.wheelbase.value if wheelbase is None else _number(wheelbase, "wheelbase", "m")
+        w = vc.width.value if width is None else _number(width, "width", "m")
+        a = vc.cg_to_front_axle.value * wb / vc.wheelbase.value
+        kwargs.setdefault("radius", vc.tyre_radius.value)
+        out = cls(
+            wb,
+            (vc.track_front.value * w / vc.width.value, vc.track_rear.value * w / vc.width.value),
+            a if cg_to_front_axle is None else cg_to_front_axle,
+            vc.cg_height.value if cg_height is None else cg_height,
+            **kwargs,
+        )
+        out.source = f"class table ({vc.name})"
+        return out
+
+    @classmethod
+    def custom(
+        cls,
+        centers: ArrayLike,
+        radii: ArrayLike,
+        steerable: Sequence[bool],
+        *,
+        names: Sequence[str] | None = None,
+        natural_frequency: ArrayLike | None = None,
+        damping_ratio: ArrayLike | None = None,
+        spring_rates: ArrayLike | None = None,
+        damping: ArrayLike | None = None,
+        tyre: Tyre | dict[str, Any] | None = None,
+    ) -> Wheels:
+        """Any layout of at least 3 wheels: ``centers`` (n, 3) body frame at static ride
+        height (m), ``radii`` (one or n, m), ``steerable`` flags, ``names`` (default
+        "wheel_0", ...); springs as for the constructor (one number or one per wheel)."""
+        try:
+            c = np.asarray(centers, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise ParameterError(f"wheel centres must be (n, 3) numbers (m): {e}") from e
+        if c.ndim != 2 or c.shape[1] != 3:
+            raise ParameterError(f"wheel centres must have shape (n, 3) (m), got {c.shape}")
+        n = len(c)
+        r = _per_wheel(radii, "radii", "m", n, None)
+        assert r is not None
+        flags = [bool(s) for s in steerable]
+        if len(flags) != n:
+            raise ParameterError(f"steerable must have one flag per wheel ({n}), got {len(flags)}")
+        wheel_names = tuple(f"wheel_{k}" for k in range(n)) if names is None else tuple(names)
+        if len(wheel_names) != n or len(set(wheel_names)) != n:
+            raise ParameterError(f"names must be {n} different wheel names, got {wheel_names}")
+        self = cls.__new__(cls)
+        self._init(
+            wheel_names,
+            c,
+            r,
+            tuple(flags),
+            natural_frequency,
+            damping_ratio,
+            spring_rates,
+            damping,
+            tyre,
+            axles=None,
+        )
+        self.wheelbase = self.track = self.cg_to_front_axle = self.cg_height = None
+        self.steer = "custom"
+        return self
+
+    def _init(
+        self,
+        names: tuple[str, ...],
+        centers: Array,
+        radii: Array,
+        steerable: tuple[bool, ...],
+        natural_frequency: Any,
+        damping_ratio: Any,
+        spring_rates: Any,
+        damping: Any,
+        tyre: Any,
+        axles: Sequence[int] | None,
+    ) -> None:
+        n = len(names)
+        self._names = names
+        self._centers = _frozen(centers)
+        self._radii = _frozen(radii)
+        self._steerable = steerable
+        self._frequency = _per_wheel(natural_frequency, "natural_frequency", "Hz", n, axles)
+        self._damping_ratio = _per_wheel(damping_ratio, "damping_ratio", "1", n, axles)
+        self._rates = _per_wheel(spring_rates, "spring_rates", "N/m", n, axles)
+        self._damping = _per_wheel(damping, "damping", "N s/m", n, axles)
+        self.tyre: Tyre = Tyre.coerce(tyre)
+        self.source = "user"
+        # What only the engine knows: CG over the wheels, positive numbers (weight scales).
+        self.spec(1.0)
+        self._check(self._probe(), 1.0, "")
+
+    def _probe(self) -> _core.World:
+        """A world with a box body around these wheels, of 1 kg."""
+        lo = np.min(self._centers, axis=0) - np.max(self._radii)
+        hi = np.max(self._centers, axis=0) + np.max(self._radii)
+        return _probe_world(np.maximum(np.abs(lo), np.abs(hi)) + 0.01, 1.0)
+
+    def check_inputs(self, **inputs: Any) -> None:
+        """The engine's checks of driver inputs (World.set_vehicle's steer, brake, drive,
+        switches) on these wheels; the engine's ParameterError otherwise."""
+        self._probe().set_vehicle(0, **self.spec(1.0), **inputs)
+
+    # -- what the engine gets --------------------------------------------------------------
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """The wheels' names, in the engine's order."""
+        return self._names
+
+    @property
+    def centers(self) -> Array:
+        """(n, 3) wheel centres at static ride height, body frame (m)."""
+        return self._centers
+
+    @property
+    def radii(self) -> Array:
+        """(n,) tyre radii (m)."""
+        return self._radii
+
+    @property
+    def steerable(self) -> tuple[bool, ...]:
+        """Which wheels the steering turns."""
+        return self._steerable
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+    def index(self, wheel: str | int) -> int:
+        """The engine's index of a wheel: its name ("front_left"), short name ("FL") or
+        index. ParameterError listing the names otherwise."""
+        if isinstance(wheel, int | np.integer) and not isinstance(wheel, bool):
+            if 0 <= int(wheel) < len(self._names):
+                return int(wheel)
+        elif isinstance(wheel, str):
+            key = wheel.strip()
+            key = ABBREVIATIONS.get(key.upper(), key) if key.upper() in ABBREVIATIONS else key
+            key = key.lower().replace(" ", "_").replace("-", "_")
+            if key in self._names:
+                return self._names.index(key)
+        short = [k for k, v in ABBREVIATIONS.items() if v in self._names]
+        raise ParameterError(
+            f"unknown wheel {wheel!r}: the wheels are {', '.join(self._names)}"
+            + (f" (or {', '.join(short)})" if short else "")
+            + f" or an index 0-{len(self._names) - 1}"
+        )
+
+    def axle(self, axle: str) -> tuple[int, ...]:
+        """The indices of an axle's wheels ("front" or "rear"; the usual four only)."""
+        if self.steer == "custom" or axle not in AXLES:
+            raise ParameterError(
+                f"unknown axle {axle!r}: the axles are 'front' and 'rear' (the usual four "
+                "wheels; name the wheels of a custom layout one by one)"
+            )
+        return tuple(self._names.index(w) for w in AXLES[axle])
+
+    def static_loads(self, mass: float) -> Array:
+        """Each wheel's static load on level ground (N) for a vehicle of ``mass`` kg: the
+        axle shares of the weight (the engine's ``static_loads``)."""
+        weight = _number(mass, "mass", "kg") * _defaults()["gravity"]
+        try:
+            return np.asarray(_core.static_loads(self._centers[:, :2], weight), dtype=np.float64)
+        except ParameterError as e:
+            raise _renamed(e, self._names) from e
+
+    def spec(self, mass: float) -> dict[str, Any]:
+        """World.set_vehicle keywords (centers, radii, steerable, static_loads, spring_rates,
+        damping, tyre) for a vehicle of ``mass`` kg."""
+        loads = self.static_loads(mass)
+        d = _defaults()
+        rates = np.empty(len(self))
+        damp = np.empty(len(self))
+        for k, f in enumerate(loads):
+            freq = d["natural_frequency"] if self._frequency is None else self._frequency[k]
+            zeta = d["damping_ratio"] if self._damping_ratio is None else self._damping_ratio[k]
+            try:
+                rates[k], damp[k] = _core.suspension(float(f), float(freq), float(zeta))
+            except ParameterError as e:
+                raise ParameterError(f"wheel {self._names[k]!r}: {e}") from e
+        if self._rates is not None:
+            rates = self._rates.copy()
+        if self._damping is not None:
+            damp = self._damping.copy()
+        return {
+            "centers": self._centers,
+            "radii": self._radii,
+            "steerable": list(self._steerable),
+            "static_loads": loads,
+            "spring_rates": rates,
+            "damping": damp,
+            "tyre": self.tyre.to_core(),
+        }
+
+    def _check(self, world: _core.World, mass: float, prefix: str) -> None:
+        try:
+            world.set_vehicle(0, **self.spec(mass))
+        except ParameterError as e:
+            raise _renamed(e, self._names, prefix) from e
+
+    def check_on(self, shape: _core.Shape, mass: float, what: str) -> None:
+        """The engine's checks of these wheels on a body (its shape, body frame, and mass in
+        kg): wheels inside the body's outline, loads carrying the weight. ``what`` names the
+        vehicle in the message."""
+        world = _core.World()
+        world.add_body(shape, mass, np.eye(3) * mass, (0, 0, 0), (1, 0, 0, 0), (0, 0, 0), (0, 0, 0))
+        self._check(world, mass, f"{what}: ")
+
+    def contact_points(self) -> Array:
+        """(n, 3) body-frame points where the tyres touch level ground at static ride height
+        (m): each centre lowered by its radius."""
+        out = self._centers.copy()
+        out[:, 2] -= self._radii
+        return out
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._names)
+
+    def __repr__(self) -> str:
+        if self.wheelbase is not None:
+            assert self.track is not None
+            return (
+                f"Wheels(wheelbase={self.wheelbase:g}, track={self.track}, "
+                f"cg_to_front_axle={self.cg_to_front_axle:g}, cg_height={self.cg_height:g}, "
+                f"radius={tuple(float(r) for r in self._radii[[0, 2]])}, steer={self.steer!r}, "
+                f"tyre={self.tyre})"
+            )
+        return f"Wheels.custom(names={self._names}, tyre={self.tyre})"
+
+
+def _frozen(a: ArrayLike) -> Array:
+    out = np.array(a, dtype=np.float64)
+    out.setflags(write=False)
+    return out
