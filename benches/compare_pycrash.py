@@ -1613,7 +1613,16 @@ def case_notes(case: Case) -> list[str]:
         notes.append(
             f"crashsim after the first stop: the body pitches back (peak pitch rate "
             f"{math.degrees(float(np.abs(pitch[k1:]).max())):.1f} deg/s) and the CG moves "
-            f"{100 * (float(cs.x[k1]) - float(cs.x[cs.at(cs.rest)])):.1f} cm back before rest"
+            f"{100 * (float(cs.x[k1]) - float(cs.x[-1])):.1f} cm back by the end of the run "
+            f"({float(cs.t[-1]):.3f} s, when the body has settled; rest is at "
+            f"{cs.rest if cs.rest is not None else float('nan'):.3f} s)"
+        )
+        back = float(cs.x[k1]) - float(cs.x[k1:].min())
+        notes.append(
+            f"crashsim after the first stop: the CG moves back up to {100 * back:.1f} cm; "
+            f"Result.rest's position (the end of the run) is {float(cs.x[-1]):.3f} m from the "
+            f"start ({100 * (float(cs.x[-1]) / (SKID_SPEED**2 / (2 * MU * G)) - 1):+.2f} % of "
+            f"v^2 / (2 mu g))"
         )
         kk = cs.t < 1.0
         front = float((cs.loads[0][kk][-1] + cs.loads[1][kk][-1]) / (CAR.mass * G))
@@ -1662,6 +1671,13 @@ def case_notes(case: Case) -> list[str]:
             f"{TURN_BRAKE}: crashsim {shares[0]}, pycrash {shares[1]}"
         )
         notes.append(f"pycrash's world speed at the end: {case.pc[0].extra['drift']:.3f} m/s")
+        pc = case.pc[0]
+        stop = first_below(pc.t, pc.speed)
+        if stop is not None:
+            notes.append(
+                f"pycrash's largest |yaw rate| after its stop ({stop:.3f} s): "
+                f"{math.degrees(float(np.abs(pc.r[pc.at(stop) :]).max())):.2f} deg/s"
+            )
     if case.name == "impact":
         imp = case.spec["impact"]
         out = case.cs_out
@@ -1673,6 +1689,50 @@ def case_notes(case: Case) -> list[str]:
             f"({imp['centroid_b'][0]:.3f}, {imp['centroid_b'][1]:.3f}) m; "
             f"normal at {-imp['point'][2]:.2f} deg in A's frame"
         )
+        planar = case.extra["planar"]
+        m_own = out["impacts"][0]["effective_mass"]
+        m_planar = planar["impacts"][0]["effective_mass"]
+        notes.append(
+            f"effective masses along the normal: crashsim A {m_own[0]:.0f}, B {m_own[1]:.0f} kg; "
+            f"planar A {m_planar[0]:.0f}, B {m_planar[1]:.0f} kg"
+        )
+        t_imp = float(imp["time"])
+        for b, name in ((0, "A"), (1, "B")):
+            pc, ref = case.pc[b], crashsim_trace(planar, b, CAR)
+            v_ref = np.interp(pc.t, ref.t, ref.speed)
+            r_ref = np.interp(pc.t, ref.t, ref.r)
+            after = pc.t > t_imp + 0.01
+            gaps = []
+            for v in (2.0, 1.0):
+                m = after & (pc.speed > v)
+                gaps.append(float((np.abs(v_ref[m] - pc.speed[m]) / pc.speed[m]).max()) * 100)
+            dr = np.degrees(np.abs(r_ref[after] - pc.r[after]))
+            turn = [math.degrees(float(tr.yaw[tr.at(tr.rest)] - tr.yaw[0])) for tr in (pc, ref)]
+            stops = [first_below(tr.t, tr.speed, 0.5) for tr in (pc, ref)]
+            t1, t2 = first_below(pc.t, pc.speed), first_below(ref.t, ref.speed)
+            rock = ""
+            if t1 is not None and t2 is not None:
+                k1, k2 = ref.at(t1), ref.at(t2) + 1
+                rock = (
+                    f"; crashsim planar from pycrash's first < 0.05 m/s ({t1:.3f} s) to its own "
+                    f"({t2:.3f} s): speed up to {float(ref.speed[k1:k2].max()):.3f} m/s, forward "
+                    f"speed {float(ref.u[k1:k2].min()):+.3f} to {float(ref.u[k1:k2].max()):+.3f} "
+                    f"m/s"
+                )
+            notes.append(
+                f"{name} after the impact, pycrash against crashsim planar: speeds apart by up "
+                f"to {gaps[0]:.2f} % while above 2 m/s, {gaps[1]:.2f} % above 1 m/s; first "
+                f"below 0.5 m/s {stops[0]:.3f} and {stops[1]:.3f} s; yaw rates apart by up to "
+                f"{float(dr.max()):.2f} deg/s (at {float(pc.t[after][dr.argmax()]):.3f} s); "
+                f"heading change to rest {turn[0]:.1f} and {turn[1]:.1f} deg" + rock
+            )
+        own_b = case.cs[1]
+        off = (own_b.loads[0] <= 0.0) & (own_b.loads[2] <= 0.0)
+        if off.any():
+            notes.append(
+                f"crashsim (own centroid): both of B's left wheels off the ground from "
+                f"{float(own_b.t[off][0]):.3f} to {float(own_b.t[off][-1]):.3f} s"
+            )
         drift = [tr.extra.get("drift", 0.0) for tr in case.pc]
         notes.append(
             f"pycrash after its rest (body-frame speed and yaw rate below the thresholds): "
