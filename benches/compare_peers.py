@@ -753,8 +753,9 @@ class PeerVehicles:
 
     The state is a flat list of floats, ``STRIDE`` per vehicle: CG position x, orientation q
     (w, x, y, z), velocity v, world angular momentum about the CG l, tread deflections u
-    (x forward, y left, per wheel). Scalar Python is used because the arrays are tiny: the
-    same equations as numpy arrays over the eight wheels took 2.5 times as long here."""
+    (x forward, y left, per wheel). Scalar Python, because the arrays are tiny: the same
+    equations as numpy arrays over the vehicles and wheels (the first version) gave the same
+    states to 1e-15 m and took ten times as long per step (2.65 ms against 0.26 ms)."""
 
     def __init__(self, vehicles: list[Any]) -> None:
         import trimesh
