@@ -63,7 +63,7 @@ the repeats of the time per call; the ratio's range is that of the per-repeat ra
 
     python3 benches/compare_peers.py                  # 20k and 200k; 5-8 min (pycrash: most)
     python3 benches/compare_peers.py --quick          # 20k, fewer repeats; about 2 min
-    python3 benches/compare_peers.py --only runout    # 5. alone; about 1 min
+    python3 benches/compare_peers.py --only runout    # 5. alone; under a minute
     python3 benches/compare_peers.py --sizes 2.5k,20k,200k --only query,region
     # run one engine call in a loop, for a profiler (perf record -g -- python3 ...):
     python3 benches/compare_peers.py --engine-loop region-shallow --sizes 20k --seconds 10
@@ -1577,7 +1577,9 @@ def main(argv: list[str] | None = None) -> int:
     )
     print()
 
-    bodies = {s: make_body(s) for s in sizes}
+    # the sizes are for 1. and 2.; 3. to 5. use the 20k scene only
+    sizes_built = sizes if only & {"query", "region"} else [SCENE_SIZE]
+    bodies = {s: make_body(s) for s in sizes_built}
     print("meshes: generated sedan body (crashsim.vehicles.generator), closed single shell")
     for s, b in bodies.items():
         res, sub = SIZES[s]
@@ -1734,10 +1736,10 @@ def main(argv: list[str] | None = None) -> int:
         run_setup = make_runout_scene(body)
         row, run_result, info = run_runout(run_setup, scene_repeats)
         _print_rows(
-            '5. whole event, run to rest: Scene.run(until="rest") on a ground vs Python + '
-            "numpy vehicle motion (the same wheels, tyres and ground) + python-fcl per step + "
-            f"manifold boolean at each exchange (the seed's scene, {body.n_triangles:,} "
-            "triangles each, every wheel locked at the exchange)",
+            '5. whole event, run to rest: Scene.run(until="rest") on a ground vs Python '
+            "vehicle motion (the engine's wheels, tyres and ground, re-written) + python-fcl "
+            "per step + manifold boolean at each exchange (the seed's scene, "
+            f"{body.n_triangles:,} triangles each, every wheel locked at the exchange)",
             [row],
             "python",
             TARGETS["runout"],
