@@ -37,8 +37,8 @@ It runs in this process when ``import pycrash`` works, else in the interpreter g
 times the cases itself. pycrash 0.0.18 needs pandas < 3; set it up with
 ``python3 -m venv /tmp/pycrash-venv && /tmp/pycrash-venv/bin/pip install pycrash==0.0.18``.
 
-    python3 benches/compare_pycrash.py                 # every case; about 15 min (pycrash)
-    python3 benches/compare_pycrash.py --pycrash-repeats 1   # pycrash timed once: ~10 min
+    python3 benches/compare_pycrash.py                 # every case; 25-33 min (pycrash)
+    python3 benches/compare_pycrash.py --pycrash-repeats 1   # the timed scenes once, not 3x
     python3 benches/compare_pycrash.py --quick         # pycrash at 10 ms, once; ~2 min
     python3 benches/compare_pycrash.py --only skid,corner --plot out/compare_pycrash.png
 
