@@ -64,6 +64,7 @@ the repeats of the time per call; the ratio's range is that of the per-repeat ra
     python3 benches/compare_peers.py                  # 20k and 200k; 5-8 min (pycrash: most)
     python3 benches/compare_peers.py --quick          # 20k, fewer repeats; about 2 min
     python3 benches/compare_peers.py --only runout    # 5. alone; under a minute
+    python3 benches/compare_peers.py --only runout --check-peer  # and the peer's motion checked
     python3 benches/compare_peers.py --sizes 2.5k,20k,200k --only query,region
     # run one engine call in a loop, for a profiler (perf record -g -- python3 ...):
     python3 benches/compare_peers.py --engine-loop region-shallow --sizes 20k --seconds 10
@@ -1154,6 +1155,47 @@ def engine_exchanges(result: Any, names: list[str]) -> list[PeerExchange]:
     return out
 
 
+def check_peer(body: Body) -> list[str]:
+    """The peer's vehicle motion against the engine's for one sedan on the ground: spinning
+    at 2.5 rad/s while sliding on wheels locked from t = 0, and rolling free, each run to
+    rest; the largest distance between the two CG positions every 0.1 s."""
+    import crashsim as cs
+
+    red = make_runout_scene(body).vehicles[0]
+    lines = []
+    for label, states in (
+        ("locked from 0 s", [(w, "locked", 0.0) for w in red.wheels]),
+        ("free", []),
+    ):
+        scene = cs.Scene(ground=cs.Ground())
+        scene.add(
+            red,
+            (0.0, 0.0),
+            heading=0.3,
+            velocity=(8.0, 2.0, 0.0),
+            angular_velocity=(0.0, 0.0, 2.5),
+            inputs=cs.DriverInputs(wheel_states=states),
+        )
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            result = scene.run(dt=DT, until="rest", max_duration=RUNOUT_MAX_DURATION)
+        model = PeerVehicles([red])
+        s = peer_start(model, result, ["red"])
+        locked = [bool(states)]
+        worst = 0.0
+        n = round(float(result.t[-1]) / DT)
+        for k in range(1, n + 1):
+            s = model.advance(s, DT, locked)
+            if k % 100 == 0 or k == n:
+                ref = result.state("red", k * DT)["position"]
+                worst = max(worst, float(np.linalg.norm(np.array(s[0:3]) - ref)))
+        lines.append(
+            f"peer check, one sedan {label}, {n * DT:.3f} s to rest: CG positions apart by "
+            f"at most {worst * 1e6:.1f} um (every 0.1 s)"
+        )
+    return lines
+
+
 def runout_phases(setup: RunoutSetup, result: Any) -> list[tuple[str, float, float, float]]:
     """The engine's wall time per phase of the run to rest: one fresh world run in pieces cut
     at the step boundaries around each first overlap, exchange and separation of ``result``,
@@ -1541,6 +1583,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--pycrash-repeats", type=int, help="pycrash runs per dt (default 3; quick 1)")
     ap.add_argument("--engine-loop", help="profile helper: query-<case>, region-<case> or scene")
     ap.add_argument("--seconds", type=float, default=10.0, help="duration of --engine-loop (s)")
+    ap.add_argument(
+        "--check-peer",
+        action="store_true",
+        help="5.: also check the Python peer's vehicle motion against the engine's (one car)",
+    )
     ap.add_argument("--pycrash-worker", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.pycrash_worker:
@@ -1746,6 +1793,9 @@ def main(argv: list[str] | None = None) -> int:
         )
         for line in runout_lines(run_setup, run_result, info):
             print(f"    {line}")
+        if args.check_peer:
+            for line in check_peer(body):
+                print(f"    {line}")
         print()
         summary.append((f"runout {SCENE_SIZE}", row.timing.ratio, TARGETS["runout"]))
     load = os.getloadavg()
