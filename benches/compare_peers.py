@@ -61,7 +61,7 @@ Timing: every repeat times a batch of calls of each side (engine first in even r
 the peer first in odd ones) lasting at least ``min_time``; the figure is the median over
 the repeats of the time per call; the ratio's range is that of the per-repeat ratios.
 
-    python3 benches/compare_peers.py                  # 20k and 200k; 5-8 min (pycrash: most)
+    python3 benches/compare_peers.py                  # 20k and 200k; about 5 min (pycrash: most)
     python3 benches/compare_peers.py --quick          # 20k, fewer repeats; about 2 min
     python3 benches/compare_peers.py --only runout    # 5. alone; under a minute
     python3 benches/compare_peers.py --only runout --check-peer  # and the peer's motion checked
