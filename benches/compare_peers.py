@@ -1,7 +1,8 @@
 """crashsim side by side with its peers, in one process, on the same meshes and poses.
 
 Prints ratios engine time / peer time (below 1: the engine is faster), each a ratio of
-medians over repeats, with the machine it ran on. Four comparisons (crashsim issue 6):
+medians over repeats, with the machine it ran on. Five comparisons (crashsim issues 6 and
+11):
 
 1. **Overlap query**: ``crashsim._core.shapes_overlap`` (surfaces crossing, or one mesh
    inside the other) against python-fcl ``collide`` (OBBRSS ``BVHModel``s built once,
@@ -30,6 +31,19 @@ medians over repeats, with the machine it ran on. Four comparisons (crashsim iss
    (default /tmp/pycrash-venv/bin/python) through a subprocess that times itself. pycrash
    0.0.18 needs pandas < 3, so it cannot share an environment with pandas 3; set it up with
    ``python3 -m venv /tmp/pycrash-venv && /tmp/pycrash-venv/bin/pip install pycrash==0.0.18``.
+5. **Whole event, run to rest** (crashsim issue 11): the same scene on a level ground, both
+   sedans on the class's wheels and tyres (``Vehicle.generate("sedan").wheels``), every wheel
+   of both locked at the vehicle's first exchange, run until both are at rest:
+   ``Scene.run(until="rest")`` against a Python loop that does the same in plain Python:
+   both vehicles' motion on the ground (``PeerVehicles``: the engine's wheels, suspension,
+   reconstruction tyre, body-ground contact and RK4 sub-steps, written anew in scalar
+   Python), python-fcl ``collide`` every 1 ms step, a timer of 30 steps from the first
+   colliding step, the manifold boolean at the exchange, the exchange's velocity changes
+   taken from the engine (the peer does not solve the impulse), every wheel locked from then
+   on, and the engine's rest criterion. The two runs' rest poses are printed side by side
+   (they agree to the millimetre but for the peer's exchange at a step end), and the
+   engine's time is split into the impact phase (to the step after the first separation)
+   and the run-out.
 
 Meshes (ours, no third-party data): the sedan preset's body (``crashsim.vehicles.generator``,
 ``body_params("sedan", **default_dims("sedan"))``), closed and single-shell, at a
@@ -47,8 +61,10 @@ Timing: every repeat times a batch of calls of each side (engine first in even r
 the peer first in odd ones) lasting at least ``min_time``; the figure is the median over
 the repeats of the time per call; the ratio's range is that of the per-repeat ratios.
 
-    python3 benches/compare_peers.py                  # 20k and 200k; 3-6 min (pycrash: most)
-    python3 benches/compare_peers.py --quick          # 20k, fewer repeats; about 1 min
+    python3 benches/compare_peers.py                  # 20k and 200k; about 5 min (pycrash: most)
+    python3 benches/compare_peers.py --quick          # 20k, fewer repeats; about 2 min
+    python3 benches/compare_peers.py --only runout    # 5. alone; under a minute
+    python3 benches/compare_peers.py --only runout --check-peer  # and the peer's motion checked
     python3 benches/compare_peers.py --sizes 2.5k,20k,200k --only query,region
     # run one engine call in a loop, for a profiler (perf record -g -- python3 ...):
     python3 benches/compare_peers.py --engine-loop region-shallow --sizes 20k --seconds 10
@@ -107,7 +123,7 @@ FRICTION = 0.6
 DURATION = 1.0  # s
 DT = 1e-3  # s
 
-TARGETS = {"query": 0.5, "region": 0.2, "scene": 0.1, "pycrash": 1e-3}
+TARGETS = {"query": 0.5, "region": 0.2, "scene": 0.1, "runout": 0.1, "pycrash": 1e-3}
 DEFAULT_PYCRASH_PYTHON = "/tmp/pycrash-venv/bin/python"
 PYCRASH_VERSION = "0.0.18"
 
@@ -631,6 +647,677 @@ def scene_phases(setup: SceneSetup, result: Any) -> list[tuple[str, float, float
     return out
 
 
+# -- 5. the whole event: the same scene on the ground, run to rest ---------------------------
+
+RUNOUT_MAX_DURATION = 20.0  # s, the longest a run to rest may take (either side)
+# The engine's constants the peer re-uses (crates/crashsim-core/src/motion.rs, vehicle/tyre.rs,
+# world/stepper.rs); the others come from crashsim.vehicles.wheels.dynamics_defaults().
+MAX_SUBSTEP = 1e-3  # s
+MAX_SUBSTEP_ANGLE = 0.02  # rad
+AIRBORNE_RELAXATION = 0.02  # s
+YIELD_RELAXATION = 0.005  # s
+ROLLING_RESISTANCE_SPEED = 0.1  # m/s
+BODY_CONTACT_FREQUENCY = 20.0  # Hz
+BODY_CONTACT_DAMPING = 0.5
+BODY_SLIP_SPEED = 0.05  # m/s
+WHEEL_CLEARANCE = 0.05  # m
+WHEEL_HALF_WIDTH = 0.15  # m
+MOVING_SPEED_FACTOR = 10.0  # MOVING_SPEED = 10 REST_SPEED; 10 REST_YAW_RATE counts as yawing
+SETTLED_ANGULAR_SPEED = math.radians(2.0)  # rad/s
+
+
+@dataclass
+class RunoutSetup:
+    """The seed's scene on a level ground, both sedans on the class's wheels, every wheel of
+    both locked at the vehicle's first exchange."""
+
+    scene: Any  # crashsim.Scene with a ground
+    body: Body
+    vehicles: list[Any]  # crashsim.Vehicle, red then blue
+
+
+def make_runout_scene(body: Body) -> RunoutSetup:
+    import crashsim as cs
+
+    v = _class_vehicle()
+
+    def vehicle(name: str) -> Any:
+        plain = cs.Vehicle(body.mesh, v.mass, v.cg, v.inertia, name=name, stiffness=v.stiffness)
+        return plain.with_wheels(v.wheels)
+
+    red, blue = vehicle("red"), vehicle("blue")
+    length, width = float(body.mesh.extents[0]), float(body.mesh.extents[1])
+    nose = length / 2.0 - float(v.cg[0])
+    scene = cs.Scene(
+        depth_of_penetration=DTP, restitution=RESTITUTION, friction=FRICTION, ground=cs.Ground()
+    )
+    for veh, xy, heading, speed in (
+        (red, (-width / 2.0 - nose - SCENE_GAP, LATERAL_OFFSET), 0.0, SPEED),
+        (blue, (0.0, 0.0), math.pi / 2.0, 0.0),
+    ):
+        lock = cs.DriverInputs(wheel_states=[(w, "locked", "exchange 1") for w in veh.wheels])
+        scene.add(veh, xy, heading=heading, velocity=(speed, 0.0, 0.0), inputs=lock)
+        veh.shape  # noqa: B018 - build the engine's shapes outside the timing
+    return RunoutSetup(scene, body, [red, blue])
+
+
+STRIDE = 21  # floats per vehicle in the peer's state: x 3, q 4, v 3, l 3, u 4 x 2
+
+
+def _rotation(qw: float, qx: float, qy: float, qz: float) -> tuple[float, ...]:
+    """Row-major rotation matrix (body -> world) of a quaternion, normalised first."""
+    n = math.sqrt(qw * qw + qx * qx + qy * qy + qz * qz)
+    w, x, y, z = qw / n, qx / n, qy / n, qz / n
+    return (
+        1 - 2 * (y * y + z * z),
+        2 * (x * y - w * z),
+        2 * (x * z + w * y),
+        2 * (x * y + w * z),
+        1 - 2 * (x * x + z * z),
+        2 * (y * z - w * x),
+        2 * (x * z - w * y),
+        2 * (y * z + w * x),
+        1 - 2 * (x * x + y * y),
+    )
+
+
+def _world_inverse(r: tuple[float, ...], inv: tuple[float, ...], lx: float, ly: float, lz: float):
+    """w = R I^-1 R^T l (rad/s) from the world angular momentum l."""
+    r00, r01, r02, r10, r11, r12, r20, r21, r22 = r
+    bx = r00 * lx + r10 * ly + r20 * lz
+    by = r01 * lx + r11 * ly + r21 * lz
+    bz = r02 * lx + r12 * ly + r22 * lz
+    i00, i01, i02, i10, i11, i12, i20, i21, i22 = inv
+    cx = i00 * bx + i01 * by + i02 * bz
+    cy = i10 * bx + i11 * by + i12 * bz
+    cz = i20 * bx + i21 * by + i22 * bz
+    return (
+        r00 * cx + r01 * cy + r02 * cz,
+        r10 * cx + r11 * cy + r12 * cz,
+        r20 * cx + r21 * cy + r22 * cz,
+    )
+
+
+class PeerVehicles:
+    """The engine's vehicles-on-the-ground model re-written in plain Python (scalar floats
+    and the math module; numpy only where a body touches the ground): gravity; each wheel a
+    vertical spring-damper whose load is max(0, F0 + k (R - h) - c dh/dt); the
+    reconstruction tyre (tread deflection u with du/dt = -slip - |vx| / sigma u, force
+    k_t u + c_t du/dt with k_t = C / sigma, C = mu Fz / alpha_sat, c_t = 2 sqrt(k_t Fz / g);
+    friction circle; elasto-plastic yield at alpha_sat sigma; a locked wheel slides against
+    its patch velocity; rolling resistance on a rolling wheel); the body's hull points as a
+    stiff spring-damper with friction where they reach the ground; classical Runge-Kutta in
+    sub-steps of at most 1 ms and 0.02 rad. The same equations as
+    crates/crashsim-core/src/motion.rs and vehicle/ (read there, written anew here) for what
+    the scene uses: the level ground z = 0 with one friction, the linear tyre, no steering,
+    brakes or drive (each wheel free or locked).
+
+    The state is a flat list of floats, ``STRIDE`` per vehicle: CG position x, orientation q
+    (w, x, y, z), velocity v, world angular momentum about the CG l, tread deflections u
+    (x forward, y left, per wheel). Scalar Python, because the arrays are tiny: the same
+    equations as numpy arrays over the vehicles and wheels (the first version) gave the same
+    states to 1e-15 m and took ten times as long per step (2.65 ms against 0.26 ms)."""
+
+    def __init__(self, vehicles: list[Any]) -> None:
+        import trimesh
+        from crashsim.vehicles.wheels import dynamics_defaults
+
+        d = dynamics_defaults()
+        self.g = d["gravity"]
+        self.mu = d["tyre_friction"]
+        self.body_mu = d["body_friction"]
+        self.alpha_sat = d["saturation_angle"]
+        self.sigma = d["relaxation_length"]
+        self.rolling = d["rolling_resistance"]
+        self.rest_speed = d["rest_speed"]
+        self.rest_yaw = d["rest_yaw_rate"]
+        self.rest_time = d["rest_time"]
+        omega = 2.0 * math.pi * BODY_CONTACT_FREQUENCY
+        self.bodies: list[dict[str, Any]] = []
+        for v in vehicles:
+            spec = v.wheels.spec(v.mass)
+            if spec["tyre"] not in ({"model": "linear"}, {}):
+                raise ValueError(f"the peer has the default linear tyre only, not {spec['tyre']}")
+            inertia = np.asarray(v.inertia, dtype=np.float64)
+            wheels = [
+                (
+                    *(float(c) for c in spec["centers"][k]),
+                    float(spec["radii"][k]),
+                    float(spec["static_loads"][k]),
+                    float(spec["spring_rates"][k]),
+                    float(spec["damping"][k]),
+                )
+                for k in range(len(spec["radii"]))
+            ]
+            # the body's contact with the ground: hull vertices outside the wheels, each with
+            # the stiffness and damping of its share of the hull area
+            verts = np.asarray(v.shape.vertices, dtype=np.float64)
+            hull = trimesh.convex.convex_hull(verts)
+            hv, hf = np.asarray(hull.vertices), np.asarray(hull.faces)
+            tri = hv[hf]
+            third = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+            area = np.zeros(len(hv))
+            for j in range(3):
+                np.add.at(area, hf[:, j], third / 6.0)
+            rel = hv[:, None, :] - spec["centers"][None, :, :]
+            in_wheel = (
+                (np.abs(rel[..., 1]) <= WHEEL_HALF_WIDTH)
+                & (np.hypot(rel[..., 0], rel[..., 2]) <= spec["radii"][None, :] + WHEEL_CLEARANCE)
+            ).any(axis=1)
+            keep = (area > 0.0) & ~in_wheel
+            lo, hi = verts.min(0), verts.max(0)
+            footprint = max(float((hi[0] - lo[0]) * (hi[1] - lo[1])), 1e-6)
+            pts = hv[keep]
+            self.bodies.append(
+                {
+                    "mass": float(v.mass),
+                    "inertia": inertia,
+                    "inv": tuple(float(a) for a in np.linalg.inv(inertia).ravel()),
+                    "wheels": wheels,
+                    "hull": pts,
+                    "hull_lo": tuple(float(a) for a in pts.min(0)),
+                    "hull_hi": tuple(float(a) for a in pts.max(0)),
+                    "stiffness": v.mass * omega * omega / footprint * area[keep],
+                    "damping": 2.0 * BODY_CONTACT_DAMPING * v.mass * omega / footprint * area[keep],
+                }
+            )
+
+    def rates(self, s: list[float], locked: list[bool]) -> list[float]:
+        """d/dt of the state ``s``; ``locked[b]``: every wheel of vehicle b is locked."""
+        mu, sigma, g = self.mu, self.sigma, self.g
+        u_sat = self.alpha_sat * sigma  # the tread's deflection at the friction limit
+        k_per_load = mu / u_sat  # tread stiffness per unit load C / (sigma Fz)
+        rolling = self.rolling
+        out: list[float] = []
+        for b, body in enumerate(self.bodies):
+            o = b * STRIDE
+            x0, x1, x2, qw, qx, qy, qz, v0, v1, v2, lx, ly, lz = s[o : o + 13]
+            r = _rotation(qw, qx, qy, qz)
+            r00, r01, r02, r10, r11, r12, r20, r21, r22 = r
+            wx, wy, wz = _world_inverse(r, body["inv"], lx, ly, lz)
+            lk = locked[b]
+            # wheel axes in the ground plane: the body x axis (no steering), flattened
+            hn = math.hypot(r00, r10)
+            exx, exy = r00 / hn, r10 / hn
+            pz = -x2  # the contact patch is on z = 0
+            fx_t = fy_t = fz_t = tx = ty = tz = 0.0
+            du: list[float] = []
+            for k, (cx, cy, cz, radius, f0, rate, cdamp) in enumerate(body["wheels"]):
+                rcx = r00 * cx + r01 * cy + r02 * cz
+                rcy = r10 * cx + r11 * cy + r12 * cz
+                rcz = r20 * cx + r21 * cy + r22 * cz
+                # the spring-damper: compression R - h, compression rate -(centre velocity).z
+                fz = f0 + rate * (radius - x2 - rcz) - cdamp * (v2 + wx * rcy - wy * rcx)
+                u0, u1 = s[o + 13 + 2 * k], s[o + 14 + 2 * k]
+                if fz <= 0.0:  # off the ground: no force, the tread springs back
+                    du += (-u0 / AIRBORNE_RELAXATION, -u1 / AIRBORNE_RELAXATION)
+                    continue
+                vpx = v0 + wy * pz - wz * rcy
+                vpy = v1 + wz * rcx - wx * pz
+                vx = vpx * exx + vpy * exy
+                vy = vpy * exx - vpx * exy
+                kt = k_per_load * fz
+                damp = 2.0 * math.sqrt(kt * fz / g)
+                relax = abs(vx) / sigma
+                el1 = -vy - relax * u1
+                if lk:
+                    el0 = -vx - relax * u0
+                    fx = kt * u0 + damp * el0
+                else:
+                    el0 = -u0 / AIRBORNE_RELAXATION
+                    fx = 0.0
+                fy = kt * u1 + damp * el1
+                friction = mu * fz
+                f_lin = math.hypot(fx, fy)
+                if f_lin > friction:
+                    fx, fy = fx * friction / f_lin, fy * friction / f_lin
+                un = math.hypot(u0, u1)
+                if un >= u_sat and un > 0.0:  # at the limit the tread slides
+                    d0, d1 = u0 / un, u1 / un
+                    radial = el0 * d0 + el1 * d1
+                    cut = radial - (min(radial, 0.0) - (un - u_sat) / YIELD_RELAXATION)
+                    el0, el1 = el0 - cut * d0, el1 - cut * d1
+                du += (el0, el1)
+                if not lk:
+                    fx -= rolling * fz * vx / max(abs(vx), ROLLING_RESISTANCE_SPEED)
+                total = math.hypot(fx, fy)
+                if total > friction:
+                    fx, fy = fx * friction / total, fy * friction / total
+                fwx = fx * exx - fy * exy
+                fwy = fx * exy + fy * exx
+                fx_t += fwx
+                fy_t += fwy
+                fz_t += fz
+                tx += rcy * fz - pz * fwy
+                ty += pz * fwx - rcx * fz
+                tz += rcx * fwy - rcy * fwx
+            # the body's hull: the lowest corner of its points' box first
+            lo, hi = body["hull_lo"], body["hull_hi"]
+            lowest = (
+                min(r20 * lo[0], r20 * hi[0])
+                + min(r21 * lo[1], r21 * hi[1])
+                + min(r22 * lo[2], r22 * hi[2])
+            )
+            if x2 + lowest <= 0.0:
+                f, t = self._body_contact(body, r, (x0, x1, x2), (v0, v1, v2), (wx, wy, wz))
+                fx_t, fy_t, fz_t = fx_t + f[0], fy_t + f[1], fz_t + f[2]
+                tx, ty, tz = tx + t[0], ty + t[1], tz + t[2]
+            m = body["mass"]
+            out += (
+                v0,
+                v1,
+                v2,
+                0.5 * (-wx * qx - wy * qy - wz * qz),
+                0.5 * (qw * wx + wy * qz - wz * qy),
+                0.5 * (qw * wy + wz * qx - wx * qz),
+                0.5 * (qw * wz + wx * qy - wy * qx),
+                fx_t / m,
+                fy_t / m,
+                fz_t / m - g,
+                tx,
+                ty,
+                tz,
+            )
+            out += du
+        return out
+
+    def _body_contact(
+        self,
+        body: dict[str, Any],
+        r: tuple[float, ...],
+        x: tuple[float, float, float],
+        v: tuple[float, float, float],
+        w: tuple[float, float, float],
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Force and torque (about the CG) of the ground on the hull points below z = 0."""
+        p = body["hull"] @ np.asarray(r).reshape(3, 3).T
+        depth = -(x[2] + p[:, 2])
+        touch = depth > 0.0
+        if not touch.any():
+            return np.zeros(3), np.zeros(3)
+        p, depth = p[touch], depth[touch]
+        vp = np.asarray(v) + np.cross(np.asarray(w), p)
+        fn = np.maximum(body["stiffness"][touch] * depth - body["damping"][touch] * vp[:, 2], 0.0)
+        scale = self.body_mu * fn / np.maximum(np.hypot(vp[:, 0], vp[:, 1]), BODY_SLIP_SPEED)
+        f = np.column_stack([-vp[:, 0] * scale, -vp[:, 1] * scale, fn])
+        return f.sum(0), np.cross(p, f).sum(0)
+
+    def angular_velocities(self, s: list[float]) -> list[tuple[float, float, float]]:
+        out = []
+        for b, body in enumerate(self.bodies):
+            o = b * STRIDE
+            r = _rotation(*s[o + 3 : o + 7])
+            out.append(_world_inverse(r, body["inv"], *s[o + 10 : o + 13]))
+        return out
+
+    def advance(self, s: list[float], dt: float, locked: list[bool]) -> list[float]:
+        """The state after dt s: RK4 in n equal sub-steps (at most 1 ms and 0.02 rad each; n
+        the largest over the vehicles)."""
+        w_max = max(math.sqrt(a * a + b * b + c * c) for a, b, c in self.angular_velocities(s))
+        n = max(1, math.ceil(dt / MAX_SUBSTEP - 1e-12), math.ceil(w_max * dt / MAX_SUBSTEP_ANGLE))
+        h = dt / n
+        h2, h6 = 0.5 * h, h / 6.0
+        for _ in range(n):
+            k1 = self.rates(s, locked)
+            k2 = self.rates([a + h2 * d for a, d in zip(s, k1, strict=True)], locked)
+            k3 = self.rates([a + h2 * d for a, d in zip(s, k2, strict=True)], locked)
+            k4 = self.rates([a + h * d for a, d in zip(s, k3, strict=True)], locked)
+            s = [
+                a + h6 * (d1 + 2.0 * (d2 + d3) + d4)
+                for a, d1, d2, d3, d4 in zip(s, k1, k2, k3, k4, strict=True)
+            ]
+            for o in range(0, len(s), STRIDE):
+                qw, qx, qy, qz = s[o + 3 : o + 7]
+                nq = math.sqrt(qw * qw + qx * qx + qy * qy + qz * qz)
+                s[o + 3 : o + 7] = [qw / nq, qx / nq, qy / nq, qz / nq]
+        return s
+
+    def pose(self, s: list[float], b: int) -> tuple[np.ndarray, np.ndarray]:
+        """Vehicle b's rotation matrix (body -> world) and CG position."""
+        o = b * STRIDE
+        return np.array(_rotation(*s[o + 3 : o + 7])).reshape(3, 3), np.array(s[o : o + 3])
+
+    def state_of(self, positions, orientations, velocities, angular_velocities) -> list[float]:
+        """The flat state from per-vehicle arrays (treads undeflected)."""
+        s: list[float] = []
+        for b, body in enumerate(self.bodies):
+            q = np.asarray(orientations[b], dtype=np.float64)
+            r = np.array(_rotation(*q)).reshape(3, 3)
+            ang = r @ body["inertia"] @ r.T @ np.asarray(angular_velocities[b], dtype=np.float64)
+            s += [float(a) for a in positions[b]] + [float(a) for a in q]
+            s += [float(a) for a in velocities[b]] + [float(a) for a in ang]
+            s += [0.0] * (2 * len(body["wheels"]))
+        return s
+
+    def apply(self, s: list[float], delta_v: np.ndarray, delta_omega: np.ndarray) -> list[float]:
+        """The state after an exchange that changes the velocities by delta_v (B, 3) and the
+        angular velocities by delta_omega (B, 3): l += R I R^T delta_omega."""
+        s = list(s)
+        for b, body in enumerate(self.bodies):
+            o = b * STRIDE
+            r, _ = self.pose(s, b)
+            dl = r @ body["inertia"] @ r.T @ delta_omega[b]
+            for j in range(3):
+                s[o + 7 + j] += float(delta_v[b][j])
+                s[o + 10 + j] += float(dl[j])
+        return s
+
+
+@dataclass
+class PeerExchange:
+    """What the peer applies at its n-th exchange: the engine's velocity changes (the peer
+    does not solve the impulse; see ``python_fcl_runout``)."""
+
+    delta_v: np.ndarray  # (B, 3) m/s
+    delta_omega: np.ndarray  # (B, 3) rad/s
+
+
+def peer_start(model: PeerVehicles, result: Any, names: list[str]) -> list[float]:
+    """The peer's state at t = 0: the scene's initial states (as the scene placed them on the
+    ground), treads undeflected."""
+    states = [result.state(n, 0.0) for n in names]
+    return model.state_of(
+        [s["position"] for s in states],
+        [s["orientation"] for s in states],
+        [s["velocity"] for s in states],
+        [s["angular_velocity"] for s in states],
+    )
+
+
+def python_fcl_runout(
+    model: PeerVehicles,
+    body: Body,
+    start: list[float],
+    exchanges: list[PeerExchange],
+    dtp_steps: int,
+) -> dict[str, Any]:
+    """The scene run to rest as a user would write it in Python: per 1 ms step, both vehicles
+    advanced by ``model``, posed in FCL and tested with ``collide``; the first colliding step
+    after being apart starts a timer of ``dtp_steps`` steps, at whose end the two posed meshes
+    are intersected with the manifold boolean (volume and centroid), the exchange's velocity
+    changes are applied (the engine's n-th exchange: the peer does not solve the impulse) and
+    every wheel locks; the pair is then engaged until a step without a collision (a
+    separation). The engine's rest criterion ends the run."""
+    import fcl
+    import trimesh
+
+    t_begin = time.perf_counter()
+    nb = len(model.bodies)
+    objects = [fcl.CollisionObject(body.fcl_model, fcl.Transform()) for _ in range(nb)]
+    request = fcl.CollisionRequest(num_max_contacts=1, enable_contact=False)
+    s = list(start)
+    locked = [False] * nb
+    phase, exchange_step, n_exchanges = "apart", -1, 0
+    events: list[tuple[str, float]] = []
+    exchange_info: list[dict[str, Any]] = []
+    slow_since: list[float | None] = [None] * nb
+    stopped_at: list[float | None] = [None] * nb
+    wall_separation = None
+    n_max = round(RUNOUT_MAX_DURATION / DT)
+    moving_speed = MOVING_SPEED_FACTOR * model.rest_speed
+    moving_yaw = MOVING_SPEED_FACTOR * model.rest_yaw
+    k = 0
+    while k < n_max:
+        s = model.advance(s, DT, locked)
+        k += 1
+        t = k * DT
+        poses = [model.pose(s, b) for b in range(nb)]
+        for obj, (r, x) in zip(objects, poses, strict=True):
+            obj.setTransform(fcl.Transform(r, x))
+        hit = fcl.collide(objects[0], objects[1], request) > 0
+        if phase == "apart" and hit:
+            phase, exchange_step = "timer", k + dtp_steps
+            events.append(("first contact", t))
+        elif phase == "timer" and k == exchange_step:
+            meshes = [
+                trimesh.Trimesh(body.vertices @ r.T + x, body.faces, process=False)
+                for r, x in poses
+            ]
+            inter = trimesh.boolean.intersection(meshes, engine="manifold")
+            exchange_info.append({"t": t, "volume": inter.volume, "centroid": inter.center_mass})
+            if n_exchanges < len(exchanges):
+                ex = exchanges[n_exchanges]
+                s = model.apply(s, ex.delta_v, ex.delta_omega)
+            n_exchanges += 1
+            locked = [True] * nb
+            phase = "engaged"
+            events.append(("exchange", t))
+        elif phase == "engaged" and not hit:
+            phase = "apart"
+            events.append(("separation", t))
+            if wall_separation is None:
+                wall_separation = time.perf_counter() - t_begin
+        # rest: the engine's criterion (travel and yaw slow for rest_time; the time reported
+        # is the first slow instant since the vehicle last moved; the run stops once every
+        # vehicle has also settled)
+        done = True
+        for b, (wx, wy, wz) in enumerate(model.angular_velocities(s)):
+            o = b * STRIDE
+            v0, v1, v2 = s[o + 7 : o + 10]
+            speed = math.hypot(v0, v1)
+            slow = speed < model.rest_speed and abs(wz) < model.rest_yaw
+            if not slow:
+                slow_since[b] = None
+            elif slow_since[b] is None:
+                slow_since[b] = t
+            if speed > moving_speed or abs(wz) > moving_yaw:
+                stopped_at[b] = None
+            elif slow and stopped_at[b] is None:
+                stopped_at[b] = t
+            since = slow_since[b]
+            done = done and (
+                since is not None
+                and t - since >= model.rest_time - 1e-12
+                and math.sqrt(v0 * v0 + v1 * v1 + v2 * v2) < model.rest_speed
+                and math.sqrt(wx * wx + wy * wy + wz * wz) < SETTLED_ANGULAR_SPEED
+            )
+        if done:
+            break
+    wall = time.perf_counter() - t_begin
+    # at rest: the time as the engine reports it, the pose at the end of the run (as
+    # crashsim.Result.rest gives it)
+    rests: list[dict[str, Any] | None] = []
+    for b in range(nb):
+        if slow_since[b] is None:
+            rests.append(None)
+            continue
+        r, x = model.pose(s, b)
+        rests.append(
+            {
+                "time": stopped_at[b] if stopped_at[b] is not None else slow_since[b],
+                "position": x,
+                "heading": math.atan2(r[1, 0], r[0, 0]),
+            }
+        )
+    return {
+        "end": k * DT,
+        "events": events,
+        "exchanges": exchange_info,
+        "exchanges_applied": min(n_exchanges, len(exchanges)),
+        "exchanges_found": n_exchanges,
+        "rest": rests,
+        "wall": wall,
+        "wall_impact": wall_separation if wall_separation is not None else wall,
+    }
+
+
+def engine_exchanges(result: Any, names: list[str]) -> list[PeerExchange]:
+    """The engine's exchanges as the velocity changes of every vehicle."""
+    out = []
+    for imp in result.impacts:
+        dv = np.zeros((len(names), 3))
+        dw = np.zeros((len(names), 3))
+        for i, n in enumerate(names):
+            if n in imp.delta_v:
+                dv[i] = imp.delta_v[n]
+                dw[i] = imp.delta_omega[n]
+        out.append(PeerExchange(dv, dw))
+    return out
+
+
+def check_peer(body: Body) -> list[str]:
+    """The peer's vehicle motion against the engine's for one sedan on the ground: spinning
+    at 2.5 rad/s while sliding on wheels locked from t = 0, and rolling free, each run to
+    rest; the largest distance between the two CG positions every 0.1 s."""
+    import crashsim as cs
+
+    red = make_runout_scene(body).vehicles[0]
+    lines = []
+    for label, states in (
+        ("locked from 0 s", [(w, "locked", 0.0) for w in red.wheels]),
+        ("free", []),
+    ):
+        scene = cs.Scene(ground=cs.Ground())
+        scene.add(
+            red,
+            (0.0, 0.0),
+            heading=0.3,
+            velocity=(8.0, 2.0, 0.0),
+            angular_velocity=(0.0, 0.0, 2.5),
+            inputs=cs.DriverInputs(wheel_states=states),
+        )
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            result = scene.run(dt=DT, until="rest", max_duration=RUNOUT_MAX_DURATION)
+        model = PeerVehicles([red])
+        s = peer_start(model, result, ["red"])
+        locked = [bool(states)]
+        worst = 0.0
+        n = round(float(result.t[-1]) / DT)
+        for k in range(1, n + 1):
+            s = model.advance(s, DT, locked)
+            if k % 100 == 0 or k == n:
+                ref = result.state("red", k * DT)["position"]
+                worst = max(worst, float(np.linalg.norm(np.array(s[0:3]) - ref)))
+        lines.append(
+            f"peer check, one sedan {label}, {n * DT:.3f} s to rest: CG positions apart by "
+            f"at most {worst * 1e6:.1f} um (every 0.1 s)"
+        )
+    return lines
+
+
+def runout_phases(setup: RunoutSetup, result: Any) -> list[tuple[str, float, float, float]]:
+    """The engine's wall time per phase of the run to rest: one fresh world run in pieces cut
+    at the step boundaries around each first overlap, exchange and separation of ``result``,
+    the last piece until rest. Returns (phase, start s, end s, wall s)."""
+    events = sorted(
+        [(c.time, c.kind.replace("_", " ")) for c in result.contacts]
+        + [(imp.time, "exchange") for imp in result.impacts]
+    )
+    after = {
+        "first overlap": "timer (depth of penetration)",
+        "exchange": "engaged (overlap, not closing)",
+        "separation": "apart",
+    }
+    marks = []
+    phase = "approach"
+    for te, kind in events:
+        k0 = math.floor(te / DT + 1e-9) * DT
+        marks += [(phase, k0), (f"step with the {kind}", k0 + DT)]
+        phase = after.get(kind, phase)
+    world = setup.scene.build_world()
+    out = []
+    start = 0.0
+    for name, end in marks:
+        if end - start > 1e-9:
+            t0 = time.perf_counter()
+            world.run(round(end - start, 12), DT)
+            out.append((name, start, end, time.perf_counter() - t0))
+            start = end
+    t0 = time.perf_counter()
+    last = world.run(round(RUNOUT_MAX_DURATION - start, 12), DT, until_rest=True)
+    out.append((f"{phase}, to rest", start, float(last["t"][-1]), time.perf_counter() - t0))
+    return out
+
+
+def run_runout(setup: RunoutSetup, repeats: int) -> tuple[Row, Any, dict[str, Any]]:
+    """The engine's run to rest against the Python + fcl loop, interleaved (one run per
+    batch), and the engine's phase split (median over the repeats)."""
+    names = [v.name for v in setup.vehicles]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = setup.scene.run(dt=DT, until="rest", max_duration=RUNOUT_MAX_DURATION)
+    model = PeerVehicles(setup.vehicles)
+    start = peer_start(model, result, names)
+    exchanges = engine_exchanges(result, names)
+    dtp_steps = round(DTP / DT)
+
+    def engine() -> Any:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return setup.scene.run(dt=DT, until="rest", max_duration=RUNOUT_MAX_DURATION)
+
+    peer = functools.partial(python_fcl_runout, model, setup.body, start, exchanges, dtp_steps)
+    check = peer()
+    t = compare(engine, peer, repeats, 0.0)
+    splits = [runout_phases(setup, result) for _ in range(repeats)]
+    peer_runs = [peer() for _ in range(max(1, repeats // 2))] + [check]
+    info: dict[str, Any] = {"check": check, "names": names}
+    # the phases' medians; the impact phase ends with the step of the first separation
+    phases = [
+        (name, a, b, statistics.median(s[k][3] for s in splits))
+        for k, (name, a, b, _) in enumerate(splits[0])
+    ]
+    info["phases"] = phases
+    sep = next((k for k, p in enumerate(phases) if p[0] == "step with the separation"), None)
+    if sep is not None:
+        info["split"] = phases[sep][2]
+        info["engine_impact"] = sum(p[3] for p in phases[: sep + 1])
+        info["engine_runout"] = sum(p[3] for p in phases[sep + 1 :])
+    info["peer_split"] = next((t for k, t in check["events"] if k == "separation"), None)
+    info["peer_impact"] = statistics.median(p["wall_impact"] for p in peer_runs)
+    info["peer_runout"] = statistics.median(p["wall"] - p["wall_impact"] for p in peer_runs)
+    return Row(setup.body.label, "to rest @ 1 ms", setup.body.n_triangles, t), result, info
+
+
+def runout_lines(setup: RunoutSetup, result: Any, info: dict[str, Any]) -> list[str]:
+    """The cross-check of the two runs and the time split, as printed lines."""
+    check = info["check"]
+    names = info["names"]
+    ev = [f"{c.kind.replace('_', ' ')} {c.time:.4f}" for c in result.contacts]
+    ex = [f"{imp.time:.4f}" for imp in result.impacts]
+    end = float(result.t[-1])
+    lines = [
+        f"engine: {', '.join(ev)} s; exchanges at {', '.join(ex)} s; run ends {end:.3f} s",
+        "python+fcl: "
+        + ", ".join(f"{k} {t:.3f}" for k, t in check["events"])
+        + f" s (steps); {check['exchanges_found']} exchange(s), "
+        f"{check['exchanges_applied']} with the engine's velocity changes; run ends "
+        f"{check['end']:.3f} s",
+    ]
+    for e in check["exchanges"]:
+        lines.append(
+            f"python+fcl boolean at {e['t']:.3f} s: {e['volume'] * 1e3:.3g} L, centroid "
+            f"{_vec(e['centroid'])} m"
+        )
+    for i, n in enumerate(names):
+        rs = result.rest(n)
+        rp = check["rest"][i]
+        if rs is None or rp is None:
+            lines.append(f"{n}: rest engine {rs}, python+fcl {rp}")
+            continue
+        gap = float(np.hypot(*(np.asarray(rs.position[:2]) - rp["position"][:2])))
+        dh = math.degrees((rs.heading - rp["heading"] + math.pi) % (2 * math.pi) - math.pi)
+        lines.append(
+            f"{n}: rest engine {rs.time:.3f} s at {_vec(rs.position[:2])} m heading "
+            f"{math.degrees(rs.heading):.2f} deg; python+fcl {rp['time']:.3f} s at "
+            f"{_vec(rp['position'][:2])} m heading {math.degrees(rp['heading']):.2f} deg "
+            f"({gap * 1e3:.1f} mm, {dh:+.2f} deg apart)"
+        )
+    lines.append("engine wall time by phase (one run cut at step boundaries; median):")
+    for name, t_a, t_b, wall in info["phases"]:
+        lines.append(f"  {t_a:6.3f}-{t_b:6.3f} s  {name:<34} {_fmt_time(wall)}")
+    if "engine_impact" in info:
+        lines.append(
+            f"impact phase (to the step with the first separation, {info['split']:.3f} s) and "
+            f"run-out, median: engine {_fmt_time(info['engine_impact']).strip()} + "
+            f"{_fmt_time(info['engine_runout']).strip()}; python+fcl (split at its own first "
+            f"separation, {info['peer_split'] or float('nan'):.3f} s) "
+            f"{_fmt_time(info['peer_impact']).strip()} + {_fmt_time(info['peer_runout']).strip()}"
+        )
+    return lines
+
+
 # -- 4. pycrash ------------------------------------------------------------------------------
 
 
@@ -888,14 +1575,19 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--sizes", help=f"comma-separated, of {', '.join(SIZES)} (default 20k,200k)")
     ap.add_argument(
         "--only",
-        default="query,region,scene,pycrash",
-        help="comma-separated comparisons: query, region, scene, pycrash",
+        default="query,region,scene,runout,pycrash",
+        help="comma-separated comparisons: query, region, scene, runout, pycrash",
     )
     ap.add_argument("--repeats", type=int, help="repeats per figure (default 7; quick 3)")
     ap.add_argument("--pycrash-python", help=f"interpreter with pycrash ({DEFAULT_PYCRASH_PYTHON})")
     ap.add_argument("--pycrash-repeats", type=int, help="pycrash runs per dt (default 3; quick 1)")
     ap.add_argument("--engine-loop", help="profile helper: query-<case>, region-<case> or scene")
     ap.add_argument("--seconds", type=float, default=10.0, help="duration of --engine-loop (s)")
+    ap.add_argument(
+        "--check-peer",
+        action="store_true",
+        help="5.: also check the Python peer's vehicle motion against the engine's (one car)",
+    )
     ap.add_argument("--pycrash-worker", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.pycrash_worker:
@@ -913,7 +1605,7 @@ def main(argv: list[str] | None = None) -> int:
         engine_loop(args.engine_loop, sizes[0], args.seconds)
         return 0
     only = set(args.only.split(","))
-    unknown = only - {"query", "region", "scene", "pycrash"}
+    unknown = only - {"query", "region", "scene", "runout", "pycrash"}
     if unknown:
         ap.error(f"--only: unknown comparison(s) {sorted(unknown)}")
     repeats = args.repeats or (3 if args.quick else 7)
@@ -932,7 +1624,9 @@ def main(argv: list[str] | None = None) -> int:
     )
     print()
 
-    bodies = {s: make_body(s) for s in sizes}
+    # the sizes are for 1. and 2.; 3. to 5. use the 20k scene only
+    sizes_built = sizes if only & {"query", "region"} else [SCENE_SIZE]
+    bodies = {s: make_body(s) for s in sizes_built}
     print("meshes: generated sedan body (crashsim.vehicles.generator), closed single shell")
     for s, b in bodies.items():
         res, sub = SIZES[s]
@@ -1083,6 +1777,27 @@ def main(argv: list[str] | None = None) -> int:
                     if run["dt"] == DT:
                         summary.append(("pycrash (same dt, 20k)", ratio, TARGETS["pycrash"]))
             print()
+    if "runout" in only:
+        body = bodies.get(SCENE_SIZE) or make_body(SCENE_SIZE)
+        bodies.setdefault(SCENE_SIZE, body)
+        run_setup = make_runout_scene(body)
+        row, run_result, info = run_runout(run_setup, scene_repeats)
+        _print_rows(
+            '5. whole event, run to rest: Scene.run(until="rest") on a ground vs Python '
+            "vehicle motion (the engine's wheels, tyres and ground, re-written) + python-fcl "
+            "per step + manifold boolean at each exchange (the seed's scene, "
+            f"{body.n_triangles:,} triangles each, every wheel locked at the exchange)",
+            [row],
+            "python",
+            TARGETS["runout"],
+        )
+        for line in runout_lines(run_setup, run_result, info):
+            print(f"    {line}")
+        if args.check_peer:
+            for line in check_peer(body):
+                print(f"    {line}")
+        print()
+        summary.append((f"runout {SCENE_SIZE}", row.timing.ratio, TARGETS["runout"]))
     load = os.getloadavg()
     print(f"load average at end {load[0]:.2f} / {load[1]:.2f} / {load[2]:.2f}")
     print("summary (ratio = engine / peer, median):")
