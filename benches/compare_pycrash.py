@@ -197,6 +197,32 @@ def _yaw_of(q: np.ndarray) -> np.ndarray:
     return np.unwrap(np.arctan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z)))
 
 
+class Setup:
+    """A scene being set up through the binding's SceneSpec (its setup calls), run as a World
+    is: ``ready()`` builds the world (outside the timings), ``run`` builds and runs it."""
+
+    def __init__(self, core: Any) -> None:
+        self.core = core
+        self.spec = core.SceneSpec()
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.spec, name)
+
+    def set_contact(self, body1: int, body2: int, **params: Any) -> None:
+        self.spec.set_contact(body1, body2, self.core.ContactParams(**params))
+
+    def ready(self) -> Any:
+        return self.spec.build()
+
+    def run(self, duration: float, dt: float, **options: Any) -> Any:
+        return self.ready().run(duration, dt, **options)
+
+
+def _ready(w: Any) -> Any:
+    """The world to time: a Setup built, anything else as it is."""
+    return w.ready() if isinstance(w, Setup) else w
+
+
 class Crashsim:
     """crashsim's side, through the binding (the Python vehicle layer is not there yet)."""
 
@@ -215,8 +241,8 @@ class Crashsim:
         self.damping = [s[1] for s in springs]
         self.centers = np.column_stack([car.wheel_xy, np.full(4, car.radius - car.h_cg)])
 
-    def world(self) -> Any:
-        w = self.core.World()
+    def world(self) -> Setup:
+        w = Setup(self.core)
         w.set_ground(tyre_friction=MU)
         return w
 
@@ -613,7 +639,7 @@ def single_spec(
 
 
 def timed_run(side: Crashsim, build: Any, duration: float, dt: float = DT) -> tuple[Any, float]:
-    w = build()
+    w = _ready(build())
     t0 = time.perf_counter()
     out = side.run(w, duration, dt)
     return out, time.perf_counter() - t0
@@ -1263,7 +1289,7 @@ def crashsim_times(
     times = []
     sim = 0.0
     for _ in range(repeats):
-        w = build()
+        w = _ready(build())
         t0 = time.perf_counter()
         out = side.run(w, 20.0, dt)
         times.append(time.perf_counter() - t0)
