@@ -104,7 +104,7 @@ def run_dask(
     order, as the local backend returns them."""
     from distributed import as_completed
 
-    from crashsim.studies.run import _chunks, _empty_columns, _place, _shift
+    from crashsim.studies.chunks import chunk_bounds, empty_columns, place_chunk, renumbered
 
     c, owned = _connect(client, threads)
     columns: dict[str, np.ndarray] = {}
@@ -115,7 +115,7 @@ def run_dask(
     try:
         workers = max(1, len(c.scheduler_info().get("workers", {})))
         size = chunk_size or max(1, min(MAX_CHUNK, math.ceil(n / (TASKS_PER_WORKER * workers))))
-        chunks = _chunks(n, size)
+        chunks = chunk_bounds(n, size)
         shared = c.scatter(scene, broadcast=True, hash=False)  # the meshes: once per worker
         for k, (start, stop) in enumerate(chunks):
             part = {key: np.ascontiguousarray(v[start:stop]) for key, v in overrides.items()}
@@ -130,10 +130,10 @@ def run_dask(
                     continue
                 b = f.result()
                 start, stop = chunks[k]
-                _place(columns, b.columns, start, n)
+                place_chunk(columns, b.columns, start, n)
                 finished[start:stop] = b.finished
                 errors += [
-                    type(e)(e.index + start, e.kind, _shift(e.message, e.index, start))
+                    type(e)(e.index + start, e.kind, renumbered(e.message, e.index, start))
                     for e in b.errors
                 ]
                 taken.add(k)
@@ -148,5 +148,5 @@ def run_dask(
         for thing in owned:
             thing.close()
     if not columns:
-        columns = _empty_columns(scene, n, int(options["max_impacts"]))
+        columns = empty_columns(scene, n, int(options["max_impacts"]))
     return columns, errors, finished, interrupted

@@ -29,6 +29,7 @@ from numpy.typing import NDArray
 
 from crashsim.errors import StudyError
 from crashsim.studies import design, paths
+from crashsim.studies.chunks import chunk_bounds, empty_columns, place_chunk, renumbered
 from crashsim.studies.distributions import Distribution
 
 if TYPE_CHECKING:
@@ -183,10 +184,6 @@ class _Progress:
             self.bar.close()
 
 
-def _chunks(n: int, size: int) -> list[tuple[int, int]]:
-    return [(s, min(s + size, n)) for s in range(0, n, size)]
-
-
 def _check_options(
     backend: str, duration: float | None, dt: float, until: str | None
 ) -> tuple[float, float]:
@@ -293,7 +290,7 @@ def _run_local(
     errors: list[Any] = []
     finished = np.zeros(n, dtype=bool)
     interrupted = False
-    for start, stop in _chunks(n, chunk_size or DEFAULT_CHUNK):
+    for start, stop in chunk_bounds(n, chunk_size or DEFAULT_CHUNK):
         part = {k: v[start:stop] for k, v in overrides.items()}
         try:
             b = run_batch(
@@ -303,41 +300,16 @@ def _run_local(
         except KeyboardInterrupt:
             interrupted = True
             break
-        _place(columns, b.columns, start, n)
+        place_chunk(columns, b.columns, start, n)
         finished[start:stop] = b.finished
-        errors += [type(e)(e.index + start, e.kind, _shift(e.message, e.index, start))
+        errors += [type(e)(e.index + start, e.kind, renumbered(e.message, e.index, start))
                    for e in b.errors]
         if b.interrupted:
             interrupted = True
             break
     if not columns:  # interrupted before the first chunk returned: empty columns
-        columns = _empty_columns(scene, n, int(options["max_impacts"]))
+        columns = empty_columns(scene, n, int(options["max_impacts"]))
     return columns, errors, finished, interrupted
-
-
-def _shift(message: str, index: int, start: int) -> str:
-    """A chunk's "variant i: ..." renumbered to the study's variant."""
-    prefix = f"variant {index}: "
-    if start and message.startswith(prefix):
-        return f"variant {index + start}: " + message[len(prefix):]
-    return message
-
-
-def _place(columns: dict[str, np.ndarray], chunk: Mapping[str, np.ndarray], start: int,
-           n: int) -> None:
-    for k, v in chunk.items():
-        if k not in columns:
-            fill = -1 if v.dtype.kind in "iu" else np.nan
-            columns[k] = np.full(n, fill, dtype=v.dtype)
-        columns[k][start:start + v.size] = v
-
-
-def _empty_columns(scene: Scene, n: int, max_impacts: int) -> dict[str, np.ndarray]:
-    from crashsim.batch import run_batch
-
-    b = run_batch(scene, None, n=0, duration=1.0, dt=1e-3, max_impacts=max_impacts)
-    return {k: np.full(n, -1 if v.dtype.kind in "iu" else np.nan, dtype=v.dtype)
-            for k, v in b.columns.items()}
 
 
 def sweep(
