@@ -7,10 +7,9 @@ from __future__ import annotations
 import math
 import pickle
 
+import crashsim as cs
 import numpy as np
 import pytest
-
-import crashsim as cs
 from crashsim.analysis.report import pdof
 from crashsim.batch import BatchResult, VariantError, run_batch
 

@@ -5,9 +5,8 @@ from __future__ import annotations
 
 import pickle
 
-import numpy as np
-
 import crashsim as cs
+import numpy as np
 
 
 def _scene() -> cs.Scene:

@@ -9,10 +9,9 @@ import os
 import signal
 from pathlib import Path
 
+import crashsim as cs
 import numpy as np
 import pytest
-
-import crashsim as cs
 from crashsim.batch import run_batch
 from crashsim.studies import (
     class_table,

@@ -11,12 +11,11 @@ import sys
 import time
 from pathlib import Path
 
+import crashsim as cs
 import numpy as np
 import pandas as pd
 import pytest
 from conftest import REPO
-
-import crashsim as cs
 from crashsim.cli import main
 from crashsim.io.scenefile import SceneFileError, load_scene, loads_scene
 from crashsim.io.studyfile import parse_distribution, parse_values

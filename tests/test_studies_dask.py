@@ -10,10 +10,9 @@ import signal
 from collections.abc import Iterator
 from typing import Any
 
+import crashsim as cs
 import numpy as np
 import pytest
-
-import crashsim as cs
 from crashsim.studies import normal, uniform
 
 distributed = pytest.importorskip("distributed")

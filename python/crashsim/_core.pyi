@@ -129,8 +129,8 @@ def suspension(
 def dynamics_defaults() -> dict[str, float]:
     """The engine's defaults for the ground, wheels and tyres (gravity, natural_frequency,
     damping_ratio, saturation_angle, relaxation_length, rolling_resistance, tyre_friction,
-    body_friction, magic_formula_b, magic_formula_c, magic_formula_e) and its rest thresholds (rest_speed m/s, rest_yaw_rate rad/s,
-    rest_time s)."""
+    body_friction, magic_formula_b, magic_formula_c, magic_formula_e) and its rest thresholds
+    (rest_speed m/s, rest_yaw_rate rad/s, rest_time s)."""
 
 def free_motion(
     mass: float,

@@ -509,8 +509,7 @@ def _study_out(text: str | None) -> Path | None:
 def _study_spec(args: argparse.Namespace, case: SceneFile, kind: str) -> Any:
     """The study to run: the file's [study] (when its kind is this command's) with the command
     line's --vary / --dist added (replacing the file's entry of the same path)."""
-    from crashsim.io.studyfile import StudySpec, parse_assignment, parse_distribution, \
-        parse_values
+    from crashsim.io.studyfile import StudySpec, parse_assignment, parse_distribution, parse_values
     from crashsim.studies.paths import parse_path
 
     file_spec = case.study if case.study is not None and case.study.kind == kind else None

@@ -69,6 +69,11 @@ fn car_spec(tyre: Tyre, inputs: DriverInputs) -> VehicleSpec {
 }
 
 fn car_world(ground: Ground, v: Real, yaw: Real, inputs: DriverInputs) -> World {
+    car_world_with(ground, v, yaw, Tyre::default(), inputs)
+}
+
+/// The car on `ground` at the origin heading `yaw` (rad) at `v` m/s, with `tyre`.
+fn car_world_with(ground: Ground, v: Real, yaw: Real, tyre: Tyre, inputs: DriverInputs) -> World {
     let mut w = World::new();
     let h = ground.height_at(0.0, 0.0).unwrap();
     let state = BodyState {
@@ -78,7 +83,7 @@ fn car_world(ground: Ground, v: Real, yaw: Real, inputs: DriverInputs) -> World 
         angular_velocity: Vector::zeros(),
     };
     let i = w.add_body(car_shape(), car_props(), &state).unwrap();
-    w.set_vehicle(i, car_spec(Tyre::default(), inputs)).unwrap();
+    w.set_vehicle(i, car_spec(tyre, inputs)).unwrap();
     w.set_ground(ground).unwrap();
     w
 }
@@ -254,20 +259,11 @@ fn steady_cornering_follows_the_single_track_yaw_rate_gain() {
             ],
             ..DriverInputs::default()
         };
-        let mut w = World::new();
-        let state = BodyState {
-            position: Point::new(0.0, 0.0, CG_HEIGHT),
-            orientation: Rotation::identity(),
-            velocity: Vector::new(v, 0.0, 0.0),
-            angular_velocity: Vector::zeros(),
-        };
-        let i = w.add_body(car_shape(), car_props(), &state).unwrap();
         let tyre = Tyre {
             rolling_resistance: 0.0,
             ..Tyre::default()
         };
-        w.set_vehicle(i, car_spec(tyre, inputs)).unwrap();
-        w.set_ground(Ground::default()).unwrap();
+        let mut w = car_world_with(Ground::default(), v, 0.0, tyre, inputs);
         let out = w.run(6.0, 1e-3).unwrap();
         let last = out.len() - 1;
         let end = &out.sample(last)[0];
@@ -542,21 +538,12 @@ fn a_step_steer_follows_the_single_track_model_with_tyre_lag() {
         steer: Some(Table::new("steer", &[(0.0, 0.0), (0.5, 0.0), (0.6, delta)]).unwrap()),
         ..DriverInputs::default()
     };
-    let mut w = World::new();
-    let state = BodyState {
-        position: Point::new(0.0, 0.0, CG_HEIGHT),
-        orientation: Rotation::identity(),
-        velocity: Vector::new(v, 0.0, 0.0),
-        angular_velocity: Vector::zeros(),
-    };
-    let i = w.add_body(car_shape(), car_props(), &state).unwrap();
     let tyre = Tyre {
         rolling_resistance: 0.0,
         ..Tyre::default()
     };
     let sigma = tyre.relaxation_length;
-    w.set_vehicle(i, car_spec(tyre, inputs)).unwrap();
-    w.set_ground(Ground::default()).unwrap();
+    let mut w = car_world_with(Ground::default(), v, 0.0, tyre, inputs);
     let out = w.run(1.5, 1e-3).unwrap();
     let times = [0.55, 0.6, 0.65, 0.7, 0.8, 1.0, 1.5];
     let model = single_track_yaw_rate(v, sigma, &steer, &times);
@@ -583,21 +570,13 @@ fn a_short_relaxation_length_stays_finite_at_speed() {
         ..DriverInputs::default()
     };
     let run = |sigma: Real| {
-        let mut w = World::new();
-        let state = BodyState {
-            position: Point::new(0.0, 0.0, CG_HEIGHT),
-            orientation: Rotation::identity(),
-            velocity: Vector::new(20.0, 0.0, 0.0),
-            angular_velocity: Vector::zeros(),
-        };
-        let i = w.add_body(car_shape(), car_props(), &state).unwrap();
         let tyre = Tyre {
             relaxation_length: sigma,
             ..Tyre::default()
         };
-        w.set_vehicle(i, car_spec(tyre, inputs.clone())).unwrap();
-        w.set_ground(Ground::default()).unwrap();
-        w.run(1.0, 1e-3).unwrap()
+        car_world_with(Ground::default(), 20.0, 0.0, tyre, inputs.clone())
+            .run(1.0, 1e-3)
+            .unwrap()
     };
     let short = run(0.003);
     let last = short.len() - 1;

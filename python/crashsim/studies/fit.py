@@ -467,17 +467,24 @@ def _scan(
         i0 = int(np.argmin(c))
         level = c[i0] + CHI2_95
 
-        def crossing(idx: range) -> float:
-            prev = i0
-            for i in idx:
-                if c[i] > level:  # interpolate between prev (inside) and i (outside)
-                    f = (level - c[prev]) / (c[i] - c[prev])
-                    return float(g[prev] + f * (g[i] - g[prev]))
-                prev = i
-            return float(g[prev])
-
-        ranges[n] = (crossing(range(i0 - 1, -1, -1)), crossing(range(i0 + 1, len(g))))
+        ranges[n] = (
+            _crossing(g, c, i0, level, range(i0 - 1, -1, -1)),
+            _crossing(g, c, i0, level, range(i0 + 1, len(g))),
+        )
     return scans, ranges
+
+
+def _crossing(g: Array, c: Array, i0: int, level: float, idx: range) -> float:
+    """Where the scan c over the grid g first rises above ``level`` walking from i0 along
+    idx (interpolated between the last point inside and the first outside), else the last
+    grid value."""
+    prev = i0
+    for i in idx:
+        if c[i] > level:
+            f = (level - c[prev]) / (c[i] - c[prev])
+            return float(g[prev] + f * (g[i] - g[prev]))
+        prev = i
+    return float(g[prev])
 
 
 # -- the entry point --------------------------------------------------------------------------

@@ -284,7 +284,7 @@ def overrides(
     placements = scene._placements
     by_vehicle = {v: [p for p in paths if p.kind == "vehicle" and p.target == v] for v in vehicles}
     state_keys = set()
-    for v, ps in by_vehicle.items():
+    for ps in by_vehicle.values():
         for p in ps:
             if p.parameter == "mass":
                 state_keys.add("mass")

@@ -82,7 +82,9 @@ def plot_histogram(study: Study, column: str, path: Any = None, bins: Any = "aut
     return fig
 
 
-def plot_histograms(study: Study, folder: str | Path, columns: Sequence[str] | None = None) -> list[Path]:
+def plot_histograms(
+    study: Study, folder: str | Path, columns: Sequence[str] | None = None
+) -> list[Path]:
     """A histogram PNG per column (default: every output with a finite value and every
     input) into ``folder`` (created if needed), named :func:`histogram_file`; returns the
     paths."""
@@ -113,7 +115,7 @@ def plot_tornado(tornado: Tornado, output: str, path: Any = None) -> Figure:
     fig = _figure((7.6, 1.4 + 0.55 * k))
     ax = fig.add_subplot()
     base = float(table["base_output"].iloc[0]) if k else math.nan
-    for row, (name, r) in enumerate(table.iterrows()):
+    for row, (_, r) in enumerate(table.iterrows()):
         y = k - 1 - row
         for value, colour in ((r["output_low"], _BLUE), (r["output_high"], _ORANGE)):
             if np.isfinite(value) and np.isfinite(base):

@@ -196,7 +196,8 @@ def _check_options(
 
         duration = DEFAULT_MAX_DURATION if until == "rest" else 1.0
     for name, x in (("duration", duration), ("dt", dt)):
-        if isinstance(x, bool) or not isinstance(x, int | float) or not x > 0 or not math.isfinite(x):
+        number = isinstance(x, int | float) and not isinstance(x, bool)
+        if not number or not x > 0 or not math.isfinite(x):
             raise StudyError(f"{name} = {x!r} is invalid: give a time > 0 in s")
     return float(duration), float(dt)
 
