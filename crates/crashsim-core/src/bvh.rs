@@ -64,6 +64,22 @@ impl Bvh {
         &self.primitives[s..s + node.count as usize]
     }
 
+    /// The primitive indices of everything below node `i` (a subtree's primitives are
+    /// contiguous: the tree is laid out depth-first over a permutation split in place).
+    pub fn subtree_primitives(&self, i: u32) -> &[u32] {
+        let (mut first, mut last) = (i, i);
+        while !self.nodes[first as usize].is_leaf() {
+            first += 1; // the left child follows its parent
+        }
+        while !self.nodes[last as usize].is_leaf() {
+            last = self.nodes[last as usize].start_or_right;
+        }
+        let start = self.nodes[first as usize].start_or_right as usize;
+        let end = self.nodes[last as usize].start_or_right as usize
+            + self.nodes[last as usize].count as usize;
+        &self.primitives[start..end]
+    }
+
     /// The two children of internal node `i`.
     #[inline]
     pub fn children(&self, i: u32) -> (u32, u32) {

@@ -45,6 +45,18 @@ pub const BODY_SLIP_SPEED: Real = 0.05;
 const WHEEL_CLEARANCE: Real = 0.05;
 const WHEEL_HALF_WIDTH: Real = 0.15;
 
+/// How far a body's motion can stray over a span from its state at the span's start (world
+/// frame): what the first-contact search's guarantee (no contact stepped over) rests on.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MotionBound {
+    /// Largest |v(t) - v(t0)| of the CG velocity (m/s).
+    pub velocity_change: Real,
+    /// Largest |w(t)| (rad/s).
+    pub angular_speed: Real,
+    /// Largest |w(t) - w(t0)| (rad/s).
+    pub angular_velocity_change: Real,
+}
+
 /// The points by which a body's mesh can touch the ground, body frame.
 #[derive(Clone, Debug)]
 pub struct BodyContact {
@@ -67,15 +79,14 @@ impl BodyContact {
     /// wheels (if any) carry it. The stiffness per unit hull area makes a body resting on its
     /// footprint (the box's x-y area) sink 0.6 mm.
     pub fn new(shape: &MeshShape, mass: Real, wheels: Option<&VehicleSpec>) -> Result<BodyContact> {
-        let (vertices, triangles) = parry3d_f64::transformation::try_convex_hull(shape.vertices())
-            .map_err(|e| {
-                Error::Mesh(format!(
-                    "the body's convex hull (its contact with the ground) failed: {e:?}; the \
-                     mesh may be flat or degenerate"
-                ))
-            })?;
+        let (vertices, triangles) = shape.convex_hull().map_err(|e| {
+            Error::Mesh(format!(
+                "the body's convex hull (its contact with the ground) failed: {e}; the mesh \
+                 may be flat or degenerate"
+            ))
+        })?;
         let mut area = vec![0.0; vertices.len()];
-        for t in &triangles {
+        for t in triangles {
             let [a, b, c] = t.map(|i| vertices[i as usize]);
             let third = (b - a).cross(&(c - a)).norm() / 6.0;
             for &i in t {
@@ -435,30 +446,35 @@ impl OnGround {
         self.advance_visiting(body, ground, t0, dt, &mut |_| {})
     }
 
-    /// The largest change of the CG velocity from its value now (m/s) and the largest angular
-    /// speed (rad/s) over the next `dt` s, from the states at the integration's sub-step ends,
-    /// each grown by the largest change between neighbouring ones (the motion within a
-    /// sub-step stays within it). One integration pass.
-    pub fn motion_bound(
-        &self,
-        body: &RigidBody,
+    /// Advances as [`OnGround::advance`] does (the same bits) and returns how the motion is
+    /// bounded over the span (see [`MotionBound`]): from the states at the integration's
+    /// sub-step ends, each grown by the largest change between neighbouring ones (the motion
+    /// within a sub-step stays within it).
+    pub fn advance_bounded(
+        &mut self,
+        body: &mut RigidBody,
         ground: &Ground,
         t0: Real,
         dt: Real,
-    ) -> Result<(Real, Real)> {
+    ) -> Result<MotionBound> {
         let (v0, w0) = (body.velocity(), body.angular_velocity());
-        let (mut dv, mut w, mut step_v, mut step_w) = (0.0, w0.norm(), 0.0, 0.0);
+        let (mut dv, mut dw, mut w) = (0.0, 0.0, w0.norm());
+        let (mut step_v, mut step_w) = (0.0, 0.0);
         let (mut prev_v, mut prev_w) = (v0, w0);
-        let (mut b, mut m) = (body.clone(), self.clone());
-        m.advance_visiting(&mut b, ground, t0, dt, &mut |s| {
+        self.advance_visiting(body, ground, t0, dt, &mut |s| {
             let (v, wk) = (s.0, s.1);
             dv = Real::max(dv, (v - v0).norm());
+            dw = Real::max(dw, (wk - w0).norm());
             w = w.max(wk.norm());
             step_v = Real::max(step_v, (v - prev_v).norm());
             step_w = Real::max(step_w, (wk - prev_w).norm());
             (prev_v, prev_w) = (v, wk);
         })?;
-        Ok((dv + step_v, w + step_w))
+        Ok(MotionBound {
+            velocity_change: dv + step_v,
+            angular_speed: w + step_w,
+            angular_velocity_change: dw + step_w,
+        })
     }
 
     /// [`OnGround::advance`], calling `visit((velocity, angular velocity))` after each

@@ -365,6 +365,16 @@ impl OverlapRegion {
         self.points.is_empty()
     }
 
+    /// The centre of the region's box (m, world); None when it is empty.
+    pub fn center(&self) -> Option<Point> {
+        let first = *self.points.first()?;
+        let (lo, hi) = self
+            .points
+            .iter()
+            .fold((first, first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+        Some(nalgebra::center(&lo, &hi))
+    }
+
     /// The volume normal from mesh 1 into mesh 2, unit; None when it vanishes.
     pub fn volume_normal(&self) -> Option<Vector> {
         let n = self.area_normal_1_in_2 - self.area_normal_2_in_1;

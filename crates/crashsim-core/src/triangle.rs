@@ -288,29 +288,65 @@ pub fn triangles_intersect(a: &Tri, b: &Tri) -> bool {
     triangle_triangle_segment(a, b).is_some()
 }
 
+/// The point of triangle `t` nearest to `p`.
 #[inline]
-fn point_triangle_distance_sq(p: &Point, t: &Tri) -> Real {
+fn point_triangle_closest(p: &Point, t: &Tri) -> Point {
     if scaled_normal(t).norm_squared() == 0.0 {
         // A zero-area triangle is its edges: parry's projection onto it is undefined (it
         // returned distance 0 for far points, stalling the first-contact search).
-        let mut best = Real::INFINITY;
+        let mut best = (Real::INFINITY, *p);
         for i in 0..3 {
             let seg = Segment::new(t[i], t[(i + 1) % 3]);
-            best = best.min((seg.project_local_point(p, true).point - p).norm_squared());
+            let q = seg.project_local_point(p, true).point;
+            let d = (q - p).norm_squared();
+            if d < best.0 {
+                best = (d, q);
+            }
         }
-        return best;
+        return best.1;
     }
     let tri = Triangle::new(t[0], t[1], t[2]);
-    let proj = tri.project_local_point(p, true);
-    (proj.point - p).norm_squared()
+    tri.project_local_point(p, true).point
 }
 
 #[inline]
-fn segment_segment_distance_sq(p0: &Point, p1: &Point, q0: &Point, q1: &Point) -> Real {
+fn segment_segment_closest(p0: &Point, p1: &Point, q0: &Point, q1: &Point) -> (Point, Point) {
     let (l1, l2) = closest_points_segment_segment_with_locations_nD((p0, p1), (q0, q1));
-    let a = Segment::new(*p0, *p1).point_at(&l1);
-    let b = Segment::new(*q0, *q1).point_at(&l2);
-    (a - b).norm_squared()
+    (
+        Segment::new(*p0, *p1).point_at(&l1),
+        Segment::new(*q0, *q1).point_at(&l2),
+    )
+}
+
+/// The closest points (on `a`, on `b`) of two triangles that neither touch nor cross, None
+/// when they do (as [`triangles_intersect`] decides). Between two convex sets the plane
+/// through the closest points' midpoint, normal to the segment joining them, separates the
+/// sets: every point pair is at least the distance apart along that direction.
+pub fn triangle_triangle_closest(a: &Tri, b: &Tri) -> Option<(Point, Point)> {
+    if triangles_intersect(a, b) {
+        return None;
+    }
+    let mut best = (Real::INFINITY, a[0], b[0]);
+    let mut keep = |pa: Point, pb: Point| {
+        let d = (pa - pb).norm_squared();
+        if d < best.0 {
+            best = (d, pa, pb);
+        }
+    };
+    for p in a {
+        keep(*p, point_triangle_closest(p, b));
+    }
+    for p in b {
+        keep(point_triangle_closest(p, a), *p);
+    }
+    for i in 0..3 {
+        let (p0, p1) = (&a[i], &a[(i + 1) % 3]);
+        for j in 0..3 {
+            let (pa, pb) = segment_segment_closest(p0, p1, &b[j], &b[(j + 1) % 3]);
+            keep(pa, pb);
+        }
+    }
+    Some((best.1, best.2))
 }
 
 /// The squared distance between two triangles (0 when they touch or cross).
@@ -320,15 +356,16 @@ pub fn triangle_triangle_distance_sq(a: &Tri, b: &Tri) -> Real {
     }
     let mut best = Real::INFINITY;
     for p in a {
-        best = best.min(point_triangle_distance_sq(p, b));
+        best = best.min((point_triangle_closest(p, b) - p).norm_squared());
     }
     for p in b {
-        best = best.min(point_triangle_distance_sq(p, a));
+        best = best.min((point_triangle_closest(p, a) - p).norm_squared());
     }
     for i in 0..3 {
         let (p0, p1) = (&a[i], &a[(i + 1) % 3]);
         for j in 0..3 {
-            best = best.min(segment_segment_distance_sq(p0, p1, &b[j], &b[(j + 1) % 3]));
+            let (pa, pb) = segment_segment_closest(p0, p1, &b[j], &b[(j + 1) % 3]);
+            best = best.min((pa - pb).norm_squared());
         }
     }
     best
@@ -385,6 +422,64 @@ pub fn solid_angle(t: &Tri, p: &Point) -> Real {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn closest_points_give_the_distance_and_a_separating_plane() {
+        use rand::rngs::SmallRng;
+        use rand::{Rng, SeedableRng};
+        let mut rng = SmallRng::seed_from_u64(7);
+        let mut pt = |rng: &mut SmallRng, s: Real| {
+            Point::new(
+                rng.random_range(-s..s),
+                rng.random_range(-s..s),
+                rng.random_range(-s..s),
+            )
+        };
+        let mut apart = 0;
+        for _ in 0..2000 {
+            let a = [pt(&mut rng, 1.0), pt(&mut rng, 1.0), pt(&mut rng, 1.0)];
+            let o = Vector::new(rng.random_range(-2.0..2.0), 0.5, 0.0);
+            let b = [
+                pt(&mut rng, 1.0) + o,
+                pt(&mut rng, 1.0) + o,
+                pt(&mut rng, 1.0) + o,
+            ];
+            let d = triangle_triangle_distance_sq(&a, &b).sqrt();
+            match triangle_triangle_closest(&a, &b) {
+                None => assert_eq!(d, 0.0),
+                Some((p, q)) => {
+                    apart += 1;
+                    let g = (q - p).norm();
+                    assert!((g - d).abs() <= 1e-12 * (1.0 + d), "{g} vs {d}");
+                    // Every point pair (corners and random convex combinations) is at least
+                    // the distance apart along the closest points' direction.
+                    let n = (q - p) / g;
+                    for _ in 0..20 {
+                        let w = |rng: &mut SmallRng| {
+                            let (u, v): (Real, Real) =
+                                (rng.random_range(0.0..1.0), rng.random_range(0.0..1.0));
+                            let (u, v) = if u + v > 1.0 {
+                                (1.0 - u, 1.0 - v)
+                            } else {
+                                (u, v)
+                            };
+                            (u, v)
+                        };
+                        let (u, v) = w(&mut rng);
+                        let pa = a[0] + (a[1] - a[0]) * u + (a[2] - a[0]) * v;
+                        let (u, v) = w(&mut rng);
+                        let pb = b[0] + (b[1] - b[0]) * u + (b[2] - b[0]) * v;
+                        assert!(
+                            n.dot(&(pb - pa)) >= g - 1e-12,
+                            "{} < {g}",
+                            n.dot(&(pb - pa))
+                        );
+                    }
+                }
+            }
+        }
+        assert!(apart > 500, "{apart} pairs apart");
+    }
 
     fn p(x: Real, y: Real, z: Real) -> Point {
         Point::new(x, y, z)

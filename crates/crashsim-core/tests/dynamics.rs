@@ -11,7 +11,9 @@ use crashsim_core::vehicle::{
     static_loads, Braking, DriverInputs, Table, Trigger, Tyre, VehicleSpec, WheelSpec, WheelState,
     WheelSwitch, GRAVITY,
 };
-use crashsim_core::{BodyState, MassProperties, MeshShape, RunOptions, RunOutput, World};
+use crashsim_core::{
+    BodyState, ContactEventKind, MassProperties, MeshShape, RunOptions, RunOutput, World,
+};
 
 const MASS: Real = 1500.0;
 /// CG 1.1 m behind the front axle and 1.6 m ahead of the rear one, track 1.55 m, CG 0.55 m
@@ -366,6 +368,46 @@ fn a_side_impact_on_the_ground_runs_to_rest_and_dissipates_everything() {
 }
 
 #[test]
+fn cars_at_rest_that_rock_into_each_other_make_no_exchange() {
+    // Two parked cars side by side, 5 mm apart; the right one rolls on its springs (0.3 rad/s
+    // about its CG at the start, toward the other) and its side swings into the left one's:
+    // both are at rest (travel and yaw), so it is a resting contact: logged, no impulse.
+    let mut w = World::new();
+    add_car(&mut w, 0.0, 0.0, 0.0, 0.0, DriverInputs::default());
+    let state = BodyState {
+        position: Point::new(0.0, -1.805, CG_HEIGHT),
+        orientation: Rotation::identity(),
+        velocity: Vector::zeros(),
+        angular_velocity: Vector::new(-0.3, 0.0, 0.0), // right side down: the roof leans left
+    };
+    let right = w.add_body(car_shape(), car_props(), &state).unwrap();
+    w.set_vehicle(right, car_spec(Tyre::default(), DriverInputs::default()))
+        .unwrap();
+    w.set_ground(Ground::default()).unwrap();
+    let out = until_rest(&mut w, 5.0);
+    let resting: Vec<_> = out
+        .contacts
+        .iter()
+        .filter(|c| matches!(&c.kind, ContactEventKind::NoExchange(r) if r.starts_with("resting contact")))
+        .collect();
+    eprintln!("{:?}", out.contacts);
+    assert!(!resting.is_empty(), "the cars touched: {:?}", out.contacts);
+    assert!(out.impacts.is_empty(), "{} exchanges", out.impacts.len());
+}
+
+#[test]
+fn a_car_creeping_into_a_parked_car_exchanges() {
+    // 0.3 m/s (1 km/h) is slow, but the moving car is not at rest: an impact as any other.
+    let mut w = World::new();
+    let red = add_car(&mut w, -4.65, 0.0, 0.0, 0.3, DriverInputs::default());
+    add_car(&mut w, 0.0, 0.0, 0.0, 0.0, DriverInputs::default());
+    w.set_ground(Ground::default()).unwrap();
+    let out = w.run(1.0, 1e-3).unwrap();
+    assert!(!out.impacts.is_empty(), "{:?}", out.contacts);
+    assert!(out.sample(out.len() - 1)[red].velocity.x < 0.3);
+}
+
+#[test]
 fn a_car_into_a_rigid_barrier_at_a_quarter_overlap_and_into_a_pole() {
     // A 1.2 m wide, 0.5 m deep, 1 m high barrier block whose edge overlaps the car's left
     // quarter (0.45 m of its 1.8 m width); and a 0.3 m pole on the car's centre line.
@@ -467,16 +509,25 @@ fn separated_steps_make_no_mesh_query() {
     w.set_ground(Ground::default()).unwrap();
     w.run(2.0, 1e-3).unwrap();
     assert_eq!(w.distance_queries(), 0);
-    // Two cars at rest 5 cm apart side by side: certified clear, queried a few times in 2000
-    // steps, not every step.
+    // Two cars at rest 5 cm apart side by side: the clearance front certifies every step
+    // without a distance query, and evaluates parts of the meshes only while the cars settle
+    // on their springs, not every step.
     let mut w = World::new();
     add_car(&mut w, 0.0, 0.0, 0.0, 0.0, DriverInputs::default());
     add_car(&mut w, 0.0, 1.85, 0.0, 0.0, DriverInputs::default());
     w.set_ground(Ground::default()).unwrap();
     w.run(2.0, 1e-3).unwrap();
-    let q = w.distance_queries();
-    eprintln!("{q} distance queries in 2000 steps at rest 5 cm apart");
-    assert!(q > 0 && q < 100, "{q}");
+    let (q, e, c) = (
+        w.distance_queries(),
+        w.clearance_evaluations(),
+        w.clearance_checks(),
+    );
+    eprintln!(
+        "at rest 5 cm apart, 2000 steps: {q} distance queries, {e} parts evaluated, {c} checked"
+    );
+    assert_eq!(q, 0);
+    assert!(e < 200, "{e} parts evaluated");
+    assert!(c <= 2 * 2000, "{c} parts checked");
 }
 
 /// The linear single-track model with first-order tyre lag (relaxation length sigma) at a

@@ -23,6 +23,15 @@ const CLOSING_TOLERANCE: Real = 1e-6;
 /// its speed by at most 0.3 m/s. A secondary impulse from a closing below 0.5 m/s changes a
 /// car's speed by about as little, below what a reconstruction resolves.
 const CLOSING_TOLERANCE_ON_GROUND: Real = 0.5;
+/// Two bodies at rest (stepper.rs: come to rest since they last moved, or fixed) whose meshes
+/// touch with a relative speed below this (m/s) at the touch are in resting contact: no timer
+/// and no impulse while both stay at rest and the touch stays this slow. Cars that came to
+/// rest side by side rock on their springs and treads into each other at a few cm/s (0.06 to
+/// 0.08 m/s in the seed's side impact run to rest, benches/compare_peers.py): an exchange there
+/// changed each car's speed by 0.03 m/s, after its rest time. A vehicle still travelling
+/// (faster than REST_SPEED along the ground) is not at rest, so a slow first impact (a car
+/// creeping into a parked one) exchanges as any other.
+const RESTING_CONTACT_SPEED: Real = 0.5;
 
 impl World {
     /// Starts pair `pi`'s timer at `started` (s, at most now); exchanges at once when it has
@@ -318,7 +327,6 @@ impl World {
             if let Motion::OnGround(g) = &mut self.bodies[i].motion {
                 g.exchanges += 1; // wheel states may switch at an exchange
             }
-            self.forget_clearance(i);
         }
         self.forget_predictions();
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
@@ -360,6 +368,107 @@ impl World {
         self.pairs[pi].phase = engaged;
     }
 
+    /// At pair `pi`'s first overlap (now): when both bodies are at rest and their meshes
+    /// touch slowly ([`RESTING_CONTACT_SPEED`]), logs why there is no exchange, puts the pair
+    /// in resting contact and returns true; else false (a timer is to start).
+    pub(super) fn start_resting_contact(&mut self, pi: usize, out: &mut RunOutput) -> bool {
+        let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
+        if !(self.at_rest(i1) && self.at_rest(i2)) {
+            return false;
+        }
+        let (a, b) = (&self.bodies[i1], &self.bodies[i2]);
+        let (pose1, pose2) = (a.body.pose(), b.body.pose());
+        let region = overlap_region(&a.shape, &pose1, &b.shape, &pose2);
+        let Some(point) = region.center() else {
+            return false;
+        };
+        let speed = (a.body.point_velocity(&point) - b.body.point_velocity(&point)).norm();
+        if speed >= RESTING_CONTACT_SPEED {
+            return false;
+        }
+        out.contacts.push(ContactEvent {
+            body1: i1,
+            body2: i2,
+            time: self.time,
+            kind: ContactEventKind::NoExchange(format!(
+                "resting contact: both vehicles were at rest and their meshes touched at \
+                 {speed:.3} m/s (below {RESTING_CONTACT_SPEED} m/s): no impulse while they \
+                 stay at rest; an exchange follows if either moves again or the touch closes \
+                 faster"
+            )),
+        });
+        self.pairs[pi].phase = Phase::Touching {
+            point_in: [
+                pose1.inverse_transform_point(&point),
+                pose2.inverse_transform_point(&point),
+            ],
+        };
+        true
+    }
+
+    /// After a step, a pair in resting contact either separates, starts a timer (a body
+    /// moved again, or the touch closes at [`RESTING_CONTACT_SPEED`] or more) or stays.
+    pub(super) fn follow_touching(&mut self, pi: usize, t_prev: Real, out: &mut RunOutput) {
+        let Phase::Touching { point_in } = self.pairs[pi].phase else {
+            return;
+        };
+        if !self.still_overlapping(pi) {
+            self.separate(pi, t_prev, out);
+            return;
+        }
+        let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
+        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        let c = nalgebra::center(&(b1.pose() * point_in[0]), &(b2.pose() * point_in[1]));
+        let speed = (b1.point_velocity(&c) - b2.point_velocity(&c)).norm();
+        if self.at_rest(i1) && self.at_rest(i2) && speed < RESTING_CONTACT_SPEED {
+            return;
+        }
+        out.contacts.push(ContactEvent {
+            body1: i1,
+            body2: i2,
+            time: self.time,
+            kind: ContactEventKind::ClosingAgain,
+        });
+        self.start_timer(pi, self.time, None, out);
+    }
+
+    /// True when the pair's meshes overlap now (the last crossing triangles tried first).
+    fn still_overlapping(&mut self, pi: usize) -> bool {
+        let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
+        let (a, b) = (&self.bodies[i1], &self.bodies[i2]);
+        let mut hint = self.pairs[pi].crossing;
+        let overlapping = shapes_overlap_hinted(
+            &a.shape,
+            &a.body.pose(),
+            &b.shape,
+            &b.body.pose(),
+            &mut self.ws,
+            &mut hint,
+        );
+        self.pairs[pi].crossing = hint;
+        overlapping
+    }
+
+    /// The pair, overlapping at `t_prev` and not now, separated in between: logs the instant
+    /// (bisected backwards; the bodies move freely here) and puts it apart.
+    fn separate(&mut self, pi: usize, t_prev: Real, out: &mut RunOutput) {
+        let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
+        let (s1, s2) = (self.bodies[i1].shape.clone(), self.bodies[i2].shape.clone());
+        let mut ws = std::mem::take(&mut self.ws);
+        let hi = bisect(t_prev - self.time, 0.0, SEPARATION_TOLERANCE, |dt| {
+            let (p1, p2) = (self.predicted(i1, dt).pose(), self.predicted(i2, dt).pose());
+            !shapes_overlap(&s1, &p1, &s2, &p2, &mut ws)
+        });
+        self.ws = ws;
+        out.contacts.push(ContactEvent {
+            body1: i1,
+            body2: i2,
+            time: self.time + hi,
+            kind: ContactEventKind::Separation,
+        });
+        self.pairs[pi].phase = Phase::Apart;
+    }
+
     /// Relative normal velocity (m/s, closing > 0) of an engaged pair `dt` s from now.
     pub(super) fn closing_speed(
         &self,
@@ -387,33 +496,8 @@ impl World {
             return;
         };
         let (i1, i2) = (pair.body1, pair.body2);
-        let (a, b) = (&self.bodies[i1], &self.bodies[i2]);
-        let mut hint = pair.crossing;
-        let overlapping = shapes_overlap_hinted(
-            &a.shape,
-            &a.body.pose(),
-            &b.shape,
-            &b.body.pose(),
-            &mut self.ws,
-            &mut hint,
-        );
-        self.pairs[pi].crossing = hint;
-        if !overlapping {
-            // Bisect the separation instant backwards from now (bodies move freely here).
-            let (s1, s2) = (self.bodies[i1].shape.clone(), self.bodies[i2].shape.clone());
-            let mut ws = std::mem::take(&mut self.ws);
-            let hi = bisect(t_prev - self.time, 0.0, SEPARATION_TOLERANCE, |dt| {
-                let (p1, p2) = (self.predicted(i1, dt).pose(), self.predicted(i2, dt).pose());
-                !shapes_overlap(&s1, &p1, &s2, &p2, &mut ws)
-            });
-            self.ws = ws;
-            out.contacts.push(ContactEvent {
-                body1: i1,
-                body2: i2,
-                time: self.time + hi,
-                kind: ContactEventKind::Separation,
-            });
-            self.pairs[pi].phase = Phase::Apart;
+        if !self.still_overlapping(pi) {
+            self.separate(pi, t_prev, out);
             return;
         }
         let on_ground = [i1, i2]

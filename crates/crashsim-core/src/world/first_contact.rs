@@ -4,11 +4,15 @@
 
 use parry3d_f64::bounding_volume::BoundingVolume;
 
+use std::sync::atomic::Ordering;
+
+use super::clearance::{Certificate, Front, PairMotion};
 use super::stepper::interrupted;
 use super::{Motion, Pair, World, TIME_TOLERANCE};
 use crate::bisect::bisect;
 use crate::error::{Error, Result};
 use crate::math::{Aabb, Isometry, Point, Real, Vector};
+use crate::motion::MotionBound;
 use crate::overlap::{
     overlap_region, shapes_overlap, surface_distance_from, surfaces_intersect, QueryWorkspace,
 };
@@ -20,26 +24,6 @@ const MIN_ADVANCE_FRACTION: Real = 1e-3;
 /// A bound on a body's acceleration on the ground (m/s^2) for how far its path bends away
 /// from its chord within a step: tyre friction and gravity give at most a few g.
 const CHORD_ACCELERATION: Real = 100.0;
-/// What a first-contact search found: the instant (an offset from now, s) if any, the time
-/// (s) before which the pair is certified clear, and the closest pair of triangles met.
-/// What a search found: the first overlap's offset (s), the time before which the pair is
-/// certified clear (s), the closest triangles, and the gap state after it (see `Pair::gap`).
-type Search = (Option<Real>, Real, Option<(u32, u32)>, (Real, u32));
-
-/// The farthest a pair's first distance query looks ahead, in steps: far enough that a pair
-/// drifting apart is queried a few times, near enough that the query stays cheap.
-const MAX_LOOKAHEAD: Real = 64.0;
-/// A pair's first query of a step asks only whether the surfaces are still this fraction of
-/// their last exact distance apart (its cap), when that certifies at least the step: far
-/// cheaper than the exact distance of surfaces a few cm apart (the node pairs opened are
-/// those nearer than the cap), and it certifies GAP_FRACTION of the time. Every
-/// GAP_REFRESH-th query is exact again, so the certificates grow when the bodies part.
-/// Measured on the two-sedan side impact at 20k triangles run to rest
-/// (benches/examples/profile_rest.rs, least of 9 on a loaded machine): the run-out 160 ->
-/// 106 ms with 66 -> 80 queries.
-const GAP_FRACTION: Real = 0.5;
-/// See [`GAP_FRACTION`].
-const GAP_REFRESH: u32 = 4;
 /// Most conservative-advancement iterations in one step before giving up.
 const MAX_ADVANCE_ITERATIONS: usize = 100_000;
 
@@ -64,36 +48,70 @@ impl World {
         Ok(())
     }
 
-    /// How much body `i`'s CG velocity can change (m/s) and its largest angular speed
-    /// (rad/s) over the next `span` s. Torque-free: no change and the exact bound of
-    /// [`RigidBody::angular_speed_bound`]. On the ground: from the predicted states at
-    /// sub-step nodes, each grown by the largest change between neighbouring nodes (the
-    /// motion within a sub-step stays within it).
+    /// How body `i`'s motion is bounded over the next `span` s. Torque-free: the CG velocity
+    /// constant, |w| at most the exact bound of [`RigidBody::angular_speed_bound`], and w
+    /// turning at most |dw/dt| = |R I^-1 R^T (w x L)| <= |I^-1| |w| |L| (Frobenius norm).
+    /// On the ground: read off the step's prediction (the integration the advance reuses).
     ///
     /// [`RigidBody::angular_speed_bound`]: crate::body::RigidBody::angular_speed_bound
-    fn motion_bound(&self, i: usize, span: Real) -> (Real, Real) {
+    fn motion_bound(&self, i: usize, span: Real) -> MotionBound {
         let wb = &self.bodies[i];
         match wb.motion {
-            Motion::Free => (0.0, wb.body.angular_speed_bound()),
-            Motion::Fixed => (0.0, 0.0),
-            Motion::OnGround(ref g) => {
-                let ground = self
-                    .ground
-                    .as_ref()
-                    .expect("a body on the ground has a ground");
-                match g.motion_bound(&wb.body, ground, self.time, span) {
-                    Ok(bound) => bound,
-                    Err(e) => {
-                        // A wheel leaves the terrain ahead: the stepper reports it.
-                        let e = match e {
-                            Error::Simulation(m) => Error::Simulation(format!("body {i}: {m}")),
-                            other => other,
-                        };
-                        self.deferred.lock().expect("not poisoned").get_or_insert(e);
-                        (Real::INFINITY, Real::INFINITY)
-                    }
+            Motion::Free => {
+                let w = wb.body.angular_speed_bound();
+                let turn = wb.body.props().inverse_inertia().norm()
+                    * w
+                    * wb.body.angular_momentum().norm();
+                MotionBound {
+                    velocity_change: 0.0,
+                    angular_speed: w,
+                    angular_velocity_change: (turn * span).min(2.0 * w),
                 }
             }
+            Motion::Fixed => MotionBound::default(),
+            Motion::OnGround(_) => match self.predicted_on_ground(i, span) {
+                Some(p) => p.bound.expect("a forward prediction carries its bound"),
+                // A wheel leaves the terrain ahead: the stepper reports it (kept as deferred).
+                None => MotionBound {
+                    velocity_change: Real::INFINITY,
+                    angular_speed: Real::INFINITY,
+                    angular_velocity_change: Real::INFINITY,
+                },
+            },
+        }
+    }
+
+    /// The pair's two bodies over the next `span` s as the clearance front reads them, with
+    /// a bound on how fast any point of one surface can approach the other (m/s): the
+    /// relative CG speed now, how much each CG velocity can change, and each body's largest
+    /// angular speed times its reach.
+    fn pair_motion(&self, pair: &Pair, span: Real) -> PairMotion {
+        let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
+        let bound = [
+            self.motion_bound(pair.body1, span),
+            self.motion_bound(pair.body2, span),
+        ];
+        let (v, w) = (
+            [wb1.body.velocity(), wb2.body.velocity()],
+            [wb1.body.angular_velocity(), wb2.body.angular_velocity()],
+        );
+        let speed = (v[0] - v[1]).norm()
+            + bound[0].velocity_change
+            + bound[1].velocity_change
+            + bound[0].angular_speed * wb1.shape.radius()
+            + bound[1].angular_speed * wb2.shape.radius();
+        let pose = [wb1.body.pose(), wb2.body.pose()];
+        PairMotion {
+            rot: [
+                pose[0].rotation.to_rotation_matrix().into_inner(),
+                pose[1].rotation.to_rotation_matrix().into_inner(),
+            ],
+            pose,
+            v,
+            w,
+            bound,
+            span,
+            speed,
         }
     }
 
@@ -138,6 +156,8 @@ impl World {
     /// The first instant at which the apart pair `pi` overlaps, as an offset (s) in
     /// [0, span] from now; None when it does not within `span`.
     ///
+    /// The pair's clearance front (clearance.rs) certifies most steps without a mesh query;
+    /// a step it cannot certify is searched exactly ([`World::search_first_contact`]).
     /// The instant is one where the overlap region is not empty at the poses the bodies will
     /// have there (`RigidBody::advanced(offset)`, which [`World::advance_by`] repeats bit for
     /// bit): surfaces that only touch (faces or edges meeting exactly, e.g. when the
@@ -149,87 +169,169 @@ impl World {
         span: Real,
         poll: &mut dyn FnMut(Real) -> bool,
     ) -> Result<Option<Real>> {
-        let pair = &self.pairs[pi];
-        if pair.clear_until >= self.time + span {
-            return Ok(None); // certified clear: no mesh query
+        if span <= 0.0 {
+            return Ok(None);
         }
-        let mut ws = std::mem::take(&mut self.ws);
-        let found = self.first_contact_with(pi, span, poll, &mut ws);
-        self.ws = ws;
-        let (found, clear, closest, gap) = found?;
-        let pair = &mut self.pairs[pi];
-        pair.closest = closest.or(pair.closest);
-        pair.gap = gap;
-        let horizon = span * pair.lookahead;
-        pair.clear_until = clear;
-        if clear >= self.time + horizon * (1.0 - 1e-6) {
-            pair.lookahead = (pair.lookahead * 2.0).min(MAX_LOOKAHEAD); // it held: look further
-        } else if clear < self.time + 2.0 * span {
-            pair.lookahead = 1.0; // the surfaces are close
+        let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
+        if !self
+            .swept_box(i1, span)
+            .intersects(&self.swept_box(i2, span))
+        {
+            // Out of reach: no query; the front is rebuilt when the boxes meet again.
+            self.pairs[pi].front = None;
+            return Ok(None);
+        }
+        let m = self.pair_motion(&self.pairs[pi], span);
+        if m.speed == 0.0 {
+            return Ok(None); // neither moves nor turns: nothing can meet
+        }
+        let (s1, s2) = (self.bodies[i1].shape.clone(), self.bodies[i2].shape.clone());
+        let mut front = self.pairs[pi]
+            .front
+            .take()
+            .unwrap_or_else(|| Box::new(Front::new(&s1, &s2, &m)));
+        let before = (front.evaluations(), front.checks());
+        let certificate = front.certify(&s1, &s2, &m);
+        self.clearance_evaluations
+            .fetch_add(front.evaluations() - before.0, Ordering::Relaxed);
+        self.clearance_checks
+            .fetch_add(front.checks() - before.1, Ordering::Relaxed);
+        let found = match certificate {
+            Certificate::Clear => None,
+            Certificate::Critical(critical) => self.search_critical(pi, &m, &critical, poll)?,
+            Certificate::TooLarge => {
+                // The exact search on the whole meshes; the front is rebuilt next step.
+                let mut ws = std::mem::take(&mut self.ws);
+                let found = self.search_first_contact(pi, span, m.speed, None, poll, &mut ws);
+                self.ws = ws;
+                let (found, closest) = found?;
+                let pair = &mut self.pairs[pi];
+                pair.closest = closest.or(pair.closest);
+                return Ok(found);
+            }
+        };
+        if found.is_none() {
+            self.pairs[pi].front = Some(front);
         }
         Ok(found)
     }
 
-    /// [`World::first_contact`] with a query workspace of its own; also returns the time
-    /// (s) before which the pair is certified clear.
-    ///
-    /// The certificate: the first distance query reaches `lookahead` spans ahead (its cap is
-    /// the distance the surfaces can close over that horizon); a distance d with a speed
-    /// bound S valid over the horizon (exact for torque-free and fixed bodies, whose bound
-    /// holds for ever; predicted over the horizon for a body on the ground) means no contact
-    /// for d / S. Steps inside it make no mesh query.
-    fn first_contact_with(
+    /// The first contact within the step `m` describes when only the `critical` triangle
+    /// pairs can meet (the clearance front certified every other part apart over it):
+    /// conservative advancement on those pairs' distances, each with its own rate bound along
+    /// its closest points' direction (a pair parting, or closing slowly, is passed in one or
+    /// a few iterations), then bisection to [`TIME_TOLERANCE`] on their crossing, which within
+    /// the step is the meshes' ([`surfaces_intersect`]), and the overlap region's check as in
+    /// [`World::search_first_contact`].
+    fn search_critical(
+        &self,
+        pi: usize,
+        m: &PairMotion,
+        critical: &[(u32, u32)],
+        poll: &mut dyn FnMut(Real) -> bool,
+    ) -> Result<Option<Real>> {
+        let pair = &self.pairs[pi];
+        let (i1, i2) = (pair.body1, pair.body2);
+        let (s1, s2) = (&self.bodies[i1].shape, &self.bodies[i2].shape);
+        let span = m.span;
+        let at = |dt: Real| -> PairMotion {
+            if dt == 0.0 {
+                return m.clone();
+            }
+            let (b1, b2) = (self.predicted(i1, dt), self.predicted(i2, dt));
+            m.later(
+                dt,
+                [b1.pose(), b2.pose()],
+                [b1.velocity(), b2.velocity()],
+                [b1.angular_velocity(), b2.angular_velocity()],
+            )
+        };
+        let overlaps = |dt: Real| {
+            let (p1, p2) = self.poses_after(pair, dt);
+            !overlap_region(s1, &p1, s2, &p2).is_empty()
+        };
+        let min_advance = MIN_ADVANCE.max(MIN_ADVANCE_FRACTION * span);
+        // Each pair with the earliest offset (s) at which it can meet: a pair is evaluated
+        // again only once the search reaches that instant, so the many pairs of two faces
+        // passing close cost one evaluation each while the search closes on the few that meet.
+        let mut pairs: Vec<((u32, u32), Real)> = critical.iter().map(|&p| (p, 0.0)).collect();
+        let mut due: Vec<(u32, u32)> = Vec::new();
+        let (mut lo, mut t) = (0.0, 0.0);
+        for _ in 0..MAX_ADVANCE_ITERATIONS {
+            if !poll(self.time) {
+                return Err(interrupted(self.time));
+            }
+            let md = at(t);
+            let mut next = Real::INFINITY;
+            let mut touching = false;
+            due.clear();
+            for (p, meets) in pairs.iter_mut() {
+                if *meets <= t {
+                    due.push(*p);
+                    *meets = match md.triangles_apart(*p, s1, s2) {
+                        None => {
+                            touching = true; // at distance 0: the search creeps
+                            t
+                        }
+                        Some((gap, slope)) if slope < 0.0 => t + gap / -slope,
+                        Some(_) => Real::INFINITY, // parting for the rest of the step
+                    };
+                }
+                next = next.min(*meets);
+            }
+            if touching && due.iter().any(|&p| md.triangles_cross(p, s1, s2)) {
+                // Only the pairs due now can have met since `lo`.
+                let crossing = |dt: Real| {
+                    let md = at(dt);
+                    due.iter().any(|&p| md.triangles_cross(p, s1, s2))
+                };
+                let hi = if t == 0.0 {
+                    0.0
+                } else {
+                    bisect(lo, t, TIME_TOLERANCE, crossing)
+                };
+                if overlaps(hi) {
+                    return Ok(Some(hi));
+                }
+                // The surfaces only touch at hi; the overlap starts later, if at all.
+                if hi < t && overlaps(t) {
+                    return Ok(Some(bisect(hi, t, TIME_TOLERANCE, overlaps)));
+                }
+            } else if !touching && next >= span {
+                return Ok(None);
+            }
+            if t >= span {
+                return Ok(None);
+            }
+            lo = t;
+            t = next.max(t + min_advance).min(span);
+        }
+        Err(Error::Simulation(format!(
+            "the first-contact search for bodies {i1} and {i2} did not converge within \
+             {MAX_ADVANCE_ITERATIONS} iterations near t = {} s (please report the scene)",
+            self.time
+        )))
+    }
+
+    /// The exact first-contact search over the next `span` s: conservative advancement on
+    /// the mesh distance with the approach-speed bound `speed` (m/s), warm-started from
+    /// `hint` (two triangles likely near), then bisection to [`TIME_TOLERANCE`]. Returns the
+    /// offset found, if any, and the closest triangles met.
+    fn search_first_contact(
         &self,
         pi: usize,
         span: Real,
+        speed: Real,
+        hint: Option<(u32, u32)>,
         poll: &mut dyn FnMut(Real) -> bool,
         ws: &mut QueryWorkspace,
-    ) -> Result<Search> {
-        let pair = self.pairs[pi].clone();
-        let mut closest = pair.closest;
-        let mut gap = pair.gap;
-        let none = Real::NEG_INFINITY;
-        if span <= 0.0 {
-            return Ok((None, none, closest, pair.gap));
-        }
-        if !self
-            .swept_box(pair.body1, span)
-            .intersects(&self.swept_box(pair.body2, span))
-        {
-            return Ok((None, self.time + span, closest, pair.gap));
-        }
-        let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
-        let (s1, s2) = (wb1.shape.clone(), wb2.shape.clone());
-        // Bound on how fast any point of one surface can approach the other (m/s) over the
-        // span: the relative CG speed now, how much each CG velocity can change, and each
-        // body's largest angular speed times its reach.
-        let (dv1, w1) = self.motion_bound(pair.body1, span);
-        let (dv2, w2) = self.motion_bound(pair.body2, span);
-        let speed = (wb1.body.velocity() - wb2.body.velocity()).norm()
-            + dv1
-            + dv2
-            + w1 * s1.radius()
-            + w2 * s2.radius();
-        if speed == 0.0 {
-            return Ok((None, self.time + span, closest, pair.gap));
-        }
-        // The horizon of the first query and the speed bound over it.
-        let on_ground = [pair.body1, pair.body2]
-            .iter()
-            .any(|&i| matches!(self.bodies[i].motion, Motion::OnGround(_)));
-        let horizon = span * pair.lookahead;
-        let horizon_speed = if on_ground && pair.lookahead > 1.0 {
-            let (dv1, w1) = self.motion_bound(pair.body1, horizon);
-            let (dv2, w2) = self.motion_bound(pair.body2, horizon);
-            ((wb1.body.velocity() - wb2.body.velocity()).norm()
-                + dv1
-                + dv2
-                + w1 * s1.radius()
-                + w2 * s2.radius())
-            .max(speed)
-        } else {
-            speed
-        };
+    ) -> Result<(Option<Real>, Option<(u32, u32)>)> {
+        let pair = &self.pairs[pi];
+        let mut closest = hint.or(pair.closest);
+        let (s1, s2) = (
+            self.bodies[pair.body1].shape.clone(),
+            self.bodies[pair.body2].shape.clone(),
+        );
         let mut lo = 0.0; // offset from self.time known apart
         let mut t = 0.0;
         let min_advance = MIN_ADVANCE.max(MIN_ADVANCE_FRACTION * span);
@@ -237,29 +339,11 @@ impl World {
             if !poll(self.time) {
                 return Err(interrupted(self.time));
             }
-            let (p1, p2) = self.poses_after(&pair, t);
-            let full = if t == 0.0 {
-                (span * speed).max(horizon * horizon_speed) * (1.0 + 1e-9) + 1e-12
-            } else {
-                (span - t) * speed * (1.0 + 1e-9) + 1e-12
-            };
-            // At the step's start, a capped query while the last exact gap allows it.
-            let capped = GAP_FRACTION * gap.0;
-            let use_gap = t == 0.0 && gap.1 < GAP_REFRESH && capped < full && capped > span * speed;
-            let cap = if use_gap { capped } else { full };
+            let (p1, p2) = self.poses_after(pair, t);
+            let cap = (span - t) * speed * (1.0 + 1e-9) + 1e-12;
             let (d, near) = surface_distance_from(&s1, &p1, &s2, &p2, cap, closest, ws);
-            self.distance_queries
-                .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            self.distance_queries.fetch_add(1, Ordering::Relaxed);
             closest = near.or(closest);
-            if t == 0.0 {
-                gap = if d < cap {
-                    (d, 0) // exact
-                } else if use_gap {
-                    (gap.0, gap.1 + 1)
-                } else {
-                    (Real::INFINITY, 0) // beyond the full cap: unknown, far
-                };
-            }
             // Zero distance without a crossing is a touch (e.g. coplanar faces on the ground):
             // not an overlap, so keep advancing by the smallest step.
             if d == 0.0 && surfaces_intersect(&s1, &p1, &s2, &p2, ws) {
@@ -267,40 +351,30 @@ impl World {
                     0.0
                 } else {
                     bisect(lo, t, TIME_TOLERANCE, |dt| {
-                        let (p1, p2) = self.poses_after(&pair, dt);
+                        let (p1, p2) = self.poses_after(pair, dt);
                         surfaces_intersect(&s1, &p1, &s2, &p2, ws)
                     })
                 };
                 let overlaps = |dt: Real| {
-                    let (p1, p2) = self.poses_after(&pair, dt);
+                    let (p1, p2) = self.poses_after(pair, dt);
                     !overlap_region(&s1, &p1, &s2, &p2).is_empty()
                 };
                 if overlaps(hi) {
-                    return Ok((Some(hi), none, closest, gap));
+                    return Ok((Some(hi), closest));
                 }
                 // The surfaces only touch at hi; the overlap starts later, if at all.
                 if hi < t && overlaps(t) {
-                    return Ok((
-                        Some(bisect(hi, t, TIME_TOLERANCE, overlaps)),
-                        none,
-                        closest,
-                        gap,
-                    ));
+                    return Ok((Some(bisect(hi, t, TIME_TOLERANCE, overlaps)), closest));
                 }
                 if t >= span {
-                    return Ok((None, self.time + span, closest, gap));
+                    return Ok((None, closest));
                 }
                 lo = t;
                 t = (t + min_advance).min(span);
                 continue;
             }
             if t >= span || t + d / speed > span {
-                let clear = if t == 0.0 {
-                    (d / horizon_speed).min(horizon)
-                } else {
-                    span
-                };
-                return Ok((None, self.time + clear.max(span), closest, gap));
+                return Ok((None, closest));
             }
             lo = t;
             t = (t + (d / speed).max(min_advance)).min(span);

@@ -12,6 +12,7 @@
 //! [`exchange`] (timers, the impulse exchange, engaged pairs), [`events`] (what a run
 //! returns).
 
+mod clearance;
 mod events;
 mod exchange;
 mod first_contact;
@@ -26,11 +27,12 @@ use crate::contact::{CentroidMode, ContactParams};
 use crate::error::{Error, Result};
 use crate::ground::Ground;
 use crate::math::{Isometry, Point, Real, Vector};
-use crate::motion::{BodyContact, OnGround};
+use crate::motion::{BodyContact, MotionBound, OnGround};
 use crate::overlap::QueryWorkspace;
 use crate::shape::MeshShape;
 use crate::stiffness::{Face, Stiffness};
 use crate::vehicle::VehicleSpec;
+use clearance::Front;
 
 pub use events::{
     degrees, heading, magnitude, pdof_deg, ContactEvent, ContactEventKind, Impact, RunOutput,
@@ -67,6 +69,12 @@ enum Phase {
         /// The normal, body 1's frame.
         normal_in_1: Vector,
     },
+    /// Two bodies at rest touching without an exchange (exchange.rs, a resting contact).
+    Touching {
+        /// Where they first touched, as material points of body 1 and body 2 (their frames,
+        /// m).
+        point_in: [Point; 2],
+    },
 }
 
 #[derive(Clone, Debug)]
@@ -76,20 +84,13 @@ struct Pair {
     params: ContactParams,
     phase: Phase,
     exchanges: usize,
-    /// Before this time (s) the apart pair cannot touch: certified by a distance and a speed
-    /// bound that holds until then (see first_contact.rs). Forgotten when either body's
-    /// motion jumps (an exchange) or the pair leaves its apart phase.
-    clear_until: Real,
-    /// How many steps ahead (a power of two) the pair's distance query certifies: doubled
-    /// while the certificates hold for longer, back to one when the surfaces come close.
-    lookahead: Real,
+    /// The apart pair's clearance front (clearance.rs): which parts of the meshes are kept
+    /// apart, so most steps need no mesh query. None until the pair is first searched,
+    /// and again once it is out of reach or in contact.
+    front: Option<Box<Front>>,
     /// The closest pair of triangles (of body 1, body 2) at the pair's last distance query:
     /// the next query starts from it.
     closest: Option<(u32, u32)>,
-    /// The surfaces' distance (m) at the pair's last exact query from a step's start
-    /// (infinite before any), and how many capped queries have followed it (see
-    /// first_contact.rs: GAP_FRACTION).
-    gap: (Real, u32),
     /// A pair of triangles (of body 1, body 2) whose surfaces crossed at the engaged pair's
     /// last overlap test: the next test tries it first (overlap.rs, shapes_overlap_hinted).
     crossing: Option<(u32, u32)>,
@@ -134,6 +135,16 @@ pub struct World {
     /// Distance queries between meshes made by the first-contact search so far (a count for
     /// tests and benchmarks: a step with every pair out of reach makes none).
     distance_queries: AtomicU64,
+    /// Parts of meshes (node or triangle pairs) evaluated by the pairs' clearance fronts so
+    /// far (a count for tests and benchmarks).
+    clearance_evaluations: AtomicU64,
+    /// Clearance-front entries looked at so far (profiling).
+    clearance_checks: AtomicU64,
+    /// Since when each body on the ground has been slow enough to be at rest (s), if it is
+    /// (stepper.rs, rest detection).
+    slow_since: Vec<Option<Real>>,
+    /// When each body on the ground came to rest after it last moved (s), if it has.
+    stopped_at: Vec<Option<Real>>,
     /// The latest predictions of bodies on the ground (each an integration of its own):
     /// a step asks for the same ones several times (swept box, speed bound, search, advance).
     predictions: Mutex<Vec<Prediction>>,
@@ -147,6 +158,8 @@ struct Prediction {
     dt: u64,
     state: RigidBody,
     motion: OnGround,
+    /// How the motion is bounded over the prediction's span (forward predictions only).
+    bound: Option<MotionBound>,
 }
 
 /// How many predictions are kept.
@@ -166,6 +179,17 @@ impl World {
     /// Distance queries between meshes the first-contact search has made so far.
     pub fn distance_queries(&self) -> u64 {
         self.distance_queries.load(Ordering::Relaxed)
+    }
+
+    /// Parts of meshes (pairs of tree nodes or of triangles) the clearance fronts evaluated
+    /// so far: the work that stands in for most distance queries.
+    pub fn clearance_evaluations(&self) -> u64 {
+        self.clearance_evaluations.load(Ordering::Relaxed)
+    }
+
+    /// Clearance-front entries looked at so far (each a bound of a few dozen flops).
+    pub fn clearance_checks(&self) -> u64 {
+        self.clearance_checks.load(Ordering::Relaxed)
     }
 
     /// Number of bodies.
@@ -228,10 +252,8 @@ impl World {
                 params: ContactParams::default(),
                 phase: Phase::Apart,
                 exchanges: 0,
-                clear_until: Real::NEG_INFINITY,
-                lookahead: 1.0,
+                front: None,
                 closest: None,
-                gap: (Real::INFINITY, 0),
                 crossing: None,
             });
         }
@@ -242,6 +264,8 @@ impl World {
             vehicle: None,
             motion,
         });
+        self.slow_since.push(None);
+        self.stopped_at.push(None);
         index
     }
 
@@ -317,16 +341,6 @@ impl World {
         Ok(())
     }
 
-    /// Forgets the clearance certificates of every pair with body `i` (its motion jumped).
-    fn forget_clearance(&mut self, i: usize) {
-        for p in &mut self.pairs {
-            if p.body1 == i || p.body2 == i {
-                p.clear_until = Real::NEG_INFINITY;
-                p.lookahead = 1.0;
-            }
-        }
-    }
-
     /// Body `i` as it will be `dt` s from now (or was, for dt < 0, within the current step),
     /// moving as the run moves it. For a body on the ground an error (a wheel off the
     /// terrain) is kept for the stepper and the torque-free prediction returned meanwhile.
@@ -374,20 +388,33 @@ impl World {
                     };
                     (b.clone(), g0.as_ref().clone(), *t0, self.time + dt - t0)
                 };
-                if let Err(e) = motion.advance(&mut body, ground, from, span.max(0.0)) {
-                    let e = match e {
-                        Error::Simulation(m) => Error::Simulation(format!("body {i}: {m}")),
-                        other => other,
-                    };
-                    self.deferred.lock().expect("not poisoned").get_or_insert(e);
-                    return None;
-                }
+                let advanced = if dt >= 0.0 {
+                    motion
+                        .advance_bounded(&mut body, ground, from, span)
+                        .map(Some)
+                } else {
+                    motion
+                        .advance(&mut body, ground, from, span.max(0.0))
+                        .map(|_| None)
+                };
+                let bound = match advanced {
+                    Ok(bound) => bound,
+                    Err(e) => {
+                        let e = match e {
+                            Error::Simulation(m) => Error::Simulation(format!("body {i}: {m}")),
+                            other => other,
+                        };
+                        self.deferred.lock().expect("not poisoned").get_or_insert(e);
+                        return None;
+                    }
+                };
                 let p = Prediction {
                     body: i,
                     time,
                     dt: dt_bits,
                     state: body,
                     motion,
+                    bound,
                 };
                 let mut kept = self.predictions.lock().expect("not poisoned");
                 if kept.len() >= PREDICTIONS_KEPT {

@@ -234,12 +234,8 @@ impl World {
         // Events at the current instant per pair, to stop a pair that makes no progress.
         let mut at_instant = (self.time, vec![0usize; self.pairs.len()]);
         let mut k = 1usize;
-        // Since when each body has been slow enough to be at rest (s), if it is.
-        let mut slow_since: Vec<Option<Real>> = vec![None; self.bodies.len()];
-        // When each body on the ground first came to rest after it last moved (s).
-        let mut stopped_at: Vec<Option<Real>> = vec![None; self.bodies.len()];
         while self.time < t_end {
-            if options.until_rest && self.all_at_rest(&slow_since) {
+            if options.until_rest && self.all_at_rest() {
                 break;
             }
             if self.ground.is_some() {
@@ -286,7 +282,9 @@ impl World {
                     kind: ContactEventKind::FirstOverlap,
                 });
                 self.pairs[pi].exchanges = 0;
-                self.start_timer(pi, self.time, None, &mut out);
+                if !self.start_resting_contact(pi, &mut out) {
+                    self.start_timer(pi, self.time, None, &mut out);
+                }
                 if options.history {
                     self.record(&mut out)?;
                 }
@@ -302,13 +300,14 @@ impl World {
                         self.exchange(pi, &mut out)
                     }
                     Phase::Engaged { .. } => self.follow_engaged(pi, t_prev, &mut out),
+                    Phase::Touching { .. } => self.follow_touching(pi, t_prev, &mut out),
                     _ => {}
                 }
             }
             if let Some(e) = self.deferred.lock().expect("not poisoned").take() {
                 return Err(e);
             }
-            self.track_rest(&mut slow_since, &mut stopped_at);
+            self.track_rest();
             let on_grid = target == grid;
             let event = out.impacts.len() > impacts || out.contacts.len() > contacts;
             if options.history && (!on_grid || event || k % stride == 0 || k >= steps) {
@@ -322,11 +321,11 @@ impl World {
             }
         }
         self.record(&mut out)?;
-        for (i, since) in slow_since.iter().enumerate() {
+        for (i, since) in self.slow_since.iter().enumerate() {
             if matches!(self.bodies[i].motion, Motion::OnGround(_))
                 && since.is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12)
             {
-                out.rest[i] = stopped_at[i].or(*since);
+                out.rest[i] = self.stopped_at[i].or(*since);
             }
         }
         self.step_start = None;
@@ -337,7 +336,7 @@ impl World {
     /// it first came to rest after it last moved (faster than [`MOVING_SPEED`] or yawing
     /// faster than ten times [`REST_YAW_RATE`]): the time to rest reported, which the rock on
     /// the springs after a skid (a few cm/s back and forth) does not push back.
-    fn track_rest(&self, slow_since: &mut [Option<Real>], stopped_at: &mut [Option<Real>]) {
+    fn track_rest(&mut self) {
         for (i, wb) in self.bodies.iter().enumerate() {
             if !matches!(wb.motion, Motion::OnGround(_)) {
                 continue;
@@ -347,26 +346,36 @@ impl World {
             let v = wb.body.velocity();
             let slow =
                 v.x.hypot(v.y) < REST_SPEED && wb.body.angular_velocity().z.abs() < REST_YAW_RATE;
-            slow_since[i] = if slow {
-                slow_since[i].or(Some(self.time))
+            self.slow_since[i] = if slow {
+                self.slow_since[i].or(Some(self.time))
             } else {
                 None
             };
             let yaw = wb.body.angular_velocity().z.abs();
             if v.x.hypot(v.y) > MOVING_SPEED || yaw > 10.0 * REST_YAW_RATE {
-                stopped_at[i] = None;
-            } else if slow && stopped_at[i].is_none() {
-                stopped_at[i] = Some(self.time);
+                self.stopped_at[i] = None;
+            } else if slow && self.stopped_at[i].is_none() {
+                self.stopped_at[i] = Some(self.time);
             }
+        }
+    }
+
+    /// True when body `i` is at rest: a fixed obstacle, or a body on the ground that has come
+    /// to rest since it last moved (it may still rock on its springs).
+    pub(super) fn at_rest(&self, i: usize) -> bool {
+        match self.bodies[i].motion {
+            Motion::Fixed => true,
+            Motion::OnGround(_) => self.stopped_at[i].is_some(),
+            Motion::Free => false,
         }
     }
 
     /// True when every body on the ground has been slow for [`REST_TIME`] and has settled
     /// (angular speed below [`SETTLED_ANGULAR_SPEED`]).
-    fn all_at_rest(&self, slow_since: &[Option<Real>]) -> bool {
+    fn all_at_rest(&self) -> bool {
         self.bodies.iter().enumerate().all(|(i, wb)| {
             !matches!(wb.motion, Motion::OnGround(_))
-                || (slow_since[i].is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12)
+                || (self.slow_since[i].is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12)
                     && wb.body.velocity().norm() < REST_SPEED
                     && wb.body.angular_velocity().norm() < SETTLED_ANGULAR_SPEED)
         })
