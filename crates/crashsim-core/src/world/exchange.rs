@@ -327,6 +327,7 @@ impl World {
             if let Motion::OnGround(g) = &mut self.bodies[i].motion {
                 g.exchanges += 1; // wheel states may switch at an exchange
             }
+            self.forget_clearance(i);
         }
         self.forget_predictions();
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);

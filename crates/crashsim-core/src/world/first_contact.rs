@@ -169,7 +169,7 @@ impl World {
         span: Real,
         poll: &mut dyn FnMut(Real) -> bool,
     ) -> Result<Option<Real>> {
-        if span <= 0.0 {
+        if span <= 0.0 || self.pairs[pi].clear_until >= self.time + span {
             return Ok(None);
         }
         let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
@@ -197,7 +197,15 @@ impl World {
         self.clearance_checks
             .fetch_add(front.checks() - before.1, Ordering::Relaxed);
         let found = match certificate {
-            Certificate::Clear => None,
+            Certificate::Clear(margin) => {
+                // Torque-free and fixed bodies keep their speed bound until an exchange: the
+                // pair stays clear while the bound cannot close the margin, with no more work.
+                let free = |i: usize| matches!(self.bodies[i].motion, Motion::Free | Motion::Fixed);
+                if free(i1) && free(i2) && margin > 0.0 {
+                    self.pairs[pi].clear_until = self.time + margin / m.speed;
+                }
+                None
+            }
             Certificate::Critical(critical) => self.search_critical(pi, &m, &critical, poll)?,
             Certificate::TooLarge => {
                 // The exact search on the whole meshes; the front is rebuilt next step.

@@ -88,6 +88,10 @@ struct Pair {
     /// apart, so most steps need no mesh query. None until the pair is first searched,
     /// and again once it is out of reach or in contact.
     front: Option<Box<Front>>,
+    /// Before this time (s) the apart pair of torque-free or fixed bodies cannot touch (the
+    /// front's margin over their speed bound, which holds until an exchange changes a
+    /// velocity): no work at all. Forgotten when either body's motion jumps.
+    clear_until: Real,
     /// The closest pair of triangles (of body 1, body 2) at the pair's last distance query:
     /// the next query starts from it.
     closest: Option<(u32, u32)>,
@@ -253,6 +257,7 @@ impl World {
                 phase: Phase::Apart,
                 exchanges: 0,
                 front: None,
+                clear_until: Real::NEG_INFINITY,
                 closest: None,
                 crossing: None,
             });
@@ -339,6 +344,15 @@ impl World {
             )));
         }
         Ok(())
+    }
+
+    /// Forgets the clearance certificates of every pair with body `i` (its motion jumped).
+    fn forget_clearance(&mut self, i: usize) {
+        for p in &mut self.pairs {
+            if p.body1 == i || p.body2 == i {
+                p.clear_until = Real::NEG_INFINITY;
+            }
+        }
     }
 
     /// Body `i` as it will be `dt` s from now (or was, for dt < 0, within the current step),
