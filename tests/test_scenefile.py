@@ -179,6 +179,7 @@ WANTED_EXAMPLES = {
     "runout-small-overlap-barrier.toml",
     "runout-sedan-into-pole.toml",
     "runout-rollover-kerb.toml",
+    "fit-skid.toml",
 }
 
 
@@ -197,7 +198,8 @@ def test_every_example_loads(path: Path) -> None:
         pytest.skip(reason)
     case = load_scene(path)
     assert case.path == path and case.title
-    assert len(case.scene) + len(case.scene.obstacles) >= 2  # two vehicles, or one and a wall
+    # two vehicles, or one and a wall, or one vehicle's run-out to fit (a [fit] table)
+    assert len(case.scene) + len(case.scene.obstacles) >= 2 or case.fit is not None
     assert case.run.longest > 0.0 and case.run.dt > 0.0
     scene, run, output = case  # unpacks
     assert scene is case.scene and run is case.run and output is case.output

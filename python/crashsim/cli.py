@@ -21,6 +21,11 @@ a study of the scene (crashsim.studies; docs/studies.md), or the file's ``[study
 print the percentiles of every output, write the variants as CSV or Parquet (``--out``) and
 the pictures (``--plots DIR``), on this machine or a Dask cluster (``--backend dask``).
 
+``crashsim fit case.toml`` fits the unknowns of the file's ``[fit]`` table to its
+``[[evidence]]`` (crashsim.io.fitfile, crashsim.fit; docs/fitting.md): it prints the best values
+with their 95 % ranges and every item's residual in the file's units and writes fit.json,
+fit.png and the fitted run's report; Ctrl-C prints and writes the best so far (exit 130).
+
 ``crashsim dtp-montecarlo`` samples the depth of penetration dt_p = sqrt(m'/k') over pairs of
 the built-in vehicle classes (crashsim.analysis.montecarlo) and prints its percentiles in ms.
 
@@ -482,12 +487,160 @@ def _glb(result: Result, out: Path) -> list[Path]:
 
 
 def _check(args: argparse.Namespace) -> int:
-    case = load_scene(args.scene)
+    case = load_scene(args.scene)  # also checks the file's [study], [fit] and [[evidence]]
     print(_header(case))
+    if case.fit is not None:
+        fit = case.fit
+        what = ", ".join(fit.unknowns) if fit.unknowns else "none in the file (give --unknown)"
+        print(f"fit: unknowns {what}; {len(fit.evidence)} evidence items "
+              f"({', '.join(fit.types)}): checked")  # fmt: skip
     result = _simulate(args, case)
     check = cross_check(result)
     print(check)
     return 0 if check.ok else EXIT_FAILED
+
+
+# -- fits ----------------------------------------------------------------------------------
+
+FIT_JSON = "fit.json"
+FIT_PICTURE = "fit.png"
+FITTED_REPORT = "fitted-report.json"
+
+
+def _fit_spec(args: argparse.Namespace, case: SceneFile) -> Any:
+    """The fit to run: the file's [fit] and [[evidence]] with the command line's --unknown
+    (replacing the file's entry of the same path), --start, --method and --seed."""
+    import dataclasses
+
+    from crashsim.io.fitfile import FitSpec
+    from crashsim.io.studyfile import parse_assignment, parse_values
+    from crashsim.studies.paths import parse_path
+
+    spec = case.fit if case.fit is not None else FitSpec()
+    if not spec.evidence:
+        raise ParameterError(
+            f"{case.path}: nothing to fit to: add [[evidence]] sections (and a [fit] table with "
+            "its unknowns) to the file (docs/fitting.md)"
+        )
+    unknowns = dict(spec.unknowns)
+    units = dict(spec.units)
+    for text in args.unknown or []:
+        key, value = parse_assignment(text, "--unknown")
+        p = parse_path(case.scene, key)
+        bounds = parse_values(key, value, p.dimension)
+        if not isinstance(bounds, list) or len(bounds) != 2:
+            raise ParameterError(
+                f"--unknown {text!r}: give the two bounds lo,hi, e.g. --unknown "
+                f'"{key}=20,50 mph"'
+            )
+        lo, hi = bounds
+        if not lo < hi:
+            raise ParameterError(f"--unknown {text!r}: the bounds ({lo:g}, {hi:g}) {p.unit} need "
+                                 "lo < hi")  # fmt: skip
+        unknowns[p.name] = (lo, hi)
+        units.pop(p.name, None)
+    if not unknowns:
+        raise ParameterError(
+            f"{case.path}: nothing to fit: give the unknowns in [fit.unknowns] or as --unknown "
+            'PATH=LO,HI (e.g. --unknown "red.speed=20,50 mph")'
+        )
+    # the file's start values that still lie within the (perhaps new) bounds
+    start = {k: v for k, v in spec.start.items()
+             if k in unknowns and unknowns[k][0] <= v <= unknowns[k][1]}  # fmt: skip
+    for text in args.start or []:
+        key, value = parse_assignment(text, "--start")
+        p = parse_path(case.scene, key)
+        values = parse_values(key, value, p.dimension)
+        if not isinstance(values, list) or len(values) != 1:
+            raise ParameterError(f"--start {text!r}: give one value, e.g. --start "
+                                 f'"{key}=40 mph"')  # fmt: skip
+        if p.name not in unknowns:
+            raise ParameterError(f"--start {text!r}: {p.name} is not one of the unknowns "
+                                 f"({', '.join(unknowns)})")  # fmt: skip
+        lo, hi = unknowns[p.name]
+        if not lo <= values[0] <= hi:
+            raise ParameterError(f"--start {text!r}: {values[0]:g} {p.unit} lies outside the "
+                                 f"bounds ({lo:g}, {hi:g}) {p.unit}")  # fmt: skip
+        start[p.name] = values[0]
+    method = args.method if args.method is not None else spec.method
+    options = dict(spec.options)
+    if method != "global":
+        for k in ("seed", "popsize", "maxiter"):
+            options.pop(k, None)
+    if args.seed is not None:
+        if method != "global":
+            raise ParameterError("--seed is for --method global (differential evolution)")
+        options["seed"] = args.seed
+    if args.no_scan:
+        options["scan"] = False
+    return dataclasses.replace(spec, unknowns=unknowns, units=units, start=start,
+                               method=method, options=options)  # fmt: skip
+
+
+def _fit_out_dir(args: argparse.Namespace, case: SceneFile) -> Path:
+    """--out, else the file's output.dir, else <scene name>-fit; checked before the fit."""
+    if args.out is not None:
+        out = Path(args.out)
+    elif case.output.dir is not None:
+        out = case.output.dir
+    else:
+        out = Path(f"{case.path.stem if case.path is not None else 'scene'}-fit")
+    _check_writable(out)
+    return out
+
+
+def _fit(args: argparse.Namespace) -> int:
+    from crashsim.io.fitfile import format_fit
+    from crashsim.studies.fit import fit as run_fit
+
+    case = load_scene(args.scene)
+    spec = _fit_spec(args, case)
+    out = _fit_out_dir(args, case)
+    duration = case.run.longest if args.duration is None else args.duration
+    dt = case.run.dt if args.dt is None else args.dt
+    run: dict[str, Any] = {"dt": dt, "until": case.run.until}
+    run["max_duration" if case.run.until == "rest" else "duration"] = duration
+    print(_header(case))
+    print(f"fit ({spec.method}): {', '.join(spec.unknowns)} to {len(spec.evidence)} evidence "
+          f"items ({', '.join(spec.types)})")  # fmt: skip
+    sys.stdout.flush()
+    fit = run_fit(
+        case.scene,
+        spec.unknowns,
+        spec.evidence,
+        progress=bool(args.progress or sys.stderr.isatty()),
+        threads=args.threads,
+        **run,
+        **spec.kwargs(),
+    )
+    _make(out)
+    written: list[Path] = []
+    data = {
+        "scene": str(case.path),
+        "units_written": dict(spec.units),
+        "evidence_types": list(spec.types),
+        **fit.to_dict(),
+    }
+    with open(out / FIT_JSON, "w", encoding="utf-8") as f:
+        json.dump(data, f, indent=2, allow_nan=False)
+        f.write("\n")
+    written.append(out / FIT_JSON)
+    if not args.no_pictures:
+        import matplotlib.pyplot as plt
+
+        fig = fit.plot(out / FIT_PICTURE)
+        plt.close(fig)
+        written.append(out / FIT_PICTURE)
+    if fit.result is not None and case.output.report:
+        build_report(fit.result).write_json(out / FITTED_REPORT)
+        written.append(out / FITTED_REPORT)
+    print(format_fit(fit, spec))
+    print("wrote: " + ", ".join(str(p) for p in written))
+    if fit.interrupted:
+        raise KeyboardInterrupt
+    if fit.result is None:
+        raise RunFailed("the run at the fitted values failed (see the residuals above)")
+    return 0
 
 
 # -- studies -------------------------------------------------------------------------------
@@ -869,6 +1022,45 @@ def _parser() -> argparse.ArgumentParser:
     mcs.add_argument("--seed", type=_seed, help="random seed, >= 0 (default: the file's, else "
                      "fresh entropy)")
     mcs.set_defaults(func=_montecarlo)
+    fit_cmd = sub.add_parser(
+        "fit",
+        help="fit a scene file's unknowns to its evidence ([fit], [[evidence]]; docs/fitting.md)",
+        description="Fits the unknowns of the file's [fit] table (and --unknown) to its "
+        "[[evidence]] sections by least squares (or a global search first) and prints the best "
+        "values with their 95 % ranges and every item's residual, in the file's units. Writes "
+        f"into the output folder: {FIT_JSON} (values, residuals, ranges, objective, interrupted), "
+        f"{FIT_PICTURE} (the fitted run over the evidence, the objective along each unknown) "
+        f"and {FITTED_REPORT} (the report of the fitted run). Folder: --out, else the file's "
+        "output.dir, else <scene name>-fit in the current folder. The runs take the file's "
+        "[run] (--dt and --duration override it).",
+        epilog="Exit codes: 0 success, 1 the fitted run failed (or writing the outputs did), 2 "
+        "bad input (the file, --unknown, --start, an unwritable --out), 130 interrupted (the "
+        "best so far is printed and written).",
+    )
+    fit_cmd.add_argument("scene", type=Path, help="the scene file (TOML) with [fit] and "
+                         "[[evidence]]")
+    fit_cmd.add_argument("--method", choices=("least_squares", "global"),
+                         help="the solver, overriding the file's fit.method (least_squares)")
+    fit_cmd.add_argument("--unknown", action="append", metavar="PATH=LO,HI",
+                         help='an unknown and its bounds, e.g. "red.speed=20,50 mph", adding to '
+                         "or replacing the file's (repeat)")
+    fit_cmd.add_argument("--start", action="append", metavar="PATH=VALUE",
+                         help='where the least-squares solve starts, e.g. "red.speed=40 mph" '
+                         "(repeat; default the file's fit.start, else the scene's value)")
+    fit_cmd.add_argument("--seed", type=_seed, help="with --method global: the random seed")
+    fit_cmd.add_argument("--threads", type=_positive_int, help="threads (default all cores)")
+    fit_cmd.add_argument("--out", metavar="DIR", help="output folder (created if needed)")
+    fit_cmd.add_argument("--dt", type=_step, help='largest time step ("2 ms" or seconds), '
+                         "overriding the file's run.dt")
+    fit_cmd.add_argument("--duration", type=_duration, help='simulated time ("0.5 s" or '
+                         "seconds), overriding the file's run.duration (or run.max_duration "
+                         "until rest)")
+    fit_cmd.add_argument("--no-scan", action="store_true", help="skip the scan of the "
+                         "objective along each unknown (faster; no scan ranges)")
+    fit_cmd.add_argument("--no-pictures", action="store_true", help=f"do not write {FIT_PICTURE}")
+    fit_cmd.add_argument("--progress", action="store_true", help="show the progress line on "
+                         "stderr even when it is not a terminal")
+    fit_cmd.set_defaults(func=_fit)
     mc = sub.add_parser(
         "dtp-montecarlo",
         help="Monte Carlo of the depth of penetration over vehicle-class pairs",

@@ -369,6 +369,7 @@ class SceneFile:
     title: str = ""
     description: str = ""
     study: Any = None  # a crashsim.io.studyfile.StudySpec from the [study] table, or None
+    fit: Any = None  # a crashsim.io.fitfile.FitSpec from [fit] and [[evidence]], or None
 
     def __iter__(self) -> Iterator[Any]:
         return iter((self.scene, self.run, self.output))
@@ -630,6 +631,8 @@ TOP_KEYS = (
     "ground",
     "obstacles",
     "study",
+    "fit",
+    "evidence",
 )
 RUN_KEYS = ("duration", "dt", "record_interval", "until", "max_duration")
 OUTPUT_KEYS = ("dir", "report", "csv", "pictures", "glb")
@@ -1473,6 +1476,12 @@ def loads_scene(
 
         study = read_study(top.raw("study"), scene, source)
     top.taken.add("study")
+    fit = None
+    if top.has("fit") or top.has("evidence"):
+        from crashsim.io.fitfile import read_fit
+
+        fit = read_fit(top.raw("fit", None), top.raw("evidence", None), scene, source)
+    top.taken.update(("fit", "evidence"))
     top.finish()
     _check_stiffness_needs(top, scene)
     _wrap(top, None, scene.build_world)  # what only the whole scene can tell (stiffness needs)
@@ -1484,6 +1493,7 @@ def loads_scene(
         title=title,
         description=description,
         study=study,
+        fit=fit,
     )
 
 

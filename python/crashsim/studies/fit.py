@@ -166,6 +166,59 @@ class FitResult:
 
         return plot_fit(self, path)
 
+    def to_dict(self) -> dict[str, Any]:
+        """The fit as plain data for JSON (SI units and radians, as the attributes): the
+        best values, bounds, start, sigma, 95 % ranges (Jacobian and scan), the objective,
+        every item's residual, the scans, the covariance, the run count and the interrupted
+        flag. A number that is not finite (sigma where the evidence does not fix an
+        unknown) is None."""
+
+        def num(v: Any) -> float | None:
+            v = float(v)
+            return v if math.isfinite(v) else None
+
+        def nums(a: Any) -> list[Any]:
+            return [num(v) if np.ndim(v) == 0 else nums(v) for v in np.asarray(a, float)]
+
+        scan_ranges = self.scan_ranges
+        scan = self.scan
+        return {
+            "method": self.method,
+            "unknowns": list(self.names),
+            "units": dict(self.units),
+            "values": {n: num(v) for n, v in self.values.items()},
+            "start": {n: num(v) for n, v in self.start.items()},
+            "bounds": {n: nums(b) for n, b in self.bounds.items()},
+            "sigma": {n: num(v) for n, v in self.sigma.items()},
+            "ranges": {n: nums(r) for n, r in self.ranges.items()},
+            "scan_ranges": (
+                None if scan_ranges is None else {n: nums(r) for n, r in scan_ranges.items()}
+            ),
+            "objective": num(self.objective),
+            "residuals": [
+                {
+                    "label": r.label,
+                    "unit": r.unit,
+                    "components": list(r.components),
+                    "evidence": nums(r.evidence),
+                    "fitted": nums(r.measured),
+                    "residual": nums(r.residual),
+                    "normalised": nums(r.normalised),
+                }
+                for r in self.residuals
+            ],
+            "scan": (
+                None
+                if scan is None
+                else {n: {"values": nums(g), "objective": nums(c)} for n, (g, c) in scan.items()}
+            ),
+            "covariance": None if self.covariance is None else nums(self.covariance),
+            "n_runs": self.n_runs,
+            "elapsed": self.elapsed,
+            "interrupted": self.interrupted,
+            "message": self.message,
+        }
+
 
 # -- the problem ------------------------------------------------------------------------------
 
