@@ -35,8 +35,10 @@ DT, MAX_DURATION = 2e-3, 15.0  # s
 
 
 def _car(name: str, mass: float) -> cs.Vehicle:
-    return cs.Vehicle.box(4.5, 1.8, 1.4, mass=mass, name=name).with_wheels(
-        wheelbase=2.7, track=1.5, radius=0.3, cg_to_front_axle=1.2, cg_height=0.55,
+    """A box car on wheels: body from 0.15 m to 1.4 m above the road, CG 0.55 m up."""
+    return cs.Vehicle.box(4.5, 1.8, 1.25, mass=mass, name=name, cg_height=0.55,
+                          ground_clearance=0.15).with_wheels(
+        wheelbase=2.7, track=1.5, radius=0.3, cg_to_front_axle=1.2,
         spring_rates=30e3, damping=2.5e3,
     )  # fmt: skip
 

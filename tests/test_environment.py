@@ -305,3 +305,15 @@ def test_the_fcl_cross_check_re_tests_contacts_with_obstacles() -> None:
     scene, _ = car_into_wall()
     check = cs.cross_check(scene.run(0.3))
     assert check.ok and len(check.checks) == 2
+
+
+def test_a_vehicle_placed_into_the_ground_is_refused_by_name() -> None:
+    """A box car whose CG height puts its body 0.15 m into the road (the ground's contact
+    would throw it up) is an InitialOverlapError naming the vehicle and the depth."""
+    car = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red").with_wheels(
+        wheelbase=2.7, track=1.5, radius=0.3, cg_to_front_axle=1.2, cg_height=0.55,
+    )  # the body reaches 0.7 m below the CG, which is 0.55 m up
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(car, (0.0, 0.0), heading=0.0)
+    with pytest.raises(cs.InitialOverlapError, match=r"vehicle 'red' starts 0\.150 m into the ground"):
+        scene.run(0.1)

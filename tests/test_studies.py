@@ -37,10 +37,11 @@ def _scene() -> cs.Scene:
 
 
 def _ground_scene() -> cs.Scene:
-    car = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red").with_wheels(
-        wheelbase=2.7, track=1.5, radius=0.3, cg_to_front_axle=1.2, cg_height=0.55,
+    car = cs.Vehicle.box(4.5, 1.8, 1.25, mass=1450.0, name="red", cg_height=0.55,
+                         ground_clearance=0.15).with_wheels(
+        wheelbase=2.7, track=1.5, radius=0.3, cg_to_front_axle=1.2,
         spring_rates=30e3, damping=2.5e3,
-    )
+    )  # fmt: skip
     scene = cs.Scene(ground=cs.Ground(friction=0.7))
     scene.add(car, (0.0, 0.0), heading=0.0, velocity=(10.0, 0.0, 0.0),
               inputs=cs.DriverInputs(wheel_states=[("all", "locked", 0.0)]))

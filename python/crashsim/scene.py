@@ -887,6 +887,10 @@ class Scene:
 
     def _named_overlap_error(self, error: InitialOverlapError) -> InitialOverlapError:
         """The engine's error with the vehicles' names instead of body indices."""
+        m = re.match(r"body (\d+) starts (.*)", str(error), re.DOTALL)
+        if m is not None and int(m.group(1)) < len(self._placements):
+            name = self._placements[int(m.group(1))].vehicle.name
+            return InitialOverlapError(f"vehicle {name!r} starts {m.group(2)}")
         pairs = []
         placed = [(p.vehicle, p.position, p.orientation) for p in self._placements]
         placed += [(o.obstacle, o.position, o.orientation) for o in self._obstacles]

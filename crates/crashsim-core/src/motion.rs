@@ -422,6 +422,19 @@ impl OnGround {
         }
     }
 
+    /// The deepest of the body's contact points in the ground (m) and where it is (world),
+    /// None when none is.
+    pub fn deepest(&self, body: &RigidBody, ground: &Ground) -> Option<(Real, Point)> {
+        let r = *body.orientation().to_rotation_matrix().matrix();
+        let mut deepest: Option<(Real, Point)> = None;
+        self.for_each_touching(ground, &body.position(), &r, |_, p, _, depth| {
+            if deepest.is_none_or(|(d, _)| depth > d) {
+                deepest = Some((depth, p));
+            }
+        });
+        deepest
+    }
+
     /// A landing: contact points in the ground approaching it faster than [`LANDING_SPEED`]
     /// get inelastic impulses (normal velocity to zero, accumulated over [`LANDING_PASSES`]
     /// passes of the points in turn, never pulling), then one pass of body-ground friction

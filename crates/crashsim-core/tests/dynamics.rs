@@ -396,6 +396,36 @@ fn cars_at_rest_that_rock_into_each_other_make_no_exchange() {
 }
 
 #[test]
+fn a_body_placed_into_the_ground_is_refused_with_its_depth() {
+    // The box's bottom 0.15 m above the road at the CG height: placed 0.30 m lower, it starts
+    // 0.15 m into the ground (the body-ground spring threw such a car 8 m up).
+    let mut w = World::new();
+    let state = BodyState {
+        position: Point::new(0.0, 0.0, CG_HEIGHT - 0.30),
+        orientation: Rotation::identity(),
+        velocity: Vector::zeros(),
+        angular_velocity: Vector::zeros(),
+    };
+    let i = w.add_body(car_shape(), car_props(), &state).unwrap();
+    w.set_vehicle(i, car_spec(Tyre::default(), DriverInputs::default()))
+        .unwrap();
+    w.set_ground(Ground::default()).unwrap();
+    let e = w.run(0.1, 1e-3).unwrap_err().to_string();
+    assert!(e.contains("body 0 starts 0.150 m into the ground"), "{e}");
+    // 1 cm in (a mesh's detail, a resting body's sinking) is accepted.
+    let mut w = World::new();
+    let state = BodyState {
+        position: Point::new(0.0, 0.0, CG_HEIGHT - 0.16),
+        ..state
+    };
+    let i = w.add_body(car_shape(), car_props(), &state).unwrap();
+    w.set_vehicle(i, car_spec(Tyre::default(), DriverInputs::default()))
+        .unwrap();
+    w.set_ground(Ground::default()).unwrap();
+    w.run(0.1, 1e-3).unwrap();
+}
+
+#[test]
 fn a_car_creeping_into_a_parked_car_exchanges() {
     // 0.3 m/s (1 km/h) is slow, but the moving car is not at rest: an impact as any other.
     let mut w = World::new();

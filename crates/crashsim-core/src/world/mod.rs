@@ -43,6 +43,10 @@ pub use stepper::{
 
 /// First-overlap instants are resolved to this (s).
 pub const TIME_TOLERANCE: Real = 1e-9;
+/// How far (m) a body's mesh (outside its wheels) may reach into the ground at the start of a
+/// run: a few mm are a resting body's sinking or a mesh's detail; 15 cm (a box car whose CG
+/// sat at its wheels' height) made the ground's spring throw the car 8 m up.
+pub const PLACEMENT_TOLERANCE: Real = 0.02;
 /// The automatic normal of a first exchange is the overlap's volume normal taken while the
 /// overlap is at most this deep (m): at the exchange a deep, narrow overlap (an offset
 /// frontal) puts the side walls that sank into each other ahead of the faces that met, and
@@ -332,16 +336,26 @@ impl World {
         if self.ground.is_none() {
             return Ok(());
         }
-        for wb in &mut self.bodies {
+        let ground = self.ground.as_ref().expect("checked above");
+        for (i, wb) in self.bodies.iter_mut().enumerate() {
             if matches!(wb.motion, Motion::Fixed) {
                 continue;
             }
             let contact =
                 BodyContact::new(&wb.shape, wb.body.props().mass(), wb.vehicle.as_deref())?;
-            wb.motion = Motion::OnGround(Box::new(OnGround::new(
-                wb.vehicle.clone(),
-                Arc::new(contact),
-            )));
+            let on_ground = OnGround::new(wb.vehicle.clone(), Arc::new(contact));
+            if let Some((depth, p)) = on_ground.deepest(&wb.body, ground) {
+                if depth > PLACEMENT_TOLERANCE {
+                    return Err(Error::InitialOverlap(format!(
+                        "body {i} starts {depth:.3} m into the ground (its lowest point outside \
+                         the wheels at ({:.3}, {:.3}, {:.3}) m): the ground's contact would \
+                         throw it out. Place it higher (the CG height), or give its wheels the \
+                         CG height and radius that carry the body clear of the road",
+                        p.x, p.y, p.z
+                    )));
+                }
+            }
+            wb.motion = Motion::OnGround(Box::new(on_ground));
         }
         Ok(())
     }
