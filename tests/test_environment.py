@@ -315,5 +315,6 @@ def test_a_vehicle_placed_into_the_ground_is_refused_by_name() -> None:
     )  # the body reaches 0.7 m below the CG, which is 0.55 m up
     scene = cs.Scene(ground=cs.Ground())
     scene.add(car, (0.0, 0.0), heading=0.0)
-    with pytest.raises(cs.InitialOverlapError, match=r"vehicle 'red' starts 0\.150 m into the ground"):
+    into = r"vehicle 'red' starts 0\.150 m into the ground"
+    with pytest.raises(cs.InitialOverlapError, match=into):
         scene.run(0.1)
