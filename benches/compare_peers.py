@@ -1206,6 +1206,7 @@ def runout_phases(setup: RunoutSetup, result: Any) -> list[tuple[str, float, flo
     )
     after = {
         "first overlap": "timer (depth of penetration)",
+        "no exchange": "resting contact (no exchange)",
         "exchange": "engaged (overlap, not closing)",
         "separation": "apart",
     }

@@ -229,8 +229,8 @@ impl World {
     /// conservative advancement on those pairs' distances, each with its own rate bound along
     /// its closest points' direction (a pair parting, or closing slowly, is passed in one or
     /// a few iterations), then bisection to [`TIME_TOLERANCE`] on their crossing, which within
-    /// the step is the meshes' ([`surfaces_intersect`]), and the overlap region's check as in
-    /// [`World::search_first_contact`].
+    /// the step is the meshes' ([`surfaces_intersect`]) and makes the overlap region non-empty
+    /// (surfaces that only touch are stepped past, as in [`World::search_first_contact`]).
     fn search_critical(
         &self,
         pi: usize,
@@ -253,10 +253,6 @@ impl World {
                 [b1.velocity(), b2.velocity()],
                 [b1.angular_velocity(), b2.angular_velocity()],
             )
-        };
-        let overlaps = |dt: Real| {
-            let (p1, p2) = self.poses_after(pair, dt);
-            !overlap_region(s1, &p1, s2, &p2).is_empty()
         };
         let min_advance = MIN_ADVANCE.max(MIN_ADVANCE_FRACTION * span);
         // Each pair with the earliest offset (s) at which it can meet: a pair is evaluated
@@ -293,18 +289,15 @@ impl World {
                     let md = at(dt);
                     due.iter().any(|&p| md.triangles_cross(p, s1, s2))
                 };
+                // A crossing pair puts its segment in the overlap region (the same test of
+                // the same triangles, overlap.rs), so the region is not empty where the
+                // bisection ends: the first overlap.
                 let hi = if t == 0.0 {
                     0.0
                 } else {
                     bisect(lo, t, TIME_TOLERANCE, crossing)
                 };
-                if overlaps(hi) {
-                    return Ok(Some(hi));
-                }
-                // The surfaces only touch at hi; the overlap starts later, if at all.
-                if hi < t && overlaps(t) {
-                    return Ok(Some(bisect(hi, t, TIME_TOLERANCE, overlaps)));
-                }
+                return Ok(Some(hi));
             } else if !touching && next >= span {
                 return Ok(None);
             }
