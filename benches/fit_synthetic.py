@@ -35,8 +35,10 @@ DT, MAX_DURATION = 2e-3, 15.0  # s
 
 
 def _car(name: str, mass: float) -> cs.Vehicle:
-    return cs.Vehicle.box(4.5, 1.8, 1.4, mass=mass, name=name).with_wheels(
-        wheelbase=2.7, track=1.5, radius=0.3, cg_to_front_axle=1.2, cg_height=0.55,
+    """A box car on wheels: body from 0.15 m to 1.4 m above the road, CG 0.55 m up."""
+    return cs.Vehicle.box(4.5, 1.8, 1.25, mass=mass, name=name, cg_height=0.55,
+                          ground_clearance=0.15).with_wheels(
+        wheelbase=2.7, track=1.5, radius=0.3, cg_to_front_axle=1.2,
         spring_rates=30e3, damping=2.5e3,
     )  # fmt: skip
 
@@ -54,13 +56,15 @@ def case(seed: int) -> tuple[cs.Scene, dict[str, float], dict[str, tuple[float, 
     scene = cs.Scene(ground=cs.Ground(friction=0.7), restitution=0.1, friction=0.4,
                      depth_of_penetration=0.03)  # fmt: skip
     y0 = float(rng.uniform(-0.8, 0.8))  # m: where red meets blue's side
+    locked = cs.DriverInputs(wheel_states=[("all", "locked", "exchange 1")])
     scene.add(_car("red", float(rng.uniform(1200, 1700))), (-3.9, y0), heading=truth["red.heading"],
               velocity=(truth["red.speed"] * math.cos(truth["red.heading"]),
-                        truth["red.speed"] * math.sin(truth["red.heading"]), 0.0))  # fmt: skip
+                        truth["red.speed"] * math.sin(truth["red.heading"]), 0.0),
+              inputs=locked)  # fmt: skip
     hb = truth["blue.heading"]
     scene.add(_car("blue", float(rng.uniform(1200, 1700))), (0.0, 0.0), heading=hb,
               velocity=(truth["blue.speed"] * math.cos(hb), truth["blue.speed"] * math.sin(hb),
-                        0.0))  # fmt: skip
+                        0.0), inputs=locked)  # fmt: skip
     bounds = {}
     for k, v in truth.items():
         if k.endswith("speed"):
@@ -80,11 +84,12 @@ def evidence_of(result: cs.Result) -> list:
         assert rest is not None
         out.append(RestPosition(n, float(rest.position[0]), float(rest.position[1]), TOL_POS))
         out.append(RestHeading(n, float(rest.heading), TOL_HEADING))
-        body = result.delta_v_body(result.impacts[0], n)
-        out.append(EDRDeltaV(n, float(body[0]), float(body[1]), TOL_DV))
+        body = result.delta_v_body(result.impacts[0], n)  # ISO 8855: lateral + left
+        out.append(EDRDeltaV(n, float(body[0]), -float(body[1]), TOL_DV))  # EDR: + right
         t = result.impacts[0].time
-        sep = next(s for s in result.separations(n) if s.time >= t)
-        out.append(PostImpactSpeed(n, float(sep.speed), TOL_SPEED))
+        sep = next((s for s in result.separations(n) if s.time >= t), None)
+        if sep is not None:
+            out.append(PostImpactSpeed(n, float(sep.speed), TOL_SPEED))
     return out
 
 
