@@ -74,11 +74,15 @@ def case(seed: int) -> tuple[cs.Scene, dict[str, float], dict[str, tuple[float, 
     return scene, truth, bounds
 
 
-def evidence_of(result: cs.Result) -> list:
-    """Rest positions and headings of both cars, their first impact's EDR delta-V and
-    speeds at separation, and the point of impact."""
-    c = result.impacts[0].centroid
-    out: list = [ImpactPoint(float(c[0]), float(c[1]), TOL_POI)]
+def evidence_of(result: cs.Result, items: str = "batch") -> list:
+    """Rest positions and headings of both cars and their first impact's EDR delta-V (the
+    batch's columns: candidates run as batches); with ``items="all"`` also the point of
+    impact and the speeds at separation (where the run separates), which need each run's
+    Result."""
+    out: list = []
+    if items == "all":
+        c = result.impacts[0].centroid
+        out.append(ImpactPoint(float(c[0]), float(c[1]), TOL_POI))
     for n in ("red", "blue"):
         rest = result.rest(n)
         assert rest is not None
@@ -88,7 +92,7 @@ def evidence_of(result: cs.Result) -> list:
         out.append(EDRDeltaV(n, float(body[0]), -float(body[1]), TOL_DV))  # EDR: + right
         t = result.impacts[0].time
         sep = next((s for s in result.separations(n) if s.time >= t), None)
-        if sep is not None:
+        if items == "all" and sep is not None:
             out.append(PostImpactSpeed(n, float(sep.speed), TOL_SPEED))
     return out
 
@@ -129,12 +133,16 @@ def truth_run(scene: cs.Scene) -> cs.Result:
     return scene.run(dt=DT, until="rest", max_duration=MAX_DURATION)
 
 
-def recover(seed: int, **kw) -> tuple[cs.FitResult, dict[str, float]]:
-    scene, truth, bounds = case(seed)
-    evidence = evidence_of(truth_run(scene))
-    start = start_of(truth, np.random.default_rng(1000 + seed))
+def recover(
+    scene_seed: int, items: str = "batch", **kw
+) -> tuple[cs.FitResult, dict[str, float]]:
+    """Fit scene ``scene_seed`` back from its exact evidence, from a start off the truth
+    (start_of); ``kw`` go to cs.fit."""
+    scene, truth, bounds = case(scene_seed)
+    evidence = evidence_of(truth_run(scene), items)
+    start = start_of(truth, np.random.default_rng(1000 + scene_seed))
     fit = cs.fit(scene, bounds, evidence, start=start, dt=DT, max_duration=MAX_DURATION,
-                 progress=False, **{"step": 1e-2, **kw})  # fmt: skip
+                 **{"progress": False, **kw})  # fmt: skip
     return fit, truth
 
 
@@ -144,50 +152,81 @@ def errors(fit: cs.FitResult, truth: dict[str, float]) -> dict[str, float]:
                 else math.degrees(fit.values[k] - v)) for k, v in truth.items()}  # fmt: skip
 
 
+def _recover(a: argparse.Namespace) -> int:
+    n = a.n or 10
+    worst_s = worst_h = 0.0
+    ok = 0
+    for s in range(a.seed, a.seed + n):
+        t = time.monotonic()
+        fit, truth = recover(s, scan=False, method=a.method, samples=0, items=a.items)
+        e = errors(fit, truth)
+        es = max(abs(e[k]) for k in e if k.endswith("speed"))
+        eh = max(abs(e[k]) for k in e if k.endswith("heading"))
+        worst_s, worst_h = max(worst_s, es), max(worst_h, eh)
+        good = es <= 0.5 and eh <= 0.5
+        ok += good
+        print(f"scene {s}: speed error max {es:.4f} %, heading error max {eh:.4f} deg, "
+              f"chi2 {fit.objective:.3g}, {fit.n_runs} runs, {time.monotonic() - t:.1f} s"
+              f"{'' if good else '  FAIL'}", flush=True)  # fmt: skip
+    print(f"{ok}/{n} recovered ({a.method}, evidence: {a.items}); worst speed error "
+          f"{worst_s:.4f} %, worst heading error {worst_h:.4f} deg")  # fmt: skip
+    return 0 if ok == n else 1
+
+
+def _calibrate(a: argparse.Namespace) -> int:
+    n = a.n or 100
+    kinds = ("Jacobian", "sampling")
+    inside = {(w, k): 0 for w in kinds for k in UNKNOWNS}
+    joint = dict.fromkeys(kinds, 0)
+    for trial in range(a.seed, a.seed + n):
+        t = time.monotonic()
+        scene, truth, bounds = case(trial % 10)
+        rng = np.random.default_rng(5000 + trial)
+        evidence = noisy(evidence_of(truth_run(scene), a.items), rng)
+        fit = cs.fit(scene, bounds, evidence, start=truth, dt=DT, max_duration=MAX_DURATION,
+                     progress=False, scan=False, method=a.method, samples=a.samples,
+                     seed=trial)  # fmt: skip
+        line = []
+        for w, ranges in zip(kinds, (fit.ranges, fit.sample_ranges), strict=True):
+            if ranges is None:
+                continue
+            hits = {k: ranges[k][0] <= truth[k] <= ranges[k][1] for k in UNKNOWNS}
+            for k in UNKNOWNS:
+                inside[w, k] += hits[k]
+            joint[w] += all(hits.values())
+            line.append(f"{w} {sum(hits.values())}/{len(hits)}")
+        ess = f", ess {fit.samples.ess:.0f}" if fit.samples is not None else ""
+        print(f"trial {trial} (scene {trial % 10}): chi2 {fit.objective:.3g}, inside: "
+              f"{', '.join(line)}; {fit.n_runs} runs{ess}, {time.monotonic() - t:.1f} s",
+              flush=True)  # fmt: skip
+    for w in kinds:
+        if a.samples == 0 and w == "sampling":
+            continue
+        print(f"{w}: true value inside its 95 % range: "
+              + ", ".join(f"{k} {inside[w, k]}/{n}" for k in UNKNOWNS)
+              + f"; all four at once {joint[w]}/{n}")  # fmt: skip
+    return 0
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("what", choices=("recover", "calibrate"))
-    ap.add_argument("--n", type=int, default=None)
-    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--n", type=int, default=None, help="scenes (recover) or trials")
+    ap.add_argument("--seed", type=int, default=0, help="the first scene or trial")
+    ap.add_argument("--method", choices=("global", "least_squares"), default=None,
+                    help="default: global for recover, least_squares (from the truth) "
+                    "for calibrate")  # fmt: skip
+    ap.add_argument("--items", choices=("batch", "all"), default="batch",
+                    help="evidence: the batch's columns (rest, EDR) or all (with the point "
+                    "of impact and the speeds at separation: runs as Results)")  # fmt: skip
+    ap.add_argument("--samples", type=int, default=None,
+                    help="calibrate: candidates of the importance sampling (None: 50 k)")
     a = ap.parse_args()
     if a.what == "recover":
-        n = a.n or 10
-        worst_s = worst_h = 0.0
-        ok = 0
-        for s in range(a.seed, a.seed + n):
-            t = time.monotonic()
-            fit, truth = recover(s, scan=False)
-            e = errors(fit, truth)
-            es = max(abs(e[k]) for k in e if k.endswith("speed"))
-            eh = max(abs(e[k]) for k in e if k.endswith("heading"))
-            worst_s, worst_h = max(worst_s, es), max(worst_h, eh)
-            good = es <= 0.5 and eh <= 0.5
-            ok += good
-            print(f"scene {s}: speed error max {es:.4f} %, heading error max {eh:.4f} deg, "
-                  f"chi2 {fit.objective:.3g}, {fit.n_runs} runs, {time.monotonic() - t:.1f} s"
-                  f"{'' if good else '  FAIL'}", flush=True)  # fmt: skip
-        print(f"{ok}/{n} recovered; worst speed error {worst_s:.4f} %, worst heading error "
-              f"{worst_h:.4f} deg")
-        return 0 if ok == n else 1
-    n = a.n or 100
-    inside = {k: 0 for k in UNKNOWNS}
-    joint = 0
-    for trial in range(a.seed, a.seed + n):
-        scene, truth, bounds = case(trial % 10)
-        rng = np.random.default_rng(5000 + trial)
-        evidence = noisy(evidence_of(truth_run(scene)), rng)
-        fit = cs.fit(scene, bounds, evidence, start=truth, dt=DT, max_duration=MAX_DURATION,
-                     progress=False, scan=False)  # fmt: skip
-        hits = {k: fit.ranges[k][0] <= truth[k] <= fit.ranges[k][1] for k in UNKNOWNS}
-        for k in UNKNOWNS:
-            inside[k] += hits[k]
-        joint += all(hits.values())
-        print(f"trial {trial}: chi2 {fit.objective:.3g}, inside "
-              f"{sum(hits.values())}/{len(hits)}", flush=True)  # fmt: skip
-    print("true value inside its 95 % range: " + ", ".join(f"{k} {v}/{n}" for k, v in
-                                                          inside.items()))  # fmt: skip
-    print(f"all four inside at once: {joint}/{n}")
-    return 0
+        a.method = a.method or "global"
+        return _recover(a)
+    a.method = a.method or "least_squares"
+    return _calibrate(a)
 
 
 if __name__ == "__main__":
