@@ -13,9 +13,13 @@ unknowns u = (x - lo) / (hi - lo) in [0, 1]:
 
 - ``method="least_squares"``: scipy.optimize.least_squares (trust region reflective, bounds)
   from ``start``, with a central-difference Jacobian whose 2k candidates run as one batch;
+  its step (``step``, 1e-2 of each range) is wider than the small jumps the residuals of a
+  run to rest have (docs/fitting.md), so they do not pass for slopes;
 - ``method="global"``: scipy.optimize.differential_evolution over the bounds, each
-  generation's population evaluated as one batch (``vectorized``), then polished by the
-  least-squares solve.
+  generation's population evaluated as one batch (``vectorized``), the first a seeded Latin
+  hypercube with the start as one member; it stops when ``patience`` generations gained
+  less than 1 in chi^2 at a chi^2 the noise can give (99 % of chi^2 with m - k degrees of
+  freedom), then the least-squares solve polishes its best.
 
 Candidates run through the batch engine (crashsim.batch.run_batch) when every item reads
 the batch's columns (rest positions and headings, EDR delta-V); an impact point, a tyre mark
@@ -23,11 +27,19 @@ or a post-impact speed needs each run's Result, and the candidates then run as S
 (paths.apply_overrides, the same variants) on a thread pool. Ctrl-C stops the fit and returns
 the best candidate so far (``interrupted``).
 
-The uncertainty: the covariance (J^T J)^-1 of the Jacobian J (residuals in tolerances per SI
-unit of the unknowns) at the optimum, the tolerances taken as one standard deviation; the
-95 % range is +-1.96 sigma. A scan of the objective along each unknown (the others held at
-the optimum) checks it: its range is where chi^2 rises by at most 3.84 (95 % of chi^2 with
-one degree of freedom), which is narrower than the Jacobian's when unknowns are correlated.
+The uncertainty, the tolerances taken as one standard deviation (so chi^2 is not rescaled):
+
+- the covariance (J^T J)^-1 of the Jacobian J (residuals in tolerances per SI unit of the
+  unknowns) at the optimum, J taken twice: at ``step``, then as the secant over +-1.96
+  sigma of each unknown; the 95 % range is +-1.96 sigma (``ranges``, within the bounds);
+- importance sampling of the posterior (flat within the bounds, likelihood exp(-chi^2/2)):
+  ``samples`` candidates in two batches, from a Student-t on the Jacobian's covariance and
+  then on the first batch's weighted covariance; the 95 % range is the weighted 2.5 and
+  97.5 % quantiles (``sample_ranges``), which sees nonlinearity and jumps the Jacobian
+  does not;
+- a scan of the objective along each unknown (the others held at the optimum): where chi^2
+  rises by at most 3.84 (``scan_ranges``), narrower than the others when unknowns are
+  correlated; for the picture.
 """
 
 from __future__ import annotations
@@ -502,14 +514,16 @@ def _uncertainty(
     """Covariance (k, k) in SI of the unknowns and sigma (k,) from the Jacobian at ``best``.
 
     Two batches: central differences at ``step`` (a fraction of each range) give a first
-    sigma; the Jacobian is then taken again over +-1 sigma of each unknown (at least
-    ``step``, at most a quarter of its range): the secant over the width the range itself
-    spans, so that the residuals' small jumps (docs/fitting.md) do not pass for slopes."""
+    sigma; the Jacobian is then taken again over +-1.96 sigma of each unknown (at least
+    ``step``, at most a quarter of its range): the secant over the width the 95 % range
+    itself spans, so that the residuals' small jumps (docs/fitting.md) do not pass for
+    slopes (a jump of 0.2 tolerances against the residuals' change of about 2 over the
+    secant's half-width)."""
     u = (best - lo) / (hi - lo)
     cov, sigma = _covariance(_jacobian(prob, u, lo, hi, step) / (hi - lo))
     if cov is None:
         return cov, sigma
-    steps = np.clip(sigma / (hi - lo), step, 0.25)
+    steps = np.clip(Z_95 * sigma / (hi - lo), step, 0.25)
     return _covariance(_jacobian_steps(prob, u, lo, hi, steps) / (hi - lo))
 
 
