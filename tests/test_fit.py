@@ -206,21 +206,28 @@ def test_the_global_search_runs_each_generation_as_one_batch(monkeypatch) -> Non
 class _Linear:
     """A stand-in for the fit's problem: residuals A (x - x0) + jumps, in tolerances."""
 
-    def __init__(self, a: np.ndarray, x0: np.ndarray, jump: float = 0.0) -> None:
-        self.a, self.x0, self.jump, self.m = a, x0, jump, a.shape[0]
+    def __init__(
+        self, a: np.ndarray, x0: np.ndarray, jump: float = 0.0, spike: tuple = ()
+    ) -> None:
+        self.a, self.x0, self.jump, self.spike, self.m = a, x0, jump, spike, a.shape[0]
 
     def residuals(self, xs: np.ndarray) -> np.ndarray:
         d = np.atleast_2d(xs) - self.x0
         r = d @ self.a.T
         # jumps of `jump` tolerances up and down every 0.3 % of the first unknown's value
         # (a square wave: the offsets, not the trend, change at each jump)
-        return r + self.jump * (np.floor(d[:, :1] / (0.003 * self.x0[0])) % 2 - 0.5)
+        r = r + self.jump * (np.floor(d[:, :1] / (0.003 * self.x0[0])) % 2 - 0.5)
+        if self.spike:  # (from, to) of the first unknown: 13 tolerances more on residual 0
+            lo, hi = self.spike
+            r[:, 0] += np.where((d[:, 0] > lo) & (d[:, 0] < hi), 13.0, 0.0)
+        return r
 
 
 def test_the_jacobian_ranges_see_through_small_jumps() -> None:
     """Residuals with jumps of 0.2 tolerances every 0.3 % of the speed (as measured on the
-    two-car scenes, docs/fitting.md): the second Jacobian over +-1 sigma gives the smooth
-    model's sigma within 10 %; the first, at a step of 1e-3 of the range, does not."""
+    two-car scenes, docs/fitting.md): the second Jacobian over +-1.96 sigma gives the smooth
+    model's sigma within 10 %; the first, at a step of 1e-3 of the range, does not; and a
+    slice 13 tolerances off on one side is not taken for a slope."""
     from crashsim.studies import fit as fitmod
 
     a = np.array([[1.2, 0.3], [0.4, -2.0], [0.8, 0.5]]) / np.array([0.15, 0.02])
@@ -233,6 +240,11 @@ def test_the_jacobian_ranges_see_through_small_jumps() -> None:
     u = (x0 - lo) / (hi - lo)
     _, naive = fitmod._covariance(fitmod._jacobian(prob, u, lo, hi, 1e-3) / (hi - lo))
     assert abs(naive[0] / exact[0] - 1) > 0.3
+    # a slice of candidates 13 tolerances off (a different run-out) where the secant's
+    # + side lands: the side without it is taken
+    spiked = _Linear(a, x0, jump=0.2, spike=(1.5 * exact[0], 3.0 * exact[0]))
+    _, sigma = fitmod._uncertainty(spiked, x0, lo, hi, 1e-2)
+    np.testing.assert_allclose(sigma, exact, rtol=0.1)
 
 
 @pytest.mark.parametrize("scale", [1.0, 0.3])

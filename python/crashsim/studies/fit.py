@@ -396,18 +396,46 @@ def _start(
 # -- the solvers ------------------------------------------------------------------------------
 
 
+JUMP = 1.0  # tolerances: a second difference larger than this is a jump, not curvature
+
+
 def _jacobian(prob: _Problem, u: Array, lo: Array, hi: Array, step: float) -> Array:
-    """(m, k) d residual / d u by central differences (one side at a bound), one batch."""
+    """(m, k) d residual / d u at ``step`` (a fraction of each range); see _differences."""
+    return _differences(prob, u, lo, hi, np.full(len(u), step))
+
+
+def _differences(prob: _Problem, u: Array, lo: Array, hi: Array, steps: Array) -> Array:
+    """(m, k) d residual / d u by differences over ``steps`` (scaled) either side of u, the
+    point and its 2k neighbours one batch (u itself is usually run already).
+
+    Central differences, except where an unknown's two sides disagree by more than JUMP
+    tolerances (the norm of the residuals' second difference): then a jump lies on one side
+    (candidates whose run-out differs, e.g. a second contact: chi^2 180 against 7 on either
+    side, docs/fitting.md), and the side whose residuals change less is taken. One-sided at
+    a bound."""
     k = len(u)
-    pts, pairs = [], []
+    pts = [u]
     for j in range(k):
         a, b = u.copy(), u.copy()
-        a[j] = min(1.0, u[j] + step)
-        b[j] = max(0.0, u[j] - step)
+        a[j] = min(1.0, u[j] + steps[j])
+        b[j] = max(0.0, u[j] - steps[j])
         pts += [a, b]
-        pairs.append(a[j] - b[j])
-    r = prob.residuals(lo + np.array(pts) * (hi - lo))
-    return np.column_stack([(r[2 * j] - r[2 * j + 1]) / pairs[j] for j in range(k)])
+    pts_a = np.array(pts)
+    r = prob.residuals(lo + pts_a * (hi - lo))
+    r0 = r[0]
+    cols = []
+    for j in range(k):
+        ra, rb = r[1 + 2 * j], r[2 + 2 * j]
+        ha, hb = pts_a[1 + 2 * j, j] - u[j], u[j] - pts_a[2 + 2 * j, j]
+        if ha <= 0.0 or hb <= 0.0:  # at a bound: the side inside
+            cols.append((ra - rb) / (ha + hb))
+            continue
+        fwd, bwd = (ra - r0) / ha, (r0 - rb) / hb
+        if np.linalg.norm(fwd - bwd) * min(ha, hb) > JUMP:
+            cols.append(fwd if np.linalg.norm(ra - r0) <= np.linalg.norm(r0 - rb) else bwd)
+        else:
+            cols.append((ra - rb) / (ha + hb))
+    return np.column_stack(cols)
 
 
 def _least_squares(
@@ -458,7 +486,7 @@ def _global(
     """Differential evolution over the scaled bounds, each generation one batch; the first
     population a Latin hypercube (seeded) with ``u0`` (the start) as one member."""
     from scipy.optimize import differential_evolution
-    from scipy.stats import qmc
+    from scipy.stats import chi2, qmc
 
     k = len(u0)
 
@@ -469,8 +497,6 @@ def _global(
     rng = np.random.default_rng(seed)
     init = qmc.LatinHypercube(d=k, seed=rng).random(max(5, popsize * k))
     init[0] = np.clip(u0, 0.0, 1.0)
-    from scipy.stats import chi2
-
     # 99 % of the chi^2 the noise gives at the optimum (m residuals, k unknowns)
     stall = _Stall(patience, float(chi2.ppf(0.99, max(1, prob.m - k))))
     sol = differential_evolution(objective, [(0.0, 1.0)] * k, vectorized=True,
@@ -478,21 +504,6 @@ def _global(
                                  polish=False, init=init, tol=0.0, atol=0.0,
                                  callback=stall)  # fmt: skip
     return sol.x, f"{sol.message} ({sol.nit} generations)", stall.history
-
-
-def _jacobian_steps(prob: _Problem, u: Array, lo: Array, hi: Array, steps: Array) -> Array:
-    """(m, k) d residual / d u by central differences with a step per unknown (one side at
-    a bound), one batch."""
-    k = len(u)
-    pts, spans = [], []
-    for j in range(k):
-        a, b = u.copy(), u.copy()
-        a[j] = min(1.0, u[j] + steps[j])
-        b[j] = max(0.0, u[j] - steps[j])
-        pts += [a, b]
-        spans.append(a[j] - b[j])
-    r = prob.residuals(lo + np.array(pts) * (hi - lo))
-    return np.column_stack([(r[2 * j] - r[2 * j + 1]) / spans[j] for j in range(k)])
 
 
 def _covariance(jx: Array) -> tuple[Array | None, Array]:
@@ -524,7 +535,7 @@ def _uncertainty(
     if cov is None:
         return cov, sigma
     steps = np.clip(Z_95 * sigma / (hi - lo), step, 0.25)
-    return _covariance(_jacobian_steps(prob, u, lo, hi, steps) / (hi - lo))
+    return _covariance(_differences(prob, u, lo, hi, steps) / (hi - lo))
 
 
 @dataclass(frozen=True)
@@ -543,24 +554,21 @@ SPREAD = 1.5  # the first proposal's scale over the Jacobian's covariance
 
 
 class _T:
-    """A multivariate Student-t (NU degrees of freedom) with ``mean`` and scale matrix
-    ``scale`` (its Cholesky factor ``chol``)."""
+    """A multivariate Student-t (NU degrees of freedom; scipy.stats.multivariate_t) with
+    ``mean`` and scale matrix ``scale``; LinAlgError when the scale is not positive
+    definite."""
 
     def __init__(self, mean: Array, scale: Array) -> None:
-        self.mean = mean
-        self.chol = np.linalg.cholesky(scale)
-        self.log_norm = -float(np.sum(np.log(np.diag(self.chol))))
+        from scipy.stats import multivariate_t
+
+        np.linalg.cholesky(scale)  # LinAlgError for a scale that is not positive definite
+        self.dist = multivariate_t(loc=mean, shape=scale, df=NU)
 
     def draw(self, rng: np.random.Generator, n: int) -> Array:
-        z = rng.standard_normal((n, len(self.mean)))
-        g = rng.chisquare(NU, n) / NU
-        return self.mean + (z @ self.chol.T) / np.sqrt(g)[:, None]
+        return np.atleast_2d(self.dist.rvs(size=n, random_state=rng)).reshape(n, -1)
 
     def log_pdf(self, x: Array) -> Array:
-        """Up to a constant shared by all t of the same dimension."""
-        y = np.linalg.solve(self.chol, (x - self.mean).T).T
-        k = len(self.mean)
-        return self.log_norm - 0.5 * (NU + k) * np.log1p(np.einsum("ij,ij->i", y, y) / NU)
+        return np.atleast_1d(self.dist.logpdf(x))
 
 
 def _sample(
@@ -735,13 +743,14 @@ def fit(
     when inside the bounds, else the middle) or "global" (differential evolution, seeded by
     ``seed``, ``popsize`` x k candidates a generation, the start one of the first, for at
     most ``maxiter`` generations, stopping early when ``patience`` generations gained less
-    than 1 in chi^2 (0: never early); then least squares from its best). Runs:
+    than 1 in chi^2 at a chi^2 the evidence's noise can give (0: never early); then least
+    squares from its best). Runs:
     ``until="rest"`` (needs a ground) up to ``max_duration`` s, or ``until=None`` for
     ``duration`` s; steps of ``dt`` s; ``threads`` (None: all cores). ``step``: the
     Jacobian's difference step as a fraction of each unknown's range (1e-2: wider than the
     residuals' jumps, docs/fitting.md); ``max_nfev``: the least-squares solve's evaluations
-    at most. ``samples``: candidates of the importance sampling of the 95 % ranges (one
-    batch; None: 50 k, 0: none). ``scan``: scan the objective along each unknown
+    at most. ``samples``: candidates of the importance sampling of the 95 % ranges (two
+    batches; None: 50 k, 0: none). ``scan``: scan the objective along each unknown
     (``scan_points`` per unknown) for the check and the picture. ``progress``: True a line
     on stderr, a callable (runs, best chi^2), or False. FitError (a StudyError) naming the
     unknown or evidence item for bad input."""
