@@ -17,6 +17,7 @@ default fit.
 
     python benches/fit_realmesh.py                 # 3 fits; the median wall time
     python benches/fit_realmesh.py --repeats 1 --samples 0   # without the sampling
+    python benches/fit_realmesh.py --repeats 1 --method global
 
 Prints each fit's wall time, runs and recovery errors (speeds in %, headings in deg), the
 median, and the load average before and after (the machine is shared).
@@ -104,6 +105,7 @@ def main() -> int:
                     help="importance samples of the 95 %% ranges (default the fit's, 50 k = "
                     "200; 0: the Jacobian's only)")  # fmt: skip
     ap.add_argument("--threads", type=int, default=None)
+    ap.add_argument("--method", choices=("least_squares", "global"), default="least_squares")
     a = ap.parse_args()
     scene, triangles = case()
     t = time.monotonic()
@@ -119,7 +121,7 @@ def main() -> int:
         load0 = os.getloadavg()[0]
         t = time.monotonic()
         fit = cs.fit(scene, BOUNDS, evidence, start=START, dt=DT, max_duration=MAX_DURATION,
-                     progress=False, samples=a.samples,
+                     progress=False, samples=a.samples, method=a.method,
                      threads=a.threads)  # fmt: skip
         wall = time.monotonic() - t
         times.append(wall)
