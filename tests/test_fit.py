@@ -33,7 +33,7 @@ _spec.loader.exec_module(fs)
 
 @pytest.fixture(scope="module")
 def truth0() -> tuple[cs.Scene, dict[str, float], dict[str, tuple[float, float]], cs.Result]:
-    scene, truth, bounds = fs.case(0)
+    scene, truth, bounds = fs.case(2)  # a scene whose cars separate after the impact
     return scene, truth, bounds, fs.truth_run(scene)
 
 
@@ -68,7 +68,7 @@ def test_column_and_result_readings_agree(truth0) -> None:
     scene, truth, _, result = truth0
     from crashsim.batch import run_batch
 
-    items = fs.evidence_of(result)
+    items = fs.evidence_of(result, "all")
     br = run_batch(scene, n=1, duration=fs.MAX_DURATION, dt=fs.DT, until="rest")
     for e in (e for e in items if not e.uses_result):
         np.testing.assert_allclose(e.measured(br.columns, 0), e.from_result(result), atol=1e-9)
@@ -100,6 +100,12 @@ def test_bad_input_is_a_typed_error_naming_the_item(truth0) -> None:
         cs.fit(scene, bounds, [], progress=False)
     with pytest.raises(cs.FitError, match=r"evidence\[0\].*polyline"):
         cs.fit(scene, bounds, [TyreMark("red", "FL", [1.0, 2.0], 0.1)], progress=False)
+    with pytest.raises(cs.FitError, match="samples = -1"):
+        cs.fit(scene, bounds, ev, samples=-1, progress=False)
+    with pytest.raises(cs.FitError, match="patience"):
+        cs.fit(scene, bounds, ev, patience=2.5, progress=False)
+    with pytest.raises(cs.FitError, match="step = 0.5"):
+        cs.fit(scene, bounds, ev, step=0.5, progress=False)
 
 
 # -- recovery ---------------------------------------------------------------------------------
@@ -145,6 +151,122 @@ def test_a_skid_to_rest_recovers_speed_and_heading_from_starts_20_percent_off(
         fit.plot(out)
         assert out.stat().st_size > 10_000
         assert "red.speed" in fit.summary()
+
+
+def test_a_two_car_scene_is_recovered_from_starts_20_percent_off() -> None:
+    """Scene 0 of benches/fit_synthetic.py: both speeds and headings from the rest positions,
+    headings and EDR delta-V of both cars (the batch's columns), by the local solve."""
+    fit, truth = fs.recover(0, method="least_squares", scan=False, samples=0)
+    for k in ("red.speed", "blue.speed"):
+        assert abs(fit.start[k] / truth[k] - 1) == pytest.approx(0.2)  # 20 % off
+    e = fs.errors(fit, truth)
+    assert all(abs(v) < 0.5 for v in e.values()), e  # % for speeds, deg for headings
+    assert fit.objective < 0.01 and not fit.interrupted
+    assert [r.unit for r in fit.residuals] == ["m", "rad", "m/s"] * 2
+    for k, v in truth.items():
+        lo, hi = fit.ranges[k]
+        # inside, and the evidence narrows each to under half its bounds (blue's heading,
+        # fixed by the fewest residuals, the least: 0.49 of them when measured)
+        assert lo < v < hi and hi - lo < 0.6 * (fit.bounds[k][1] - fit.bounds[k][0])
+
+
+def test_the_global_search_runs_each_generation_as_one_batch(monkeypatch) -> None:
+    """From a start at a bound, differential evolution through the batch engine (one
+    run_batch call per generation of popsize x k candidates) then the local solve."""
+    import crashsim.batch
+
+    speed, heading = 14.0, 0.2
+    scene = _skid(speed, heading)
+    rest = fs.truth_run(scene).rest("red")
+    evidence = [RestPosition("red", rest.position[0], rest.position[1], 0.2),
+                RestHeading("red", rest.heading, math.radians(2.0))]  # fmt: skip
+    sizes: list[int] = []
+    real = crashsim.batch.run_batch
+
+    def counting(scene, overrides, **kw):
+        sizes.append(len(next(iter(overrides.values()))))
+        return real(scene, overrides, **kw)
+
+    monkeypatch.setattr(crashsim.batch, "run_batch", counting)
+    bounds = {"red.speed": (8.0, 20.0), "red.heading": (-0.3, 0.5)}
+    fit = cs.fit(scene, bounds, evidence, method="global", start={"red.speed": 20.0},
+                 popsize=6, dt=fs.DT, max_duration=fs.MAX_DURATION, progress=False,
+                 scan=False, samples=0)  # fmt: skip
+    assert abs(fit.values["red.speed"] / speed - 1) < 0.005
+    assert abs(math.degrees(fit.values["red.heading"] - heading)) < 0.5
+    generations = len(fit.extra["global_history"])
+    assert 1 <= generations <= 30 and "differential evolution" in fit.message
+    # the first population and each generation: one batch of popsize x k = 12 candidates
+    # (fewer where a candidate was run before: the fit keeps every run's residuals)
+    de = sizes[: generations + 1]
+    assert de[0] == 12 and all(2 <= n <= 12 for n in de) and np.median(de) == 12, de
+    assert sum(sizes) == fit.n_runs
+
+
+class _Linear:
+    """A stand-in for the fit's problem: residuals A (x - x0) + jumps, in tolerances."""
+
+    def __init__(
+        self, a: np.ndarray, x0: np.ndarray, jump: float = 0.0, spike: tuple = ()
+    ) -> None:
+        self.a, self.x0, self.jump, self.spike, self.m = a, x0, jump, spike, a.shape[0]
+
+    def residuals(self, xs: np.ndarray) -> np.ndarray:
+        d = np.atleast_2d(xs) - self.x0
+        r = d @ self.a.T
+        # jumps of `jump` tolerances up and down every 0.3 % of the first unknown's value
+        # (a square wave: the offsets, not the trend, change at each jump)
+        r = r + self.jump * (np.floor(d[:, :1] / (0.003 * self.x0[0])) % 2 - 0.5)
+        if self.spike:  # (from, to) of the first unknown: 13 tolerances more on residual 0
+            lo, hi = self.spike
+            r[:, 0] += np.where((d[:, 0] > lo) & (d[:, 0] < hi), 13.0, 0.0)
+        return r
+
+
+def test_the_jacobian_ranges_see_through_small_jumps() -> None:
+    """Residuals with jumps of 0.2 tolerances every 0.3 % of the speed (as measured on the
+    two-car scenes, docs/fitting.md): the second Jacobian over +-1.96 sigma gives the smooth
+    model's sigma within 10 %; the first, at a step of 1e-3 of the range, does not; and a
+    slice 13 tolerances off on one side is not taken for a slope."""
+    from crashsim.studies import fit as fitmod
+
+    a = np.array([[1.2, 0.3], [0.4, -2.0], [0.8, 0.5]]) / np.array([0.15, 0.02])
+    x0 = np.array([15.0, 0.1])
+    lo, hi = np.array([10.0, -0.2]), np.array([20.0, 0.4])
+    exact = np.sqrt(np.diag(np.linalg.inv(a.T @ a)))
+    prob = _Linear(a, x0, jump=0.2)
+    _, sigma = fitmod._uncertainty(prob, x0, lo, hi, 1e-2)
+    np.testing.assert_allclose(sigma, exact, rtol=0.1)
+    u = (x0 - lo) / (hi - lo)
+    _, naive = fitmod._covariance(fitmod._jacobian(prob, u, lo, hi, 1e-3) / (hi - lo))
+    assert abs(naive[0] / exact[0] - 1) > 0.3
+    # a slice of candidates 13 tolerances off (a different run-out) where the secant's
+    # + side lands: the side without it is taken
+    spiked = _Linear(a, x0, jump=0.2, spike=(1.5 * exact[0], 3.0 * exact[0]))
+    _, sigma = fitmod._uncertainty(spiked, x0, lo, hi, 1e-2)
+    np.testing.assert_allclose(sigma, exact, rtol=0.1)
+
+
+@pytest.mark.parametrize("scale", [1.0, 0.3])
+def test_the_sampled_ranges_match_a_linear_model(scale: float) -> None:
+    """Importance sampling of a linear model's posterior (chi^2 quadratic): the 95 % ranges
+    come out at x0 +- 1.96 sigma within 15 % of sigma, also when the Jacobian's covariance
+    handed to it is 0.3 of the true one (the second proposal adapts); seeded: the same bits
+    twice."""
+    from crashsim.studies import fit as fitmod
+
+    a = np.array([[1.0, 0.5], [0.2, -1.5], [0.6, 0.9]]) / np.array([0.2, 0.03])
+    x0 = np.array([12.0, 0.3])
+    lo, hi = np.array([5.0, -1.0]), np.array([20.0, 1.0])
+    cov = np.linalg.inv(a.T @ a)
+    sigma = np.sqrt(np.diag(cov))
+    s = fitmod._sample(_Linear(a, x0), x0, cov * scale, lo, hi, 2000, 7)
+    assert s is not None and s.ess > 300
+    for j in range(2):
+        assert s.ranges[j, 0] == pytest.approx(x0[j] - 1.96 * sigma[j], abs=0.15 * sigma[j])
+        assert s.ranges[j, 1] == pytest.approx(x0[j] + 1.96 * sigma[j], abs=0.15 * sigma[j])
+    again = fitmod._sample(_Linear(a, x0), x0, cov * scale, lo, hi, 2000, 7)
+    assert again is not None and np.array_equal(again.ranges, s.ranges)
 
 
 def test_ctrl_c_returns_the_best_so_far() -> None:

@@ -13,9 +13,13 @@ unknowns u = (x - lo) / (hi - lo) in [0, 1]:
 
 - ``method="least_squares"``: scipy.optimize.least_squares (trust region reflective, bounds)
   from ``start``, with a central-difference Jacobian whose 2k candidates run as one batch;
+  its step (``step``, 1e-2 of each range) is wider than the small jumps the residuals of a
+  run to rest have (docs/fitting.md), so they do not pass for slopes;
 - ``method="global"``: scipy.optimize.differential_evolution over the bounds, each
-  generation's population evaluated as one batch (``vectorized``), then polished by the
-  least-squares solve.
+  generation's population evaluated as one batch (``vectorized``), the first a seeded Latin
+  hypercube with the start as one member; it stops when ``patience`` generations gained
+  less than 1 in chi^2 at a chi^2 the noise can give (99 % of chi^2 with m - k degrees of
+  freedom), then the least-squares solve polishes its best.
 
 Candidates run through the batch engine (crashsim.batch.run_batch) when every item reads
 the batch's columns (rest positions and headings, EDR delta-V); an impact point, a tyre mark
@@ -23,11 +27,19 @@ or a post-impact speed needs each run's Result, and the candidates then run as S
 (paths.apply_overrides, the same variants) on a thread pool. Ctrl-C stops the fit and returns
 the best candidate so far (``interrupted``).
 
-The uncertainty: the covariance (J^T J)^-1 of the Jacobian J (residuals in tolerances per SI
-unit of the unknowns) at the optimum, the tolerances taken as one standard deviation; the
-95 % range is +-1.96 sigma. A scan of the objective along each unknown (the others held at
-the optimum) checks it: its range is where chi^2 rises by at most 3.84 (95 % of chi^2 with
-one degree of freedom), which is narrower than the Jacobian's when unknowns are correlated.
+The uncertainty, the tolerances taken as one standard deviation (so chi^2 is not rescaled):
+
+- the covariance (J^T J)^-1 of the Jacobian J (residuals in tolerances per SI unit of the
+  unknowns) at the optimum, J taken twice: at ``step``, then as the secant over +-1.96
+  sigma of each unknown; the 95 % range is +-1.96 sigma (``ranges``, within the bounds);
+- importance sampling of the posterior (flat within the bounds, likelihood exp(-chi^2/2)):
+  ``samples`` candidates in two batches, from a Student-t on the Jacobian's covariance and
+  then on the first batch's weighted covariance; the 95 % range is the weighted 2.5 and
+  97.5 % quantiles (``sample_ranges``), which sees nonlinearity and jumps the Jacobian
+  does not;
+- a scan of the objective along each unknown (the others held at the optimum): where chi^2
+  rises by at most 3.84 (``scan_ranges``), narrower than the others when unknowns are
+  correlated; for the picture.
 """
 
 from __future__ import annotations
@@ -60,6 +72,7 @@ __all__ = ["FitError", "FitResult", "ItemResidual", "fit"]
 Array = NDArray[np.float64]
 METHODS = ("least_squares", "global")
 CHI2_95 = 3.841458820694124  # 95 % quantile of chi^2 with one degree of freedom
+XTOL, FTOL, GTOL = 1e-5, 1e-10, 1e-10  # the local solve's tolerances (scaled unknowns)
 Z_95 = 1.959963984540054  # two-sided 95 % of the normal distribution
 
 
@@ -90,9 +103,13 @@ class FitResult:
     squared residuals in tolerances); ``residuals`` one ItemResidual per evidence item;
     ``covariance`` (k, k) from the Jacobian at the optimum (None when it could not be
     formed), ``sigma`` {path: standard deviation} (inf where the evidence does not fix the
-    unknown), ``ranges`` {path: (lo, hi)} the 95 % range +-1.96 sigma; ``scan`` {path: (values,
-    chi^2)} the objective along each unknown through the optimum and ``scan_ranges`` {path:
-    (lo, hi)} where it stays within 3.84 of its least (None when not scanned);
+    unknown), ``ranges`` {path: (lo, hi)} the 95 % range +-1.96 sigma (within the bounds);
+    ``sample_ranges`` {path: (lo, hi)} the 95 % range by importance sampling of the posterior
+    (the 2.5 and 97.5 % quantiles; None when not sampled) and ``samples`` its candidates
+    (``x``, ``chi2``, ``weight``, ``ess``); ``scan`` {path: (values, chi^2)} the objective
+    along each unknown through the optimum, the others held, and ``scan_ranges`` {path: (lo,
+    hi)} where it stays within 3.84 of its least (None when not scanned; narrower than the
+    others when unknowns are correlated);
     ``result`` the fitted run, ``scene`` the fitted scene; ``n_runs`` runs made;
     ``interrupted`` (Ctrl-C: the best so far), ``message`` the solver's."""
 
@@ -115,6 +132,8 @@ class FitResult:
     message: str = ""
     scan: dict[str, tuple[Array, Array]] | None = None
     scan_ranges: dict[str, tuple[float, float]] | None = None
+    sample_ranges: dict[str, tuple[float, float]] | None = None
+    samples: Any = None
     elapsed: float = 0.0
     extra: dict[str, Any] = field(default_factory=dict)
 
@@ -131,17 +150,23 @@ class FitResult:
             f"{self.elapsed:.1f} s" + (" -- INTERRUPTED: the best so far" if self.interrupted
                                        else ""),
             "",
-            f"{'unknown':<24} {'best':>12} {'95 % range (Jacobian)':>28} "
-            f"{'95 % range (scan)':>26}  unit",
+            f"{'unknown':<20} {'best':>11} {'95 % (Jacobian)':>21} {'95 % (sampling)':>21} "
+            f"{'along it alone':>21}  unit",
         ]
+
+        def span(r: dict[str, tuple[float, float]] | None, n: str) -> str:
+            v = r.get(n) if r else None
+            return f"{v[0]:.5g} .. {v[1]:.5g}" if v else "-"
+
         for n in self.names:
-            u = self.units[n]
-            lo, hi = self.ranges[n]
-            scan = self.scan_ranges.get(n) if self.scan_ranges else None
-            s = f"{scan[0]:.5g} .. {scan[1]:.5g}" if scan else "-"
             lines.append(
-                f"{n:<24} {self.values[n]:>12.6g} {f'{lo:.5g} .. {hi:.5g}':>28} {s:>26}  {u}"
+                f"{n:<20} {self.values[n]:>11.6g} {span(self.ranges, n):>21} "
+                f"{span(self.sample_ranges, n):>21} {span(self.scan_ranges, n):>21}  "
+                f"{self.units[n]}"
             )
+        if self.samples is not None:
+            lines.append(f"(sampling: {len(self.samples.x)} candidates, effective sample size "
+                         f"{self.samples.ess:.0f})")  # fmt: skip
         lines += ["", f"{'evidence':<36} {'component':<13} {'evidence':>10} {'fitted':>10} "
                   f"{'residual':>10} {'/tol':>7}  unit"]  # fmt: skip
         for r in self.residuals:
@@ -424,18 +449,46 @@ def _start(
 # -- the solvers ------------------------------------------------------------------------------
 
 
+JUMP = 1.0  # tolerances: a second difference larger than this is a jump, not curvature
+
+
 def _jacobian(prob: _Problem, u: Array, lo: Array, hi: Array, step: float) -> Array:
-    """(m, k) d residual / d u by central differences (one side at a bound), one batch."""
+    """(m, k) d residual / d u at ``step`` (a fraction of each range); see _differences."""
+    return _differences(prob, u, lo, hi, np.full(len(u), step))
+
+
+def _differences(prob: _Problem, u: Array, lo: Array, hi: Array, steps: Array) -> Array:
+    """(m, k) d residual / d u by differences over ``steps`` (scaled) either side of u, the
+    point and its 2k neighbours one batch (u itself is usually run already).
+
+    Central differences, except where an unknown's two sides disagree by more than JUMP
+    tolerances (the norm of the residuals' second difference): then a jump lies on one side
+    (candidates whose run-out differs, e.g. a second contact: chi^2 180 against 7 on either
+    side, docs/fitting.md), and the side whose residuals change less is taken. One-sided at
+    a bound."""
     k = len(u)
-    pts, pairs = [], []
+    pts = [u]
     for j in range(k):
         a, b = u.copy(), u.copy()
-        a[j] = min(1.0, u[j] + step)
-        b[j] = max(0.0, u[j] - step)
+        a[j] = min(1.0, u[j] + steps[j])
+        b[j] = max(0.0, u[j] - steps[j])
         pts += [a, b]
-        pairs.append(a[j] - b[j])
-    r = prob.residuals(lo + np.array(pts) * (hi - lo))
-    return np.column_stack([(r[2 * j] - r[2 * j + 1]) / pairs[j] for j in range(k)])
+    pts_a = np.array(pts)
+    r = prob.residuals(lo + pts_a * (hi - lo))
+    r0 = r[0]
+    cols = []
+    for j in range(k):
+        ra, rb = r[1 + 2 * j], r[2 + 2 * j]
+        ha, hb = pts_a[1 + 2 * j, j] - u[j], u[j] - pts_a[2 + 2 * j, j]
+        if ha <= 0.0 or hb <= 0.0:  # at a bound: the side inside
+            cols.append((ra - rb) / (ha + hb))
+            continue
+        fwd, bwd = (ra - r0) / ha, (r0 - rb) / hb
+        if np.linalg.norm(fwd - bwd) * min(ha, hb) > JUMP:
+            cols.append(fwd if np.linalg.norm(ra - r0) <= np.linalg.norm(r0 - rb) else bwd)
+        else:
+            cols.append((ra - rb) / (ha + hb))
+    return np.column_stack(cols)
 
 
 def _least_squares(
@@ -449,43 +502,213 @@ def _least_squares(
     def jac(u: Array) -> Array:
         return _jacobian(prob, u, lo, hi, step)
 
+    # Tolerances in scaled unknowns (the range = 1): XTOL stops at steps of 1e-5 of a range,
+    # far below any figure the evidence fixes; tighter only spends runs on the jumps.
     sol = least_squares(fun, np.clip(u0, 0.0, 1.0), jac=jac, bounds=(0.0, 1.0), method="trf",
-                        x_scale=1.0, xtol=1e-9, ftol=1e-12, gtol=1e-10,
+                        x_scale=1.0, xtol=XTOL, ftol=FTOL, gtol=GTOL,
                         max_nfev=max_nfev)  # fmt: skip
     return sol.x, str(sol.message)
 
 
+class _Stall:
+    """Differential evolution's callback: stop when the best chi^2 has gained less than
+    ``gain`` over the last ``patience`` generations and is at most ``limit`` (a chi^2 the
+    evidence's noise can give, so that a search stuck on a plateau of a wrong valley goes
+    on); the local solve takes it from there."""
+
+    def __init__(self, patience: int, limit: float, gain: float = 1.0) -> None:
+        self.patience, self.limit, self.gain = patience, limit, gain
+        self.history: list[float] = []
+
+    def __call__(self, intermediate_result: Any) -> bool:
+        self.history.append(float(intermediate_result.fun))
+        h, p = self.history, self.patience
+        return p > 0 and len(h) > p and h[-p - 1] - h[-1] < self.gain and h[-1] <= self.limit
+
+
 def _global(
-    prob: _Problem, k: int, lo: Array, hi: Array, seed: int | None, popsize: int, maxiter: int
-) -> tuple[Array, str]:
+    prob: _Problem,
+    u0: Array,
+    lo: Array,
+    hi: Array,
+    seed: int | None,
+    popsize: int,
+    maxiter: int,
+    patience: int,
+) -> tuple[Array, str, list[float]]:
+    """Differential evolution over the scaled bounds, each generation one batch; the first
+    population a Latin hypercube (seeded) with ``u0`` (the start) as one member."""
     from scipy.optimize import differential_evolution
+    from scipy.stats import chi2, qmc
+
+    k = len(u0)
 
     def objective(us: Array) -> Array:  # (k, S) -> (S,)
         r = prob.residuals((lo[:, None] + us * (hi - lo)[:, None]).T)
         return np.einsum("ij,ij->i", r, r)
 
+    rng = np.random.default_rng(seed)
+    init = qmc.LatinHypercube(d=k, seed=rng).random(max(5, popsize * k))
+    init[0] = np.clip(u0, 0.0, 1.0)
+    # 99 % of the chi^2 the noise gives at the optimum (m residuals, k unknowns)
+    stall = _Stall(patience, float(chi2.ppf(0.99, max(1, prob.m - k))))
     sol = differential_evolution(objective, [(0.0, 1.0)] * k, vectorized=True,
-                                 updating="deferred", popsize=popsize, maxiter=maxiter,
-                                 seed=seed, polish=False, init="latinhypercube",
-                                 tol=1e-6)  # fmt: skip
-    return sol.x, str(sol.message)
+                                 updating="deferred", maxiter=maxiter, seed=rng,
+                                 polish=False, init=init, tol=0.0, atol=0.0,
+                                 callback=stall)  # fmt: skip
+    return sol.x, f"{sol.message} ({sol.nit} generations)", stall.history
+
+
+def _covariance(jx: Array) -> tuple[Array | None, Array]:
+    """(J^T J)^-1 and the standard deviations of a Jacobian J (residuals in tolerances per SI
+    unit); None and inf where the evidence does not fix the unknowns."""
+    jtj = jx.T @ jx
+    if not np.all(np.isfinite(jtj)):
+        return None, np.full(jx.shape[1], math.inf)
+    s = np.linalg.svd(jtj, compute_uv=False)
+    if s[-1] <= s[0] * 1e-12:
+        return None, np.full(jx.shape[1], math.inf)
+    cov = np.linalg.inv(jtj)
+    return cov, np.sqrt(np.maximum(np.diag(cov), 0.0))
 
 
 def _uncertainty(
     prob: _Problem, best: Array, lo: Array, hi: Array, step: float
 ) -> tuple[Array | None, Array]:
-    """Covariance (k, k) in SI of the unknowns and sigma (k,) from the Jacobian at ``best``."""
+    """Covariance (k, k) in SI of the unknowns and sigma (k,) from the Jacobian at ``best``.
+
+    Two batches: central differences at ``step`` (a fraction of each range) give a first
+    sigma; the Jacobian is then taken again over +-1.96 sigma of each unknown (at least
+    ``step``, at most a quarter of its range): the secant over the width the 95 % range
+    itself spans, so that the residuals' small jumps (docs/fitting.md) do not pass for
+    slopes (a jump of 0.2 tolerances against the residuals' change of about 2 over the
+    secant's half-width)."""
     u = (best - lo) / (hi - lo)
-    jx = _jacobian(prob, u, lo, hi, step) / (hi - lo)  # residual per SI unit
-    jtj = jx.T @ jx
+    cov, sigma = _covariance(_jacobian(prob, u, lo, hi, step) / (hi - lo))
+    if cov is None:
+        return cov, sigma
+    steps = np.clip(Z_95 * sigma / (hi - lo), step, 0.25)
+    return _covariance(_differences(prob, u, lo, hi, steps) / (hi - lo))
+
+
+@dataclass(frozen=True)
+class _Samples:
+    """Importance samples of the posterior around the optimum (see :func:`_sample`)."""
+
+    x: Array  # (n, k) SI, the candidates inside the bounds
+    chi2: Array  # (n,)
+    weight: Array  # (n,) normalised
+    ranges: Array  # (k, 2) the 95 % range of each unknown (2.5 and 97.5 % quantiles)
+    ess: float  # effective sample size 1 / sum(w^2)
+
+
+NU = 4.0  # degrees of freedom of the sampling's Student-t proposals (heavy tails)
+SPREAD = 1.5  # the first proposal's scale over the Jacobian's covariance
+
+
+class _T:
+    """A multivariate Student-t (NU degrees of freedom; scipy.stats.multivariate_t) with
+    ``mean`` and scale matrix ``scale``; LinAlgError when the scale is not positive
+    definite."""
+
+    def __init__(self, mean: Array, scale: Array) -> None:
+        from scipy.stats import multivariate_t
+
+        np.linalg.cholesky(scale)  # LinAlgError for a scale that is not positive definite
+        self.dist = multivariate_t(loc=mean, shape=scale, df=NU)
+
+    def draw(self, rng: np.random.Generator, n: int) -> Array:
+        return np.atleast_2d(self.dist.rvs(size=n, random_state=rng)).reshape(n, -1)
+
+    def log_pdf(self, x: Array) -> Array:
+        return np.atleast_1d(self.dist.logpdf(x))
+
+
+def _sample(
+    prob: _Problem, best: Array, cov: Array | None, lo: Array, hi: Array, n: int, seed: int | None
+) -> _Samples | None:
+    """The posterior of the unknowns given the evidence (flat within the bounds, likelihood
+    exp(-chi^2 / 2)) by adaptive importance sampling in two batches of n / 2: candidates from
+    a Student-t around ``best`` with SPREAD^2 times the Jacobian's covariance (uniform over
+    the bounds when there is none), then from a Student-t with the first batch's weighted
+    mean and covariance; every candidate weighted by exp(-chi^2 / 2) over the two proposals'
+    mixture density (so a first proposal that missed the posterior's shape, e.g. where the
+    Jacobian is off, costs efficiency but no bias). Candidates outside the bounds have
+    weight 0 and are not run."""
+    k = len(best)
+    rng = np.random.default_rng(seed)
+    width = (hi - lo) ** 2 / 12.0  # a uniform's variance over the bounds
+    first: _T | None = None
+    if cov is not None:
+        try:
+            first = _T(best, cov * SPREAD**2)
+        except np.linalg.LinAlgError:
+            first = None
+    halves = (n // 2, n - n // 2)
+    xs: list[Array] = []
+    chis: list[Array] = []
+    props: list[_T | None] = []
+    for r, m in enumerate(halves):
+        prop = first if r == 0 else _refit(xs, chis, props, lo, hi, width)
+        x = prop.draw(rng, m) if prop is not None else lo + rng.random((m, k)) * (hi - lo)
+        x = x[np.all((x >= lo) & (x <= hi), axis=1)]
+        res = prob.residuals(x) if len(x) else np.empty((0, prob.m))
+        xs.append(x)
+        chis.append(np.einsum("ij,ij->i", res, res))
+        props.append(prop)
+    x, chi = np.concatenate(xs), np.concatenate(chis)
+    if len(x) < 2:
+        return None
+    w = _weights(x, chi, props, halves, lo, hi)
+    ranges = np.array([_weighted_quantiles(x[:, j], w, (0.025, 0.975)) for j in range(k)])
+    return _Samples(x, chi, w, ranges, float(1.0 / np.sum(w**2)))
+
+
+def _log_mixture(x: Array, props: list[_T | None], counts: tuple[int, ...], lo: Array,
+                 hi: Array) -> Array:  # fmt: skip
+    """log of the proposals' mixture density (weights by their draws) at x."""
+    parts = []
+    for prop, c in zip(props, counts, strict=True):
+        if prop is None:  # uniform over the bounds
+            d = np.full(len(x), -float(np.sum(np.log(hi - lo))))
+        else:
+            d = prop.log_pdf(x)
+        parts.append(np.log(c / sum(counts)) + d)
+    return np.logaddexp.reduce(np.array(parts), axis=0)
+
+
+def _weights(x: Array, chi: Array, props: list[_T | None], counts: tuple[int, ...], lo: Array,
+             hi: Array) -> Array:  # fmt: skip
+    log_w = -0.5 * (chi - chi.min()) - _log_mixture(x, props, counts, lo, hi)
+    w = np.exp(log_w - log_w.max())
+    return w / w.sum()
+
+
+def _refit(xs: list[Array], chis: list[Array], props: list[_T | None], lo: Array, hi: Array,
+           width: Array) -> _T | None:  # fmt: skip
+    """The second proposal: a Student-t with the first batch's weighted mean and covariance
+    (the first proposal again when the batch is too small to give one)."""
+    x, chi = xs[0], chis[0]
+    k = x.shape[1]
+    if len(x) < 2 * k + 2:
+        return props[0]
+    w = _weights(x, chi, props[:1], (len(x),), lo, hi)
+    mean = w @ x
+    d = x - mean
+    cov = (w[:, None] * d).T @ d
+    cov += np.diag(width * 1e-6)  # keep it positive definite
     try:
-        s = np.linalg.svd(jtj, compute_uv=False)
-        if s[-1] <= s[0] * 1e-12 or not np.all(np.isfinite(jtj)):
-            raise np.linalg.LinAlgError
-        cov = np.linalg.inv(jtj)
+        return _T(mean, cov * SPREAD**2)
     except np.linalg.LinAlgError:
-        return None, np.full(len(best), math.inf)
-    return cov, np.sqrt(np.maximum(np.diag(cov), 0.0))
+        return props[0]
+
+
+def _weighted_quantiles(v: Array, w: Array, qs: tuple[float, ...]) -> Array:
+    """Quantiles of the values v with weights w (normalised), between sorted values."""
+    order = np.argsort(v)
+    v, w = v[order], w[order]
+    cdf = np.cumsum(w) - 0.5 * w
+    return np.interp(qs, cdf, v)
 
 
 def _scan(
@@ -555,12 +778,14 @@ def fit(
     until: str | None = "rest",
     max_duration: float = 30.0,
     progress: bool | Callable[[int, float], None] = True,
-    seed: int | None = None,
+    seed: int | None = 0,
     threads: int | None = None,
-    step: float = 1e-3,
+    step: float = 1e-2,
     max_nfev: int = 60,
     popsize: int = 8,
     maxiter: int = 30,
+    patience: int = 5,
+    samples: int | None = None,
     scan: bool = True,
     scan_points: int = 9,
 ) -> FitResult:
@@ -569,14 +794,19 @@ def fit(
 
     ``method``: "least_squares" (from ``start`` {path: value}, default the scene's own value
     when inside the bounds, else the middle) or "global" (differential evolution, seeded by
-    ``seed``, ``popsize`` x k candidates a generation for at most ``maxiter`` generations,
-    then least squares). Runs: ``until="rest"`` (needs a ground) up to ``max_duration`` s,
-    or ``until=None`` for ``duration`` s; steps of ``dt`` s; ``threads`` (None: all cores).
-    ``step``: the Jacobian's difference step as a fraction of each unknown's range;
-    ``max_nfev``: the least-squares solve's evaluations at most. ``scan``: scan the
-    objective along each unknown (``scan_points`` per unknown) for the check and the
-    picture. ``progress``: True a line on stderr, a callable (runs, best chi^2), or False.
-    FitError (a StudyError) naming the unknown or evidence item for bad input."""
+    ``seed``, ``popsize`` x k candidates a generation, the start one of the first, for at
+    most ``maxiter`` generations, stopping early when ``patience`` generations gained less
+    than 1 in chi^2 at a chi^2 the evidence's noise can give (0: never early); then least
+    squares from its best). Runs:
+    ``until="rest"`` (needs a ground) up to ``max_duration`` s, or ``until=None`` for
+    ``duration`` s; steps of ``dt`` s; ``threads`` (None: all cores). ``step``: the
+    Jacobian's difference step as a fraction of each unknown's range (1e-2: wider than the
+    residuals' jumps, docs/fitting.md); ``max_nfev``: the least-squares solve's evaluations
+    at most. ``samples``: candidates of the importance sampling of the 95 % ranges (two
+    batches; None: 50 k, 0: none). ``scan``: scan the objective along each unknown
+    (``scan_points`` per unknown) for the check and the picture. ``progress``: True a line
+    on stderr, a callable (runs, best chi^2), or False. FitError (a StudyError) naming the
+    unknown or evidence item for bad input."""
     if method not in METHODS:
         raise FitError(f"method {method!r} is unknown: use {' or '.join(METHODS)}")
     if until not in (None, "rest"):
@@ -588,6 +818,16 @@ def fit(
     for what, v in (("dt", dt), ("max_duration", max_duration), ("step", step)):
         if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
             raise FitError(f"{what} = {v!r} must be a number > 0")
+    if step > 0.25:
+        raise FitError(f"step = {step!r} is a fraction of each unknown's range: give <= 0.25")
+    for what, v, least in (("max_nfev", max_nfev, 1), ("popsize", popsize, 1),
+                           ("maxiter", maxiter, 1), ("patience", patience, 0),
+                           ("scan_points", scan_points, 2),
+                           ("samples", 0 if samples is None else samples, 0)):  # fmt: skip
+        if isinstance(v, bool) or not isinstance(v, int | np.integer) or v < least:
+            raise FitError(f"{what} = {v!r} must be a whole number >= {least}")
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int | np.integer)):
+        raise FitError(f"seed = {seed!r} must be a whole number or None")
     names, lo, hi, units = _check_unknowns(scene, unknowns)
     items = [evidence] if isinstance(evidence, Evidence) else list(evidence)
     labels = check_evidence(scene, items)
@@ -603,17 +843,27 @@ def fit(
     cov: Array | None = None
     sigma = np.full(len(names), math.inf)
     scans = scan_ranges = None
+    sampled: _Samples | None = None
+    history: list[float] = []
+    n_samples = 50 * len(names) if samples is None else int(samples)
     try:
         u0 = (x0 - lo) / (hi - lo)
         if method == "global":
-            u0, message = _global(prob, len(names), lo, hi, seed, popsize, maxiter)
-            message = f"differential evolution: {message}; "
+            u0, m, history = _global(prob, u0, lo, hi, seed, popsize, maxiter, patience)
+            message = f"differential evolution: {m}; "
         u, m = _least_squares(prob, u0, lo, hi, step, max_nfev)
         message += f"least squares: {m}"
         best = lo + u * (hi - lo)
         if prob.best_x is not None and prob.best < prob.chi2(prob.residuals(best[None])[0]):
             best = prob.best_x.copy()
         cov, sigma = _uncertainty(prob, best, lo, hi, step)
+        if n_samples > 0:
+            sampled = _sample(prob, best, cov, lo, hi, n_samples, seed)
+            if sampled is not None:
+                c_best = prob.chi2(prob.residuals(best[None])[0])
+                if sampled.chi2.min() < c_best - 1.0:
+                    message += (f"; a sample has chi^2 {sampled.chi2.min():.4g} < the "
+                                f"optimum's {c_best:.4g}: the solve stopped short")  # fmt: skip
         if scan:
             scans, scan_ranges = _scan(prob, names, best, sigma, lo, hi, scan_points)
     except (_Interrupted, KeyboardInterrupt):
@@ -647,10 +897,15 @@ def fit(
             measured = e.target() + diff
         residuals.append(ItemResidual(label, e.unit, e.components, np.asarray(measured, float),
                                       e.target(), np.asarray(diff, float), nr))  # fmt: skip
-    ranges = {
-        n: (float(best[j] - Z_95 * sigma[j]), float(best[j] + Z_95 * sigma[j]))
+    ranges = {  # within the bounds: the unknowns' prior
+        n: (float(max(lo[j], best[j] - Z_95 * sigma[j])),
+            float(min(hi[j], best[j] + Z_95 * sigma[j])))
         for j, n in enumerate(names)
-    }
+    }  # fmt: skip
+    sample_ranges = None if sampled is None else {
+        n: (float(sampled.ranges[j, 0]), float(sampled.ranges[j, 1]))
+        for j, n in enumerate(names)
+    }  # fmt: skip
     return FitResult(
         names=names,
         units=units,
@@ -671,5 +926,8 @@ def fit(
         message=message,
         scan=scans,
         scan_ranges=scan_ranges,
+        sample_ranges=sample_ranges,
+        samples=sampled,
         elapsed=time.monotonic() - began,
+        extra={"global_history": history} if method == "global" else {},
     )

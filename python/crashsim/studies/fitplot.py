@@ -1,5 +1,6 @@
 """The picture of a fit (FitResult.plot): the fitted run over the evidence, seen from above,
-and the objective along each unknown around the optimum."""
+and the objective along each unknown around the optimum (the scan, the samples, the 95 %
+ranges: green the Jacobian's, orange dashed the sampling's)."""
 
 from __future__ import annotations
 
@@ -78,6 +79,10 @@ def plot_fit(fit: FitResult, path: str | PathLike[str] | None = None) -> Any:
         best = fit.values[n]
         unit = fit.units[n]
         scale, shown = (180.0 / math.pi, "deg") if unit == "rad" else (1.0, unit)
+        if fit.samples is not None:  # its lower edge: the profile (the others free)
+            keep = fit.samples.chi2 - fit.objective <= 4.0 * 3.84
+            a.plot(fit.samples.x[keep, j] * scale, fit.samples.chi2[keep] - fit.objective, ".",
+                   ms=2, color="0.6", label="samples")  # fmt: skip
         if fit.scan is not None and n in fit.scan:
             xs, chi = fit.scan[n]
             a.plot(xs * scale, chi - fit.objective, "o-", ms=3, color="C0", label="scan")
@@ -90,6 +95,9 @@ def plot_fit(fit: FitResult, path: str | PathLike[str] | None = None) -> Any:
         lo, hi = fit.ranges[n]
         if math.isfinite(lo) and math.isfinite(hi):
             a.axvspan(lo * scale, hi * scale, color="C2", alpha=0.15)
+        if fit.sample_ranges is not None:
+            for v in fit.sample_ranges[n]:
+                a.axvline(v * scale, color="C1", lw=1.0, ls="--")
         a.axvline(best * scale, color="k", lw=0.8)
         a.set_xlabel(f"{n} ({shown})")
         a.set_ylabel("chi^2 - best")
