@@ -155,8 +155,9 @@ def test_a_skid_to_rest_recovers_speed_and_heading_from_starts_20_percent_off(
 
 def test_a_two_car_scene_is_recovered_from_starts_20_percent_off() -> None:
     """Scene 0 of benches/fit_synthetic.py: both speeds and headings from the rest positions,
-    headings and EDR delta-V of both cars (the batch's columns), by the local solve."""
-    fit, truth = fs.recover(0, method="least_squares", scan=False, samples=0)
+    headings and EDR delta-V of both cars (the batch's columns), by the global search (the
+    local solve alone ends in another valley of this scene: chi^2 5.9, 1.7 % off)."""
+    fit, truth = fs.recover(0, method="global", scan=False, samples=0)
     for k in ("red.speed", "blue.speed"):
         assert abs(fit.start[k] / truth[k] - 1) == pytest.approx(0.2)  # 20 % off
     e = fs.errors(fit, truth)

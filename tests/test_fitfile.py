@@ -240,7 +240,7 @@ def test_the_answer_in_the_files_units() -> None:
     best = float(row.split()[1])
     assert best == pytest.approx(60.0, rel=5e-3) and "km/h" in row and "m/s)" in row
     heading = next(line for line in text.splitlines() if "rest_heading (red)" in line)
-    assert heading.split()[-1] == "deg" and float(heading.split()[4]) == pytest.approx(9.3)
+    assert heading.split()[-1] == "deg" and float(heading.split()[4]) == pytest.approx(8.0)
     data = json.loads(json.dumps(fit.to_dict(), allow_nan=False))
     assert data["values"]["red.speed"] == pytest.approx(fit.values["red.speed"])
     assert data["scan"] is None and len(data["residuals"]) == 2
