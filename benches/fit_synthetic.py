@@ -237,7 +237,7 @@ def _recover(a: argparse.Namespace) -> int:
 
 def _calibrate(a: argparse.Namespace) -> int:
     n = a.n or 100
-    kinds = ("Jacobian", "sampling")
+    kinds = ("Jacobian", "sampling", "all at once")
     inside = {(w, k): 0 for w in kinds for k in UNKNOWNS}
     joint = dict.fromkeys(kinds, 0)
     for trial in range(a.seed, a.seed + n):
@@ -249,7 +249,9 @@ def _calibrate(a: argparse.Namespace) -> int:
                      progress=False, scan=False, method=a.method, samples=a.samples,
                      seed=trial)  # fmt: skip
         line = []
-        for w, ranges in zip(kinds, (fit.ranges, fit.sample_ranges), strict=True):
+        for w, ranges in zip(
+            kinds, (fit.ranges, fit.sample_ranges, fit.joint_ranges), strict=True
+        ):
             if ranges is None:
                 continue
             hits = {k: ranges[k][0] <= truth[k] <= ranges[k][1] for k in UNKNOWNS}
@@ -265,6 +267,8 @@ def _calibrate(a: argparse.Namespace) -> int:
         if a.samples == 0 and w == "sampling":
             continue
         print(f"{w}: true value inside its 95 % range: "
+              if w != "all at once" else
+              f"{w} (the box of the joint 95 % ellipsoid): true value inside its range: "
               + ", ".join(f"{k} {inside[w, k]}/{n}" for k in UNKNOWNS)
               + f"; all four at once {joint[w]}/{n}")  # fmt: skip
     return 0

@@ -142,6 +142,11 @@ def test_a_skid_to_rest_recovers_speed_and_heading_from_starts_20_percent_off(
     assert np.all(np.abs(fit.residuals[0].residual) < 0.05)  # m
     lo, hi = fit.ranges["red.speed"]
     assert lo < speed < hi and 0 < hi - lo < 0.3 * speed
+    # All unknowns at once: the box of the joint 95 % ellipsoid, sqrt(chi^2_2(0.95)) = 2.448
+    # sigma against 1.96 for one (neither clipped by the bounds here).
+    for n in fit.names:
+        (a, b), (ja, jb) = fit.ranges[n], fit.joint_ranges[n]
+        assert (jb - ja) / (b - a) == pytest.approx(2.4477 / 1.96, rel=1e-4)
     assert fit.result is not None and fit.result.rest("red") is not None
     if seed == 0:
         assert fit.scan_ranges is not None

@@ -468,7 +468,8 @@ def _factor(unit: str | None) -> float:
 def format_fit(fit: FitResult, spec: FitSpec | None = None) -> str:
     """The fit's answer as text in the units the file wrote (``spec``; SI where it wrote
     plain numbers, or without a spec): every unknown's best value, its 95 % ranges (the
-    Jacobian's +-1.96 sigma and the scan's chi^2 + 3.84) and its bounds; every evidence
+    Jacobian's +-1.96 sigma, all unknowns at once, the sampling's and the scan's chi^2 + 3.84)
+    and its bounds; every evidence
     item's figure, the fitted run's, the residual in the item's unit and in tolerances."""
     spec = spec if spec is not None and len(spec.types) == len(fit.residuals) else None
     head = (
@@ -482,7 +483,8 @@ def format_fit(fit: FitResult, spec: FitSpec | None = None) -> str:
         head,
         "",
         f"{'unknown':<22} {'best':>11}  {'95 % range (Jacobian)':>23}  "
-        f"{'95 % range (scan)':>21}  {'bounds':>21}  unit",
+        f"{'all at once':>23}  {'95 % (sampling)':>23}  {'95 % range (scan)':>21}  "
+        f"{'bounds':>21}  unit",
     ]
     for n in fit.names:
         unit = spec.units.get(n) if spec is not None else None
@@ -492,9 +494,11 @@ def format_fit(fit: FitResult, spec: FitSpec | None = None) -> str:
             return f"{_number(a / f)} .. {_number(b / f)}"
 
         scan = fit.scan_ranges.get(n) if fit.scan_ranges else None
+        sampled = fit.sample_ranges.get(n) if fit.sample_ranges else None
         si = "" if unit is None else f"  (= {fit.values[n]:.6g} {fit.units[n]})"
         lines.append(
             f"{n:<22} {_number(fit.values[n] / f, 6):>11}  {pair(*fit.ranges[n]):>23}  "
+            f"{pair(*fit.joint_ranges[n]):>23}  {pair(*sampled) if sampled else '-':>23}  "
             f"{pair(*scan) if scan else '-':>21}  {pair(*fit.bounds[n]):>21}  "
             f"{unit or fit.units[n]}{si}"
         )
