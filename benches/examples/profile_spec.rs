@@ -10,7 +10,9 @@ use crashsim_core::{spec, RunOptions};
 
 fn main() {
     let mut args = std::env::args().skip(1);
-    let path = args.next().expect("usage: profile_spec scene.json [window_s]");
+    let path = args
+        .next()
+        .expect("usage: profile_spec scene.json [window_s]");
     let window: f64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(0.1);
     let text = std::fs::read_to_string(&path).expect("the spec file reads");
     let spec = spec::from_json(&text).expect("the spec parses");
@@ -71,5 +73,8 @@ fn main() {
         );
         t += span;
     }
-    println!("sum of windows {:.2} ms (until_rest {until_rest})", sum * 1e3);
+    println!(
+        "sum of windows {:.2} ms (until_rest {until_rest})",
+        sum * 1e3
+    );
 }
