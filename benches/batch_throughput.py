@@ -20,6 +20,11 @@ it when nothing else does (``uptime``), a loaded machine lowers the 2-thread fig
     python3 benches/batch_throughput.py                 # all three: about 5 min
     python3 benches/batch_throughput.py --quick         # fewer repeats and variants: 1-2 min
     python3 benches/batch_throughput.py --only box,memory
+    python3 benches/batch_throughput.py --dump /tmp/b   # box and sedan spec + overrides files
+
+``--dump DIR`` writes each scene's spec document (box.json, sedan.json) and its overrides
+(box.txt: the quick run's 2,000 variants, sedan.txt: 4) for benches/examples/profile_batch.rs
+(perf or callgrind on the engine alone) and exits.
 
 Results: benches/README.md ("Batches").
 """
@@ -214,11 +219,34 @@ def memory(quick: bool) -> list[str]:
     ]
 
 
+def dump(folder: Path) -> None:
+    """Each scene's spec document and overrides, as benches/examples/profile_batch.rs reads
+    them."""
+    folder.mkdir(parents=True, exist_ok=True)
+    box_s = box_scene()
+    sedan_s = sedan_scene()
+    for name, scene, o in (
+        ("box", box_s, box_overrides(2000)),
+        ("sedan", sedan_s, sedan_overrides(sedan_s, 4)),
+    ):
+        (folder / f"{name}.json").write_text(scene.to_spec(DURATION, DT).to_json())
+        lines = []
+        for key, a in o.items():
+            lines.append(" ".join([key, *map(str, a.shape)]))
+            lines.append(" ".join(repr(float(x)) for x in a.ravel()))
+        (folder / f"{name}.txt").write_text("\n".join(lines) + "\n")
+        print(f"{folder / name}.json, .txt")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer repeats and variants")
     ap.add_argument("--only", default="box,sedan,memory", help="box, sedan, memory")
+    ap.add_argument("--dump", type=Path, help="write the spec and overrides files and exit")
     args = ap.parse_args()
+    if args.dump is not None:
+        dump(args.dump)
+        return
     import machine
 
     print(machine.describe())
