@@ -1,5 +1,5 @@
 //! A batch from a spec document and an overrides file, run on a pool of `threads` threads
-//! (1 by default): the wall and the time per variant, for `perf record` or
+//! (1 by default): the wall, the time per variant and a digest of the columns' bits, for `perf record` or
 //! `valgrind --tool=callgrind` (instruction counts, repeatable on a shared machine).
 //! benches/batch_throughput.py --dump DIR writes both files for its scenes.
 //! `cargo run --release -p crashsim-benches --example profile_batch -- spec.json overrides.txt
@@ -53,9 +53,22 @@ fn main() {
             Values::Int(v) => v.iter().filter(|&&k| k > 0).count(),
             Values::Float(_) => 0,
         };
+        // FNV-1a over every column's bits: equal digests, equal results bit for bit
+        let mut digest: u64 = 0xcbf2_9ce4_8422_2325;
+        let mut eat = |bits: u64| {
+            for byte in bits.to_le_bytes() {
+                digest = (digest ^ byte as u64).wrapping_mul(0x0100_0000_01b3);
+            }
+        };
+        for (_, values) in &out.columns.columns {
+            match values {
+                Values::Int(v) => v.iter().for_each(|&k| eat(k as u64)),
+                Values::Float(v) => v.iter().for_each(|x| eat(x.to_bits())),
+            }
+        }
         println!(
             "{n} variants ({impacts} with an impact, {} failed) on {threads} threads: {:.3} s, \
-             {:.4} ms per variant",
+             {:.4} ms per variant; columns' digest {digest:016x}",
             out.errors.len(),
             wall,
             wall / n as f64 * 1e3
