@@ -8,7 +8,10 @@ processes (one thread each, loopback), with the results checked equal bit for bi
     python3 benches/studies_dask.py --n 100      # a quick run
 
 Prints each backend's wall time (the cluster's start and close timed apart), the ratio
-dask / local, the variants per second and which crashsim.batch implementation ran.
+dask / local, the variants per second, which crashsim.batch implementation ran, and where
+the Dask run's time went: per worker its chunks, their compute time, and when it started
+its first and ended its last (from the run's start; the scheduler's task stream).
+``--chunk-size K`` gives the Dask run fixed chunks of K variants (default: the backend's).
 """
 
 from __future__ import annotations
@@ -53,13 +56,14 @@ def main() -> None:
     ap.add_argument("--n", type=int, default=1000, help="variants (1000)")
     ap.add_argument("--workers", type=int, default=2, help="Dask workers = local threads (2)")
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--chunk-size", type=int, default=None, help="Dask chunks (the backend's)")
     args = ap.parse_args()
 
     import crashsim as cs
     import crashsim.batch
     from crashsim.studies import normal, uniform
     from crashsim.studies.dask_backend import local_cluster
-    from distributed import Client
+    from distributed import Client, get_task_stream
 
     base, triangles = scene()
     dists = {
@@ -84,10 +88,12 @@ def main() -> None:
     client = Client(cluster)
     t_start = time.perf_counter() - t0
     try:
-        t0 = time.perf_counter()
-        dask = cs.monte_carlo(base, dists, args.n, args.seed, backend="dask", client=client,
-                              **run)
-        t_dask = time.perf_counter() - t0
+        with get_task_stream(client) as stream:
+            t0 = time.perf_counter()
+            start_wall = time.time()
+            dask = cs.monte_carlo(base, dists, args.n, args.seed, backend="dask",
+                                  client=client, chunk_size=args.chunk_size, **run)
+            t_dask = time.perf_counter() - t0
     finally:
         t0 = time.perf_counter()
         client.close()
@@ -95,6 +101,21 @@ def main() -> None:
         t_close = time.perf_counter() - t0
     print(f"dask  : {t_dask:8.2f} s  ({args.n / t_dask:7.1f} variants/s); the cluster's start "
           f"{t_start:.2f} s and close {t_close:.2f} s apart")
+    per_worker: dict[str, list[tuple[float, float]]] = {}
+    for task in stream.data:
+        if not str(task.get("key", "")).startswith("('_run_chunk") and "_run_chunk" not in str(
+            task.get("key", "")
+        ):
+            continue
+        for part in task["startstops"]:
+            if part["action"] == "compute":
+                per_worker.setdefault(task["worker"], []).append(
+                    (part["start"] - start_wall, part["stop"] - start_wall)
+                )
+    for w, spans in sorted(per_worker.items()):
+        busy = sum(b - a for a, b in spans)
+        print(f"  worker {w}: {len(spans)} chunks, computing {busy:.2f} s, first from "
+              f"{min(a for a, _ in spans):.2f} s, last to {max(b for _, b in spans):.2f} s")
     same = all(np.array_equal(local[k], dask[k], equal_nan=True) for k in local.outputs)
     print(f"results equal bit for bit: {same}")
     print(f"ratio dask / local = {t_dask / t_local:.3f} "
