@@ -8,13 +8,20 @@ processes (one thread each, loopback), with the results checked equal bit for bi
     python3 benches/studies_dask.py --n 100      # a quick run
 
 Prints each backend's wall time (the cluster's start and close timed apart), the ratio
-dask / local, the variants per second and which crashsim.batch implementation ran.
+dask / local, the variants per second, which crashsim.batch implementation ran, and where
+the Dask run's time went: per worker its chunks, their compute time, and when it started
+its first and ended its last (from the run's start; the scheduler's task stream).
+``--chunk-size K`` gives the Dask run fixed chunks of K variants (default: the backend's).
+``--bracket`` runs the local study again after the Dask one and compares Dask with the mean
+of the two local times, so a load that rises or falls during the run (a shared machine)
+does not land on one backend alone; the load average is printed before each run.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -53,13 +60,16 @@ def main() -> None:
     ap.add_argument("--n", type=int, default=1000, help="variants (1000)")
     ap.add_argument("--workers", type=int, default=2, help="Dask workers = local threads (2)")
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--chunk-size", type=int, default=None, help="Dask chunks (the backend's)")
+    ap.add_argument("--bracket", action="store_true",
+                    help="run the local study again after the Dask one (load drift)")
     args = ap.parse_args()
 
     import crashsim as cs
     import crashsim.batch
     from crashsim.studies import normal, uniform
     from crashsim.studies.dask_backend import local_cluster
-    from distributed import Client
+    from distributed import Client, get_task_stream
 
     base, triangles = scene()
     dists = {
@@ -73,21 +83,29 @@ def main() -> None:
     print(f"scene: two sedans, {triangles:,} triangles each; {args.n} variants, "
           f"{cp.DURATION:g} s at {cp.DT * 1e3:g} ms; {args.workers} workers")
 
-    t0 = time.perf_counter()
-    local = cs.monte_carlo(base, dists, args.n, args.seed, threads=args.workers, **run)
-    t_local = time.perf_counter() - t0
-    print(f"local : {t_local:8.2f} s  ({args.n / t_local:7.1f} variants/s), "
-          f"{int(local.ok.sum())} ok, {len(local.errors)} failed")
+    def run_local() -> tuple[cs.Study, float]:
+        print(f"load average {os.getloadavg()[0]:.2f}")
+        t0 = time.perf_counter()
+        study = cs.monte_carlo(base, dists, args.n, args.seed, threads=args.workers, **run)
+        t = time.perf_counter() - t0
+        print(f"local : {t:8.2f} s  ({args.n / t:7.1f} variants/s), "
+              f"{int(study.ok.sum())} ok, {len(study.errors)} failed")
+        return study, t
+
+    local, t_local = run_local()
 
     t0 = time.perf_counter()
     cluster = local_cluster(args.workers)
     client = Client(cluster)
     t_start = time.perf_counter() - t0
+    print(f"load average {os.getloadavg()[0]:.2f}")
     try:
-        t0 = time.perf_counter()
-        dask = cs.monte_carlo(base, dists, args.n, args.seed, backend="dask", client=client,
-                              **run)
-        t_dask = time.perf_counter() - t0
+        with get_task_stream(client) as stream:
+            t0 = time.perf_counter()
+            start_wall = time.time()
+            dask = cs.monte_carlo(base, dists, args.n, args.seed, backend="dask",
+                                  client=client, chunk_size=args.chunk_size, **run)
+            t_dask = time.perf_counter() - t0
     finally:
         t0 = time.perf_counter()
         client.close()
@@ -95,6 +113,27 @@ def main() -> None:
         t_close = time.perf_counter() - t0
     print(f"dask  : {t_dask:8.2f} s  ({args.n / t_dask:7.1f} variants/s); the cluster's start "
           f"{t_start:.2f} s and close {t_close:.2f} s apart")
+    per_worker: dict[str, list[tuple[float, float]]] = {}
+    for task in stream.data:
+        if not str(task.get("key", "")).startswith("('_run_chunk") and "_run_chunk" not in str(
+            task.get("key", "")
+        ):
+            continue
+        for part in task["startstops"]:
+            if part["action"] == "compute":
+                per_worker.setdefault(task["worker"], []).append(
+                    (part["start"] - start_wall, part["stop"] - start_wall)
+                )
+    for w, spans in sorted(per_worker.items()):
+        busy = sum(b - a for a, b in spans)
+        print(f"  worker {w}: {len(spans)} chunks, computing {busy:.2f} s, first from "
+              f"{min(a for a, _ in spans):.2f} s, last to {max(b for _, b in spans):.2f} s")
+    if args.bracket:
+        again, t_again = run_local()
+        assert all(np.array_equal(local[k], again[k], equal_nan=True) for k in local.outputs)
+        t_local = 0.5 * (t_local + t_again)
+        print(f"local : {t_local:8.2f} s, the mean of the runs before and after Dask")
+    print(f"load average {os.getloadavg()[0]:.2f}")
     same = all(np.array_equal(local[k], dask[k], equal_nan=True) for k in local.outputs)
     print(f"results equal bit for bit: {same}")
     print(f"ratio dask / local = {t_dask / t_local:.3f} "

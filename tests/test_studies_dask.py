@@ -72,6 +72,19 @@ def _same(a: cs.Study, b: cs.Study) -> None:
     ]
 
 
+def test_shrinking_chunks_cover_every_variant_once_and_end_small() -> None:
+    from crashsim.studies.chunks import shrinking_bounds
+
+    for n, size, workers in [(1000, 125, 2), (1, 1, 2), (7, 2, 3), (10_000, 256, 2), (120, 15, 2)]:
+        bounds = shrinking_bounds(n, size, workers)
+        assert bounds[0][0] == 0 and bounds[-1][1] == n
+        assert all(a[1] == b[0] for a, b in zip(bounds, bounds[1:], strict=False))
+        sizes = [stop - start for start, stop in bounds]
+        assert sizes == sorted(sizes, reverse=True) and 1 <= sizes[-1] and sizes[0] <= size
+    sizes = [b - a for a, b in shrinking_bounds(1000, 125, 2)]
+    assert sizes[:5] == [125] * 5 and max(sizes[-4:]) <= 4  # the last ones: size / 32
+
+
 def test_dask_equals_local_bit_for_bit(client: Any, local: cs.Study) -> None:
     assert local.errors, "the design should have variants overlapping at t = 0"
     assert all(e.kind == "InitialOverlapError" for e in local.errors)

@@ -361,17 +361,26 @@ impl RigidBody {
     }
 }
 
-/// dq/dt = 1/2 (0, w) q with w = R I^-1 R^T L, as a raw 4-vector (w, x, y, z) derivative.
+/// dq/dt = 1/2 q (0, w_b), w_b = I^-1 R^T L the body-frame angular velocity, as a raw
+/// 4-vector (w, x, y, z) derivative; equal to 1/2 (0, w) q with w = R w_b the world one.
+/// Runge-Kutta's intermediate q are not unit: for q = (s, u) of any norm,
+/// conj(q) (0, L) q = (s^2 - |u|^2) L + 2 (u.L) u - 2 s (u x L) = |q|^2 R^T L, so the body
+/// frame's L comes from one quadratic form and one division, without normalizing q (a
+/// square root and a division) or rotating w back to the world.
 #[inline]
 fn quaternion_rate(
     q: &nalgebra::Quaternion<Real>,
     l: &Vector,
     inv_i: &Matrix,
 ) -> nalgebra::Quaternion<Real> {
-    let uq = Rotation::new_normalize(*q);
-    let l_body = uq.inverse_transform_vector(l);
-    let w = uq.transform_vector(&(inv_i * l_body));
-    nalgebra::Quaternion::from_parts(0.0, w) * q * 0.5
+    let (s, u) = (q.w, q.imag());
+    let uu = u.norm_squared();
+    // |q|^2 times the body-frame angular momentum (kg m^2/s)
+    let l_body = l * (s * s - uu) + u * (2.0 * u.dot(l)) - u.cross(l) * (2.0 * s);
+    // half the body-frame angular velocity (rad/s)
+    let half_w = (inv_i * l_body) * (0.5 / (s * s + uu));
+    // q (0, w_b / 2) = (-u.w_b, s w_b + u x w_b) / 2
+    nalgebra::Quaternion::from_parts(-u.dot(&half_w), half_w * s + u.cross(&half_w))
 }
 
 fn rk4_rotation_step(q: &Rotation, l: &Vector, inv_i: &Matrix, h: Real) -> Rotation {

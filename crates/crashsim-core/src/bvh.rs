@@ -10,7 +10,7 @@ use crate::math::{Aabb, Point, Real};
 use parry3d_f64::bounding_volume::BoundingVolume;
 
 /// Triangles per leaf at most.
-const LEAF_SIZE: usize = 4;
+pub const LEAF_SIZE: usize = 4;
 /// Deepest traversal stack the engine's trees can need (depth is about log2(n / 4) + 1).
 pub const MAX_DEPTH: usize = 96;
 

@@ -5,7 +5,7 @@
 //! body frame: mesh 2's node boxes are carried over by the relative pose and re-boxed
 //! (a conservative box), so pruning never drops a real contact.
 
-use crate::bvh::BvhNode;
+use crate::bvh::{BvhNode, LEAF_SIZE};
 use crate::math::{Aabb, Isometry, Point, Real, RigidMap, Vector};
 use crate::shape::MeshShape;
 use crate::triangle::{
@@ -24,6 +24,17 @@ pub struct QueryWorkspace {
 #[inline]
 fn map_tri(t: &Tri, m: &RigidMap) -> Tri {
     [m.point(&t[0]), m.point(&t[1]), m.point(&t[2])]
+}
+
+/// The triangles of leaf `node` of `mesh` (at most [`crate::bvh::LEAF_SIZE`]) mapped by `m`,
+/// with their indices, in the leaf's order.
+#[inline]
+fn mapped_leaf(mesh: &MeshShape, node: &BvhNode, m: &RigidMap) -> [Option<(u32, Tri)>; LEAF_SIZE] {
+    let mut out = [None; LEAF_SIZE];
+    for (slot, &t) in out.iter_mut().zip(mesh.bvh().leaf_primitives(node)) {
+        *slot = Some((t, map_tri(&mesh.triangle(t), m)));
+    }
+    out
 }
 
 /// Simultaneous descent of two trees (2 in 1's frame by `pose12`): calls `leaf` on every leaf
@@ -106,10 +117,11 @@ fn first_crossing(
     let map = RigidMap::new(&pose12);
     let mut found = None;
     traverse_pairs(s1, s2, &pose12, &mut ws.pairs, |a, b| {
+        // b's triangles in 1's frame, mapped once per leaf pair (not once per triangle of a)
+        let leaf2 = mapped_leaf(s2, b, &map);
         for &t1 in s1.bvh().leaf_primitives(a) {
             let tri1 = s1.triangle(t1);
-            for &t2 in s2.bvh().leaf_primitives(b) {
-                let tri2 = map_tri(&s2.triangle(t2), &map);
+            for &(t2, tri2) in leaf2.iter().flatten() {
                 if triangle_triangle_contact(&tri1, &tri2).is_some_and(|c| c.is_crossing()) {
                     found = Some((t1, t2));
                     return true;
@@ -291,13 +303,16 @@ pub fn surface_distance_from(
         }
         let (a, b) = (&n1[i as usize], &n2[j as usize]);
         if a.is_leaf() && b.is_leaf() {
+            // b's triangles in 1's frame and their boxes, once per leaf pair
+            let leaf2 = mapped_leaf(s2, b, &map)
+                .map(|e| e.map(|(t2, tri2)| (t2, tri2, Aabb::from_points(tri2.iter().copied()))));
             for &t1 in s1.bvh().leaf_primitives(a) {
                 let tri1 = s1.triangle(t1);
                 let box1 = Aabb::from_points(tri1.iter().copied());
-                for &t2 in s2.bvh().leaf_primitives(b) {
-                    let tri2 = map_tri(&s2.triangle(t2), &map);
+                for (t2, tri2, box2) in leaf2.iter().flatten() {
+                    let (t2, tri2) = (*t2, *tri2);
                     // The boxes' distance bounds the triangles' from below: a cheap reject.
-                    if aabb_distance(&box1, &Aabb::from_points(tri2.iter().copied())) >= best {
+                    if aabb_distance(&box1, box2) >= best {
                         continue;
                     }
                     let d = triangle_triangle_distance_sq(&tri1, &tri2).sqrt();

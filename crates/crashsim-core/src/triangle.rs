@@ -62,10 +62,24 @@ pub const PLANE_TOLERANCE: Real = 1.0 / 1_099_511_627_776.0;
 /// round-off in their positions, and of [`PLANE_TOLERANCE`].
 #[inline]
 pub fn coordinate_scale(tris: &[&Tri]) -> Real {
-    tris.iter()
-        .flat_map(|t| t.iter())
-        .map(|p| p.coords.amax())
-        .fold(0.0, Real::max)
+    // Plain loops and `amax` below (the same maxima in the same order as the fold over the
+    // flattened points and nalgebra's amax): 9 % of a box batch's instructions, per pair.
+    let mut scale: Real = 0.0;
+    for t in tris {
+        for p in t.iter() {
+            scale = scale.max(amax(&p.coords));
+        }
+    }
+    scale
+}
+
+/// The largest absolute component of `v`: nalgebra's `amax` without its generic fold (the
+/// same comparisons in the same order, `a >= b` keeping `a` as simba's `simd_max`, so the
+/// same result, NaN included).
+#[inline]
+fn amax(v: &Vector) -> Real {
+    let pick = |a: Real, b: Real| if a >= b { a } else { b };
+    pick(pick(v.x.abs(), v.y.abs()), v.z.abs())
 }
 
 /// A triangle's plane with what its snapping band needs.
@@ -88,7 +102,7 @@ impl Plane {
             origin: t[0],
             n,
             n_norm: n.norm(),
-            lever: 2.0 * (e1.amax() + e2.amax()),
+            lever: 2.0 * (amax(&e1) + amax(&e2)),
         }
     }
 
@@ -99,7 +113,7 @@ impl Plane {
     fn snapped_distance(&self, v: &Point, tol: Real) -> Real {
         let r = v - self.origin;
         let d = self.n.dot(&r);
-        if d.abs() <= tol * (self.n_norm + r.amax() * self.lever) {
+        if d.abs() <= tol * (self.n_norm + amax(&r) * self.lever) {
             0.0
         } else {
             d

@@ -1,8 +1,9 @@
 //! `run_batch`: the core's batch with the GIL released, numpy columns out. The batch runs on
 //! its own thread pool while the caller's thread polls every 50 ms: Ctrl-C (or an exception
 //! from `progress`) sets the core's interrupt flag, `progress(done, n)` is called from here.
+//! The batch's end wakes the caller at once (it does not wait out the poll).
 
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use crashsim_core as core;
@@ -54,13 +55,23 @@ pub fn run_batch<'py>(
     };
     let control = core::batch::Control::default();
     let mut failure: Option<PyErr> = None;
+    // The batch's end unparks the caller: sleeping out the poll added 25 ms on average (up
+    // to 50) to every batch, 1.2 % of a 2,000-variant box batch (2 s) and of a study's chunks.
+    let ended = AtomicBool::new(false);
     let out = py.detach(|| {
+        let caller = std::thread::current();
         std::thread::scope(|s| {
-            let worker = s.spawn(|| core::batch::run_batch(base, &o, &options, &control));
+            let worker = s.spawn(|| {
+                let out = core::batch::run_batch(base, &o, &options, &control);
+                ended.store(true, Ordering::Release);
+                caller.unpark();
+                out
+            });
             let mut reported = usize::MAX;
             loop {
-                std::thread::sleep(POLL);
-                let finished = worker.is_finished();
+                // a spurious wake-up only polls early
+                std::thread::park_timeout(POLL);
+                let finished = ended.load(Ordering::Acquire);
                 let done = control.done.load(Ordering::Relaxed);
                 Python::attach(|py| {
                     if failure.is_none() {

@@ -1,9 +1,11 @@
 """A study's variants in chunks, for the local and the Dask backends alike: the chunk
-bounds, a chunk's columns placed into the study's, its error messages renumbered, and the
-empty columns of a study stopped before any chunk returned."""
+bounds (fixed, or shrinking towards the end for workers that run chunks side by side), a
+chunk's columns placed into the study's, its error messages renumbered, and the empty
+columns of a study stopped before any chunk returned."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
@@ -15,6 +17,22 @@ if TYPE_CHECKING:
 
 def chunk_bounds(n: int, size: int) -> list[tuple[int, int]]:
     return [(s, min(s + size, n)) for s in range(0, n, size)]
+
+
+def shrinking_bounds(n: int, size: int, workers: int) -> list[tuple[int, int]]:
+    """Chunks for ``workers`` running side by side, taken in order as each worker frees up:
+    ``size`` variants, and once fewer than ``2 workers size`` are left, a quarter of what is
+    left per worker (at least ``size / 32``, at least 1), so the workers finish together: with
+    equal chunks the last one ran on one worker while the others waited (up to a chunk's time,
+    11 s of 54 s for 1,000 variants of the 20k two-sedan scene on 2 workers)."""
+    smallest = max(1, math.ceil(size / 32))
+    bounds = []
+    start = 0
+    while start < n:
+        s = max(smallest, min(size, math.ceil((n - start) / (2 * workers))))
+        bounds.append((start, min(n, start + s)))
+        start += s
+    return bounds
 
 
 def renumbered(message: str, index: int, start: int) -> str:
