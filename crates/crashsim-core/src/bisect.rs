@@ -30,9 +30,55 @@ pub fn bisect(
     hi
 }
 
+/// [`bisect`] on the grid of whole multiples of `grid` (s, a power of two): `lo` rounded
+/// down and `hi` up to it (`holds` taken false at the one, checked at the other), then halved
+/// down to one grid step. For a `holds` that turns true once, the answer is the first grid
+/// point where it holds whatever bracket the search began from: two searches that closed in
+/// on the same instant from different sides (a scene and its mirror image, whose triangles
+/// come in another order) land on the same bits. When `holds` fails at the rounded-up end,
+/// the grid point below `hi` is tried, and failing both the plain [`bisect`] to one grid step
+/// is returned.
+pub fn bisect_on_grid(lo: Real, hi: Real, grid: Real, mut holds: impl FnMut(Real) -> bool) -> Real {
+    let mut a = (lo / grid).floor();
+    let mut b = (hi / grid).ceil();
+    if b * grid != hi && !holds(b * grid) {
+        if b - 1.0 > a && holds((b - 1.0) * grid) {
+            b -= 1.0;
+        } else {
+            return bisect(lo, hi, grid, holds);
+        }
+    }
+    // Whole numbers below 2^53 as floats: the midpoints are exact.
+    while b - a > 1.0 {
+        let mid = (0.5 * (a + b)).floor();
+        if holds(mid * grid) {
+            b = mid;
+        } else {
+            a = mid;
+        }
+    }
+    b * grid
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn on_a_grid_the_answer_does_not_depend_on_the_bracket() {
+        let grid = (2.0 as Real).powi(-30);
+        let threshold = 3.7e-4;
+        let first = bisect_on_grid(0.0, 1e-3, grid, |t| t >= threshold);
+        assert!(first >= threshold && first - grid < threshold);
+        for (lo, hi) in [
+            (1e-5, 4e-4),
+            (3.6e-4, 3.71e-4),
+            (2e-4, 9e-4),
+            (3.699e-4, 3.7e-4),
+        ] {
+            assert_eq!(bisect_on_grid(lo, hi, grid, |t| t >= threshold), first);
+        }
+    }
 
     #[test]
     fn finds_a_threshold_to_the_tolerance() {

@@ -9,7 +9,7 @@ use std::sync::atomic::Ordering;
 use super::clearance::{Certificate, Front, PairMotion};
 use super::stepper::interrupted;
 use super::{Motion, Pair, World, TIME_TOLERANCE};
-use crate::bisect::bisect;
+use crate::bisect::{bisect, bisect_on_grid};
 use crate::error::{Error, Result};
 use crate::math::{Aabb, Isometry, Point, Real, Vector};
 use crate::motion::MotionBound;
@@ -24,6 +24,10 @@ const MIN_ADVANCE_FRACTION: Real = 1e-3;
 /// A bound on a body's acceleration on the ground (m/s^2) for how far its path bends away
 /// from its chord within a step: tyre friction and gravity give at most a few g.
 const CHORD_ACCELERATION: Real = 100.0;
+/// The grid (s, 2^-30, within [`TIME_TOLERANCE`]) a first overlap found on the critical
+/// pairs is resolved to: the first grid point where a pair crosses, whatever bracket the
+/// advancement ended with (a scene and its mirror image give the same bits).
+const FIRST_OVERLAP_GRID: Real = 1.0 / 1_073_741_824.0;
 /// Most conservative-advancement iterations in one step before giving up.
 const MAX_ADVANCE_ITERATIONS: usize = 100_000;
 
@@ -269,6 +273,7 @@ impl World {
             let mut next = Real::INFINITY;
             let mut touching = false;
             due.clear();
+
             for (p, meets) in pairs.iter_mut() {
                 if *meets <= t {
                     due.push(*p);
@@ -295,7 +300,7 @@ impl World {
                 let hi = if t == 0.0 {
                     0.0
                 } else {
-                    bisect(lo, t, TIME_TOLERANCE, crossing)
+                    bisect_on_grid(lo, t, FIRST_OVERLAP_GRID, crossing)
                 };
                 return Ok(Some(hi));
             } else if !touching && next >= span {
