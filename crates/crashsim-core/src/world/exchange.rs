@@ -71,23 +71,24 @@ impl World {
             }
         };
         notes.extend(early_note);
-        let mut exchange_at = started + dtp;
+        let mut timer = dtp;
         let mut impulse_share = 1.0;
         // A first overlap that ends before its timer expires is exchanged at its deepest. A
         // secondary timer starts inside an overlap that may only shrink: it keeps its instant
         // (and, if the meshes have separated by then, a no-exchange event says so).
         if !secondary {
-            if let Some((deepest, share, note)) =
+            if let Some((deepest_after, share, note)) =
                 self.overlap_ends_early(pi, started, dtp, early_normal)
             {
-                exchange_at = deepest;
+                timer = deepest_after;
                 impulse_share = share;
                 notes.push(note);
             }
         }
-        let exchange_at = exchange_at.max(self.time);
+        let exchange_at = (started + timer).max(self.time);
         self.pairs[pi].phase = Phase::Timer {
             started,
+            timer,
             exchange_at,
             secondary,
             notes,
@@ -100,7 +101,7 @@ impl World {
     }
 
     /// When pair `pi`'s overlap, started at `started`, ends before its exchange at
-    /// `started + dtp`: the instant of its deepest overlap, the share of the impulse it
+    /// `started + dtp`: the time from `started` to its deepest overlap, the share of the impulse it
     /// exchanges, and a note saying so; else None.
     ///
     /// The share is the seed's spring model's (eqs. 24, 28: crush C(t) = v dt_p sin(t / dt_p),
@@ -214,14 +215,15 @@ impl World {
             at * 1e3,
             share
         );
-        Some((started + at, share, note))
+        Some((at, share, note))
     }
 
     /// Exchange the impulse of pair `pi` now (its timer expired).
     pub(super) fn exchange(&mut self, pi: usize, out: &mut RunOutput) {
-        let (started, secondary, notes, early_normal, share) = match &self.pairs[pi].phase {
+        let (started, timer, secondary, notes, early_normal, share) = match &self.pairs[pi].phase {
             Phase::Timer {
                 started,
+                timer,
                 secondary,
                 notes,
                 early_normal,
@@ -229,6 +231,7 @@ impl World {
                 ..
             } => (
                 *started,
+                *timer,
                 *secondary,
                 notes.clone(),
                 *early_normal,
@@ -247,7 +250,7 @@ impl World {
             });
             world.pairs[pi].phase = phase;
         };
-        let timer = (self.time - started) * 1e3;
+        let elapsed_ms = (self.time - started) * 1e3;
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
         let normal = early_normal.map(|(n, t)| (b1.pose() * n, t));
         let Some(geometry) = self.contact_geometry(&pair, b1, b2, normal) else {
@@ -255,7 +258,7 @@ impl World {
                 self,
                 out,
                 format!(
-                    "the meshes no longer overlap at the exchange instant, {timer:.1} ms after \
+                    "the meshes no longer overlap at the exchange instant, {elapsed_ms:.1} ms after \
                      the {} (they separated during the timer): no impulse. A shorter \
                      depth_of_penetration exchanges while they still overlap",
                     if secondary {
@@ -298,7 +301,7 @@ impl World {
                 format!(
                     "the vehicles are not approaching at the centroid along the normal \
                      (relative normal velocity {:.3} m/s; normal ({:.3}, {:.3}, {:.3}); overlap \
-                     {:.3} m deep along it, {:.3} m wide, {timer:.1} ms after the {}): no \
+                     {:.3} m deep along it, {:.3} m wide, {elapsed_ms:.1} ms after the {}): no \
                      impulse; the pair stays engaged and gets one if it turns closing. If the \
                      overlap represents a real impact, give the normal (or a shorter \
                      depth_of_penetration)",
@@ -339,7 +342,13 @@ impl World {
             body2: i2,
             first_contact_time: started,
             time: self.time,
-            depth_of_penetration: self.time - started,
+            // The timer as set (dt_p itself, not started + dt_p - started rounded), unless
+            // the exchange came later than set (a timer started at an instant already past).
+            depth_of_penetration: if self.time == started + timer {
+                timer
+            } else {
+                self.time - started
+            },
             depth_of_penetration_mode: pair.params.depth_of_penetration,
             secondary: secondary || pair.exchanges > 0,
             centroid,

@@ -58,6 +58,8 @@ enum Phase {
     Apart,
     Timer {
         started: Real,
+        /// The timer's length, s: dt_p, or less when the overlap ends early.
+        timer: Real,
         exchange_at: Real,
         secondary: bool,
         notes: Vec<String>,
