@@ -218,3 +218,44 @@ fn the_interrupt_hook_is_asked_inside_the_first_contact_search() {
     assert_eq!(calls, 3);
     assert_eq!(w.time(), 0.0, "stopped inside the first step");
 }
+
+/// A variant of the box seed scene (red at 13.157894938354506 m/s, 0.124 m right of blue's
+/// centre line) never ended: its first overlap, resolved on the 2^-30 s grid, rounded up
+/// 1.6e-10 s past the step's end, the run advanced past the grid instant and waited for a
+/// step count that never came (found by benches/batch_throughput.py's 100,000 variants).
+/// Now a grid point past the step is met at the next step's start, and the step count
+/// advances at or past its grid point.
+#[test]
+fn a_first_overlap_rounded_past_the_step_end_does_not_stall_the_run() {
+    let mut w = World::new();
+    box_body(
+        &mut w,
+        [4.5, 1.8, 1.4],
+        1450.0,
+        [-3.65, -0.12403064090975291, 0.7],
+        0.0,
+        Vector::new(13.157894938354506, 0.0, 0.0),
+        0.0,
+    );
+    box_body(
+        &mut w,
+        [4.6, 1.8, 1.45],
+        1500.0,
+        [0.0, 0.0, 0.725],
+        std::f64::consts::FRAC_PI_2,
+        Vector::zeros(),
+        0.0,
+    );
+    let out = w.run(0.1, 1e-3).unwrap();
+    assert_eq!(out.impacts.len(), 1, "{:?}", out.contacts);
+    let imp = &out.impacts[0];
+    // Red's front (x = -3.65 + 2.25) meets blue's side (x = -0.9) after 0.5 m.
+    let t_touch = 0.5 / 13.157894938354506;
+    assert!(
+        (imp.first_contact_time - t_touch).abs() < 2e-9,
+        "{}",
+        imp.first_contact_time
+    );
+    assert_eq!(imp.depth_of_penetration, 0.030);
+    assert!((*out.times.last().unwrap() - 0.1).abs() < 1e-12);
+}

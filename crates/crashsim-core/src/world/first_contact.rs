@@ -302,6 +302,11 @@ impl World {
                 } else {
                     bisect_on_grid(lo, t, FIRST_OVERLAP_GRID, crossing)
                 };
+                if hi > span {
+                    // The grid point rounds up past the step's end (by under one grid step):
+                    // the next step meets the overlap at its start.
+                    return Ok(None);
+                }
                 return Ok(Some(hi));
             } else if !touching && next >= span {
                 return Ok(None);

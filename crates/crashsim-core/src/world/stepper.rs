@@ -308,7 +308,9 @@ impl World {
                 return Err(e);
             }
             self.track_rest();
-            let on_grid = target == grid;
+            // At or past the grid point (never past it, but a step that could end beyond it
+            // must not stall the count).
+            let on_grid = target >= grid;
             let event = out.impacts.len() > impacts || out.contacts.len() > contacts;
             if options.history && (!on_grid || event || k % stride == 0 || k >= steps) {
                 self.record(&mut out)?;
