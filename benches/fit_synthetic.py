@@ -266,10 +266,9 @@ def _calibrate(a: argparse.Namespace) -> int:
     for w in kinds:
         if a.samples == 0 and w == "sampling":
             continue
-        print(f"{w}: true value inside its 95 % range: "
-              if w != "all at once" else
-              f"{w} (the box of the joint 95 % ellipsoid): true value inside its range: "
-              + ", ".join(f"{k} {inside[w, k]}/{n}" for k in UNKNOWNS)
+        head = (f"{w}: true value inside its 95 % range: " if w != "all at once" else
+                f"{w} (the box of the joint 95 % ellipsoid): true value inside its range: ")
+        print(head + ", ".join(f"{k} {inside[w, k]}/{n}" for k in UNKNOWNS)
               + f"; all four at once {joint[w]}/{n}")  # fmt: skip
     return 0
 
