@@ -800,6 +800,14 @@ def _rot_z(yaw: float) -> np.ndarray:
     return np.array([[c, -s], [s, c]])
 
 
+def first_impact(out: dict[str, Any]) -> dict[str, Any]:
+    """The run's first exchange (the binding's typed ``Impact``) as the fields read here."""
+    imp = out["impacts"][0]
+    keys = ("time", "first_contact_time", "centroid", "normal", "velocity_before",
+            "velocity_after", "angular_velocity_after", "effective_mass")  # fmt: skip
+    return {k: getattr(imp, k) for k in keys}
+
+
 def impact_spec(
     out: dict[str, Any], dt: float, duration: float, repeats: int, drawing: bool = False
 ) -> dict[str, Any]:
@@ -807,7 +815,7 @@ def impact_spec(
     centroid (A's frame), the impact plane along crashsim's normal, and B's struck edge (its
     left side) moved to where the centroid lies in B's frame at the exchange, so that
     pycrash, which exchanges when the point crosses the edge, exchanges at the same poses."""
-    imp = out["impacts"][0]
+    imp = first_impact(out)
     k = int(np.searchsorted(out["t"], imp["time"] - 1e-12))
     c = np.asarray(imp["centroid"])[:2]
     n = np.asarray(imp["normal"])[:2]
@@ -1206,7 +1214,7 @@ def impact_rows(case: Case) -> list[Row]:
     """crashsim (automatic 3-D centroid), pycrash, and in the reference column crashsim with
     the impulse at the CG's height (planar, as pycrash's)."""
     out, planar = case.cs_out, case.extra["planar"]
-    imp, imp_p = out["impacts"][0], planar["impacts"][0]
+    imp, imp_p = first_impact(out), first_impact(planar)
     impc = case.extra.get("impc") or {}
     pc_k = case.extra.get("impact_index") or [None]
     pc_t = float(case.pc[0].t[pc_k[0]]) if pc_k[0] is not None else None
@@ -1708,7 +1716,7 @@ def case_notes(case: Case) -> list[str]:
         imp = case.spec["impact"]
         out = case.cs_out
         notes.append(
-            f"crashsim: first overlap {out['impacts'][0]['first_contact_time']:.4f} s, exchange "
+            f"crashsim: first overlap {first_impact(out)['first_contact_time']:.4f} s, exchange "
             f"{imp['time']:.4f} s (depth of penetration {IMPACT_DTP * 1e3:g} ms), "
             f"{len(out['impacts'])} exchange(s); centroid in A's frame "
             f"({imp['centroid_a'][0]:.3f}, {imp['centroid_a'][1]:.3f}) m, in B's "
@@ -1716,8 +1724,8 @@ def case_notes(case: Case) -> list[str]:
             f"normal at {-imp['point'][2]:.2f} deg in A's frame"
         )
         planar = case.extra["planar"]
-        m_own = out["impacts"][0]["effective_mass"]
-        m_planar = planar["impacts"][0]["effective_mass"]
+        m_own = first_impact(out)["effective_mass"]
+        m_planar = first_impact(planar)["effective_mass"]
         notes.append(
             f"effective masses along the normal: crashsim A {m_own[0]:.0f}, B {m_own[1]:.0f} kg; "
             f"planar A {m_planar[0]:.0f}, B {m_planar[1]:.0f} kg"
