@@ -24,7 +24,7 @@ tolerance: speeds; impact), ``impact_point`` (position, tolerance: lengths; impa
 ``post_impact_speed`` (vehicle, speed, tolerance: speeds; impact); ``impact`` is the
 exchange's number from 1 (default 1).
 
-Every quantity goes through the scene file's unit machinery (crashsim.io.scenefile); every
+Every quantity goes through the scene file's unit machinery (crashsim.io.tomlvalues); every
 mistake is a :class:`FitFileError` (a SceneFileError and a crashsim.FitError) whose message
 names the file, the key path (``fit.unknowns.red.speed``, ``evidence[2].tolerance``) and, for
 evidence, the item's type and vehicle. The run settings of a fit are the file's ``[run]``.
@@ -40,7 +40,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from crashsim.errors import CrashsimError, StudyError
-from crashsim.io.scenefile import (
+from crashsim.io.studyfile import _flatten
+from crashsim.io.tomlvalues import (
     UNITS,
     SceneFileError,
     _quantity,
@@ -48,7 +49,6 @@ from crashsim.io.scenefile import (
     _split_vector,
     _Table,
 )
-from crashsim.io.studyfile import _flatten
 from crashsim.studies import paths
 from crashsim.studies.evidence import (
     EDRDeltaV,
@@ -159,7 +159,7 @@ class FitSpec:
     ``evidence`` the items, ``method``, ``start`` {path: value}, ``options`` (seed, popsize,
     maxiter, max_nfev, step, scan, scan_points as given). For showing the answer in the
     file's own units: ``units`` {path: the unit its bounds were written in, a key of
-    scenefile.UNITS} and ``evidence_units`` (per item, its tolerance's unit or None: SI),
+    tomlvalues.UNITS} and ``evidence_units`` (per item, its tolerance's unit or None: SI),
     ``types`` the items' types as written."""
 
     unknowns: dict[str, tuple[float, float]] = field(default_factory=dict)

@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from crashsim.errors import CrashsimError, StudyError
+from crashsim.io.tomlvalues import SceneFileError, parse_quantity
 from crashsim.studies import paths
 from crashsim.studies.design import Linspace
 from crashsim.studies.distributions import (
@@ -66,8 +67,6 @@ class StudySpec:
 
 def _si(text: str, dimension: str | None, unit: str | None, key: str) -> float:
     """A number with an optional unit (else ``unit``, else SI) in SI."""
-    from crashsim.io.scenefile import parse_quantity
-
     m = _NUMBER.match(text)
     if m is None:
         raise StudyError(f'"{key}": {text.strip()!r} is not a number (with a unit)', key)
@@ -210,8 +209,6 @@ def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
 def read_study(data: Any, scene: Scene, file: str) -> StudySpec:
     """A scene file's ``[study]`` table (already parsed TOML) against its scene; a
     SceneFileError naming the file and the key (``study.vary.red.speed``) for every mistake."""
-    from crashsim.io.scenefile import SceneFileError
-
     def fail(key: str, reason: str) -> SceneFileError:
         return SceneFileError(reason, file=file, key=key)
 
