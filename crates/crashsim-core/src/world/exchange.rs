@@ -101,8 +101,8 @@ impl World {
     }
 
     /// When pair `pi`'s overlap, started at `started`, ends before its exchange at
-    /// `started + dtp`: the time from `started` to its deepest overlap, the share of the impulse it
-    /// exchanges, and a note saying so; else None.
+    /// `started + dtp`: the time from `started` to its deepest overlap (s), the share of the
+    /// impulse it exchanges, and a note saying so; else None.
     ///
     /// The share is the seed's spring model's (eqs. 24, 28: crush C(t) = v dt_p sin(t / dt_p),
     /// force k C, so the impulse transmitted by time t is m' v (1 - cos(t / dt_p))): what the
