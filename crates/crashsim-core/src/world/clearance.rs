@@ -334,19 +334,7 @@ impl Front {
             if now - m.drift(node) > CLEARANCE_MARGIN {
                 return now; // no part of the subtree can be reached within the step
             }
-            let mut least = Real::INFINITY;
-            for c in first..first + count {
-                least = least.min(self.visit(c, false, w));
-            }
-            let node = &mut self.nodes[idx as usize];
-            node.q = [m.pose[0].rotation, m.pose[1].rotation];
-            node.kind = Kind::Group {
-                first,
-                count,
-                margin: least,
-                offset: m.offset(&node.u),
-            };
-            return least;
+            return self.visit_group(idx, first, count, false, w);
         }
         let (now, low) = m.lowest(node);
         let parts = node.parts;
@@ -379,21 +367,29 @@ impl Front {
                 }
                 let count = split.len() as u32;
                 self.split = split;
-                let mut least = Real::INFINITY;
-                for c in first..first + count {
-                    least = least.min(self.visit(c, true, w));
-                }
-                let node = &mut self.nodes[idx as usize];
-                node.q = [m.pose[0].rotation, m.pose[1].rotation];
-                node.kind = Kind::Group {
-                    first,
-                    count,
-                    margin: least,
-                    offset: m.offset(&node.u),
-                };
-                least
+                self.visit_group(idx, first, count, true, w)
             }
         }
+    }
+
+    /// Visits the `count` children from `first` of node `idx` (`fresh`: just evaluated) and
+    /// makes `idx` their group: their least bound, with the poses and net offset it holds
+    /// from. Returns that bound (m).
+    fn visit_group(&mut self, idx: u32, first: u32, count: u32, fresh: bool, w: &mut Walk) -> Real {
+        let mut least = Real::INFINITY;
+        for c in first..first + count {
+            least = least.min(self.visit(c, fresh, w));
+        }
+        let m = w.m;
+        let node = &mut self.nodes[idx as usize];
+        node.q = [m.pose[0].rotation, m.pose[1].rotation];
+        node.kind = Kind::Group {
+            first,
+            count,
+            margin: least,
+            offset: m.offset(&node.u),
+        };
+        least
     }
 }
 
