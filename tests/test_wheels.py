@@ -122,6 +122,11 @@ def test_tyre_defaults_come_from_the_engine_and_bad_tyres_are_named() -> None:
         ({"damping": (-1.0, 10.0)}, "wheel 'front_left' damping = -1 is invalid"),
         ({"radius": 0.0}, "wheel 'front_left' radius = 0 is invalid"),
         ({"natural_frequency": -1.0}, "wheel 'front_left': natural_frequency = -1"),
+        # issue 24: 1e4 ran a locked car 47 m, 1e6 flipped it; 1000 Hz left it at 3 m/s
+        ({"damping_ratio": 1e4}, r"wheel 'front_left': damping_ratio = 10000 .* \[0, 5\]"),
+        ({"natural_frequency": 1000.0}, r"natural_frequency = 1000 Hz .* \(0, 20\] Hz"),
+        ({"damping": 1e6}, r"wheel 'front_left' damping ratio = [0-9.]+ .* \[0, 5\]"),
+        ({"spring_rates": 1e8}, r"wheel 'front_left' natural frequency = [0-9.]+ Hz"),
         ({"track": float("nan")}, "track = nan is invalid"),
         ({"steer": "all"}, "steer = 'all' is unknown"),
     ],

@@ -284,9 +284,11 @@ class Wheels:
     fields). Other layouts: :meth:`custom`. ``source`` says where the numbers came from
     ("user", or the class table for a generated vehicle).
 
-    Raises ParameterError naming the wheel for a bad number (a negative rate, a radius <= 0)
-    or a CG that is not over the wheels (the engine's checks); wheels outside the body are
-    found when the wheels are put on a vehicle (:meth:`crashsim.Vehicle.with_wheels`).
+    Raises ParameterError naming the wheel for a bad number (a radius <= 0, a natural
+    frequency past (0, 20] Hz, a damping ratio past [0, 5]) or a CG that is not over the wheels
+    (the engine's checks); wheels outside the body and explicit rates (whose frequency and
+    ratio need the vehicle's mass) are checked when the wheels are put on a vehicle
+    (:meth:`crashsim.Vehicle.with_wheels`).
     """
 
     def __init__(
@@ -456,8 +458,9 @@ class Wheels:
         self.tyre: Tyre = Tyre.coerce(tyre)
         self.source = "user"
         # What only the engine knows: CG over the wheels, positive numbers (weight scales).
-        self.spec(1.0)
-        self._check(self._probe(), 1.0, "")
+        # Explicit rates wait for the vehicle's mass (check_on): the frequency and damping
+        # ratio they make with each wheel's load have bounds.
+        self._check(self._probe(), 1.0, "", explicit_rates=False)
 
     def _probe(self) -> _core.SceneSpec:
         """A scene spec with a box body around these wheels, of 1 kg."""
@@ -532,9 +535,10 @@ class Wheels:
         except ParameterError as e:
             raise _renamed(e, self._names) from e
 
-    def spec(self, mass: float) -> dict[str, Any]:
+    def spec(self, mass: float, *, explicit_rates: bool = True) -> dict[str, Any]:
         """SceneSpec.set_vehicle keywords (centers, radii, steerable, static_loads, spring_rates,
-        damping, tyre) for a vehicle of ``mass`` kg."""
+        damping, tyre) for a vehicle of ``mass`` kg; ``explicit_rates=False`` leaves given
+        rates out (the springs from the frequency and ratio instead)."""
         loads = self.static_loads(mass)
         d = _defaults()
         rates = np.empty(len(self))
@@ -546,9 +550,9 @@ class Wheels:
                 rates[k], damp[k] = _core.suspension(float(f), float(freq), float(zeta))
             except ParameterError as e:
                 raise ParameterError(f"wheel {self._names[k]!r}: {e}") from e
-        if self._rates is not None:
+        if self._rates is not None and explicit_rates:
             rates = self._rates.copy()
-        if self._damping is not None:
+        if self._damping is not None and explicit_rates:
             damp = self._damping.copy()
         return {
             "centers": self._centers,
@@ -560,9 +564,11 @@ class Wheels:
             "tyre": self.tyre.to_core(),
         }
 
-    def _check(self, world: _core.SceneSpec, mass: float, prefix: str) -> None:
+    def _check(
+        self, world: _core.SceneSpec, mass: float, prefix: str, *, explicit_rates: bool = True
+    ) -> None:
         try:
-            world.set_vehicle(0, **self.spec(mass))
+            world.set_vehicle(0, **self.spec(mass, explicit_rates=explicit_rates))
         except ParameterError as e:
             raise _renamed(e, self._names, prefix) from e
 
