@@ -97,6 +97,24 @@ def test_a_car_standing_on_the_ground_carries_the_axle_shares() -> None:
     np.testing.assert_allclose(w.load[:, -1], [front, front, rear, rear], rtol=0.005)
 
 
+@pytest.mark.parametrize("drop", [0.5, 10.0])
+def test_a_dropped_car_is_at_rest_only_after_it_lands_and_settles(drop) -> None:
+    # issue 24: from 10 m the report said "at rest at t = 0.001 s" while the car fell, and the
+    # run stopped at the touchdown with the CG 0.15 m below its static height
+    car = cs.Vehicle.generate("sedan", name="car")
+    static = float(car.cg[2])
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(car, (0.0, 0.0, drop + static))
+    result = scene.run(until="rest", max_duration=20.0)
+    rest = result.rest("car")
+    assert rest is not None
+    assert rest.time > math.sqrt(2.0 * drop / G)  # the fall itself
+    end = result.trajectory("car")
+    assert end.position[-1, 2] == pytest.approx(static, abs=2e-3)
+    assert abs(end.velocity[-1, 2]) < 0.01
+    assert f"| {rest.time:16.3f} |" in str(cs.report(result))  # the report says the same
+
+
 def test_interpolated_states_on_the_ground_follow_a_finer_record() -> None:
     """Between samples 50 ms apart, the Hermite/slerp state is within a few mm of the state
     a 1 ms record holds at the same instant."""

@@ -460,6 +460,29 @@ impl OnGround {
         }
     }
 
+    /// True when the ground carries the body: a wheel's spring pushes (its centre lower than
+    /// its tyre's radius plus the spring's free travel F0 / k above the ground) or a point
+    /// of the body is in the ground. A body in the air, falling or at the top of a bounce,
+    /// is not at rest whatever its speed along the ground.
+    pub fn supported(&self, body: &RigidBody, ground: &Ground) -> bool {
+        let x = body.position();
+        let rot = body.orientation().to_rotation_matrix();
+        let r = rot.matrix();
+        if let Some(spec) = &self.vehicle {
+            for wheel in &spec.wheels {
+                let c = x + r * wheel.center.coords;
+                let Some(g) = ground.below(&c) else {
+                    continue;
+                };
+                let h = (c - g.point).dot(&g.normal);
+                if wheel.static_load + wheel.spring_rate * (wheel.radius - h) > 0.0 {
+                    return true;
+                }
+            }
+        }
+        self.deepest(body, ground).is_some()
+    }
+
     /// The deepest of the body's contact points in the ground (m) and where it is (world),
     /// None when none is.
     pub fn deepest(&self, body: &RigidBody, ground: &Ground) -> Option<(Real, Point)> {
