@@ -703,7 +703,7 @@ def _inputs(t: _Table) -> DriverInputs | None:
                 r.fail("exchange", f"expected a whole number from 1, got {_show(n)}")
             at = ("exchange", n)
         r.taken.update(("time", "exchange"))
-        fraction = r.number("fraction", 1.0)
+        fraction = r.number("fraction") if r.has("fraction") else None
         r.finish()
         states.append((wheel, state, at, fraction))
     if states:

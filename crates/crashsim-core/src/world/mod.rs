@@ -248,6 +248,9 @@ impl World {
                 "an obstacle's pose has a non-finite number".into(),
             ));
         }
+        for x in t.iter() {
+            crate::error::require_coordinate("an obstacle's position", *x)?;
+        }
         let body = RigidBody::immovable(Point::from(t), pose.rotation);
         Ok(self.push_body(shape, body, Motion::Fixed))
     }
