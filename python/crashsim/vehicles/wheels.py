@@ -39,6 +39,7 @@ __all__ = [
     "Tyre",
     "Wheels",
     "dynamics_defaults",
+    "wheel_index",
 ]
 
 Array = NDArray[np.float64]
@@ -76,6 +77,27 @@ def _number(value: Any, name: str, unit: str) -> float:
     if not math.isfinite(x):
         raise ParameterError(f"{name} = {x} is invalid: give a finite number ({unit})")
     return x
+
+
+def wheel_index(names: Sequence[str], wheel: str | int) -> int:
+    """The index in ``names`` of a wheel given by its name ("front_left", also "Front left"),
+    short name ("FL") or index: the one lookup of Wheels.index and the Result's wheel
+    records. ParameterError listing the names otherwise."""
+    if isinstance(wheel, int | np.integer) and not isinstance(wheel, bool):
+        if 0 <= int(wheel) < len(names):
+            return int(wheel)
+    elif isinstance(wheel, str):
+        key = wheel.strip()
+        key = ABBREVIATIONS.get(key.upper(), key) if key.upper() in ABBREVIATIONS else key
+        for k in (key, key.lower().replace(" ", "_").replace("-", "_")):
+            if k in names:
+                return list(names).index(k)
+    short = [k for k, v in ABBREVIATIONS.items() if v in names]
+    raise ParameterError(
+        f"unknown wheel {wheel!r}: the wheels are {', '.join(names)}"
+        + (f" (or {', '.join(short)})" if short else "")
+        + f" or an index 0-{len(names) - 1}"
+    )
 
 
 def _renamed(error: ParameterError, names: Sequence[str], prefix: str = "") -> ParameterError:
@@ -498,21 +520,7 @@ class Wheels:
     def index(self, wheel: str | int) -> int:
         """The engine's index of a wheel: its name ("front_left"), short name ("FL") or
         index. ParameterError listing the names otherwise."""
-        if isinstance(wheel, int | np.integer) and not isinstance(wheel, bool):
-            if 0 <= int(wheel) < len(self._names):
-                return int(wheel)
-        elif isinstance(wheel, str):
-            key = wheel.strip()
-            key = ABBREVIATIONS.get(key.upper(), key) if key.upper() in ABBREVIATIONS else key
-            key = key.lower().replace(" ", "_").replace("-", "_")
-            if key in self._names:
-                return self._names.index(key)
-        short = [k for k, v in ABBREVIATIONS.items() if v in self._names]
-        raise ParameterError(
-            f"unknown wheel {wheel!r}: the wheels are {', '.join(self._names)}"
-            + (f" (or {', '.join(short)})" if short else "")
-            + f" or an index 0-{len(self._names) - 1}"
-        )
+        return wheel_index(self._names, wheel)
 
     def axle(self, axle: str) -> tuple[int, ...]:
         """The indices of an axle's wheels ("front" or "rear"; the usual four only)."""
