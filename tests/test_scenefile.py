@@ -675,6 +675,25 @@ def test_a_path_that_is_no_file_is_never_opened_and_says_what_it_is(tmp_path: Pa
             loads_scene(text, base_dir=tmp_path)
 
 
+def test_names_with_control_or_bidirectional_characters_are_refused_at_their_key() -> None:
+    # issue 24: a name with a newline or U+202E was accepted (the newline split the CSV header)
+    cases = [
+        (scene_text().replace('name = "red"', 'name = "red\\u202E"', 1), "vehicles[0].name",
+         r"U\+202E \(RIGHT-TO-LEFT OVERRIDE\) at position 3"),
+        (scene_text(top='[[obstacles]]\nname = "po\\nle"\npole = { diameter = "0.3 m", height = '
+                        '"6 m" }\nposition = ["0 m", "8 m"]\n'),
+         "obstacles[0].name", r"U\+000A"),
+        (scene_text(top='[ground]\n[[ground.zones]]\nname = "wet\\u2067"\npolygon = [[0, 0], '
+                        '[1, 0], [1, 1]]\nfriction = 0.5\n'),
+         "ground.zones[0].name", r"U\+2067 \(RIGHT-TO-LEFT ISOLATE\)"),
+        (scene_text().replace('name = "red"', 'name = " "', 1), "vehicles[0].name", "non-blank"),
+    ]  # fmt: skip
+    for text, key, why in cases:
+        with pytest.raises(SceneFileError, match=why) as e:
+            loads_scene(text)
+        assert e.value.key == key
+
+
 # -- the documentation ---------------------------------------------------------------------
 
 

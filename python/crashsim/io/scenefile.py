@@ -62,6 +62,7 @@ from crashsim.io.tomlvalues import (
     _Table,
     parse_quantity,
 )
+from crashsim.names import check_name
 from crashsim.result import Result
 from crashsim.scene import DEFAULT_MAX_DURATION, Scene
 from crashsim.vehicles.generator import PRESETS, SHAPE_PARAMETERS
@@ -368,8 +369,7 @@ def _vehicle(t: _Table, base: Path) -> Vehicle:
 
 def _body(t: _Table, base: Path) -> Vehicle:
     name = t.string("name")
-    if not name.strip():
-        t.fail("name", "a vehicle needs a non-empty name")
+    _wrap(t, "name", lambda: check_name(name, "a vehicle"))
     given = [g for g in _GEOMETRY if t.has(g)]
     t.taken.update(_GEOMETRY)
     if len(given) != 1:
@@ -769,6 +769,8 @@ def _ground(t: _Table | None, base: Path) -> Ground | None:
         mu = z.raw("friction")
         mu = mu if isinstance(mu, str) else z.number("friction")
         name = z.string("name", None)
+        if name is not None:
+            _wrap(z, "name", lambda n=name: check_name(n, "a zone"))
         z.finish()
         zones.append(_wrap(z, None, lambda c=corners, mu=mu, n=name: FrictionZone(c, mu, n)))
     kwargs["zones"] = zones
@@ -778,8 +780,7 @@ def _ground(t: _Table | None, base: Path) -> Ground | None:
 
 def _obstacle(t: _Table, scene: Scene, base: Path) -> None:
     name = t.string("name")
-    if not name.strip():
-        t.fail("name", "an obstacle needs a non-empty name")
+    _wrap(t, "name", lambda: check_name(name, "an obstacle"))
     given = [g for g in _OBSTACLE_SHAPES if t.has(g)]
     t.taken.update(_OBSTACLE_SHAPES)
     if len(given) != 1:

@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import ParameterError
+from crashsim.names import check_name
 
 __all__ = [
     "ABBREVIATIONS",
@@ -436,6 +437,8 @@ class Wheels:
         wheel_names = tuple(f"wheel_{k}" for k in range(n)) if names is None else tuple(names)
         if len(wheel_names) != n or len(set(wheel_names)) != n:
             raise ParameterError(f"names must be {n} different wheel names, got {wheel_names}")
+        for w in wheel_names:
+            check_name(w, "a wheel")
         self = cls.__new__(cls)
         self._init(
             wheel_names,
