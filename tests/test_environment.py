@@ -129,6 +129,20 @@ def test_bad_zones_are_parameter_errors(zone, match) -> None:
         cs.Ground(zones=[zone])
 
 
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 24: needs the core's check_polygon (crates/crashsim-core/src/ground.rs) to "
+    "look for crossing edges before the zero area: a symmetric bow-tie's signed area is 0",
+)
+def test_a_bow_tie_zone_is_said_to_cross_itself() -> None:
+    # a bow-tie's two lobes cancel: its signed area is 0, and the core says "its corners are
+    # in a line", which they are not
+    with pytest.raises(cs.ParameterError, match="zone 'bow' crosses itself"):
+        cs.Ground(zones=[cs.FrictionZone([(0, 0), (1, 1), (1, 0), (0, 1)], 0.5, name="bow")])
+    with pytest.raises(cs.ParameterError, match="in a line"):  # collinear corners still are
+        cs.Ground(zones=[cs.FrictionZone([(0, 0), (1, 1), (2, 2)], 0.5)])
+
+
 def terrain(size: float = 40.0, slope: float = 0.0) -> trimesh.Trimesh:
     """A square sheet z = slope x centred on the origin (two triangles)."""
     h = size / 2

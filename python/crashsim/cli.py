@@ -148,10 +148,16 @@ def _demo(args: argparse.Namespace) -> int:
         print(json.dumps(result.to_dict(), indent=2))
         return 0
     if not result.impacts:
+        x = result.trajectory("red").position[:, 0]  # m, red drives along +x
+        what, advice = (
+            (f"did not reach blue ({DEMO_GAP:g} m away)", "a longer --duration or a higher")
+            if x[-1] - x[0] < DEMO_GAP  # its front never reached blue's side
+            else ("passed through blue without one (an overlap that brief is taken for a "
+                  "graze)", "a lower")  # fmt: skip
+        )
         raise RunFailed(
             f"no impulse exchange happened within the {args.duration:g} s run: red at "
-            f"{args.speed:g} mph did not reach blue ({DEMO_GAP:g} m away); give a longer "
-            "--duration or a higher --speed"
+            f"{args.speed:g} mph {what}; give {advice} --speed"
         )
     print(_report(result, scene, args.speed))
     return 0

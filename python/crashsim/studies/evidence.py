@@ -37,7 +37,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
-from crashsim.errors import StudyError
+from crashsim.errors import ParameterError, StudyError
 
 if TYPE_CHECKING:
     from crashsim.result import Result
@@ -302,6 +302,10 @@ class TyreMark(Evidence):
         v = next(x for x in scene.vehicles if x.name == self.vehicle)
         if v.wheels is None:
             raise FitError(f"{label}: vehicle {self.vehicle!r} has no wheels", key=label)
+        try:
+            v.wheels.index(self.wheel)
+        except ParameterError as e:  # it lists the wheels
+            raise FitError(f"{label}: {e}", key=label) from None
 
     def target(self) -> Array:
         return np.zeros(1)

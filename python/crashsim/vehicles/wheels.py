@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import ParameterError
+from crashsim.names import check_name
 
 __all__ = [
     "ABBREVIATIONS",
@@ -39,6 +40,7 @@ __all__ = [
     "Tyre",
     "Wheels",
     "dynamics_defaults",
+    "wheel_index",
 ]
 
 Array = NDArray[np.float64]
@@ -76,6 +78,27 @@ def _number(value: Any, name: str, unit: str) -> float:
     if not math.isfinite(x):
         raise ParameterError(f"{name} = {x} is invalid: give a finite number ({unit})")
     return x
+
+
+def wheel_index(names: Sequence[str], wheel: str | int) -> int:
+    """The index in ``names`` of a wheel given by its name ("front_left", also "Front left"),
+    short name ("FL") or index: the one lookup of Wheels.index and the Result's wheel
+    records. ParameterError listing the names otherwise."""
+    if isinstance(wheel, int | np.integer) and not isinstance(wheel, bool):
+        if 0 <= int(wheel) < len(names):
+            return int(wheel)
+    elif isinstance(wheel, str):
+        key = wheel.strip()
+        key = ABBREVIATIONS.get(key.upper(), key) if key.upper() in ABBREVIATIONS else key
+        for k in (key, key.lower().replace(" ", "_").replace("-", "_")):
+            if k in names:
+                return list(names).index(k)
+    short = [k for k, v in ABBREVIATIONS.items() if v in names]
+    raise ParameterError(
+        f"unknown wheel {wheel!r}: the wheels are {', '.join(names)}"
+        + (f" (or {', '.join(short)})" if short else "")
+        + f" or an index 0-{len(names) - 1}"
+    )
 
 
 def _renamed(error: ParameterError, names: Sequence[str], prefix: str = "") -> ParameterError:
@@ -416,6 +439,8 @@ class Wheels:
         wheel_names = tuple(f"wheel_{k}" for k in range(n)) if names is None else tuple(names)
         if len(wheel_names) != n or len(set(wheel_names)) != n:
             raise ParameterError(f"names must be {n} different wheel names, got {wheel_names}")
+        for w in wheel_names:
+            check_name(w, "a wheel")
         self = cls.__new__(cls)
         self._init(
             wheel_names,
@@ -501,21 +526,7 @@ class Wheels:
     def index(self, wheel: str | int) -> int:
         """The engine's index of a wheel: its name ("front_left"), short name ("FL") or
         index. ParameterError listing the names otherwise."""
-        if isinstance(wheel, int | np.integer) and not isinstance(wheel, bool):
-            if 0 <= int(wheel) < len(self._names):
-                return int(wheel)
-        elif isinstance(wheel, str):
-            key = wheel.strip()
-            key = ABBREVIATIONS.get(key.upper(), key) if key.upper() in ABBREVIATIONS else key
-            key = key.lower().replace(" ", "_").replace("-", "_")
-            if key in self._names:
-                return self._names.index(key)
-        short = [k for k, v in ABBREVIATIONS.items() if v in self._names]
-        raise ParameterError(
-            f"unknown wheel {wheel!r}: the wheels are {', '.join(self._names)}"
-            + (f" (or {', '.join(short)})" if short else "")
-            + f" or an index 0-{len(self._names) - 1}"
-        )
+        return wheel_index(self._names, wheel)
 
     def axle(self, axle: str) -> tuple[int, ...]:
         """The indices of an axle's wheels ("front" or "rear"; the usual four only)."""

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from crashsim.io.viewer.data import DEFAULT_MAX_SAMPLES, page_data
-from crashsim.io.viewer.files import ReportFileError, report_page_data
+from crashsim.io.viewer.files import ReportFileError, check_report_path, report_page_data
 from crashsim.io.viewer.meshes import DEFAULT_MAX_TRIANGLES
 from crashsim.io.viewer.page import check_output_path, write_page
 
@@ -72,6 +72,7 @@ def view_report(
     case.html beside the report); returns the path. ReportFileError (an InputError) when
     the report or the files it needs are missing or malformed."""
     src = Path(report)
+    check_report_path(src)  # first: a missing report is the mistake to name
     out = check_output_path(src.parent / PAGE_FILE if path is None else path)
     data = report_page_data(src, max_triangles=max_triangles, max_samples=max_samples)
     return write_page(data, out)
