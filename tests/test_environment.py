@@ -129,11 +129,6 @@ def test_bad_zones_are_parameter_errors(zone, match) -> None:
         cs.Ground(zones=[zone])
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 24: needs the core's check_polygon (crates/crashsim-core/src/ground.rs) to "
-    "look for crossing edges before the zero area: a symmetric bow-tie's signed area is 0",
-)
 def test_a_bow_tie_zone_is_said_to_cross_itself() -> None:
     # a bow-tie's two lobes cancel: its signed area is 0, and the core says "its corners are
     # in a line", which they are not
