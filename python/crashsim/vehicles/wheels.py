@@ -496,7 +496,7 @@ class Wheels:
     def check_inputs(self, **inputs: Any) -> None:
         """The engine's checks of driver inputs (SceneSpec.set_vehicle's steer, brake, drive,
         switches) on these wheels; the engine's ParameterError otherwise."""
-        self._probe().set_vehicle(0, **self.spec(1.0), **inputs)
+        self._probe().set_vehicle(0, **self.spec(1.0, explicit_rates=False), **inputs)
 
     # -- what the engine gets --------------------------------------------------------------
 
