@@ -520,6 +520,9 @@ pub fn wheels_of(v: &Vehicle) -> VehicleSpec {
     VehicleSpec {
         wheels,
         tyre: Tyre::default(),
+        steering: Default::default(),
+        abs: true,
+        anti_roll: Vec::new(),
         inputs: DriverInputs {
             switches,
             ..DriverInputs::default()

@@ -177,6 +177,8 @@ pub struct WheelSample {
     pub force: Vector,
     /// True when the patch slides at the friction limit (a tyre mark).
     pub sliding: bool,
+    /// Road-wheel angle (rad, about the body z axis, + left).
+    pub steer: Real,
 }
 
 /// A body on the ground: its wheels (if any), its contact points and the tyres' state.
@@ -229,7 +231,8 @@ struct Evaluation {
 /// linearised: with C and K the dampings and rates seen at the body's coordinates
 /// (sum over the wheels of c_k J_k^T J_k, J_k the wheel's normal velocity per body
 /// velocity), |lambda| <= lambda_max(M^-1 C) + sqrt(lambda_max(M^-1 K)), and each
-/// lambda_max is at most the trace, sum_k c_k / m_k, with 1 / m_k = 1/m + |r_k|^2 /
+/// lambda_max is at most the trace, sum_k c_k / m_k (and the anti-roll bars' k_bar (1 / m_l +
+/// 1 / m_r)), with 1 / m_k = 1/m + |r_k|^2 /
 /// I_min <= the inverse effective mass at the wheel for any orientation (r_k from the CG
 /// to the farthest point of the tyre). For a car at 1.3 Hz and 0.3 it is about 45 /s:
 /// 1 ms sub-steps are far inside it.
@@ -239,12 +242,19 @@ pub fn suspension_rate(spec: &VehicleSpec, props: &MassProperties) -> Real {
         .symmetric_eigenvalues()
         .iter()
         .fold(0.0, |a: Real, b| a.max(*b));
+    let inverse_mass = |w: &crate::vehicle::WheelSpec| {
+        let reach = w.center.coords.norm() + w.radius;
+        1.0 / props.mass() + reach * reach * inverse_inertia_max
+    };
     let (mut damping, mut stiffness) = (0.0, 0.0);
     for w in &spec.wheels {
-        let reach = w.center.coords.norm() + w.radius;
-        let inverse_mass = 1.0 / props.mass() + reach * reach * inverse_inertia_max;
-        damping += w.damping * inverse_mass;
-        stiffness += w.spring_rate * inverse_mass;
+        damping += w.damping * inverse_mass(w);
+        stiffness += w.spring_rate * inverse_mass(w);
+    }
+    // A bar couples its two wheels: k_bar (J_l - J_r)^T (J_l - J_r), trace k_bar (1/m_l + 1/m_r).
+    for bar in &spec.anti_roll {
+        let (l, r) = (&spec.wheels[bar.left], &spec.wheels[bar.right]);
+        stiffness += bar.rate(&spec.wheels) * (inverse_mass(l) + inverse_mass(r));
     }
     damping + stiffness.sqrt()
 }
@@ -261,8 +271,17 @@ impl OnGround {
         }
     }
 
-    /// How wheel `k` turns at time `t` with normal load `fz` (N) and friction `mu`.
-    fn action(&self, spec: &VehicleSpec, k: usize, t: Real, fz: Real, mu: Real) -> WheelAction {
+    /// How wheel `k` of a vehicle of `mass` kg turns at time `t` with normal load `fz` (N) and
+    /// friction `mu`.
+    fn action(
+        &self,
+        spec: &VehicleSpec,
+        k: usize,
+        t: Real,
+        fz: Real,
+        mu: Real,
+        mass: Real,
+    ) -> WheelAction {
         match spec.inputs.wheel_state(k, t, self.exchanges) {
             WheelState::Locked => WheelAction {
                 locked: true,
@@ -278,12 +297,22 @@ impl OnGround {
                 let capacity = match spec.inputs.brake.get(k).and_then(|b| b.as_ref()) {
                     Some(Braking::Fraction(table)) => table.at(t) * mu * fz,
                     Some(Braking::Deceleration(table)) => table.at(t) / GRAVITY * fz,
+                    Some(Braking::Distributed {
+                        deceleration,
+                        share,
+                    }) => share * mass * deceleration.at(t),
                     None => 0.0,
                 };
+                // Without ABS a brake asked for more than the friction locks its wheel.
+                let locked = !spec.abs && capacity > mu * fz;
                 WheelAction {
-                    locked: false,
-                    brake_capacity: capacity,
-                    drive: spec.inputs.drive_at(k, t),
+                    locked,
+                    brake_capacity: if locked { 0.0 } else { capacity },
+                    drive: if locked {
+                        0.0
+                    } else {
+                        spec.inputs.drive_at(k, t)
+                    },
                 }
             }
         }
@@ -309,8 +338,9 @@ impl OnGround {
         let mut du = vec![[0.0; 2]; s.u.len()];
         let mut wheels = Vec::with_capacity(s.u.len());
         if let Some(spec) = &self.vehicle {
-            let steer = spec.inputs.steer_at(t);
-            let (sin, cos) = steer.sin_cos();
+            let steering = spec.steering_at(t);
+            // Each wheel's centre, the ground below it and its height above it (m).
+            let mut below = Vec::with_capacity(spec.wheels.len());
             for (k, wheel) in spec.wheels.iter().enumerate() {
                 let c = x + r * wheel.center.coords;
                 let g = ground.below(&c).ok_or_else(|| {
@@ -321,12 +351,30 @@ impl OnGround {
                         c.x, c.y
                     ))
                 })?;
+                let h = (c - g.point).dot(&g.normal);
+                below.push((c, g, h));
+            }
+            // The anti-roll bars' loads (N, + pushing the body up), each wheel's travel held
+            // at its full droop (spring unloaded) once it hangs free.
+            let mut bar_load = vec![0.0; spec.wheels.len()];
+            for bar in &spec.anti_roll {
+                let travel = |k: usize| {
+                    let wh = &spec.wheels[k];
+                    (wh.radius - below[k].2).max(-wh.static_load / wh.spring_rate)
+                };
+                let f = bar.rate(&spec.wheels) * (travel(bar.left) - travel(bar.right));
+                bar_load[bar.left] += f;
+                bar_load[bar.right] -= f;
+            }
+            for (k, wheel) in spec.wheels.iter().enumerate() {
+                let (c, g, h) = below[k];
                 let n = g.normal;
-                let h = (c - g.point).dot(&n);
                 let contact = c - n * h;
                 let vc = s.v + w.cross(&(c - x));
-                let fz = wheel.normal_load(wheel.radius - h, -vc.dot(&n));
-                let heading = if wheel.steerable {
+                let fz = wheel.normal_load(wheel.radius - h, -vc.dot(&n), bar_load[k]);
+                let steer = spec.wheel_steer(k, t, &steering);
+                let heading = if steer != 0.0 {
+                    let (sin, cos) = steer.sin_cos();
                     r * Vector::new(cos, sin, 0.0)
                 } else {
                     r * Vector::x()
@@ -341,10 +389,16 @@ impl OnGround {
                 let ey = n.cross(&ex);
                 let vp = s.v + w.cross(&(contact - x));
                 let mu = ground.tyre_friction_at(contact.x, contact.y);
-                let action = self.action(spec, k, t, fz, mu);
-                let tf = spec
-                    .tyre
-                    .force(fz, mu, vp.dot(&ex), vp.dot(&ey), s.u[k], &action);
+                let action = self.action(spec, k, t, fz, mu, m);
+                let tf = spec.tyre.force(
+                    fz,
+                    wheel.static_load,
+                    mu,
+                    vp.dot(&ex),
+                    vp.dot(&ey),
+                    s.u[k],
+                    &action,
+                );
                 let f = n * fz + ex * tf.force[0] + ey * tf.force[1];
                 force += f;
                 torque += (contact - x).cross(&f);
@@ -354,6 +408,7 @@ impl OnGround {
                     load: fz,
                     force: f,
                     sliding: tf.sliding,
+                    steer,
                 });
             }
         }

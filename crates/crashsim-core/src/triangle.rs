@@ -442,7 +442,7 @@ mod tests {
         use rand::rngs::SmallRng;
         use rand::{Rng, SeedableRng};
         let mut rng = SmallRng::seed_from_u64(7);
-        let mut pt = |rng: &mut SmallRng, s: Real| {
+        let pt = |rng: &mut SmallRng, s: Real| {
             Point::new(
                 rng.random_range(-s..s),
                 rng.random_range(-s..s),

@@ -347,6 +347,9 @@ fn skidding_car() -> SceneSpec {
         VehicleSpec {
             wheels,
             tyre: Tyre::default(),
+            steering: Default::default(),
+            abs: true,
+            anti_roll: Vec::new(),
             inputs,
         },
     )

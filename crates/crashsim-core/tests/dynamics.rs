@@ -8,8 +8,8 @@ use std::sync::Arc;
 use crashsim_core::ground::Ground;
 use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
 use crashsim_core::vehicle::{
-    static_loads, Braking, DriverInputs, Table, Trigger, Tyre, VehicleSpec, WheelSpec, WheelState,
-    WheelSwitch, GRAVITY,
+    static_loads, Braking, DriverInputs, SteerInput, Table, Trigger, Tyre, VehicleSpec, WheelSpec,
+    WheelState, WheelSwitch, GRAVITY,
 };
 use crashsim_core::{
     BodyState, ContactEventKind, MassProperties, MeshShape, RunOptions, RunOutput, World,
@@ -66,6 +66,9 @@ fn car_spec(tyre: Tyre, inputs: DriverInputs) -> VehicleSpec {
     VehicleSpec {
         wheels,
         tyre,
+        steering: Default::default(),
+        abs: true,
+        anti_roll: Vec::new(),
         inputs,
     }
 }
@@ -252,7 +255,9 @@ fn steady_cornering_follows_the_single_track_yaw_rate_gain() {
     let delta = wb / (v * v / (0.2 * GRAVITY));
     for drive in [0.0, 95.0] {
         let inputs = DriverInputs {
-            steer: Some(Table::new("steer", &[(0.0, 0.0), (0.5, delta)]).unwrap()),
+            steer: Some(SteerInput::RoadWheel(
+                Table::new("steer", &[(0.0, 0.0), (0.5, delta)]).unwrap(),
+            )),
             drive: vec![
                 None,
                 None,
@@ -597,7 +602,7 @@ fn separated_steps_make_no_mesh_query() {
 /// The linear single-track model with first-order tyre lag (relaxation length sigma) at a
 /// constant forward speed `u` (m/s): yaw rate (rad/s) at `times` (s) for the road-wheel
 /// angle `steer(t)` (rad). Axle cornering stiffnesses from the static axle loads, as the
-/// reconstruction tyre's (mu Fz / alpha_sat).
+/// linear tyre's (c Fz, c = 1 per 10 deg).
 fn single_track_yaw_rate(
     u: Real,
     sigma: Real,
@@ -605,7 +610,7 @@ fn single_track_yaw_rate(
     times: &[Real],
 ) -> Vec<Real> {
     let wb = A + B;
-    let c = |axle_share: Real| 0.8 * MASS * GRAVITY * axle_share / 10f64.to_radians();
+    let c = |axle_share: Real| MASS * GRAVITY * axle_share / 10f64.to_radians();
     let (cf, cr) = (c(B / wb), c(A / wb));
     let izz = MASS * (0.5 * wb).powi(2);
     // State: lateral velocity v (m/s), yaw rate r (rad/s), axle forces ff, fr (N).
@@ -650,7 +655,9 @@ fn a_step_steer_follows_the_single_track_model_with_tyre_lag() {
     let (v, delta) = (20.0, 1.5f64.to_radians());
     let steer = move |t: Real| (((t - 0.5) / 0.1).clamp(0.0, 1.0)) * delta;
     let inputs = DriverInputs {
-        steer: Some(Table::new("steer", &[(0.0, 0.0), (0.5, 0.0), (0.6, delta)]).unwrap()),
+        steer: Some(SteerInput::RoadWheel(
+            Table::new("steer", &[(0.0, 0.0), (0.5, 0.0), (0.6, delta)]).unwrap(),
+        )),
         ..DriverInputs::default()
     };
     let tyre = Tyre {
@@ -681,7 +688,9 @@ fn a_short_relaxation_length_stays_finite_at_speed() {
     // 3 mm at 20 m/s renews the tread 6,700 times a second: classical Runge-Kutta at 1 ms
     // diverged (NaN from 0.17 s); the sub-steps now shrink with |v_x| / sigma.
     let inputs = DriverInputs {
-        steer: Some(Table::new("steer", &[(0.0, 0.0), (0.2, 0.02)]).unwrap()),
+        steer: Some(SteerInput::RoadWheel(
+            Table::new("steer", &[(0.0, 0.0), (0.2, 0.02)]).unwrap(),
+        )),
         ..DriverInputs::default()
     };
     let run = |sigma: Real| {

@@ -22,14 +22,16 @@ use crate::math::{Isometry, Matrix, Point, Real, Rotation, Vector};
 use crate::shape::MeshShape;
 use crate::stiffness::{Face, FaceStiffness, Stiffness};
 use crate::vehicle::{
-    Braking, DriverInputs, Table, Trigger, Tyre, TyreModel, VehicleSpec, WheelSpec, WheelState,
-    WheelSwitch,
+    AntiRollBar, Braking, DriverInputs, SteerInput, Steering, Table, Trigger, Tyre, VehicleSpec,
+    WheelSpec, WheelState, WheelSwitch,
 };
 use crate::world::RunOptions;
 
 /// The document's format name and version (a reader refuses others).
 const FORMAT: &str = "crashsim-scene-spec";
-const VERSION: u32 = 1;
+/// 2 (2026-11): tyres with the cornering coefficient and the combined-slip law, the steering
+/// linkage, per-wheel steering.
+const VERSION: u32 = 2;
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -82,9 +84,12 @@ enum MotionDoc {
 #[serde(deny_unknown_fields)]
 struct VehicleDoc {
     wheels: Vec<WheelDoc>,
-    tyre: TyreDoc,
-    steer: Option<Vec<[Real; 2]>>,
-    brake: Vec<Option<BrakeDoc>>,
+    tyre: Tyre,
+    steering: Steering,
+    anti_roll: Vec<AntiRollBar>,
+    abs: bool,
+    steer: Option<SteerInput>,
+    brake: Vec<Option<Braking>>,
     drive: Vec<Option<Vec<[Real; 2]>>>,
     switches: Vec<SwitchDoc>,
 }
@@ -98,28 +103,6 @@ struct WheelDoc {
     static_load: Real,
     spring_rate: Real,
     damping: Real,
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct TyreDoc {
-    model: TyreModelDoc,
-    relaxation_length: Real,
-    rolling_resistance: Real,
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
-enum TyreModelDoc {
-    Linear { saturation_angle: Real },
-    MagicFormula { b: Real, c: Real, e: Real },
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
-enum BrakeDoc {
-    Fraction(Vec<[Real; 2]>),
-    Deceleration(Vec<[Real; 2]>),
 }
 
 #[derive(Serialize, Deserialize)]
@@ -273,26 +256,12 @@ fn vehicle_doc(v: &VehicleSpec) -> VehicleDoc {
                 damping: w.damping,
             })
             .collect(),
-        tyre: TyreDoc {
-            model: match v.tyre.model {
-                TyreModel::Linear { saturation_angle } => TyreModelDoc::Linear { saturation_angle },
-                TyreModel::MagicFormula { b, c, e } => TyreModelDoc::MagicFormula { b, c, e },
-            },
-            relaxation_length: v.tyre.relaxation_length,
-            rolling_resistance: v.tyre.rolling_resistance,
-        },
-        steer: v.inputs.steer.as_ref().map(table),
-        brake: v
-            .inputs
-            .brake
-            .iter()
-            .map(|b| {
-                b.as_ref().map(|b| match b {
-                    Braking::Fraction(t) => BrakeDoc::Fraction(table(t)),
-                    Braking::Deceleration(t) => BrakeDoc::Deceleration(table(t)),
-                })
-            })
-            .collect(),
+        tyre: v.tyre.clone(),
+        steering: v.steering.clone(),
+        anti_roll: v.anti_roll.clone(),
+        abs: v.abs,
+        steer: v.inputs.steer.clone(),
+        brake: v.inputs.brake.clone(),
         drive: v
             .inputs
             .drive
@@ -474,23 +443,8 @@ fn vehicle(v: VehicleDoc) -> Result<VehicleSpec> {
             damping: w.damping,
         })
         .collect();
-    let tyre = Tyre {
-        model: match v.tyre.model {
-            TyreModelDoc::Linear { saturation_angle } => TyreModel::Linear { saturation_angle },
-            TyreModelDoc::MagicFormula { b, c, e } => TyreModel::MagicFormula { b, c, e },
-        },
-        relaxation_length: v.tyre.relaxation_length,
-        rolling_resistance: v.tyre.rolling_resistance,
-    };
-    let mut brake = Vec::with_capacity(v.brake.len());
-    for (k, b) in v.brake.iter().enumerate() {
-        let what = format!("wheel {k} braking");
-        brake.push(match b {
-            None => None,
-            Some(BrakeDoc::Fraction(t)) => Some(Braking::Fraction(points(&what, t)?)),
-            Some(BrakeDoc::Deceleration(t)) => Some(Braking::Deceleration(points(&what, t)?)),
-        });
-    }
+    let tyre = v.tyre;
+    let brake = v.brake;
     let mut drive = Vec::with_capacity(v.drive.len());
     for (k, d) in v.drive.iter().enumerate() {
         drive.push(match d {
@@ -499,7 +453,7 @@ fn vehicle(v: VehicleDoc) -> Result<VehicleSpec> {
         });
     }
     let inputs = DriverInputs {
-        steer: v.steer.map(|t| points("steering", &t)).transpose()?,
+        steer: v.steer,
         brake,
         drive,
         switches: v
@@ -522,6 +476,9 @@ fn vehicle(v: VehicleDoc) -> Result<VehicleSpec> {
     Ok(VehicleSpec {
         wheels,
         tyre,
+        steering: v.steering,
+        anti_roll: v.anti_roll,
+        abs: v.abs,
         inputs,
     })
 }

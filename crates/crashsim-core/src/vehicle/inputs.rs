@@ -4,8 +4,16 @@
 use crate::error::{require_finite, Error, Result};
 use crate::math::Real;
 
+use super::steering::SteerInput;
+
 /// A quantity given as a time table, linear between its points and held beyond its ends.
+/// As a document: rows of [time s, value], read back through [`Table::new`]'s checks.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "Vec<[Real; 2]>", into = "Vec<[Real; 2]>")
+)]
 pub struct Table {
     times: Vec<Real>,
     values: Vec<Real>,
@@ -83,8 +91,27 @@ impl Table {
 /// hides a mistake (100 m/s^2 was accepted and ran as full braking).
 pub const MAX_BRAKING_DECELERATION: Real = 20.0;
 
+impl TryFrom<Vec<[Real; 2]>> for Table {
+    type Error = Error;
+    fn try_from(rows: Vec<[Real; 2]>) -> Result<Table> {
+        let points: Vec<(Real, Real)> = rows.iter().map(|r| (r[0], r[1])).collect();
+        Table::new("document's", &points)
+    }
+}
+
+impl From<Table> for Vec<[Real; 2]> {
+    fn from(t: Table) -> Self {
+        t.points().map(|(a, b)| [a, b]).collect()
+    }
+}
+
 /// What a wheel's brake does.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum Braking {
     /// A fraction of the friction available at the wheel (0 = none, 1 = at the limit without
     /// locking), as a time table.
@@ -93,6 +120,16 @@ pub enum Braking {
     /// at most its load times demand / g (so a vehicle braked this way on every wheel
     /// decelerates at the demand while the friction allows it).
     Deceleration(Table),
+    /// A fixed share of the whole vehicle's brake force: the wheel brakes with `share` (0-1)
+    /// of `m a(t)`, `a` the vehicle's deceleration demand (m/s^2, >= 0) as a time table and
+    /// `m` its mass (a front/rear split of 0.7 gives each front wheel 0.35). The wheels' shares
+    /// add up to 1. A wheel asked for more than its friction locks unless the vehicle has ABS.
+    Distributed {
+        /// The vehicle's deceleration demand (m/s^2).
+        deceleration: Table,
+        /// This wheel's share of the vehicle's brake force (0-1).
+        share: Real,
+    },
 }
 
 /// A wheel's state: how it turns.
@@ -130,8 +167,8 @@ pub struct WheelSwitch {
 /// A vehicle's driver inputs and wheel-state switches.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct DriverInputs {
-    /// Road-wheel steering angle of the steerable wheels (rad, + to the left), or None.
-    pub steer: Option<Table>,
+    /// The steering input (through the vehicle's linkage, or per wheel), or None.
+    pub steer: Option<SteerInput>,
     /// Braking per wheel (None: no braking on that wheel); empty: none anywhere.
     pub brake: Vec<Option<Braking>>,
     /// Drive force per wheel (N, + forward along the wheel), None: none; empty: none.
@@ -155,17 +192,6 @@ impl DriverInputs {
                 self.drive.len()
             )));
         }
-        if let Some(steer) = &self.steer {
-            let (lo, hi) = steer.range();
-            let limit = 60f64.to_radians();
-            if lo < -limit || hi > limit {
-                return Err(Error::Parameter(format!(
-                    "the road-wheel steering angle reaches {:.1} deg: road wheels turn at most \
-                     60 deg (give the steering-wheel angle with the steering ratio instead)",
-                    if hi > limit { hi } else { lo }.to_degrees()
-                )));
-            }
-        }
         for (k, b) in self.brake.iter().enumerate() {
             match b {
                 Some(Braking::Fraction(t)) => {
@@ -177,8 +203,9 @@ impl DriverInputs {
                     }
                 }
                 Some(Braking::Deceleration(t))
-                    if t.range().0 < 0.0 || t.range().1 > MAX_BRAKING_DECELERATION =>
-                {
+                | Some(Braking::Distributed {
+                    deceleration: t, ..
+                }) if t.range().0 < 0.0 || t.range().1 > MAX_BRAKING_DECELERATION => {
                     let (lo, hi) = t.range();
                     return Err(Error::Parameter(format!(
                         "wheel {k}: a braking deceleration must lie in [0, 20] m/s^2 (got {lo} \
@@ -186,9 +213,32 @@ impl DriverInputs {
                          friction limit give a braking fraction of 1"
                     )));
                 }
-                Some(Braking::Deceleration(_)) => {}
+                Some(Braking::Distributed { share, .. }) if !(0.0..=1.0).contains(share) => {
+                    return Err(Error::parameter(
+                        &format!("wheel {k} brake share"),
+                        share,
+                        "a wheel's share of the vehicle's brake force must lie in [0, 1]",
+                    ));
+                }
+                Some(Braking::Deceleration(_)) | Some(Braking::Distributed { .. }) => {}
                 None => {}
             }
+        }
+        let shares: Vec<Real> = self
+            .brake
+            .iter()
+            .filter_map(|b| match b {
+                Some(Braking::Distributed { share, .. }) => Some(*share),
+                _ => None,
+            })
+            .collect();
+        let total: Real = shares.iter().sum();
+        if !shares.is_empty() && (total - 1.0).abs() > 1e-9 {
+            return Err(Error::Parameter(format!(
+                "the wheels' shares of the vehicle's brake force add up to {total}: they must \
+                 add up to 1 (a front/rear split of 0.7 gives each front wheel 0.35, each rear \
+                 wheel 0.15)"
+            )));
         }
         for s in &self.switches {
             if s.wheel >= wheels {
@@ -217,11 +267,6 @@ impl DriverInputs {
             }
         }
         Ok(())
-    }
-
-    /// Road-wheel steering angle at `t` (rad).
-    pub fn steer_at(&self, t: Real) -> Real {
-        self.steer.as_ref().map_or(0.0, |s| s.at(t))
     }
 
     /// Drive force of wheel `k` at `t` (N).

@@ -4,14 +4,16 @@
 //! evaluated per wheel and per integration stage by [`crate::motion`].
 
 pub mod inputs;
+pub mod steering;
 pub mod tyre;
 pub mod wheel;
 
 pub use inputs::{Braking, DriverInputs, Table, Trigger, WheelState, WheelSwitch};
+pub use steering::{LinkageGeometry, SteerInput, Steering, DEFAULT_ACKERMANN};
 pub use tyre::{Tyre, TyreForce, TyreModel, WheelAction, MAGIC_FORMULA_DEFAULTS};
 pub use wheel::{
-    static_loads, WheelSpec, DEFAULT_DAMPING_RATIO, DEFAULT_NATURAL_FREQUENCY, GRAVITY,
-    MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,
+    static_loads, AntiRollBar, WheelSpec, DEFAULT_DAMPING_RATIO, DEFAULT_NATURAL_FREQUENCY,
+    GRAVITY, MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,
 };
 
 use crate::error::{Error, Result};
@@ -27,6 +29,15 @@ pub struct VehicleSpec {
     pub wheels: Vec<WheelSpec>,
     /// The tyre on every wheel.
     pub tyre: Tyre,
+    /// The steering linkage (ratio, Ackermann).
+    pub steering: Steering,
+    /// Anti-roll bars (one per axle at most, each between a left and a right wheel).
+    pub anti_roll: Vec<AntiRollBar>,
+    /// Anti-lock brakes: true, a braked wheel asked for more than its friction brakes at the
+    /// friction and keeps rolling (and steering, as the combined-slip law allows); false, it
+    /// locks and slides at mu Fz against its patch velocity while the demand exceeds the
+    /// friction. A braking fraction (at most the friction) never locks a wheel.
+    pub abs: bool,
     /// Steering, braking, drive and wheel-state switches over time.
     pub inputs: DriverInputs,
 }
@@ -65,6 +76,52 @@ impl VehicleSpec {
             )));
         }
         self.tyre.validate()?;
-        self.inputs.validate(self.wheels.len())
+        self.steering.validate()?;
+        for (k, bar) in self.anti_roll.iter().enumerate() {
+            bar.validate(k, &self.wheels)?;
+            let shared = self.anti_roll[..k].iter().any(|b| {
+                [b.left, b.right]
+                    .iter()
+                    .any(|w| *w == bar.left || *w == bar.right)
+            });
+            if shared {
+                return Err(Error::Parameter(format!(
+                    "anti-roll bar {k} shares a wheel with another bar: one bar per wheel"
+                )));
+            }
+        }
+        self.inputs.validate(self.wheels.len())?;
+        if let Some(steer) = &self.inputs.steer {
+            self.steering.validate_input(steer, &self.wheels)?;
+        }
+        Ok(())
+    }
+
+    /// The linkage's geometry and the reference's road-wheel angle at time `t` (rad; None
+    /// with per-wheel tables or without steering): what [`VehicleSpec::wheel_steer`] needs.
+    pub fn steering_at(&self, t: Real) -> (LinkageGeometry, Option<Real>) {
+        let delta = self
+            .inputs
+            .steer
+            .as_ref()
+            .and_then(|input| self.steering.reference_angle(input, t));
+        (LinkageGeometry::of(&self.wheels), delta)
+    }
+
+    /// Road-wheel angle (rad, about the body z axis, + left) of wheel `k` at time `t`, with
+    /// [`VehicleSpec::steering_at`]'s `(geometry, delta)`: through the linkage, or from its
+    /// own table; 0 for a wheel that does not steer.
+    pub fn wheel_steer(&self, k: usize, t: Real, at: &(LinkageGeometry, Option<Real>)) -> Real {
+        let w = &self.wheels[k];
+        match (&self.inputs.steer, at.1) {
+            (Some(SteerInput::PerWheel(tables)), _) => {
+                tables[k].as_ref().map_or(0.0, |table| table.at(t))
+            }
+            (_, Some(delta)) => {
+                self.steering
+                    .wheel_angle(&at.0, delta, w.steerable, w.center.x, w.center.y)
+            }
+            _ => 0.0,
+        }
     }
 }

@@ -22,18 +22,30 @@
 //! deflection stops growing and turns with the slip, and the force lies against the patch's
 //! slip velocity.
 //!
-//! - [`TyreModel::Linear`], the reconstruction tyre: C = mu Fz / alpha_sat, so the lateral
-//!   force is linear in the slip angle up to the saturation angle alpha_sat and mu Fz beyond;
-//!   the resultant is limited to the friction circle mu Fz (Kamm's circle); a locked wheel
-//!   slides at mu Fz against its patch velocity.
-//! - [`TyreModel::MagicFormula`]: Pacejka's `D sin(C atan(B a - E (B a - atan(B a))))` with
-//!   D = mu Fz, applied to the resultant slip (combined slip by the similarity method: the
-//!   force's magnitude from the combined slip angle, its direction from the tread's
-//!   deflection); C_alpha = B C D.
+//! The laws (per unit of the wheel's load Fz, with the road's friction mu):
 //!
-//! A free-rolling wheel's longitudinal force is its rolling resistance `-f_r Fz` (against the
-//! motion, smoothed below 0.1 m/s) plus the drive force; a braked wheel's is at most its brake
-//! capacity; everything is then limited to the friction circle.
+//! - [`TyreModel::Linear`], the reconstruction programs' linear tyre (PC-Crash's, as Steffan and
+//!   Moser describe it, SAE 960886; Virtual CRASH's "linear"): the cornering stiffness is a
+//!   property of the tyre and its load, `C = c Fz` with the cornering coefficient `c` (1/rad;
+//!   default 1 per 10 deg), and the lateral force `c Fz alpha` is capped at what the friction
+//!   leaves: a slippery road saturates earlier but does not soften the tyre.
+//! - [`TyreModel::LinearFrictionScaled`], crashsim's law before 2026-11: `C = mu Fz /
+//!   alpha_sat`, the force reaching mu Fz at the saturation angle on every road (24 % softer
+//!   than the linear law at mu 0.76 and alpha_sat 10 deg).
+//! - [`TyreModel::MagicFormula`]: Pacejka's `D sin(C atan(B a - E (B a - atan(B a))))` with
+//!   B, C, E given at mu = 1 and Pacejka's similarity on other roads: `D = mu Fz` and the slip
+//!   scaled by 1/mu, so `C = B C Fz` whatever the road.
+//!
+//! The longitudinal force of a braked or driven wheel is its brake's (at most its capacity)
+//! plus its drive force, less the rolling resistance `f_r Fz` (against the motion, smoothed
+//! below 0.1 m/s). The lateral force is then limited by the friction the longitudinal one
+//! leaves ([`CombinedSlip`]): by default `sqrt((mu Fz)^2 - Fx^2)` (the braking force kept and
+//! the friction ellipse giving the steering force, as Brach and Brach describe the
+//! reconstruction programs' combined laws, SAE 2009-01-0102), or both scaled onto the friction
+//! circle (Kamm's circle). The Magic Formula's curve applies to the lateral slip only, scaled
+//! to the lateral force available (the similarity method again), so a braked wheel delivers
+//! its brake force whatever the law. A locked wheel slides at mu Fz against its patch
+//! velocity under every law.
 
 use crate::error::{require_finite, Error, Result};
 use crate::math::Real;
@@ -48,9 +60,10 @@ const YIELD_RELAXATION: Real = 0.005;
 /// Rolling resistance acts against the motion; below this speed (m/s) it fades linearly so a
 /// vehicle comes to rest without chatter.
 const ROLLING_RESISTANCE_SPEED: Real = 0.1;
-/// Largest combined slip angle (rad) a Magic Formula tread deflection represents, 20 deg: past
-/// the peak of every usual tyre, into its sliding range (B 10, C 1.9, E 0.97 gives 0.97 D
-/// there), with the tread deflected sigma times this (3.5 cm at sigma 0.1 m).
+/// Largest slip angle (rad, at mu = 1: on other roads it scales with the friction left) a
+/// Magic Formula tread deflection represents, 20 deg: past the peak of every usual tyre, into
+/// its sliding range (B 10, C 1.9, E 0.97 gives 0.97 D there), with the tread deflected sigma
+/// times this (3.5 cm at sigma 0.1 m).
 const MAGIC_FORMULA_MAX_SLIP: Real = 0.35;
 
 /// Largest rolling resistance coefficient accepted: 0.3, a passenger tyre in sand (Wong,
@@ -63,18 +76,39 @@ pub const MAX_ROLLING_RESISTANCE: Real = 0.3;
 /// caller gives none.
 pub const MAGIC_FORMULA_DEFAULTS: [Real; 3] = [10.0, 1.9, 0.97];
 
+/// Default cornering coefficient of the linear tyre (1/rad): 1 per 10 deg (5.73 /rad), the
+/// reconstruction programs' linear tyre (pycrash's reading of PC-Crash, Steffan and Moser, SAE
+/// 960886: the force reaches mu Fz at mu x 10 deg). Real radial tyres measure about 15 % of
+/// the load per degree (8.6 /rad; Gillespie, Fundamentals of Vehicle Dynamics, 1992, as
+/// McHenry's SMAC manual quotes it) and modern datasets 15-22 /rad: give a tyre's own
+/// coefficient when matching a test rather than a reconstruction program.
+pub const DEFAULT_CORNERING_COEFFICIENT: Real = 1.0 / (10.0 * std::f64::consts::PI / 180.0);
+
 /// The force law of a tyre.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum TyreModel {
-    /// The reconstruction tyre: linear in the slip angle up to `saturation_angle` (rad,
-    /// default 10 deg, in (0, 45 deg]), then mu Fz.
+    /// The reconstruction programs' linear tyre: `Fy = c Fz alpha`, capped at the friction
+    /// left by the longitudinal force. `cornering` is c (1/rad, in (0, 60]; default
+    /// [`DEFAULT_CORNERING_COEFFICIENT`]); the saturation angle at mu = 1 is 1 / c.
     Linear {
+        /// Cornering coefficient c: cornering stiffness per unit load (1/rad).
+        cornering: Real,
+    },
+    /// crashsim's law before 2026-11: the lateral force reaches mu Fz at `saturation_angle`
+    /// (rad, in (0, 45 deg]) whatever the road: cornering stiffness mu Fz / alpha_sat.
+    LinearFrictionScaled {
         /// Slip angle at which the lateral force reaches mu Fz (rad).
         saturation_angle: Real,
     },
-    /// Pacejka's Magic Formula with D = mu Fz: stiffness factor `b` (1/rad, > 0), shape
-    /// factor `c` (in (0, 2)), curvature factor `e` (< 1). Typical dry passenger tyre:
-    /// b 10, c 1.9, e 0.97 (Pacejka, Tire and Vehicle Dynamics, 3rd ed., ch. 4).
+    /// Pacejka's Magic Formula at mu = 1 (stiffness factor `b` 1/rad > 0, shape factor `c` in
+    /// (0, 2), curvature factor `e` < 1), on other roads by similarity (D = mu Fz, the slip
+    /// scaled by 1 / mu): cornering stiffness B C Fz. A dry passenger tyre: b 10, c 1.9,
+    /// e 0.97 (Pacejka, Tire and Vehicle Dynamics, 3rd ed., ch. 4): 19 Fz per rad.
     MagicFormula {
         /// Stiffness factor B (1/rad).
         b: Real,
@@ -85,33 +119,72 @@ pub enum TyreModel {
     },
 }
 
-/// A tyre: its force law, relaxation length and rolling resistance.
+/// How a wheel's longitudinal force (brake, drive, rolling resistance) and its lateral force
+/// share the friction mu Fz.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case")
+)]
+pub enum CombinedSlip {
+    /// The longitudinal force is kept (at most mu Fz) and the lateral force limited to
+    /// `sqrt((mu Fz)^2 - Fx^2)`: the friction ellipse gives the steering force that a given
+    /// braking force leaves, as Brach and Brach (SAE 2009-01-0102, EVU 2008) describe several
+    /// reconstruction programs' tyre models. The default.
+    BrakingPriority,
+    /// Each component from its own law, then both scaled together onto the friction circle
+    /// mu Fz (Kamm's circle): braking in a turn at the limit keeps part of the lateral force
+    /// and gives up part of the braking. crashsim's law before 2026-11.
+    Circle,
+}
+
+/// A tyre: its force law, relaxation length, rolling resistance and combined-slip law.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
 pub struct Tyre {
-    /// The force law; default the reconstruction tyre with a 10 deg saturation angle.
+    /// The force law; default the reconstruction programs' linear tyre, 1 per 10 deg.
     pub model: TyreModel,
     /// Relaxation length sigma (m), > 0; default 0.1 m. It sets how far the wheel rolls
     /// before a new slip's force builds up, the tread stiffness C / sigma and the tread's
-    /// deflection at the friction limit, alpha_sat sigma for the reconstruction tyre (1.7 cm
-    /// at 10 deg: a real carcass deflects 1-2 cm there, about 150-200 kN/m at 4 kN). Real
-    /// tyres' 0.3-0.6 m (Pacejka, Tire and Vehicle Dynamics, ch. 7) go with their cornering
-    /// stiffness of about 15-20 Fz per rad, four times the reconstruction tyre's mu Fz /
-    /// alpha_sat = 4.6 Fz per rad; 0.5 m here made a locked skid spring back 8.7 cm at the
-    /// stop (1.6 % of a 6.4 m skid).
+    /// deflection at the friction limit, sigma mu / c for the linear tyre (1.4 cm at mu 0.8:
+    /// a real carcass deflects 1-2 cm there, about 150-200 kN/m at 4 kN). Real tyres' 0.3-0.6
+    /// m (Pacejka, Tire and Vehicle Dynamics, ch. 7) go with their cornering stiffness of
+    /// about 15-20 Fz per rad, three times the linear tyre's 5.7; 0.5 m here made a locked
+    /// skid spring back 8.7 cm at the stop (1.6 % of a 6.4 m skid).
     pub relaxation_length: Real,
-    /// Rolling resistance coefficient f_r (force / load), >= 0; default 0.012 (passenger
-    /// tyres on asphalt, 0.010-0.015: Gillespie, Fundamentals of Vehicle Dynamics, ch. 4).
+    /// Rolling resistance coefficient f_r (force / load), in [0, 0.3]; default 0, as the
+    /// reconstruction programs: their runs keep their speed without a driver's input (a
+    /// PC-Crash run at 30 mph kept 44.0001 ft/s), and a rolling resistance is the user's
+    /// (PC-Crash and Virtual CRASH as a braking percentage). Passenger tyres on asphalt:
+    /// 0.010-0.015 (Gillespie, ch. 4).
     pub rolling_resistance: Real,
+    /// How the longitudinal and lateral forces share the friction; default
+    /// [`CombinedSlip::BrakingPriority`].
+    pub combined: CombinedSlip,
+    /// Load sensitivity `e` of the cornering stiffness (-, in [0, 1)): `C(Fz) = C(F0)
+    /// (Fz / F0)^(1 - e)`, F0 the wheel's static load, so an axle whose load moves from its
+    /// inner to its outer wheel loses cornering stiffness (about `e (1 - e) (dF / F0)^2` of it)
+    /// and the axle taking more of the lateral load transfer (the stiffer in roll) saturates
+    /// first: the understeer of real tyres (Gillespie, ch. 6; Milliken, ch. 2). Default 0,
+    /// the reconstruction programs' linear tyre, whose stiffness is proportional to the load.
+    pub load_sensitivity: Real,
 }
 
 impl Default for Tyre {
     fn default() -> Self {
         Tyre {
             model: TyreModel::Linear {
-                saturation_angle: 10f64.to_radians(),
+                cornering: DEFAULT_CORNERING_COEFFICIENT,
             },
             relaxation_length: 0.1,
-            rolling_resistance: 0.012,
+            rolling_resistance: 0.0,
+            combined: CombinedSlip::BrakingPriority,
+            load_sensitivity: 0.0,
         }
     }
 }
@@ -159,8 +232,28 @@ impl Tyre {
                  asphalt, 0.08 on firm soil, 0.3 in sand)",
             ));
         }
+        require_finite("load_sensitivity", self.load_sensitivity)?;
+        if !(0.0..1.0).contains(&self.load_sensitivity) {
+            return Err(Error::parameter(
+                "load_sensitivity",
+                self.load_sensitivity,
+                "a tyre's load sensitivity must lie in [0, 1) (0: stiffness proportional to \
+                 the load)",
+            ));
+        }
         match self.model {
-            TyreModel::Linear { saturation_angle } => {
+            TyreModel::Linear { cornering } => {
+                require_finite("cornering_coefficient", cornering)?;
+                if !(cornering > 0.0 && cornering <= 60.0) {
+                    return Err(Error::parameter(
+                        "cornering_coefficient",
+                        cornering,
+                        "a cornering coefficient must lie in (0, 60] per rad (the \
+                         reconstruction programs' 5.73, 1 per 10 deg; real tyres 8-22)",
+                    ));
+                }
+            }
+            TyreModel::LinearFrictionScaled { saturation_angle } => {
                 require_finite("saturation_angle", saturation_angle)?;
                 if !(saturation_angle > 0.0 && saturation_angle <= 45f64.to_radians()) {
                     return Err(Error::parameter(
@@ -185,49 +278,70 @@ impl Tyre {
         Ok(())
     }
 
-    /// Cornering stiffness (N/rad) at normal load `fz` (N) and friction `mu`.
-    fn cornering_stiffness(&self, fz: Real, mu: Real) -> Real {
-        match self.model {
-            TyreModel::Linear { saturation_angle } => mu * fz / saturation_angle,
-            TyreModel::MagicFormula { b, c, .. } => b * c * mu * fz,
+    /// Cornering stiffness (N/rad) at normal load `fz` (N) and friction `mu` of a wheel whose
+    /// static load is `nominal` (N; what the load sensitivity is relative to).
+    pub fn cornering_stiffness(&self, fz: Real, mu: Real, nominal: Real) -> Real {
+        let proportional = match self.model {
+            TyreModel::Linear { cornering } => cornering * fz,
+            TyreModel::LinearFrictionScaled { saturation_angle } => mu * fz / saturation_angle,
+            TyreModel::MagicFormula { b, c, .. } => b * c * fz,
+        };
+        if self.load_sensitivity == 0.0 {
+            proportional
+        } else {
+            proportional * (fz / nominal).powf(-self.load_sensitivity)
         }
     }
 
-    /// The saturated magnitude of a force whose linear value is `f_lin` (N), and whether it
-    /// is at the friction limit; `c_alpha` is the cornering stiffness.
-    fn saturate(&self, f_lin: Real, c_alpha: Real, friction: Real) -> (Real, bool) {
+    /// The lateral force (N, >= 0) whose linear value is `f_lin` (N, >= 0) when `available`
+    /// (N) of the friction is left for it, and whether it is at the limit (sliding).
+    fn lateral(&self, f_lin: Real, available: Real) -> (Real, bool) {
         match self.model {
-            TyreModel::Linear { .. } => {
-                if f_lin > friction {
-                    (friction, true)
+            TyreModel::Linear { .. } | TyreModel::LinearFrictionScaled { .. } => {
+                if f_lin >= available {
+                    (available, true)
                 } else {
                     (f_lin, false)
                 }
             }
             TyreModel::MagicFormula { b, c, e } => {
-                let a = (f_lin / c_alpha).min(MAGIC_FORMULA_MAX_SLIP);
-                let x = b * a - e * (b * a - (b * a).atan());
-                let f = friction * (c * x.atan()).sin();
-                (f, c * x.atan() >= std::f64::consts::FRAC_PI_2)
+                if available <= 0.0 {
+                    return (0.0, true);
+                }
+                // Similarity: the curve scaled to `available` with the cornering stiffness
+                // C_alpha kept, Fy = A g(alpha C_alpha / (B C A)) with g'(0) = B C, at
+                // alpha = f_lin / C_alpha: x = f_lin / (B C A).
+                let x = (f_lin / (b * c * available)).min(MAGIC_FORMULA_MAX_SLIP);
+                let bx = b * x;
+                let phase = c * (bx - e * (bx - bx.atan())).atan();
+                (
+                    available * phase.sin(),
+                    phase >= std::f64::consts::FRAC_PI_2,
+                )
             }
         }
     }
 
-    /// The largest deflection force (N) the tread holds before it slides.
-    fn yield_force(&self, c_alpha: Real, friction: Real) -> Real {
+    /// The largest elastic lateral force (N) the tread holds before it slides, with
+    /// `available` (N) of the friction left for it.
+    fn lateral_yield(&self, available: Real) -> Real {
+        // The tread holds x up to MAGIC_FORMULA_MAX_SLIP: f_lin = B C x available.
         match self.model {
-            TyreModel::Linear { .. } => friction,
-            TyreModel::MagicFormula { .. } => c_alpha * MAGIC_FORMULA_MAX_SLIP,
+            TyreModel::Linear { .. } | TyreModel::LinearFrictionScaled { .. } => available,
+            TyreModel::MagicFormula { b, c, .. } => b * c * MAGIC_FORMULA_MAX_SLIP * available,
         }
     }
 
     /// The force at a contact patch and the rate of the tread's deflection.
     ///
-    /// `fz` normal load (N), `mu` tyre-road friction, `vx`, `vy` the patch's velocity in
-    /// wheel axes (m/s), `u` the deflection (m, wheel axes), `action` how the wheel turns.
+    /// `fz` normal load (N) of a wheel whose static load is `nominal` (N), `mu` tyre-road
+    /// friction, `vx`, `vy` the patch's velocity in wheel axes (m/s), `u` the deflection (m,
+    /// wheel axes), `action` how the wheel turns.
+    #[allow(clippy::too_many_arguments)]
     pub fn force(
         &self,
         fz: Real,
+        nominal: Real,
         mu: Real,
         vx: Real,
         vy: Real,
@@ -242,72 +356,107 @@ impl Tyre {
             };
         }
         let sigma = self.relaxation_length;
-        let c_alpha = self.cornering_stiffness(fz, mu);
+        let c_alpha = self.cornering_stiffness(fz, mu, nominal);
         let k = c_alpha / sigma;
-        let slips_long = action.locked || action.brake_capacity > 0.0;
         let relax = vx.abs() / sigma;
         // Critical damping of the wheel's share of the mass on the tread, less what the
         // rolling's renewal gives (N s/m).
         let share = fz / GRAVITY;
         let damping = (2.0 * (k * share).sqrt() - share * relax).max(0.0);
-        // The tread's elastic rate: dragged by the slip, renewed by the rolling.
-        let elastic = [
-            if slips_long {
+        let friction = mu * fz;
+        if action.locked {
+            return self.locked(k, damping, relax, friction, vx, vy, u);
+        }
+        let braked = action.brake_capacity > 0.0;
+        // The tread's elastic rate: dragged by the slip, renewed by the rolling; a rolling,
+        // unbraked wheel's tread carries no x deflection.
+        let mut du = [
+            if braked {
                 -vx - relax * u[0]
             } else {
-                -u[0] / AIRBORNE_RELAXATION // a rolling wheel's tread carries no x deflection
+                -u[0] / AIRBORNE_RELAXATION
             },
             -vy - relax * u[1],
         ];
-        let friction = mu * fz;
-        let long_limit = if action.locked {
-            Real::INFINITY
-        } else {
-            action.brake_capacity
+        // Longitudinal: the brake's force from the tread (the tread holds a braked vehicle at
+        // rest), at most its capacity; then drive and rolling resistance.
+        let mut fx = 0.0;
+        if braked {
+            let limit = action.brake_capacity;
+            fx = (k * u[0] + damping * du[0]).clamp(-limit, limit);
+            if k * u[0].abs() >= limit && u[0] * du[0] >= 0.0 {
+                du[0] = -(u[0] - u[0].signum() * limit / k) / YIELD_RELAXATION;
+            }
+        }
+        fx += action.drive
+            - self.rolling_resistance * fz * vx / vx.abs().max(ROLLING_RESISTANCE_SPEED);
+        // Lateral: what the combined-slip law leaves of the friction.
+        let mut sliding = false;
+        let available = match self.combined {
+            CombinedSlip::BrakingPriority => {
+                if fx.abs() >= friction {
+                    fx = fx.signum() * friction;
+                    sliding = true;
+                }
+                (friction * friction - fx * fx).max(0.0).sqrt()
+            }
+            CombinedSlip::Circle => friction,
         };
-        // The force from the elastic state, limited by the brake along x, then saturated.
-        let mut f = [
-            if slips_long {
-                k * u[0] + damping * elastic[0]
-            } else {
-                0.0
-            },
-            k * u[1] + damping * elastic[1],
-        ];
-        if slips_long && f[0].abs() > long_limit {
-            f[0] = f[0].signum() * long_limit;
+        let fy_lin = k * u[1] + damping * du[1];
+        let (fy_mag, at_limit) = self.lateral(fy_lin.abs(), available);
+        let mut fy = fy_lin.signum() * fy_mag;
+        sliding |= at_limit;
+        // Elasto-plastic lateral deflection: at its limit the tread slides, its deflection
+        // stops growing and returns to the limit if past it.
+        let yield_force = self.lateral_yield(available);
+        if k * u[1].abs() >= yield_force && u[1] * du[1] >= 0.0 {
+            du[1] = -(u[1] - u[1].signum() * yield_force / k) / YIELD_RELAXATION;
         }
-        let f_lin = (f[0] * f[0] + f[1] * f[1]).sqrt();
-        let (f_mag, mut sliding) = self.saturate(f_lin, c_alpha, friction);
-        if f_lin > 0.0 {
-            f = [f[0] * f_mag / f_lin, f[1] * f_mag / f_lin];
+        if self.combined == CombinedSlip::Circle {
+            let total = fx.hypot(fy);
+            if total > friction {
+                fx *= friction / total;
+                fy *= friction / total;
+                sliding = true;
+            }
         }
-        // Elasto-plastic deflection: at a limit the tread slides, so its deflection stops
-        // growing (it still turns with the slip) and returns to the limit if past it.
-        let mut du = elastic;
-        if slips_long && k * u[0].abs() >= long_limit && u[0] * du[0] >= 0.0 {
-            du[0] = -(u[0] - u[0].signum() * long_limit / k) / YIELD_RELAXATION;
+        TyreForce {
+            force: [fx, fy],
+            deflection_rate: du,
+            sliding,
         }
-        let yield_force = self.yield_force(c_alpha, friction);
-        let un = (u[0] * u[0] + u[1] * u[1]).sqrt();
-        if k * un >= yield_force && un > 0.0 {
+    }
+
+    /// A locked wheel: the tread dragged both ways by the patch's slip, the resultant at
+    /// most mu Fz (then sliding against the slip), whatever the law.
+    #[allow(clippy::too_many_arguments)]
+    fn locked(
+        &self,
+        k: Real,
+        damping: Real,
+        relax: Real,
+        friction: Real,
+        vx: Real,
+        vy: Real,
+        u: [Real; 2],
+    ) -> TyreForce {
+        let mut du = [-vx - relax * u[0], -vy - relax * u[1]];
+        let mut f = [k * u[0] + damping * du[0], k * u[1] + damping * du[1]];
+        let f_lin = f[0].hypot(f[1]);
+        let sliding = f_lin >= friction;
+        if sliding {
+            f = [f[0] * friction / f_lin, f[1] * friction / f_lin];
+        }
+        let un = u[0].hypot(u[1]);
+        if k * un >= friction && un > 0.0 {
             let dir = [u[0] / un, u[1] / un];
             let radial = du[0] * dir[0] + du[1] * dir[1];
-            let back = (un - yield_force / k) / YIELD_RELAXATION;
+            let back = (un - friction / k) / YIELD_RELAXATION;
             let keep = radial.min(0.0) - back;
             du = [
                 du[0] - (radial - keep) * dir[0],
                 du[1] - (radial - keep) * dir[1],
             ];
-        }
-        if !action.locked {
-            let v = vx / vx.abs().max(ROLLING_RESISTANCE_SPEED);
-            f[0] += action.drive - self.rolling_resistance * fz * v;
-        }
-        let total = (f[0] * f[0] + f[1] * f[1]).sqrt();
-        if total > friction {
-            f = [f[0] * friction / total, f[1] * friction / total];
-            sliding = true;
         }
         TyreForce {
             force: f,
@@ -332,27 +481,40 @@ mod tests {
         [0.0, -vy * t.relaxation_length / vx.abs()]
     }
 
+    /// The linear tyre's slope is c Fz on every road (1 per 10 deg: Fz at 10 deg), and the
+    /// road's friction only caps it: on mu 0.4 it saturates at 4 deg, on 0.8 at 8 deg (issue
+    /// 19: the slope scaled with mu, 24 % soft at 0.76).
     #[test]
-    fn linear_tyre_follows_the_cornering_stiffness_then_saturates() {
-        let t = Tyre {
-            rolling_resistance: 0.0,
+    fn linear_tyre_has_a_slope_of_c_fz_whatever_the_road_and_saturates_at_mu_fz() {
+        let t = Tyre::default();
+        let (fz, vx) = (4000.0, 20.0);
+        let c = fz / 10f64.to_radians();
+        for mu in [0.4, 0.8, 1.0] {
+            for alpha_deg in [0.5, 2.0, 0.99 * 10.0 * mu] {
+                let vy = vx * (alpha_deg as Real).to_radians().tan();
+                let out = t.force(fz, fz, mu, vx, vy, steady(&t, vx, vy), &FREE);
+                let expected = -c * (alpha_deg as Real).to_radians().tan();
+                assert!(
+                    (out.force[1] - expected).abs() < 1e-9 * c,
+                    "mu {mu}, {alpha_deg} deg: {out:?}"
+                );
+                assert!(out.deflection_rate[1].abs() < 1e-12 && !out.sliding);
+            }
+            let vy = vx * 0.5;
+            let out = t.force(fz, fz, mu, vx, vy, steady(&t, vx, vy), &FREE);
+            assert!((out.force[1] + mu * fz).abs() < 1e-9 && out.sliding);
+        }
+        // The law before 2026-11, kept by name: mu Fz at the saturation angle on every road.
+        let old = Tyre {
+            model: TyreModel::LinearFrictionScaled {
+                saturation_angle: 10f64.to_radians(),
+            },
             ..Tyre::default()
         };
-        let (fz, mu, vx) = (4000.0, 0.8, 20.0);
-        let c = mu * fz / 10f64.to_radians();
-        for alpha_deg in [0.5, 2.0, 5.0, 9.9] {
-            let vy = vx * (alpha_deg as Real).to_radians().tan();
-            let out = t.force(fz, mu, vx, vy, steady(&t, vx, vy), &FREE);
-            let expected = -c * (alpha_deg as Real).to_radians().tan();
-            assert!(
-                (out.force[1] - expected).abs() < 1e-9 * c,
-                "{alpha_deg}: {out:?}"
-            );
-            assert!(out.deflection_rate[1].abs() < 1e-12 && !out.sliding);
-        }
-        let vy = vx * 0.5;
-        let out = t.force(fz, mu, vx, vy, steady(&t, vx, vy), &FREE);
-        assert!((out.force[1] + mu * fz).abs() < 1e-9 && out.sliding);
+        let vy = vx * 2f64.to_radians().tan();
+        let out = old.force(fz, fz, 0.5, vx, vy, steady(&old, vx, vy), &FREE);
+        let expected = -0.5 * fz / 10f64.to_radians() * 2f64.to_radians().tan();
+        assert!((out.force[1] - expected).abs() < 1e-9 * fz, "{out:?}");
     }
 
     #[test]
@@ -364,10 +526,10 @@ mod tests {
             ..FREE
         };
         // The tread at its limit, deflected against the slip.
-        let k = mu * fz / 10f64.to_radians() / t.relaxation_length;
+        let k = t.cornering_stiffness(fz, mu, fz) / t.relaxation_length;
         let v = (15.0f64.powi(2) + 25.0).sqrt();
         let u = [-15.0 / v * mu * fz / k, -5.0 / v * mu * fz / k];
-        let out = t.force(fz, mu, 15.0, 5.0, u, &locked);
+        let out = t.force(fz, fz, mu, 15.0, 5.0, u, &locked);
         let f = (out.force[0].powi(2) + out.force[1].powi(2)).sqrt();
         assert!((f - mu * fz).abs() < 1e-9 && out.sliding);
         let v = (15.0f64.powi(2) + 25.0).sqrt();
@@ -386,11 +548,11 @@ mod tests {
             brake_capacity: 1000.0,
             drive: 0.0,
         };
-        let k = 0.8 * 4000.0 / 10f64.to_radians() / t.relaxation_length;
-        let out = t.force(4000.0, 0.8, 20.0, 0.0, [-2000.0 / k, 0.0], &braked);
+        let k = t.cornering_stiffness(4000.0, 0.8, 4000.0) / t.relaxation_length;
+        let out = t.force(4000.0, 4000.0, 0.8, 20.0, 0.0, [-2000.0 / k, 0.0], &braked);
         assert!((out.force[0] + 1000.0).abs() < 1e-9, "{out:?}");
         // Once the tread reaches the capacity it stops deflecting further.
-        let out = t.force(4000.0, 0.8, 20.0, 0.0, [-1000.0 / k, 0.0], &braked);
+        let out = t.force(4000.0, 4000.0, 0.8, 20.0, 0.0, [-1000.0 / k, 0.0], &braked);
         assert!(out.deflection_rate[0].abs() < 1e-9, "{out:?}");
     }
 
@@ -406,20 +568,23 @@ mod tests {
             ..Tyre::default()
         };
         t.validate().unwrap();
-        let (fz, mu, vx) = (4000.0, 0.9, 20.0);
-        let vy = vx * 0.001;
-        let out = t.force(fz, mu, vx, vy, steady(&t, vx, vy), &FREE);
-        let c_alpha = 10.0 * 1.9 * mu * fz;
-        assert!(
-            (out.force[1] / (-c_alpha * 0.001) - 1.0).abs() < 1e-3,
-            "{out:?}"
-        );
-        let mut peak: Real = 0.0;
-        for k in 1..400 {
-            let vy = vx * (k as Real * 0.1).to_radians().tan();
-            peak = peak.max(-t.force(fz, mu, vx, vy, steady(&t, vx, vy), &FREE).force[1]);
+        let (fz, vx) = (4000.0, 20.0);
+        // B C Fz on every road (Pacejka's similarity), the peak mu Fz.
+        for mu in [0.5, 0.9] {
+            let vy = vx * 0.001;
+            let out = t.force(fz, fz, mu, vx, vy, steady(&t, vx, vy), &FREE);
+            let c_alpha = 10.0 * 1.9 * fz;
+            assert!(
+                (out.force[1] / (-c_alpha * 0.001) - 1.0).abs() < 1e-3,
+                "{out:?}"
+            );
+            let mut peak: Real = 0.0;
+            for k in 1..400 {
+                let vy = vx * (k as Real * 0.1).to_radians().tan();
+                peak = peak.max(-t.force(fz, fz, mu, vx, vy, steady(&t, vx, vy), &FREE).force[1]);
+            }
+            assert!((peak / (mu * fz) - 1.0).abs() < 1e-3, "{peak}");
         }
-        assert!((peak / (mu * fz) - 1.0).abs() < 1e-3, "{peak}");
         assert!(Tyre {
             model: TyreModel::MagicFormula {
                 b: 10.0,
@@ -432,6 +597,90 @@ mod tests {
         .is_err());
     }
 
+    /// A braked wheel delivers its brake's force under every law (issue 19: the Magic Formula
+    /// passed the brake's force through its lateral curve and braked at 2.857 m/s^2 for a
+    /// demand of 3); in a turn, the lateral force is what the friction ellipse leaves
+    /// (braking priority) or both share the circle.
+    #[test]
+    fn a_braked_wheel_delivers_its_brake_force_and_the_lateral_takes_what_is_left() {
+        let (fz, mu, vx) = (4000.0, 0.8, 20.0);
+        let friction = mu * fz;
+        let braked = |capacity: Real| WheelAction {
+            locked: false,
+            brake_capacity: capacity,
+            drive: 0.0,
+        };
+        let mf = TyreModel::MagicFormula {
+            b: 10.0,
+            c: 1.9,
+            e: 0.97,
+        };
+        for model in [Tyre::default().model, mf] {
+            for combined in [CombinedSlip::BrakingPriority, CombinedSlip::Circle] {
+                let t = Tyre {
+                    model: model.clone(),
+                    combined,
+                    ..Tyre::default()
+                };
+                let k = t.cornering_stiffness(fz, mu, fz) / t.relaxation_length;
+                // Straight: the tread past the capacity gives the capacity.
+                for capacity in [0.3 * friction, 0.5 * friction, friction] {
+                    let out = t.force(
+                        fz,
+                        fz,
+                        mu,
+                        vx,
+                        0.0,
+                        [-2.0 * friction / k, 0.0],
+                        &braked(capacity),
+                    );
+                    assert!(
+                        (out.force[0] + capacity).abs() < 1e-9 * friction,
+                        "{model:?} {combined:?} {capacity}: {out:?}"
+                    );
+                }
+                // In a turn at 12 deg (past the linear tyre's saturation), braked at 0.6 mu Fz.
+                let vy = vx * 12f64.to_radians().tan();
+                let out = t.force(
+                    fz,
+                    fz,
+                    mu,
+                    vx,
+                    vy,
+                    [-friction / k, steady(&t, vx, vy)[1]],
+                    &braked(0.6 * friction),
+                );
+                let (fx, fy) = (out.force[0], out.force[1]);
+                match combined {
+                    CombinedSlip::BrakingPriority => {
+                        assert!((fx + 0.6 * friction).abs() < 1e-9 * friction, "{out:?}");
+                        assert!(fy.abs() <= 0.8 * friction * (1.0 + 1e-12), "{out:?}");
+                    }
+                    CombinedSlip::Circle => {
+                        assert!(fx.hypot(fy) <= friction * (1.0 + 1e-12), "{out:?}");
+                    }
+                }
+            }
+        }
+        // The linear tyre saturates laterally exactly at the ellipse's 0.8 mu Fz.
+        let t = Tyre::default();
+        let k = t.cornering_stiffness(fz, mu, fz) / t.relaxation_length;
+        let vy = vx * 12f64.to_radians().tan();
+        let out = t.force(
+            fz,
+            fz,
+            mu,
+            vx,
+            vy,
+            [-friction / k, steady(&t, vx, vy)[1]],
+            &braked(0.6 * friction),
+        );
+        assert!(
+            (out.force[1] + 0.8 * friction).abs() < 1e-9 * friction && out.sliding,
+            "{out:?}"
+        );
+    }
+
     /// After a step of the slip angle at speed the force lags: it starts where it was and
     /// approaches its new steady value over the relaxation length (time sigma / vx), without
     /// the lead a damper would add; at rest the tread is damped critically.
@@ -442,23 +691,23 @@ mod tests {
             ..Tyre::default()
         };
         let (fz, mu, vx) = (4000.0, 0.8, 20.0);
-        let c = mu * fz / 10f64.to_radians();
+        let c = t.cornering_stiffness(fz, mu, fz);
         let vy = vx * 2f64.to_radians().tan();
         // Integrate the deflection after the step (from a straight-running tread) exactly
         // enough: explicit Euler at 1 us over 3 time constants.
         let tau = t.relaxation_length / vx;
         let (mut u, h) = ([0.0, 0.0], 1e-6);
-        let first = t.force(fz, mu, vx, vy, u, &FREE);
+        let first = t.force(fz, fz, mu, vx, vy, u, &FREE);
         assert!(
             first.force[1].abs() < 1e-9,
             "no jump at the step: {first:?}"
         );
         let steps = (tau / h).round() as usize;
         for _ in 0..steps {
-            let out = t.force(fz, mu, vx, vy, u, &FREE);
+            let out = t.force(fz, fz, mu, vx, vy, u, &FREE);
             u[1] += h * out.deflection_rate[1];
         }
-        let after_tau = t.force(fz, mu, vx, vy, u, &FREE).force[1];
+        let after_tau = t.force(fz, fz, mu, vx, vy, u, &FREE).force[1];
         let steady = -c * 2f64.to_radians().tan();
         let expected = steady * (1.0 - (-1.0f64).exp());
         assert!(
@@ -467,7 +716,7 @@ mod tests {
         );
         // At rest: a lateral velocity acts through the critical damping 2 sqrt(k m).
         let k = c / t.relaxation_length;
-        let out = t.force(fz, mu, 0.0, 0.01, [0.0, 0.0], &FREE);
+        let out = t.force(fz, fz, mu, 0.0, 0.01, [0.0, 0.0], &FREE);
         let critical = 2.0 * (k * fz / GRAVITY).sqrt();
         assert!(
             (out.force[1] + critical * 0.01).abs() < 1e-9 * critical,
@@ -477,7 +726,7 @@ mod tests {
 
     #[test]
     fn without_load_there_is_no_force() {
-        let out = Tyre::default().force(0.0, 0.8, 10.0, 3.0, [0.01, 0.02], &FREE);
+        let out = Tyre::default().force(0.0, 4000.0, 0.8, 10.0, 3.0, [0.01, 0.02], &FREE);
         assert_eq!(out.force, [0.0, 0.0]);
         assert!(out.deflection_rate[0] < 0.0 && out.deflection_rate[1] < 0.0);
     }

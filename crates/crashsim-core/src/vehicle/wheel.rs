@@ -149,10 +149,10 @@ impl WheelSpec {
     }
 
     /// The spring-damper's normal load (N, >= 0) at compression `compression` = R - h (m) and
-    /// compression rate (m/s).
+    /// compression rate (m/s), with `extra` (N) from the wheel's anti-roll bar.
     #[inline]
-    pub fn normal_load(&self, compression: Real, rate: Real) -> Real {
-        (self.static_load + self.spring_rate * compression + self.damping * rate).max(0.0)
+    pub fn normal_load(&self, compression: Real, rate: Real, extra: Real) -> Real {
+        (self.static_load + self.spring_rate * compression + self.damping * rate + extra).max(0.0)
     }
 }
 
@@ -184,6 +184,82 @@ fn check_damping_ratio(name: &str, zeta: Real) -> Result<()> {
              car; 1 is critical damping)"
         ),
     ))
+}
+
+/// An anti-roll bar between two wheels of an axle: a torsion spring that loads the more
+/// compressed wheel and unloads the other, `dF = k_bar (c_left - c_right)`, with `k_bar =
+/// roll_stiffness / t^2` (t the wheels' lateral distance), so the axle's roll stiffness grows
+/// by `roll_stiffness` (the springs give `k t^2 / 2`). A wheel hanging free (its spring
+/// unloaded) holds the bar at its full droop, `c = -F0 / k`.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
+pub struct AntiRollBar {
+    /// The wheel on the left (index into the vehicle's wheels).
+    pub left: usize,
+    /// The wheel on the right.
+    pub right: usize,
+    /// Roll stiffness the bar adds to its axle (N m/rad), >= 0.
+    pub roll_stiffness: Real,
+}
+
+impl AntiRollBar {
+    /// The bar's rate at the wheels (N/m per m of compression difference) on `wheels`.
+    pub fn rate(&self, wheels: &[WheelSpec]) -> Real {
+        let t = wheels[self.left].center.y - wheels[self.right].center.y;
+        self.roll_stiffness / (t * t)
+    }
+
+    /// Checks the bar on `wheels`: two wheels apart across the vehicle, the left one on the
+    /// left, a stiffness that keeps each wheel's roll frequency (its spring plus twice the
+    /// bar's rate, with its sprung mass) within [`MAX_NATURAL_FREQUENCY`]. `index` names the
+    /// bar in errors.
+    pub fn validate(&self, index: usize, wheels: &[WheelSpec]) -> Result<()> {
+        let n = wheels.len();
+        if self.left >= n || self.right >= n || self.left == self.right {
+            return Err(Error::Parameter(format!(
+                "anti-roll bar {index} joins wheels {} and {}: give two different wheels of \
+                 the vehicle's {n}",
+                self.left, self.right
+            )));
+        }
+        require_finite(
+            &format!("anti-roll bar {index} roll stiffness"),
+            self.roll_stiffness,
+        )?;
+        if self.roll_stiffness < 0.0 {
+            return Err(Error::parameter(
+                &format!("anti-roll bar {index} roll stiffness"),
+                format!("{} N m/rad", self.roll_stiffness),
+                "it must be >= 0",
+            ));
+        }
+        let (l, r) = (&wheels[self.left], &wheels[self.right]);
+        if l.center.y - r.center.y <= 0.05 {
+            return Err(Error::Parameter(format!(
+                "anti-roll bar {index}: wheel {} (left, y = {:.3} m) must lie left of wheel {} \
+                 (right, y = {:.3} m) and apart from it (y is left, from the CG)",
+                self.left, l.center.y, self.right, r.center.y
+            )));
+        }
+        let rate = self.rate(wheels);
+        for w in [l, r] {
+            let f = ((w.spring_rate + 2.0 * rate) / w.sprung_mass()).sqrt()
+                / (2.0 * std::f64::consts::PI);
+            if f > MAX_NATURAL_FREQUENCY * (1.0 + 1e-12) {
+                return Err(Error::Parameter(format!(
+                    "anti-roll bar {index}: {:.0} N m/deg makes its wheels roll at {f:.1} Hz on \
+                     their springs, past the {MAX_NATURAL_FREQUENCY} Hz a wheel's spring may \
+                     have (measured cars' bars: 225-590 N m/deg)",
+                    self.roll_stiffness * std::f64::consts::PI / 180.0
+                )));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Static loads (N) of wheels at body-frame positions `xy` (m from the CG) carrying `weight`

@@ -1,0 +1,380 @@
+//! The steering linkage: from the driver's steering input to each steered wheel's road-wheel
+//! angle (rad, about the body's z axis, + to the left).
+//!
+//! The driver's input is the steering-wheel angle (divided by the steering ratio) or the
+//! road-wheel angle `delta` of the linkage's reference: a virtual wheel at the centre of the
+//! steered axle farthest from the turn centre's line. The turn centre lies on the line
+//! `x = x_ref` of the wheels that do not steer (their mean x; the rear axle of a car), at
+//! `R = (x_s - x_ref) / tan(delta)` to the side; each steered wheel at `(x_i, y_i)` turns to
+//!
+//! `tan(delta_i) = (x_i - x_ref) tan(delta) / ((x_s - x_ref) - a (y_i - y_c) tan(delta))`,
+//!
+//! `y_c` the wheels' centre line and `a` the Ackermann fraction: 1 points every wheel at the
+//! turn centre (full Ackermann: the inner wheel turns more, `cot(delta_o) - cot(delta_i) =
+//! track / wheelbase`), 0 turns the reference axle's wheels alike (parallel steer). Between,
+//! the inner-outer difference at small angles is `a` times Ackermann's. A second steered
+//! axle nearer the turn centre's line turns less, as a truck's linkage makes it. Without a
+//! wheel that does not steer (every wheel steers) there is no turn centre's line: every
+//! steered wheel turns by `delta` (crab steering), whatever `a`.
+//!
+//! Per-wheel tables (the angles a program or a test measured at each wheel) replace the
+//! linkage.
+
+use crate::error::{require_finite, Error, Result};
+use crate::math::Real;
+
+use super::inputs::Table;
+use super::wheel::WheelSpec;
+
+/// Default Ackermann fraction: 1, the linkage of reconstruction programs' vehicle models
+/// (every wheel pointed at the turn centre).
+pub const DEFAULT_ACKERMANN: Real = 1.0;
+/// Largest road-wheel angle (rad) of a wheel or the linkage's reference: 60 deg.
+pub const MAX_ROAD_WHEEL_ANGLE: Real = 60.0 * std::f64::consts::PI / 180.0;
+
+/// A vehicle's steering linkage.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
+pub struct Steering {
+    /// Steering ratio (-, > 0): steering-wheel angle per road-wheel angle of the reference
+    /// (about 16 for a car); None when the driver's input is never a steering-wheel angle.
+    pub ratio: Option<Real>,
+    /// Ackermann fraction `a` (-, in [0, 1.5]): 1 full Ackermann (default), 0 parallel steer;
+    /// more than 1 is "pro-Ackermann" beyond the geometric one.
+    pub ackermann: Real,
+}
+
+impl Default for Steering {
+    fn default() -> Self {
+        Steering {
+            ratio: None,
+            ackermann: DEFAULT_ACKERMANN,
+        }
+    }
+}
+
+/// The driver's steering input.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
+pub enum SteerInput {
+    /// Road-wheel angle of the linkage's reference (rad, + left).
+    RoadWheel(Table),
+    /// Steering-wheel angle (rad, + left): the reference turns by it over the ratio.
+    SteeringWheel(Table),
+    /// Each wheel's own road-wheel angle (rad, + left), None for a wheel that does not turn.
+    PerWheel(Vec<Option<Table>>),
+}
+
+/// Where the linkage's geometry lies, body frame (m): precomputed from the wheels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinkageGeometry {
+    /// x of the turn centre's line (the wheels that do not steer), None when all steer.
+    x_ref: Option<Real>,
+    /// x of the reference's axle (the steered wheel farthest from the line).
+    x_s: Real,
+    /// y of the wheels' centre line.
+    y_c: Real,
+}
+
+impl LinkageGeometry {
+    /// The geometry of `wheels`.
+    pub fn of(wheels: &[WheelSpec]) -> LinkageGeometry {
+        let fixed: Vec<Real> = wheels
+            .iter()
+            .filter(|w| !w.steerable)
+            .map(|w| w.center.x)
+            .collect();
+        let x_ref = (!fixed.is_empty()).then(|| fixed.iter().sum::<Real>() / fixed.len() as Real);
+        let y_c = wheels.iter().map(|w| w.center.y).sum::<Real>() / wheels.len().max(1) as Real;
+        let x_s = match x_ref {
+            Some(x0) => wheels
+                .iter()
+                .filter(|w| w.steerable)
+                .map(|w| w.center.x)
+                .fold(x0, |best, x| {
+                    if (x - x0).abs() > (best - x0).abs() {
+                        x
+                    } else {
+                        best
+                    }
+                }),
+            None => 0.0,
+        };
+        LinkageGeometry { x_ref, x_s, y_c }
+    }
+}
+
+impl Steering {
+    /// Checks the numbers.
+    pub fn validate(&self) -> Result<()> {
+        require_finite("ackermann", self.ackermann)?;
+        if !(0.0..=1.5).contains(&self.ackermann) {
+            return Err(Error::parameter(
+                "ackermann",
+                self.ackermann,
+                "the Ackermann fraction must lie in [0, 1.5] (1 full Ackermann, 0 parallel \
+                 steer)",
+            ));
+        }
+        if let Some(r) = self.ratio {
+            require_finite("steering_ratio", r)?;
+            if !(1.0..=100.0).contains(&r) {
+                return Err(Error::parameter(
+                    "steering_ratio",
+                    r,
+                    "a steering ratio must lie in [1, 100] (about 16 for a car, 20-30 for a \
+                     truck)",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The reference's road-wheel angle (rad) for the input `input` at time `t`; None for
+    /// per-wheel tables.
+    pub fn reference_angle(&self, input: &SteerInput, t: Real) -> Option<Real> {
+        match input {
+            SteerInput::RoadWheel(table) => Some(table.at(t)),
+            SteerInput::SteeringWheel(table) => Some(table.at(t) / self.ratio.unwrap_or(1.0)),
+            SteerInput::PerWheel(_) => None,
+        }
+    }
+
+    /// Road-wheel angle (rad) of wheel `wheel` (at body-frame `x`, `y`, steerable or not)
+    /// when the reference is at `delta` (rad).
+    pub fn wheel_angle(
+        &self,
+        geometry: &LinkageGeometry,
+        delta: Real,
+        steerable: bool,
+        x: Real,
+        y: Real,
+    ) -> Real {
+        if !steerable || delta == 0.0 {
+            return 0.0;
+        }
+        let Some(x_ref) = geometry.x_ref else {
+            return delta; // every wheel steers: no turn centre's line
+        };
+        let tan = delta.tan();
+        let num = (x - x_ref) * tan;
+        let den = (geometry.x_s - x_ref) - self.ackermann * (y - geometry.y_c) * tan;
+        // The reference's side of the line (num and den of one sign) keeps den's sign; a
+        // wheel turned past 90 deg cannot be, so den > 0 for the reference's axle is checked
+        // with the inputs.
+        (num / den).atan()
+    }
+
+    /// Checks the steering input against `wheels`: a steering-wheel input needs a ratio,
+    /// per-wheel tables name steerable wheels only, and no wheel turns past
+    /// [`MAX_ROAD_WHEEL_ANGLE`] or through 90 deg (an Ackermann inner wheel of a short
+    /// vehicle at a large angle).
+    pub fn validate_input(&self, input: &SteerInput, wheels: &[WheelSpec]) -> Result<()> {
+        let check = |what: &str, lo: Real, hi: Real| -> Result<()> {
+            if lo < -MAX_ROAD_WHEEL_ANGLE || hi > MAX_ROAD_WHEEL_ANGLE {
+                return Err(Error::Parameter(format!(
+                    "{what} reaches {:.1} deg: road wheels turn at most 60 deg (give the \
+                     steering-wheel angle with the steering ratio instead)",
+                    if hi > MAX_ROAD_WHEEL_ANGLE { hi } else { lo }.to_degrees()
+                )));
+            }
+            Ok(())
+        };
+        match input {
+            SteerInput::RoadWheel(table) => {
+                let (lo, hi) = table.range();
+                check("the road-wheel steering angle", lo, hi)?;
+            }
+            SteerInput::SteeringWheel(table) => {
+                let Some(ratio) = self.ratio else {
+                    return Err(Error::Parameter(
+                        "a steering-wheel angle needs the vehicle's steering ratio (about 16 for \
+                         a car)"
+                            .into(),
+                    ));
+                };
+                let (lo, hi) = table.range();
+                check(
+                    "the road-wheel steering angle (steering wheel / ratio)",
+                    lo / ratio,
+                    hi / ratio,
+                )?;
+            }
+            SteerInput::PerWheel(tables) => {
+                if tables.len() != wheels.len() {
+                    return Err(Error::Parameter(format!(
+                        "per-wheel steering is given for {} wheels but the vehicle has {}",
+                        tables.len(),
+                        wheels.len()
+                    )));
+                }
+                for (k, (t, w)) in tables.iter().zip(wheels).enumerate() {
+                    let Some(t) = t else { continue };
+                    if !w.steerable {
+                        return Err(Error::Parameter(format!(
+                            "wheel {k} has a steering table but does not steer (make it \
+                             steerable)"
+                        )));
+                    }
+                    let (lo, hi) = t.range();
+                    check(&format!("wheel {k} steering angle"), lo, hi)?;
+                }
+                return Ok(());
+            }
+        }
+        // Through the linkage: the reference's extreme angles must keep every wheel short of
+        // 90 deg.
+        let geometry = LinkageGeometry::of(wheels);
+        let Some(x_ref) = geometry.x_ref else {
+            return Ok(());
+        };
+        let delta_max = match input {
+            SteerInput::RoadWheel(t) => t.range().0.abs().max(t.range().1.abs()),
+            SteerInput::SteeringWheel(t) => {
+                t.range().0.abs().max(t.range().1.abs()) / self.ratio.unwrap_or(1.0)
+            }
+            SteerInput::PerWheel(_) => 0.0,
+        };
+        let tan = delta_max.tan();
+        for (k, w) in wheels.iter().enumerate().filter(|(_, w)| w.steerable) {
+            let lever = (geometry.x_s - x_ref).abs();
+            let inward = self.ackermann * (w.center.y - geometry.y_c).abs() * tan;
+            if lever - inward <= 0.0 {
+                return Err(Error::Parameter(format!(
+                    "wheel {k} would turn past 90 deg at the largest steering angle ({:.1} deg \
+                     at the reference): the steering input is too large for the vehicle's \
+                     wheelbase and track",
+                    delta_max.to_degrees()
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Point;
+
+    /// Four wheels: wheelbase 2.75 m, track 1.55 m, front steered, CG 1.2 m behind the front
+    /// axle.
+    fn car() -> Vec<WheelSpec> {
+        [(1.2, 0.775), (1.2, -0.775), (-1.55, 0.775), (-1.55, -0.775)]
+            .iter()
+            .enumerate()
+            .map(|(k, &(x, y))| WheelSpec {
+                center: Point::new(x, y, -0.25),
+                radius: 0.3,
+                steerable: k < 2,
+                static_load: 3600.0,
+                spring_rate: 25e3,
+                damping: 1.8e3,
+            })
+            .collect()
+    }
+
+    fn angles(s: &Steering, wheels: &[WheelSpec], delta: Real) -> Vec<Real> {
+        let g = LinkageGeometry::of(wheels);
+        wheels
+            .iter()
+            .map(|w| s.wheel_angle(&g, delta, w.steerable, w.center.x, w.center.y))
+            .collect()
+    }
+
+    #[test]
+    fn full_ackermann_points_every_wheel_at_the_turn_centre() {
+        let wheels = car();
+        let s = Steering::default();
+        for delta in [0.05_f64, 0.3, -0.5] {
+            let a = angles(&s, &wheels, delta);
+            // cot(outer) - cot(inner) = track / wheelbase, the inner being the left wheel in a
+            // left turn; both wheels' normals meet on the rear axle's line at R = L / tan(delta).
+            let (left, right) = (a[0], a[1]);
+            let expected = 1.55 / 2.75;
+            let got = 1.0 / right.tan() - 1.0 / left.tan();
+            assert!(
+                (got - expected).abs() < 1e-12,
+                "{delta}: {got} vs {expected}"
+            );
+            let r = 2.75 / delta.tan();
+            assert!((2.75 / left.tan() - (r - 0.775)).abs() < 1e-12);
+            assert!((a[2], a[3]) == (0.0, 0.0));
+            if delta > 0.0 {
+                assert!(left > delta && right < delta);
+            }
+        }
+    }
+
+    #[test]
+    fn parallel_steer_turns_both_alike_and_a_fraction_scales_the_difference() {
+        let wheels = car();
+        let parallel = Steering {
+            ackermann: 0.0,
+            ..Steering::default()
+        };
+        let a = angles(&parallel, &wheels, 0.3);
+        assert_eq!((a[0], a[1]), (0.3, 0.3));
+        // At a small angle the inner-outer difference is the fraction times Ackermann's.
+        let half = Steering {
+            ackermann: 0.5,
+            ..Steering::default()
+        };
+        let (h, f) = (
+            angles(&half, &wheels, 0.01),
+            angles(&Steering::default(), &wheels, 0.01),
+        );
+        let ratio = (h[0] - h[1]) / (f[0] - f[1]);
+        assert!((ratio - 0.5).abs() < 1e-3, "{ratio}");
+    }
+
+    #[test]
+    fn inputs_are_checked_against_the_wheels() {
+        let wheels = car();
+        let table = |v: Real| Table::new("steer", &[(0.0, 0.0), (1.0, v)]).unwrap();
+        let s = Steering::default();
+        assert!(s
+            .validate_input(&SteerInput::RoadWheel(table(0.5)), &wheels)
+            .is_ok());
+        assert!(s
+            .validate_input(&SteerInput::RoadWheel(table(1.1)), &wheels)
+            .is_err());
+        // A steering-wheel angle needs the ratio.
+        let sw = SteerInput::SteeringWheel(table(6.0));
+        assert!(s.validate_input(&sw, &wheels).is_err());
+        let with_ratio = Steering {
+            ratio: Some(16.0),
+            ..Steering::default()
+        };
+        assert!(with_ratio.validate_input(&sw, &wheels).is_ok());
+        assert_eq!(with_ratio.reference_angle(&sw, 0.5), Some(3.0 / 16.0));
+        // Per-wheel tables: one per wheel, only on steerable wheels.
+        let per = |k: usize| {
+            let mut v: Vec<Option<Table>> = vec![None; 4];
+            v[k] = Some(table(0.2));
+            SteerInput::PerWheel(v)
+        };
+        assert!(s.validate_input(&per(1), &wheels).is_ok());
+        assert!(s.validate_input(&per(2), &wheels).is_err());
+        assert!(Steering {
+            ackermann: 2.0,
+            ..Steering::default()
+        }
+        .validate()
+        .is_err());
+        assert!(Steering {
+            ratio: Some(0.5),
+            ..Steering::default()
+        }
+        .validate()
+        .is_err());
+    }
+}
