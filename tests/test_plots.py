@@ -120,6 +120,33 @@ def test_rolled_box_silhouette_is_the_wider_strip() -> None:
     )
 
 
+def test_silhouette_where_geos_meets_a_non_noded_intersection() -> None:
+    # The generated sedan at rest after the demo's impact (tilted 0.2 deg): GEOS's union of its
+    # projected triangles raised "TopologyException: found non-noded intersection"; they are
+    # united again snapped to SNAP_GRID (1 um). The outline covers every projected vertex and
+    # reaches the projection's bounds (to the snapping).
+    car = cs.Vehicle.generate("sedan", name="red")
+    p = np.array([1.3421106093799675, -0.9782412717082506, 0.5471214573812396])
+    r = np.array(
+        [
+            [0.04828542092909405, -0.9988302382733881, -0.0025832608128058022],
+            [0.9988319826573678, 0.048289805862297586, -0.0016628501235617596],
+            [0.001785650148272198, -0.0024999521012177275, 0.9999952808353846],
+        ]
+    )
+    world = (car.body_vertices @ r.T + p)[:, :2]
+    tri = world[np.asarray(car.mesh.faces)]
+    with pytest.raises(shapely.errors.GEOSException, match="non-noded"):
+        shapely.union_all(shapely.polygons(tri))  # what the picture met
+    sil = silhouette(car, p, r)
+    assert sil.geom_type == "Polygon"
+    assert np.allclose(shapely.bounds(sil), [*world.min(0), *world.max(0)], rtol=0, atol=2e-6)
+    assert shapely.buffer(sil, 2e-6).contains(shapely.multipoints(world))
+    # the area of the snapped union is the unsnapped one's to round-off (1 nm grid)
+    fine = shapely.union_all(shapely.polygons(tri), grid_size=1e-9)
+    assert sil.area == pytest.approx(fine.area, abs=1e-5)
+
+
 def test_drawn_box_outlines_equal_the_rectangles(seed90: cs.Result) -> None:
     fig = plot_impact(seed90)
     imp = seed90.impacts[0]

@@ -56,6 +56,10 @@ SLIVER_AREA = 1e-4
 # A rotation is a pure yaw when its z column is (0, 0, 1) to this tolerance: the outline is
 # then the body-frame one turned and moved (exact), else the mesh is projected afresh.
 YAW_ONLY_TOL = 1e-12
+# When GEOS cannot union the projected triangles as they are (a "non-noded intersection" of
+# nearly parallel edges, met on a generated sedan tilted 0.2 deg), they are united again with
+# their vertices snapped to this grid (m): far below what a picture shows.
+SNAP_GRID = 1e-6
 
 
 def vehicle_colour(index: int) -> str:
@@ -90,7 +94,11 @@ def _projected_union(xy: Array, faces: NDArray[np.int64]) -> Any:
             "drawn top-down"
         )
     # Shared vertices are projected once, so neighbouring triangles share exact edges.
-    union = shapely.union_all(shapely.polygons(tri[keep]))
+    polygons = shapely.polygons(tri[keep])
+    try:
+        union = shapely.union_all(polygons)
+    except shapely.errors.GEOSException:
+        union = shapely.union_all(polygons, grid_size=SNAP_GRID)
     return _clean(union)
 
 
