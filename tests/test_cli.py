@@ -177,6 +177,35 @@ def test_progress_flag_draws_the_bar(tmp_path: Path) -> None:
     assert done.stderr.endswith("100.0 %  t = 1000.000 of 1000 s\n")
 
 
+POLE = """format_version = 1
+[run]
+duration = "0.2 s"
+dt = "1 ms"
+[[vehicles]]
+name = "red"
+box = { length = "4.5 m", width = "1.8 m", height = "1.4 m" }
+mass = "1450 kg"
+position = ["-3 m", "0.4 m", "0.7 m"]
+speed = "10 m/s"
+[[obstacles]]
+name = "pole"
+pole = { diameter = "0.3 m", height = "6 m" }
+position = [0, 0, 0]
+"""  # a box car into a pole, no ground: one exchange, at 0.17 s
+
+
+def test_run_draws_an_impact_with_a_fixed_obstacle(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Was: "impact 1 is with the fixed obstacle 'pole': no picture of it", no impact-1.png.
+    (tmp_path / "pole.toml").write_text(POLE, encoding="utf-8")
+    assert main(["run", str(tmp_path / "pole.toml"), "--out", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    assert "no picture" not in out and str(tmp_path / "out" / "impact-1.png") in out
+    img = matplotlib.image.imread(tmp_path / "out" / "impact-1.png")
+    assert img.shape[:2] == (984, 1800) and float(np.ptp(img[..., :3])) > 0.5
+
+
 # -- check ---------------------------------------------------------------------------------
 
 

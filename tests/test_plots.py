@@ -67,6 +67,14 @@ def patch_polygon(fig, gid: str) -> shapely.Geometry:
     return out
 
 
+def patch_polygon_in(fig, ax, gid: str) -> shapely.Geometry:
+    """patch_polygon of one panel."""
+    found = [a for a in ax.patches if a.get_gid() == gid]
+    assert len(found) == 1, gid
+    rings = [shapely.Polygon(r) for r in found[0].get_path().to_polygons(closed_only=True)]
+    return shapely.union_all(rings)
+
+
 def arrows(fig, colour: str) -> list[np.ndarray]:
     """(tail, head) of the FancyArrowPatches of one colour, per arrow (data units, m)."""
     from matplotlib.colors import to_rgba
@@ -309,6 +317,40 @@ def test_real_mesh_impact_draws_the_true_outlines(tmp_path: Path) -> None:
         expected = silhouette(result.vehicle(name), p, r)
         assert drawn.symmetric_difference(expected).area < 1e-9
     assert (tmp_path / "sedan_pickup.png").stat().st_size > 0
+
+
+def test_an_impact_with_a_fixed_obstacle_is_drawn(tmp_path: Path) -> None:
+    # Was: plot_impact drew two vehicles only (a KeyError on the obstacle's delta-V), and
+    # `crashsim run` wrote no impact-N.png for an obstacle. The pole is drawn where it stands,
+    # the impulse on it at the centroid in grey; only the car has a velocity and a delta-V.
+    car = cs.Vehicle.box(*RED, mass=1450.0, name="red")
+    scene = cs.Scene(depth_of_penetration=0.030)
+    scene.add(car, position=(-3.0, 0.4, 0.7), velocity=(10.0, 0.0, 0.0))
+    scene.add_obstacle(cs.Obstacle.pole(0.3, name="pole"), (0.0, 0.0, 0.0))
+    result = scene.run(duration=0.2, dt=1e-3)
+    (imp,) = result.impacts
+    assert imp.obstacle == "pole"
+    fig = plot_impact(result, tmp_path / "impact-1.png")
+    assert (tmp_path / "impact-1.png").stat().st_size > 10_000
+    pole = cs.Obstacle.pole(0.3)
+    for drawn in (patch_polygon_in(fig, ax, "obstacle:pole") for ax in fig.axes):
+        outline = shapely.union_all(shapely.polygons(pole.mesh.vertices[pole.mesh.faces][..., :2]))
+        assert drawn.symmetric_difference(outline).area < 1e-9  # at (0, 0), heading 0
+    j_unit = legend_scale(fig, "impulse on the vehicle") * 1e3  # N s per m of arrow
+    v_unit = legend_scale(fig, "delta-V of the CG")
+    (on_pole,) = arrows(fig, plots.OBSTACLE_EDGE)
+    assert np.allclose(on_pole[0], imp.centroid[:2], rtol=0, atol=1e-9)
+    assert np.allclose(on_pole[1] - on_pole[0], imp.impulse_on("pole")[:2] / j_unit, atol=1e-9)
+    red = {tuple(np.round(a[0], 9)): a[1] - a[0] for a in arrows(fig, "#d62728")}
+    assert len(red) == 3  # velocity at first overlap, impulse on red, delta-V
+    cg = result.pose("red", imp.time)[0][:2]
+    assert np.allclose(red[tuple(np.round(cg, 9))], imp.delta_v["red"][:2] / v_unit, atol=1e-9)
+    caption = fig.get_suptitle()
+    assert caption.startswith("Impact 1 of 1: red and pole")
+    assert f"delta-V red {imp.speed_change('red'):.2f} m/s" in caption
+    assert "pole is fixed (no delta-V)" in caption
+    texts = [t.get_text() for leg in fig.legends for t in leg.get_texts()]
+    assert "pole: fixed obstacle (infinite mass)" in texts
 
 
 def test_impact_errors(seed90: cs.Result) -> None:

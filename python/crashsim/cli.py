@@ -469,11 +469,7 @@ def _view(args: argparse.Namespace) -> int:
 def _pictures(result: Result, out: Path) -> list[Path]:
     plot_trajectories(result, out / TRAJECTORIES_FILE)
     paths = [out / TRAJECTORIES_FILE]
-    for k, imp in enumerate(result.impacts):
-        if imp.obstacle is not None:
-            # plot_impact draws two vehicles; an obstacle's picture is not made yet
-            print(f"impact {k + 1} is with the fixed obstacle {imp.obstacle!r}: no picture of it")
-            continue
+    for k in range(len(result.impacts)):  # with a vehicle or a fixed obstacle
         path = out / f"impact-{k + 1}.png"
         plot_impact(result, path, impact=k)
         paths.append(path)
