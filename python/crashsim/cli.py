@@ -461,7 +461,7 @@ def _html_path(args: argparse.Namespace, out: Path) -> Path | None:
 
 
 def _view(args: argparse.Namespace) -> int:
-    path = view_report(args.report, args.out)
+    path = view_report(args.report, args.out, force=args.force)
     print(f"wrote: {path}")
     return 0
 
@@ -951,15 +951,24 @@ def _parser() -> argparse.ArgumentParser:
         help="write the case page (offline HTML) of a report.json written by `run --out`",
         description="Writes the case page of a run (docs/viewer.md) from the report.json "
         "that `crashsim run --out DIR` wrote and the files beside it: time-histories.csv (the "
-        "motion) and the meshes (the report's own, when written with meshes, else motion.glb).",
+        "motion) and the meshes (the report's own, when written with meshes, else motion.glb). "
+        "An existing page is replaced only when it was written from a report too (or with "
+        "--force).",
         epilog="Exit codes: 0 success, 1 writing the page failed, 2 bad input (a missing or "
-        "malformed report or file beside it, an unwritable --out).",
+        "malformed report or file beside it, an unwritable --out, a page there that was not "
+        "written from a report).",
     )
     view_cmd.add_argument("report", type=Path, help="the report.json of a run")
     view_cmd.add_argument(
         "--out",
         metavar="PATH",
         help=f"the page to write (default: {PAGE_FILE} beside the report)",
+    )
+    view_cmd.add_argument(
+        "--force",
+        action="store_true",
+        help="replace the page even when it is not one written from a report (e.g. the richer "
+        "page of `run --html`: tyre marks, zones, rest outlines)",
     )
     view_cmd.set_defaults(func=_view)
     check = sub.add_parser(
