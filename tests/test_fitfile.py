@@ -361,3 +361,30 @@ def test_the_format_document_names_every_fit_key_and_evidence_type() -> None:
     words = {*FIT_KEYS, *EVIDENCE_KEYS, *(k for _, keys, _ in EVIDENCE_KEYS.values() for k in keys)}
     missing = sorted(k for k in words if f"`{k}`" not in doc)
     assert not missing, f"docs/scene-format.md does not describe {missing}"
+
+
+def test_the_docs_give_the_fit_defaults_the_code_has() -> None:
+    # Was: scene-format.md gave step 0.001 and seed "fresh entropy", fitting.md step 1e-2 and
+    # seed 0; the code's are cs.fit's keyword defaults (the file's [fit] leaves them to it).
+    import inspect
+    import re
+
+    defaults = {k: p.default for k, p in inspect.signature(cs.fit).parameters.items()}
+    table = (REPO / "docs" / "scene-format.md").read_text(encoding="utf-8")
+    section = table[table.index("`[fit]`:\n") : table.index("`[[evidence]]`, one section")]
+    rows = [r.split("|") for r in section.splitlines() if r.startswith("| `")]
+    for key in ("seed", "popsize", "maxiter", "max_nfev", "step", "scan", "scan_points"):
+        # | `key`, `key2` | type | default, default2 | meaning |
+        cells = next(c for c in rows if f"`{key}`" in c[1])
+        names = re.findall(r"`(\w+)`", cells[1])
+        value = [w.strip().strip("`") for w in cells[3].split(",")][names.index(key)]
+        expected = defaults[key]
+        if isinstance(expected, bool):
+            assert value == str(expected).lower(), (key, value)
+        else:
+            assert float(value) == expected, (key, value, expected)
+    fitting = (REPO / "docs" / "fitting.md").read_text(encoding="utf-8")
+    assert float(re.search(r"a step of `step` = ([0-9.e-]+)", fitting).group(1)) == defaults["step"]
+    assert int(re.search(r"`seed` \(default (\d+)\)", fitting).group(1)) == defaults["seed"]
+    with pytest.raises(FitFileError, match=r"\(default 0\.01\)"):
+        _load(FIT.replace("[fit]\n", "[fit]\nstep = 0.7\n") + EV)

@@ -71,6 +71,7 @@ __all__ = ["FitError", "FitResult", "ItemResidual", "fit"]
 
 Array = NDArray[np.float64]
 METHODS = ("least_squares", "global")
+STEP = 1e-2  # the Jacobian's difference step by default, a fraction of each unknown's range
 CHI2_95 = 3.841458820694124  # 95 % quantile of chi^2 with one degree of freedom
 XTOL, FTOL, GTOL = 1e-5, 1e-10, 1e-10  # the local solve's tolerances (scaled unknowns)
 Z_95 = 1.959963984540054  # two-sided 95 % of the normal distribution
@@ -784,7 +785,7 @@ def fit(
     progress: bool | Callable[[int, float], None] = True,
     seed: int | None = 0,
     threads: int | None = None,
-    step: float = 1e-2,
+    step: float = STEP,
     max_nfev: int = 60,
     popsize: int = 8,
     maxiter: int = 30,
