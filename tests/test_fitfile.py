@@ -247,6 +247,46 @@ def test_the_answer_in_the_files_units() -> None:
     assert "red.speed" in format_fit(fit)  # without a spec: SI
 
 
+def test_the_picture_in_the_files_units() -> None:
+    # Was: fit.png's scans along red.speed in m/s while the table gave the file's km/h.
+    case = load_scene(EXAMPLE)
+    spec = case.fit
+    options = dict(spec.kwargs(), scan_points=3, samples=0)
+    fit = cs.fit(case.scene, spec.unknowns, spec.evidence[:2], dt=case.run.dt,
+                 max_duration=case.run.longest, progress=False, **options)  # fmt: skip
+    assert spec.display_units() == {"red.speed": ("km/h", KMH), "red.heading": ("deg", DEG)}
+    fig = fit.plot(units=spec.display_units())
+    panels = {a.get_xlabel(): a for a in fig.axes[1:]}
+    assert set(panels) == {"red.speed (km/h)", "red.heading (deg)"}
+    for name, label, unit in (("red.speed", "red.speed (km/h)", KMH),
+                              ("red.heading", "red.heading (deg)", DEG)):  # fmt: skip
+        xs, _ = fit.scan[name]
+        (scan,) = [line for line in panels[label].lines if line.get_label() == "scan"]
+        assert np.allclose(scan.get_xdata(), xs / unit, rtol=1e-12, atol=0)
+        best = [line for line in panels[label].lines if line.get_color() == "k"]
+        assert best[0].get_xdata()[0] == pytest.approx(fit.values[name] / unit, rel=1e-12)
+    assert fit.values["red.speed"] / KMH == pytest.approx(60.0, rel=5e-3)  # the table's 60
+    # without units: SI, angles in degrees
+    plain = {a.get_xlabel() for a in fit.plot().axes[1:]}
+    assert plain == {"red.speed (m/s)", "red.heading (deg)"}
+
+
+def test_crashsim_fit_draws_fit_png_in_the_files_units(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    drawn: list[object] = []
+    plot = cs.FitResult.plot
+
+    def spy(self, path=None, units=None):  # type: ignore[no-untyped-def]
+        drawn.append(units)
+        return plot(self, path, units)
+
+    monkeypatch.setattr(cs.FitResult, "plot", spy)
+    assert main(["fit", str(EXAMPLE), "--out", str(tmp_path / "fit"), "--no-scan"]) == 0
+    assert drawn == [{"red.speed": ("km/h", KMH), "red.heading": ("deg", DEG)}]
+    assert (tmp_path / "fit" / "fit.png").stat().st_size > 10_000
+
+
 # -- crashsim fit -------------------------------------------------------------------------------
 
 

@@ -624,7 +624,7 @@ def _fit(args: argparse.Namespace) -> int:
     if not args.no_pictures:
         import matplotlib.pyplot as plt
 
-        fig = fit.plot(out / FIT_PICTURE)
+        fig = fit.plot(out / FIT_PICTURE, units=spec.display_units())  # the table's units
         plt.close(fig)
         written.append(out / FIT_PICTURE)
     if fit.result is not None and case.output.report:

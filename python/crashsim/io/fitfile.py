@@ -175,6 +175,11 @@ class FitSpec:
         """method, start and the options, as keywords of crashsim.fit."""
         return {"method": self.method, "start": dict(self.start), **self.options}
 
+    def display_units(self) -> dict[str, tuple[str, float]]:
+        """{unknown: (the unit the file wrote its bounds in, SI per unit)}, for
+        FitResult.plot: the picture in the units of the printed table."""
+        return {n: (u, _factor(u)) for n, u in self.units.items()}
+
 
 # -- units written ----------------------------------------------------------------------------
 

@@ -187,13 +187,19 @@ class FitResult:
         v = ", ".join(f"{n}={self.values[n]:.5g}" for n in self.names)
         return f"FitResult({v}; chi2={self.objective:.4g}, runs={self.n_runs})"
 
-    def plot(self, path: str | PathLike[str] | None = None) -> Any:
+    def plot(
+        self,
+        path: str | PathLike[str] | None = None,
+        units: Mapping[str, tuple[str, float]] | None = None,
+    ) -> Any:
         """The fitted run over the evidence (top-down: paths, rest outlines and headings with
         tolerance circles, marks, impact points) and the objective along each unknown around
-        the optimum; written to ``path`` (PNG, SVG, PDF) when given. Returns the Figure."""
+        the optimum; written to ``path`` (PNG, SVG, PDF) when given. Returns the Figure.
+        ``units``: {unknown: (unit name, SI per unit)} to show unknowns in (default SI, angles
+        in degrees; ``FitSpec.display_units()`` gives a scene file's)."""
         from crashsim.studies.fitplot import plot_fit
 
-        return plot_fit(self, path)
+        return plot_fit(self, path, units)
 
     def to_dict(self) -> dict[str, Any]:
         """The fit as plain data for JSON (SI units and radians, as the attributes): the
