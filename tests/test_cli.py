@@ -380,6 +380,65 @@ def test_out_on_read_only_folder_exits_2(
     assert "cannot write into the output folder" in capsys.readouterr().err
 
 
+def test_demo_runs_the_intersection_case_to_rest_and_writes_its_folder(tmp_path: Path) -> None:
+    # Was: `crashsim demo` ran the seed's box-car impact without a ground and wrote nothing.
+    # Now: generated cars on a ground, run to rest, a lamp post; the report's essentials
+    # printed, the report, pictures and case page written to ./crashsim-demo-out.
+    done = crashsim("demo", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr
+    out = tmp_path / "crashsim-demo-out"  # the default folder, in the current one
+    report = json.loads((out / "report.json").read_text(encoding="utf-8"))
+    text = done.stdout
+    assert text.startswith("crashsim demo: red (generated sedan, ")
+    # the case: a ground, two cars at rest, an impact between them and one with the lamp post
+    assert report["run"]["on_ground"]
+    pairs = [tuple(i["vehicles"]) for i in report["impacts"]]
+    assert pairs[0] == ("red", "blue") and ("blue", "lamp post") in pairs
+    assert all(r["at_rest"] for r in report["run_out"])
+    # what it prints is the report's: every impact's delta-V, PDOF and energy, each rest
+    for imp in report["impacts"]:
+        a, b = imp["vehicles"]
+        assert (f"impact {imp['number']}: {a} -> {b} at {imp['exchange_time']:.3f} s, closing "
+                f"{imp['closing_speed']:.2f} m/s") in text  # fmt: skip
+        assert f"energy dissipated {imp['energy']['dissipated'] / 1e3:.1f} kJ" in text
+        for p in imp["parties"]:
+            dv = p["delta_v"]["magnitude"]
+            assert (f"{p['name']:<5} delta-V {dv:.2f} m/s ({dv * 3.6:.1f} km/h), PDOF "
+                    f"{p['pdof_deg']:.0f} deg ({p['clock']} o'clock)") in text  # fmt: skip
+    for r in report["run_out"]:
+        x, y = r["end"]["position"][:2]
+        rest = f"{r['vehicle']:<5} at rest at {r['rest_time']:.2f} s at ({x:.2f}, {y:.2f}) m"
+        assert rest in text
+    # the files it names
+    names = ["report.json", "time-histories.csv", "trajectories.png", "motion.glb", "case.html"]
+    names += [f"impact-{k}.png" for k in range(1, len(pairs) + 1)]
+    assert sorted(p.name for p in out.iterdir()) == sorted(names)
+    assert "wrote: " + ", ".join(str(Path("crashsim-demo-out") / n) for n in
+                                 [names[0], names[1], names[2], *names[5:], names[3], names[4]]
+                                 ) in text  # fmt: skip
+    for name in names:
+        if name.endswith(".png"):
+            img = matplotlib.image.imread(out / name)
+            assert img.shape[0] > 500 and float(np.ptp(img[..., :3])) > 0.5, name
+    from crashsim.io.viewer.page import page_source
+
+    assert page_source(out / "case.html") == "run"
+    assert f"open {Path('crashsim-demo-out') / 'case.html'} in a browser" in text
+
+
+def test_demo_out_and_speed(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "demo"
+    assert main(["demo", "--out", str(out), "--speed", "50 km/h", "--no-pictures"]) == 0
+    text = capsys.readouterr().out
+    assert "at 50 km/h into the left side of blue" in text
+    assert sorted(p.name for p in out.iterdir()) == ["case.html", "report.json",
+                                                     "time-histories.csv"]  # fmt: skip
+    (tmp_path / "file").write_text("x", encoding="utf-8")
+    assert main(["demo", "--out", str(tmp_path / "file")]) == 2  # checked before the run
+    assert "is a file" in capsys.readouterr().err
+
+
 def test_demo_speed_negative_exits_2_with_prefix(capsys: pytest.CaptureFixture[str]) -> None:
     # Was: exit 1 and "no impulse exchange happened within the run" without the prefix.
     for argv in (["demo", "--speed", "-5"], ["demo", "--speed=-5"], ["demo", "--speed", "0"]):
@@ -392,7 +451,7 @@ def test_demo_speed_negative_exits_2_with_prefix(capsys: pytest.CaptureFixture[s
 
 
 def test_demo_without_an_exchange_exits_1_with_prefix(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["demo", "--duration", "10 ms"]) == 1
+    assert main(["demo", "--impact-only", "--duration", "10 ms"]) == 1
     out, err = capsys.readouterr()
     assert out == ""
     assert err.startswith("crashsim: error: no impulse exchange happened within the 0.01 s run")
@@ -473,7 +532,7 @@ def test_ctrl_c_exits_130(tmp_path: Path) -> None:
 
 
 def test_demo_and_montecarlo_still_run(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["demo"]) == 0
+    assert main(["demo", "--impact-only"]) == 0
     assert "red's travel past first overlap: 0.4023 m" in capsys.readouterr().out
     assert main(["dtp-montecarlo", "--samples", "2000", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["samples"] == 2000
