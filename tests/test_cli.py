@@ -437,6 +437,10 @@ def test_demo_out_and_speed(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
     (tmp_path / "file").write_text("x", encoding="utf-8")
     assert main(["demo", "--out", str(tmp_path / "file")]) == 2  # checked before the run
     assert "is a file" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as done:
+        main(["demo", "--speed", "3 kg"])
+    assert done.value.code == 2
+    assert "'3 kg': give a number of mph or a speed with its unit" in capsys.readouterr().err
 
 
 def test_demo_speed_negative_exits_2_with_prefix(capsys: pytest.CaptureFixture[str]) -> None:
