@@ -119,10 +119,28 @@ def _clean(geom: Any) -> Any:
 
 
 @functools.lru_cache(maxsize=32)
+def _closed(vehicle: Vehicle) -> bool:
+    """Whether the vehicle's mesh bounds a solid (watertight, consistently wound outward): its
+    outline seen from above is then the union of the triangles facing up alone (the top of the
+    solid over every point of its shadow), half of them."""
+    mesh = vehicle.mesh
+    return bool(mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0.0)
+
+
+@functools.lru_cache(maxsize=32)
 def _body_silhouette(vehicle: Vehicle) -> Any:
     """The outline of the body-frame mesh projected along body z (m, CG at the origin)."""
+    return _projected_union(*_shadow_faces(vehicle, vehicle.body_vertices))
+
+
+def _shadow_faces(vehicle: Vehicle, points: Array) -> tuple[Array, NDArray[np.int64]]:
+    """The x-y of the mesh's vertices at ``points`` (n, 3) and the triangles whose union is
+    its outline seen from above: those facing up for a closed mesh, else all."""
     faces = np.asarray(vehicle.mesh.faces, dtype=np.int64)
-    return _projected_union(vehicle.body_vertices[:, :2].copy(), faces)
+    if _closed(vehicle):
+        tri = points[faces]
+        faces = faces[np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])[:, 2] > 0.0]
+    return points[:, :2].copy(), faces
 
 
 def silhouette(
@@ -146,8 +164,7 @@ def silhouette(
         return affinity.affine_transform(
             base, [r[0, 0], r[0, 1], r[1, 0], r[1, 1], float(p[0]), float(p[1])]
         )
-    world = vehicle.body_vertices @ r.T + p
-    return _projected_union(world[:, :2].copy(), np.asarray(vehicle.mesh.faces, dtype=np.int64))
+    return _projected_union(*_shadow_faces(vehicle, vehicle.body_vertices @ r.T + p))
 
 
 # -- drawing helpers -----------------------------------------------------------------------
