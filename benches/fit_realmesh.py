@@ -132,9 +132,11 @@ def main() -> int:
             else:
                 err.append(f"{k} {math.degrees(fit.values[k] - v):+.3f} deg")
         ranges = ", ".join(
-            f"{k} {v[0]:.4g}..{v[1]:.4g}" for k, v in fit.ranges.items()
+            f"{k} {v[0]:.4g}..{v[1]:.4g}" if v else f"{k} {fit.verdict.range_note(k)}"
+            for k, v in fit.ranges.items()
         )
-        print(f"fit {rep + 1}: {wall:.1f} s, {fit.n_runs} runs, chi2 {fit.objective:.3g}; "
+        print(f"fit {rep + 1}: {wall:.1f} s, {fit.n_runs} runs, chi2 {fit.objective:.3g} "
+              f"({fit.verdict.status}); "
               f"errors {', '.join(err)}; load average {load0:.2f} -> "
               f"{os.getloadavg()[0]:.2f}", flush=True)  # fmt: skip
         print(f"   95 % ranges (Jacobian): {ranges}", flush=True)

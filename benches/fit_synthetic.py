@@ -240,6 +240,7 @@ def _calibrate(a: argparse.Namespace) -> int:
     kinds = ("Jacobian", "sampling", "all at once")
     inside = {(w, k): 0 for w in kinds for k in UNKNOWNS}
     joint = dict.fromkeys(kinds, 0)
+    verdicts: dict[str, int] = {}
     for trial in range(a.seed, a.seed + n):
         t = time.monotonic()
         scene, truth, bounds = case(trial % 10)
@@ -254,13 +255,17 @@ def _calibrate(a: argparse.Namespace) -> int:
         ):
             if ranges is None:
                 continue
-            hits = {k: ranges[k][0] <= truth[k] <= ranges[k][1] for k in UNKNOWNS}
+            # a range the verdict withholds (None) holds nothing
+            hits = {k: ranges[k] is not None and ranges[k][0] <= truth[k] <= ranges[k][1]
+                    for k in UNKNOWNS}  # fmt: skip
             for k in UNKNOWNS:
                 inside[w, k] += hits[k]
             joint[w] += all(hits.values())
             line.append(f"{w} {sum(hits.values())}/{len(hits)}")
         ess = f", ess {fit.samples.ess:.0f}" if fit.samples is not None else ""
-        print(f"trial {trial} (scene {trial % 10}): chi2 {fit.objective:.3g}, inside: "
+        verdicts[fit.verdict.status] = verdicts.get(fit.verdict.status, 0) + 1
+        print(f"trial {trial} (scene {trial % 10}): chi2 {fit.objective:.3g}, "
+              f"{fit.verdict.status}, inside: "
               f"{', '.join(line)}; {fit.n_runs} runs{ess}, {time.monotonic() - t:.1f} s",
               flush=True)  # fmt: skip
     for w in kinds:
@@ -270,6 +275,7 @@ def _calibrate(a: argparse.Namespace) -> int:
                 f"{w} (the box of the joint 95 % ellipsoid): true value inside its range: ")
         print(head + ", ".join(f"{k} {inside[w, k]}/{n}" for k in UNKNOWNS)
               + f"; all four at once {joint[w]}/{n}")  # fmt: skip
+    print("verdicts: " + ", ".join(f"{k} {v}/{n}" for k, v in sorted(verdicts.items())))
     return 0
 
 

@@ -459,7 +459,21 @@ def test_demo_without_an_exchange_exits_1_with_prefix(capsys: pytest.CaptureFixt
     out, err = capsys.readouterr()
     assert out == ""
     assert err.startswith("crashsim: error: no impulse exchange happened within the 0.01 s run")
-    assert err.count("\n") == 1 and "--duration" in err
+    assert err.count("\n") == 1 and "--duration" in err and "a higher --speed" in err
+
+
+def test_demo_too_fast_to_exchange_advises_a_lower_speed(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # issue 24: at 1e9 mph red passed through blue in nanoseconds and was told "a higher
+    # --speed"
+    assert main(["demo", "--impact-only", "--speed", "1e9"]) == 1
+    err = capsys.readouterr().err
+    assert err == (
+        "crashsim: error: no impulse exchange happened within the 0.5 s run: red at 1e+09 mph "
+        "passed through blue without one (an overlap that brief is taken for a graze); give a "
+        "lower --speed\n"
+    )
 
 
 @pytest.mark.parametrize(

@@ -83,6 +83,26 @@ def test_ground_frictions_zones_and_heights() -> None:
     assert default.core_kwargs()["body_friction"] == d["body_friction"]
 
 
+@pytest.mark.parametrize("height", [1e30, -2e6])
+def test_a_ground_height_past_the_world_is_refused(height) -> None:
+    # issue 24: at 1e30 m a locked skid reported rest at 1.478 s while still at 4.2 m/s
+    # (the springs' travel was below the height's rounding)
+    with pytest.raises(cs.ParameterError, match=r"ground height = .* within \+-1e6 m"):
+        cs.Ground(height=height)
+    assert cs.Ground(height=-4.5e5).height == -4.5e5  # the Dead Sea to far above Everest
+
+
+def test_a_terrain_or_a_vehicle_past_the_world_is_refused() -> None:
+    far = trimesh.creation.box(extents=(100.0, 100.0, 1.0))
+    far.apply_translation((5.0e6, 0.0, 0.0))  # a national grid's easting
+    with pytest.raises(cs.ParameterError, match="a terrain vertex coordinate = .* within"):
+        cs.Ground(terrain=far)
+    scene = cs.Scene()
+    car = cs.Vehicle.box(4.6, 1.8, 1.4, mass=1500.0, name="car")
+    with pytest.raises(cs.ParameterError, match=r"position x = 2000000 m .* within \+-1e6 m"):
+        scene.add(car, (2.0e6, 0.0, 0.7))
+
+
 def test_overlapping_zones_are_an_error_naming_them() -> None:
     zones = [
         cs.FrictionZone(square(0, 0, 10), "wet asphalt", name="puddle"),
@@ -107,6 +127,15 @@ def test_overlapping_zones_are_an_error_naming_them() -> None:
 def test_bad_zones_are_parameter_errors(zone, match) -> None:
     with pytest.raises(cs.ParameterError, match=match):
         cs.Ground(zones=[zone])
+
+
+def test_a_bow_tie_zone_is_said_to_cross_itself() -> None:
+    # a bow-tie's two lobes cancel: its signed area is 0, and the core says "its corners are
+    # in a line", which they are not
+    with pytest.raises(cs.ParameterError, match="zone 'bow' crosses itself"):
+        cs.Ground(zones=[cs.FrictionZone([(0, 0), (1, 1), (1, 0), (0, 1)], 0.5, name="bow")])
+    with pytest.raises(cs.ParameterError, match="in a line"):  # collinear corners still are
+        cs.Ground(zones=[cs.FrictionZone([(0, 0), (1, 1), (2, 2)], 0.5)])
 
 
 def terrain(size: float = 40.0, slope: float = 0.0) -> trimesh.Trimesh:

@@ -138,3 +138,37 @@ def test_vehicles_overlapping_at_the_start_raise_initial_overlap_error() -> None
     inside = cs.Scene().add(a, position=(0.0, 0.0, 0.7)).add(small, position=(0.0, 0.0, 0.7))
     with pytest.raises(cs.InitialOverlapError, match="'a' and 'small'"):
         inside.run(0.1)
+
+
+BAD_NAMES = [
+    ("red\n", r"U\+000A"),  # a newline split the CSV header
+    ("red\u202e", r"U\+202E \(RIGHT-TO-LEFT OVERRIDE\)"),
+    ("\u2066red", r"U\+2066 \(LEFT-TO-RIGHT ISOLATE\)"),
+    ("r\u200fed", r"U\+200F \(RIGHT-TO-LEFT MARK\)"),
+    ("r\ted", r"U\+0009"),
+    ("r\x85ed", r"U\+0085"),  # NEL: a C1 control
+    ("r\u2028ed", r"U\+2028 \(LINE SEPARATOR\)"),
+    ("  ", "non-blank name"),
+]
+
+
+@pytest.mark.parametrize(("name", "why"), BAD_NAMES)
+def test_names_with_control_or_bidirectional_characters_are_refused(name: str, why: str) -> None:
+    # issue 24: names with a newline or U+202E were accepted; every name goes through
+    # crashsim.names.check_name, which names the character's code point
+    box = cs.Vehicle.box(4.0, 1.8, 1.4, mass=1000.0, name="a")
+    wall = cs.Obstacle.wall(length=10.0, name="w")
+    makers = {
+        "a vehicle": lambda: cs.Vehicle.box(4.0, 1.8, 1.4, mass=1000.0, name=name),
+        "a vehicle renamed": lambda: box.renamed(name),
+        "an obstacle": lambda: cs.Obstacle.wall(length=10.0, name=name),
+        "an obstacle renamed": lambda: wall.renamed(name),
+        "a zone": lambda: cs.FrictionZone([(0, 0), (1, 0), (1, 1)], 0.5, name=name),
+        "a wheel": lambda: cs.Wheels.custom([(1.2, 0.7, 0.0), (1.2, -0.7, 0.0), (-1.5, 0.0, 0.0)],
+                                            0.3, [True, True, False], names=["one", "two", name]),
+    }
+    for what, make in makers.items():
+        with pytest.raises(cs.ParameterError, match=why) as e:
+            make()
+        assert what.split(" renamed")[0] in str(e.value), what
+    cs.Vehicle.box(4.0, 1.8, 1.4, mass=1000.0, name="Äpfel 1 (rot)")  # printable text is fine

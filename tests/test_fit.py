@@ -21,6 +21,7 @@ from crashsim.studies.evidence import (
     RestHeading,
     RestPosition,
     TyreMark,
+    check_evidence,
 )
 
 _spec = importlib.util.spec_from_file_location(
@@ -106,6 +107,21 @@ def test_bad_input_is_a_typed_error_naming_the_item(truth0) -> None:
         cs.fit(scene, bounds, ev, patience=2.5, progress=False)
     with pytest.raises(cs.FitError, match="step = 0.5"):
         cs.fit(scene, bounds, ev, step=0.5, progress=False)
+
+
+def test_a_tyre_mark_of_an_unknown_wheel_is_a_fit_error_naming_the_item(truth0) -> None:
+    # issue 24: it was a SceneError from the run's records, naming no item
+    scene, _, bounds, result = truth0
+    path = result.wheel_path("red", "FL")[::50, :2]
+    items = [RestPosition("red", 0.0, 0.0, 0.2), TyreMark("red", "XX", path, 0.1)]
+    with pytest.raises(cs.FitError, match=r"evidence\[1\] TyreMark\(red\): unknown wheel 'XX': "
+                       r"the wheels are front_left, .* \(or FL, FR, RL, RR\)") as e:  # fmt: skip
+        cs.fit(scene, bounds, items, progress=False)
+    assert e.value.key == "evidence[1] TyreMark(red)"
+    # the item's check and the run's records name wheels alike (one lookup)
+    spelled = TyreMark("red", "Front-left", path, 0.1)
+    check_evidence(scene, [spelled])
+    assert spelled.from_result(result) == TyreMark("red", "FL", path, 0.1).from_result(result)
 
 
 # -- recovery ---------------------------------------------------------------------------------

@@ -5,6 +5,7 @@ real meshes against their README and an independent edge count."""
 from __future__ import annotations
 
 import itertools
+import os
 from collections import Counter
 from pathlib import Path
 
@@ -405,3 +406,74 @@ def test_broken_input_is_a_clear_mesh_error(tmp_path: Path) -> None:
         meshio.mesh_quality(raw(np.zeros((3, 3)), np.zeros((0, 3), dtype=np.int64)))
     with pytest.raises(cs.ParameterError, match="same axis"):
         meshio.load_mesh(raw(TET_V, TET_F), up="x", forward="-x")
+
+
+def test_a_path_that_is_no_file_says_what_it_is(tmp_path: Path) -> None:
+    # issue 24: a folder, a named pipe and a link to /dev/zero all said "no mesh file at"
+    folder = tmp_path / "car.ply"
+    folder.mkdir()
+    fifo = tmp_path / "pipe.ply"
+    os.mkfifo(fifo)  # never opened: reading it would wait for a writer
+    zero = tmp_path / "zero.ply"
+    zero.symlink_to("/dev/zero")
+    cases = [
+        (folder, "is a folder, not a file"),
+        (fifo, r"is a named pipe \(FIFO\), not a file"),
+        (zero, r"is a character device \(a link to /dev/zero\), not a file"),
+        (tmp_path / "missing.ply", "no mesh file at"),
+    ]
+    for path, why in cases:
+        with pytest.raises(cs.MeshError, match=why):
+            meshio.load_mesh(path)
+        with pytest.raises(cs.MeshError, match=why):
+            cs.Vehicle.from_mesh(path, mass=1500.0)
+
+
+def test_a_file_not_of_its_format_is_refused_from_its_first_bytes(tmp_path: Path, monkeypatch):
+    # issue 24: a 1 GB all-zero .ply took 24 s and 8.5 GB before trimesh said "Not a ply
+    # file!". A sparse file costs no disk; trimesh's loader must not be reached at all.
+    def never(*args: object, **kwargs: object) -> None:
+        raise AssertionError("trimesh was asked to read a file the header check refuses")
+
+    monkeypatch.setattr(meshio.trimesh, "load_scene", never)
+    cases = {
+        "ply": r'not a \.ply file: it does not start with the line "ply"',
+        "stl": r"not a \.stl file: it is neither ASCII.*nor binary.*84 bytes for the 0 triangles",
+        "obj": r"not a \.obj file: it holds NUL bytes",
+        "off": r'not a \.off file: it does not start with "OFF"',
+        "glb": r'not a \.glb file: it does not start with "glTF"',
+    }
+    for suffix, why in cases.items():
+        path = tmp_path / f"zeros.{suffix}"
+        with open(path, "wb") as f:
+            f.truncate(1 << 30)  # 1 GiB of zeros, sparse
+        with pytest.raises(cs.MeshError, match=why):
+            meshio.load_mesh(path)
+        path.unlink()
+    headers = {
+        "format.ply": (b"ply\nformat utf8 1.0\nend_header\n", "second line is not"),
+        "endless.ply": (b"ply\r\nformat ascii 1.0\r\n" + b"comment x\n" * 200_000,
+                        "does not end"),
+        "short.stl": (b"\0" * 80 + (3).to_bytes(4, "little") + b"\0" * 50,
+                      "234 bytes for the 3 triangles"),
+    }
+    for name, (text, why) in headers.items():
+        (tmp_path / name).write_bytes(text)
+        with pytest.raises(cs.MeshError, match=why):
+            meshio.load_mesh(tmp_path / name)
+
+
+@pytest.mark.parametrize("suffix", ["obj", "stl", "ply", "off", "glb"])
+def test_the_header_check_takes_what_trimesh_writes(tmp_path: Path, suffix: str) -> None:
+    mesh = a_lumpy_mesh()
+    encodings = {"ply": ["ascii", "binary"], "stl": ["ascii", "binary"]}.get(suffix, [None])
+    for encoding in encodings:
+        path = tmp_path / f"lumpy-{encoding}.{suffix}"
+        if suffix == "stl" and encoding == "ascii":
+            path.write_text(trimesh.exchange.stl.export_stl_ascii(mesh))
+        elif suffix == "ply":
+            path.write_bytes(trimesh.exchange.ply.export_ply(mesh, encoding=encoding))
+        else:
+            mesh.export(path)
+        meshio._check_header(path, str(path))  # no error
+        assert len(meshio.load_mesh(path).faces) == 320

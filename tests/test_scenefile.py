@@ -5,6 +5,7 @@ trajectories bit for bit) and one-line errors that name the file and the key."""
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 
 import crashsim as cs
@@ -647,6 +648,50 @@ def test_unreadable_files(tmp_path: Path) -> None:
     bad.write_bytes(b'format_version = 1\ntitle = "caf\xe9"\n')
     with pytest.raises(SceneFileError, match=r"cannot read it"):
         load_scene(bad)
+
+
+def test_a_path_that_is_no_file_is_never_opened_and_says_what_it_is(tmp_path: Path) -> None:
+    # issue 24: a mesh path that is a folder, a named pipe or a link to /dev/zero said "does
+    # not exist"; a scene file that is a named pipe waited for ever, /dev/zero read for ever
+    os.mkfifo(tmp_path / "pipe")
+    (tmp_path / "zero").symlink_to("/dev/zero")
+    (tmp_path / "folder").mkdir()
+    kinds = {
+        "folder": "a folder",
+        "pipe": r"a named pipe \(FIFO\)",
+        "zero": r"a character device \(a link to /dev/zero\)",
+    }
+    for name, kind in kinds.items():
+        with pytest.raises(SceneFileError, match=rf"{name}: is {kind}, not a scene file"):
+            load_scene(tmp_path / name)
+        text = GOOD.replace(BOX, f'mesh = "{name}"', 1)
+        with pytest.raises(SceneFileError, match=rf'vehicles\[0\].mesh: mesh file "{name}" is '
+                           f"{kind}, not a file"):  # fmt: skip
+            loads_scene(text, base_dir=tmp_path)
+        text = GOOD.replace("format_version = 1\n", f'format_version = 1\n[ground]\nterrain = '
+                            f'"{name}"\n', 1)  # fmt: skip
+        with pytest.raises(SceneFileError, match=rf'ground.terrain: terrain file "{name}" is '
+                           f"{kind}, not a file"):  # fmt: skip
+            loads_scene(text, base_dir=tmp_path)
+
+
+def test_names_with_control_or_bidirectional_characters_are_refused_at_their_key() -> None:
+    # issue 24: a name with a newline or U+202E was accepted (the newline split the CSV header)
+    cases = [
+        (scene_text().replace('name = "red"', 'name = "red\\u202E"', 1), "vehicles[0].name",
+         r"U\+202E \(RIGHT-TO-LEFT OVERRIDE\) at position 3"),
+        (scene_text(top='[[obstacles]]\nname = "po\\nle"\npole = { diameter = "0.3 m", height = '
+                        '"6 m" }\nposition = ["0 m", "8 m"]\n'),
+         "obstacles[0].name", r"U\+000A"),
+        (scene_text(top='[ground]\n[[ground.zones]]\nname = "wet\\u2067"\npolygon = [[0, 0], '
+                        '[1, 0], [1, 1]]\nfriction = 0.5\n'),
+         "ground.zones[0].name", r"U\+2067 \(RIGHT-TO-LEFT ISOLATE\)"),
+        (scene_text().replace('name = "red"', 'name = " "', 1), "vehicles[0].name", "non-blank"),
+    ]  # fmt: skip
+    for text, key, why in cases:
+        with pytest.raises(SceneFileError, match=why) as e:
+            loads_scene(text)
+        assert e.value.key == key
 
 
 # -- the documentation ---------------------------------------------------------------------

@@ -189,6 +189,76 @@ def test_grids_are_full_factorial_first_path_slowest() -> None:
             grid(spec)
 
 
+def test_a_grid_is_made_column_by_column_in_product_order() -> None:
+    import itertools
+
+    spec = {"red.speed": [10.0, 11.0, 12.0], "restitution": linspace(0.0, 0.2, 5),
+            "friction": [0.5, 0.7], "red.heading": 0.1}  # fmt: skip
+    g = grid(spec)
+    rows = list(itertools.product([10.0, 11.0, 12.0], np.linspace(0.0, 0.2, 5), [0.5, 0.7],
+                                  [0.1]))  # fmt: skip
+    assert np.array_equal(np.column_stack(list(g.values())), np.array(rows))
+    assert cs.studies.design.grid_size(spec) == 30 == len(rows)
+    assert cs.studies.design.grid_size({"red.speed": linspace(0, 1, 10**9)}) == 10**9  # not made
+
+
+def test_a_study_too_big_for_memory_is_refused_before_its_design_is_made(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # issue 24: montecarlo -n 1e8 and a 1e8-variant grid (a list of 1e8 tuples) ended in
+    # MemoryError tracebacks
+    from crashsim.studies import design, run
+
+    scene = _scene()
+    # the estimate is what a study holds: inputs, the engine's overrides, outputs, status
+    study = cs.monte_carlo(scene, {"red.speed": normal(13.0, 1.0), "red.heading": uniform(0, 0.1)},
+                           n=5, seed=1, duration=DURATION, dt=DT, progress=False)  # fmt: skip
+    held = sum(a.nbytes for a in (*study.inputs.values(), *study.outputs.values()))
+    held += sum(a.nbytes for a in paths.overrides(scene, study.inputs).values())
+    status = 8 + 4 * len("not run")  # per variant: the object array, then "<U7"
+    per = held // 5 + status
+    assert held % 5 == 0
+    keys = ["red.speed", "red.heading"]
+    run.check_size(scene, keys, 1000, 2, max_bytes=1000 * per)  # fits exactly
+    with pytest.raises(cs.StudyError, match=rf"1,000 variants would take .*\({per:,} bytes each: "
+                       r"2 inputs, the engine's overrides, 47 outputs, the status\).*run at most "
+                       r"999 variants at a time"):  # fmt: skip
+        run.check_size(scene, keys, 1000, 2, max_bytes=1000 * per - 1)
+
+    def never(*args: object, **kwargs: object) -> None:
+        raise AssertionError("the design of a refused study was made")
+
+    monkeypatch.setattr(design, "grid", never)
+    monkeypatch.setattr(design, "monte_carlo_sample", never)
+    with pytest.raises(cs.StudyError, match=r"100,000,000 variants would take 4[0-9.]+ GiB.*"
+                       r"study limit of 1\.00 GiB.*max_study_bytes"):  # fmt: skip
+        cs.sweep(scene, {"red.speed": linspace(10, 20, 10_000), "restitution":
+                         linspace(0, 0.2, 10_000)}, progress=False)  # fmt: skip
+    with pytest.raises(cs.StudyError, match=r"100,000,000 variants would take"):
+        cs.monte_carlo(scene, {"red.speed": normal(13.0, 1.0)}, n=10**8, seed=1, progress=False)
+    with pytest.raises(cs.StudyError, match=r"402,653,184 variants would take"):
+        cs.sobol(scene, {"red.speed": uniform(10.0, 16.0)}, n=2**27, progress=False)
+    with pytest.raises(cs.StudyError, match="max_study_bytes = 0 is invalid"):
+        cs.monte_carlo(scene, {"red.speed": normal(13.0, 1.0)}, n=2, max_study_bytes=0)
+    monkeypatch.undo()  # a study under the limit runs as before
+    small = cs.monte_carlo(scene, {"red.speed": normal(13.0, 1.0)}, n=3, seed=1,
+                           duration=DURATION, dt=DT, progress=False, max_study_bytes=3 * per)
+    assert small.ok.all()
+
+
+def test_an_unknown_column_is_a_study_error_naming_it() -> None:
+    # issue 24: tornado(...).table("x") raised a bare KeyError
+    t = cs.tornado(_scene(), {"red.speed": (12.0, 14.0)}, duration=DURATION, dt=DT,
+                   progress=False)
+    with pytest.raises(cs.StudyError, match=r"no column 'x': the inputs are red.speed; outputs "
+                       r"such as n_impacts") as e:  # fmt: skip
+        t.table("x")
+    assert isinstance(e.value, KeyError)  # still what a lookup by name raises
+    assert str(e.value).startswith("no column 'x'")  # not KeyError's quoted form
+    with pytest.raises(cs.StudyError, match="no column 'x'"):
+        t.plot(output="x")
+
+
 # -- running: a Study -------------------------------------------------------------------------
 
 
@@ -317,6 +387,8 @@ def test_sobol_indices_find_the_input_that_matters(tmp_path: Path) -> None:
     assert dv.loc["red.speed", "S1"] > 0.9 and dv.loc["red.speed", "ST"] > 0.9
     assert abs(dv.loc["friction", "ST"]) < 0.05
     assert "impact2.time" in s.skipped
+    with pytest.raises(cs.StudyError, match="no column 'x'"):
+        s.of("x")
     s.plot(tmp_path / "s.png")
     assert (tmp_path / "s.png").stat().st_size > 5000
     with pytest.raises(cs.StudyError, match="power of 2"):

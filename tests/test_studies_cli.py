@@ -150,6 +150,35 @@ def test_study_commands_fail_with_one_line_and_exit_2(
         assert err.count("\n") == 1
 
 
+def test_missing_dask_and_huge_studies_exit_2_with_how_to_fix_it(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # issue 24: without dask, --backend dask was a ModuleNotFoundError traceback (exit 1); a
+    # 1e8-variant study a MemoryError traceback
+    monkeypatch.setitem(sys.modules, "dask", None)  # as if not installed
+    monkeypatch.setitem(sys.modules, "distributed", None)
+    assert main(["montecarlo", str(STUDY), "-n", "4", "--backend", "dask"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("crashsim: error: the Dask backend needs dask.distributed, which "
+                          "cannot be imported") and err.count("\n") == 1  # fmt: skip
+    assert "pip install 'dask[distributed]'" in err and 'backend "local"' in err
+    monkeypatch.undo()
+    from crashsim.studies import design
+
+    def never(*args: object, **kwargs: object) -> None:
+        raise AssertionError("the design of a refused study was made")
+
+    monkeypatch.setattr(design, "grid", never)
+    monkeypatch.setattr(design, "monte_carlo_sample", never)
+    for args in (["montecarlo", str(STUDY), "-n", "100000000"],
+                 ["sweep", str(SEED), "--vary", "red.speed=10:20:10000", "--vary",
+                  "restitution=0:0.2:10000"]):  # fmt: skip
+        assert main(args) == 2
+        err = capsys.readouterr().err
+        assert err.startswith("crashsim: error: the study's 100,000,000 variants would take ")
+        assert "run at most" in err and err.count("\n") == 1
+
+
 def test_every_variant_failing_exits_1(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["sweep", str(SEED), "--vary", "red.position_x=-2,-1.5"]) == 1
     captured = capsys.readouterr()

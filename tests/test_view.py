@@ -11,6 +11,7 @@ from __future__ import annotations
 import io
 import json
 import math
+import os
 import re
 import shutil
 import time
@@ -176,6 +177,42 @@ def test_report_files_missing_or_malformed(seed: cs.Result, tmp_path: Path) -> N
     (out / "report.json").write_text(json.dumps(broken), encoding="utf-8")
     with pytest.raises(ReportFileError, match="impacts.0"):
         view_report(out / "report.json")
+
+
+def test_the_report_path_and_numbers_are_checked_first(
+    seed: cs.Result, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # issue 24: a missing report in a missing folder said "cannot write .../case.html"; a
+    # folder, a named pipe or /dev/zero is not opened; deep nesting and a mass of 1e999
+    # were tracebacks
+    assert main(["view", str(tmp_path / "no" / "report.json")]) == 2
+    assert capsys.readouterr().err == (
+        f"crashsim: error: {tmp_path / 'no' / 'report.json'}: no such file\n"
+    )
+    folder = tmp_path / "folder.json"
+    folder.mkdir()
+    fifo = tmp_path / "pipe.json"
+    os.mkfifo(fifo)
+    zero = tmp_path / "zero.json"
+    zero.symlink_to("/dev/zero")
+    for path, kind in ((folder, "a folder"), (fifo, r"a named pipe \(FIFO\)"),
+                       (zero, r"a character device \(a link to /dev/zero\)")):  # fmt: skip
+        with pytest.raises(ReportFileError, match=f"is {kind}, not a report file"):
+            view_report(path)
+    report = tmp_path / "report.json"
+    report.write_text("[" * 100_000 + "]" * 100_000, encoding="utf-8")
+    assert main(["view", str(report)]) == 2
+    assert capsys.readouterr().err == f"crashsim: error: {report}: nested too deeply to be a " \
+        "crashsim report\n"
+    text = json.dumps(cs.report(seed).to_dict())
+    mass = f'"mass": {seed.vehicle("red").mass!r}'
+    assert mass in text
+    for number in ("1e999", "-1E+400", "NaN", "Infinity", "1" + "0" * 400):
+        report.write_text(text.replace(mass, f'"mass": {number}', 1), encoding="utf-8")
+        assert main(["view", str(report)]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith(f"crashsim: error: {report}: the number {number[:24]} is not finite")
+    assert not (tmp_path / "case.html").exists()
 
 
 def test_command_line_run_html_and_view(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

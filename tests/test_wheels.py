@@ -105,6 +105,8 @@ def test_tyre_defaults_come_from_the_engine_and_bad_tyres_are_named() -> None:
         ({"b": 10.0}, "belong to model 'magic_formula'"),
         ({"model": "magic_formula", "saturation_angle": 0.2}, "belongs to model 'linear'"),
         ({"rolling_resistance": "low"}, "must be a number"),
+        # issue 24: 5 was accepted (and capped by the friction)
+        ({"rolling_resistance": 5.0}, r"rolling_resistance = 5 is invalid: .* \[0, 0.3\]"),
     ]
     for kwargs, match in cases:
         with pytest.raises(cs.ParameterError, match=match):
@@ -122,6 +124,11 @@ def test_tyre_defaults_come_from_the_engine_and_bad_tyres_are_named() -> None:
         ({"damping": (-1.0, 10.0)}, "wheel 'front_left' damping = -1 is invalid"),
         ({"radius": 0.0}, "wheel 'front_left' radius = 0 is invalid"),
         ({"natural_frequency": -1.0}, "wheel 'front_left': natural_frequency = -1"),
+        # issue 24: 1e4 ran a locked car 47 m, 1e6 flipped it; 1000 Hz left it at 3 m/s
+        ({"damping_ratio": 1e4}, r"wheel 'front_left': damping_ratio = 10000 .* \[0, 5\]"),
+        ({"natural_frequency": 1000.0}, r"natural_frequency = 1000 Hz .* \(0, 20\] Hz"),
+        ({"damping": 1e6}, r"wheel 'front_left' damping ratio = [0-9.]+ .* \[0, 5\]"),
+        ({"spring_rates": 1e8}, r"wheel 'front_left' natural frequency = [0-9.]+ Hz"),
         ({"track": float("nan")}, "track = nan is invalid"),
         ({"steer": "all"}, "steer = 'all' is unknown"),
     ],
@@ -256,6 +263,8 @@ def test_inputs_resolve_axles_wheels_and_the_steering_ratio() -> None:
         ({"wheel_states": [("FL", "locked", "exchange 0")]}, "exchanges count from 1"),
         ({"wheel_states": [("FL", "braked", 0.0, 1.5)]}, "braked fraction = 1.5"),
         ({"wheel_states": [("FL", "locked", 0.0, 0.5)]}, "for the 'braked' state only"),
+        # issue 24: "braked" without a fraction ran as locked
+        ({"wheel_states": [("FL", "braked", 0.0)]}, "'braked' needs its fraction of the friction"),
     ],
 )  # fmt: skip
 def test_bad_input_tables_are_errors_naming_the_table(kwargs, match) -> None:
@@ -268,6 +277,8 @@ def test_bad_input_tables_are_errors_naming_the_table(kwargs, match) -> None:
     [
         ({"steer": 1.2}, "'car' inputs: the road-wheel steering angle reaches 68.8 deg"),
         ({"brake": 1.5}, "wheel 'front_left': a braking fraction must lie in"),
+        # issue 24: 100 m/s^2 was accepted and ran as full braking
+        ({"brake": cs.Brake.deceleration(100.0)}, r"a braking deceleration must lie in \[0, 20\]"),
         ({"brake": {"middle": 1.0}}, r"brake\['middle'\]: unknown wheel 'middle'"),
         ({"wheel_states": [("XX", "locked", 0.0)]}, r"wheel_states\[0\]: unknown wheel 'XX'"),
     ],

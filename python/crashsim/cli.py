@@ -25,7 +25,8 @@ the pictures (``--plots DIR``), on this machine or a Dask cluster (``--backend d
 
 ``crashsim fit case.toml`` fits the unknowns of the file's ``[fit]`` table to its
 ``[[evidence]]`` (crashsim.io.fitfile, crashsim.fit; docs/fitting.md): it prints the best values
-with their 95 % ranges and every item's residual in the file's units and writes fit.json,
+with their 95 % ranges and every item's residual in the file's units, and the fit's verdict
+(fits, poor fit: a warning, does not fit: exit 1 with the reasons), and writes fit.json,
 fit.png and the fitted run's report; Ctrl-C prints and writes the best so far (exit 130).
 
 ``crashsim dtp-montecarlo`` samples the depth of penetration dt_p = sqrt(m'/k') over pairs of
@@ -67,7 +68,7 @@ from crashsim.io.scenefile import SceneFile, load_scene, parse_quantity
 from crashsim.io.viewer import PAGE_FILE, view, view_report
 from crashsim.plots import plot_impact, plot_trajectories
 from crashsim.result import Result
-from crashsim.units import mph, to_mph
+from crashsim.units import mph
 
 __all__ = ["EXIT_FAILED", "EXIT_INPUT", "EXIT_INTERRUPTED", "main", "write_csv"]
 
@@ -98,11 +99,7 @@ def _demo(args: argparse.Namespace) -> int:
         scene = demo.impact_scene(speed)
         result = scene.run(duration=duration, dt=dt)
         if not result.impacts:
-            raise RunFailed(
-                f"no impulse exchange happened within the {duration:g} s run: red at "
-                f"{to_mph(speed):g} mph did not reach blue ({demo.IMPACT_GAP:g} m away); give "
-                "a longer --duration or a higher --speed"
-            )
+            raise RunFailed(demo.no_exchange(result, duration, demo.IMPACT_GAP))
         print(json.dumps(result.to_dict(), indent=2) if args.json
               else demo.impact_summary(result, scene, speed))  # fmt: skip
         return 0
@@ -114,8 +111,7 @@ def _demo(args: argparse.Namespace) -> int:
         until="rest", max_duration=longest, dt=dt, progress=_no_progress
     )
     if not result.impacts:
-        raise RunFailed(f"no impulse exchange happened within the {longest:g} s run: give a "
-                        "longer --duration")  # fmt: skip
+        raise RunFailed(demo.no_exchange(result, longest, demo.intersection_gap()))
     _make(out)
     report = build_report(result)
     title = "crashsim demo: a two-car intersection case run to rest"
@@ -584,6 +580,7 @@ def _fit_out_dir(args: argparse.Namespace, case: SceneFile) -> Path:
 def _fit(args: argparse.Namespace) -> int:
     from crashsim.io.fitfile import format_fit
     from crashsim.studies.fit import fit as run_fit
+    from crashsim.studies.verdict import DOES_NOT_FIT
 
     case = load_scene(args.scene)
     spec = _fit_spec(args, case)
@@ -632,6 +629,12 @@ def _fit(args: argparse.Namespace) -> int:
         raise KeyboardInterrupt
     if fit.result is None:
         raise RunFailed("the run at the fitted values failed (see the residuals above)")
+    verdict = fit.verdict
+    if verdict is not None and verdict.status == DOES_NOT_FIT:
+        raise RunFailed(f"the fit does not fit: {'; '.join(verdict.reasons)}")
+    if verdict is not None and not verdict.fits:
+        print(f"crashsim: warning: {verdict.status}: {'; '.join(verdict.reasons)}",
+              file=sys.stderr)  # fmt: skip
     return 0
 
 
@@ -1041,13 +1044,17 @@ def _parser() -> argparse.ArgumentParser:
         help="fit a scene file's unknowns to its evidence ([fit], [[evidence]]; docs/fitting.md)",
         description="Fits the unknowns of the file's [fit] table (and --unknown) to its "
         "[[evidence]] sections by least squares (or a global search first) and prints the best "
-        "values with their 95 % ranges and every item's residual, in the file's units. Writes "
-        f"into the output folder: {FIT_JSON} (values, residuals, ranges, objective, interrupted), "
+        "values with their 95 % ranges and every item's residual, in the file's units, and the "
+        "verdict: fits, poor fit (chi^2 too large for its degrees of freedom, an unknown at a "
+        "bound: the ranges widened or withheld, a warning) or does not fit. Writes "
+        f"into the output folder: {FIT_JSON} (verdict, values, residuals, ranges, objective, "
+        "interrupted), "
         f"{FIT_PICTURE} (the fitted run over the evidence, the objective along each unknown) "
         f"and {FITTED_REPORT} (the report of the fitted run). Folder: --out, else the file's "
         "output.dir, else <scene name>-fit in the current folder. The runs take the file's "
         "[run] (--dt and --duration override it).",
-        epilog="Exit codes: 0 success, 1 the fitted run failed (or writing the outputs did), 2 "
+        epilog="Exit codes: 0 success (the fit fits, or fits poorly: a warning), 1 the fit does "
+        "not fit (the reasons on stderr), the fitted run failed or writing the outputs did, 2 "
         "bad input (the file, --unknown, --start, an unwritable --out), 130 interrupted (the "
         "best so far is printed and written).",
     )

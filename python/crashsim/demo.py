@@ -33,8 +33,10 @@ __all__ = [
     "SPEED",
     "impact_scene",
     "impact_summary",
+    "intersection_gap",
     "intersection_scene",
     "intersection_summary",
+    "no_exchange",
 ]
 
 SPEED = kmh(60.0)  # m/s: red's speed in the intersection case
@@ -51,24 +53,47 @@ def intersection_scene(speed: float = SPEED) -> Scene:
     """The demo's intersection case with red at ``speed`` (m/s, > 0). Blue starts where it
     meets red's front STRIKE_AHEAD_OF_CG ahead of its CG whatever the speed (both keep their
     speeds up to the impact)."""
-    red = Vehicle.generate("sedan", name="red")
-    blue = Vehicle.generate("suv", name="blue")
+    red, blue = _cars()
     h, far = ROAD_HALF_WIDTH, 40.0
     corner = FrictionZone([(h, h), (far, h), (far, far), (h, far)], "grass", name="corner verge")
     scene = Scene(ground=Ground(friction="dry asphalt", zones=[corner]),
                   depth_of_penetration=0.030, restitution=0.1, friction=0.6)  # fmt: skip
     scene.add(red, RED_START, heading=0.0, velocity=(speed, 0.0, 0.0),
               inputs=DriverInputs(wheel_states=[("all", "locked", "exchange")]))  # fmt: skip
-    # red's front reaches blue's left side (heading +y: its left faces -x) after t
-    red_front = RED_START[0] + float(np.max(red.body_vertices[:, 0]))
-    blue_left = -float(np.max(blue.body_vertices[:, 1]))
-    t = (blue_left - red_front) / speed
+    t = intersection_gap() / speed  # red's front reaches blue's left side
     blue_y = RED_START[1] - STRIKE_AHEAD_OF_CG - BLUE_SPEED * t
     scene.add(blue, (0.0, blue_y), heading=deg(90.0), velocity=(0.0, BLUE_SPEED, 0.0),
               inputs=DriverInputs(wheel_states=[("all", "braked", "exchange", 0.5)]))  # fmt: skip
     scene.contact(red, blue, depth_of_penetration="auto")  # the classes' face stiffness
     scene.add_obstacle(Obstacle.pole(0.25, name="lamp post"), LAMP_POST)
     return scene
+
+
+def _cars() -> tuple[Vehicle, Vehicle]:
+    return Vehicle.generate("sedan", name="red"), Vehicle.generate("suv", name="blue")
+
+
+def intersection_gap() -> float:
+    """Between red's front and blue's left side (blue heads +y: its left faces -x) along x at
+    t = 0 in the intersection case, m."""
+    red, blue = _cars()
+    red_front = RED_START[0] + float(np.max(red.body_vertices[:, 0]))
+    return -float(np.max(blue.body_vertices[:, 1])) - red_front
+
+
+def no_exchange(result: Result, duration: float, gap: float) -> str:
+    """Why a demo run made no exchange, and what to give instead: red stopped short of blue
+    (``gap`` m away at the start: a longer run or a higher speed), or passed through it (an
+    overlap that brief is taken for a graze: a lower speed)."""
+    x = result.trajectory("red").position[:, 0]  # m, red drives along +x
+    speed = f"{to_mph(float(result.trajectory('red').velocity[0, 0])):g} mph"
+    if x[-1] - x[0] < gap:  # its front never reached blue's side
+        what, advice = f"did not reach blue ({gap:g} m away)", "a longer --duration or a higher"
+    else:
+        what, advice = ("passed through blue without one (an overlap that brief is taken for a "
+                        "graze)", "a lower")  # fmt: skip
+    return (f"no impulse exchange happened within the {duration:g} s run: red at {speed} "
+            f"{what}; give {advice} --speed")  # fmt: skip
 
 
 def _kmh(v: float) -> str:

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from crashsim import _core
-from crashsim.errors import SceneError
+from crashsim.errors import ParameterError, SceneError
 
 if TYPE_CHECKING:
     from crashsim.vehicles.vehicle import Vehicle
@@ -620,16 +620,12 @@ class Result:
         return self._wheels[name]
 
     def _wheel(self, record: WheelRecord, wheel: Any) -> int:
-        from crashsim.vehicles.wheels import ABBREVIATIONS
+        from crashsim.vehicles.wheels import wheel_index
 
-        if isinstance(wheel, int | np.integer) and not isinstance(wheel, bool):
-            if 0 <= int(wheel) < len(record.names):
-                return int(wheel)
-        elif isinstance(wheel, str):
-            key = ABBREVIATIONS.get(wheel.strip().upper(), wheel.strip().lower())
-            if key in record.names:
-                return record.names.index(key)
-        raise SceneError(f"unknown wheel {wheel!r}: the wheels are {', '.join(record.names)}")
+        try:
+            return wheel_index(record.names, wheel)
+        except ParameterError as e:
+            raise SceneError(str(e)) from None
 
     def wheel_path(self, vehicle: Any, wheel: Any) -> Array:
         """(k, 3) where one wheel's tyre met the ground at each sample time ``t`` (m, world):

@@ -6,7 +6,7 @@
 //! classical Runge-Kutta on the quaternion in sub-steps of at most `MAX_SUBSTEP_ANGLE` rad
 //! of rotation, so an asymmetric body's w evolves correctly while L stays exact.
 
-use crate::error::{require_finite, require_finite_vector, Error, Result};
+use crate::error::{require_coordinate, require_finite, require_finite_vector, Error, Result};
 use crate::math::{Isometry, Matrix, Point, Real, Rotation, Vector};
 
 /// Largest rotation (rad) per Runge-Kutta sub-step; the local error is about angle^5 / 120.
@@ -129,9 +129,13 @@ pub struct BodyState {
 }
 
 impl BodyState {
-    /// Checks that every number is finite.
+    /// Checks that every number is finite and the position within the world
+    /// ([`crate::error::MAX_COORDINATE`]).
     pub fn validate(&self) -> Result<()> {
         require_finite_vector("position", &self.position.coords)?;
+        for (axis, x) in ["x", "y", "z"].iter().zip(self.position.iter()) {
+            require_coordinate(&format!("position {axis}"), *x)?;
+        }
         require_finite_vector("velocity", &self.velocity)?;
         require_finite_vector("angular_velocity", &self.angular_velocity)?;
         let q = self.orientation.coords;

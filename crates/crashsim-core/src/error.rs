@@ -39,6 +39,28 @@ pub fn require_finite(name: &str, value: f64) -> Result<()> {
     }
 }
 
+/// Largest world coordinate (m) a position, a ground height or a terrain may have: 1000 km.
+/// Beyond it a double's rounding grows past the engine's tolerances (at 1e30 m a wheel's
+/// 0.05 m of spring travel is below one unit in the last place, so a car on a plane at
+/// z = 1e30 skidded with no load on its tyres); a scene in a national grid belongs in
+/// coordinates from a local origin.
+pub const MAX_COORDINATE: f64 = 1e6;
+
+/// Checks that `value` (m) is a finite world coordinate within [`MAX_COORDINATE`].
+pub fn require_coordinate(name: &str, value: f64) -> Result<()> {
+    require_finite(name, value)?;
+    if value.abs() <= MAX_COORDINATE {
+        Ok(())
+    } else {
+        Err(Error::parameter(
+            name,
+            format!("{value} m"),
+            "world coordinates must lie within +-1e6 m (1000 km): place the scene near the \
+             origin (subtract a local reference point from every coordinate)",
+        ))
+    }
+}
+
 /// Checks that every component of `v` is finite.
 pub fn require_finite_vector(name: &str, v: &crate::math::Vector) -> Result<()> {
     if crate::math::is_finite_vector(v) {

@@ -7,7 +7,7 @@
 use std::sync::Arc;
 
 use crate::bvh::MAX_DEPTH;
-use crate::error::{require_finite, Error, Result};
+use crate::error::{require_coordinate, require_finite, Error, Result};
 use crate::math::{Point, Real, Vector};
 use crate::shape::MeshShape;
 
@@ -81,7 +81,7 @@ fn check_friction(name: &str, mu: Real) -> Result<()> {
 impl Ground {
     /// The plane z = `height` (m) with the default frictions.
     pub fn plane(height: Real) -> Result<Ground> {
-        require_finite("ground height", height)?;
+        require_coordinate("ground height", height)?;
         Ok(Ground {
             surface: Surface::Plane { height },
             zones: Vec::new(),
@@ -93,6 +93,9 @@ impl Ground {
     /// A terrain mesh (world coordinates, m) with the default frictions.
     pub fn terrain(mesh: Arc<MeshShape>) -> Result<Ground> {
         let b = mesh.aabb();
+        for x in b.mins.iter().chain(b.maxs.iter()) {
+            require_coordinate("a terrain vertex coordinate", *x)?;
+        }
         if b.maxs.x - b.mins.x <= 0.0 || b.maxs.y - b.mins.y <= 0.0 {
             return Err(Error::Mesh(
                 "the terrain mesh has no extent seen from above: give a surface spread in x and y"
@@ -280,14 +283,8 @@ fn check_polygon(k: usize, poly: &[[Real; 2]]) -> Result<()> {
         )));
     }
     let n = poly.len();
-    let area: Real = (0..n)
-        .map(|i| orient([0.0, 0.0], poly[i], poly[(i + 1) % n]))
-        .sum();
-    if area == 0.0 {
-        return Err(Error::Parameter(format!(
-            "friction zone {k} encloses no area (its corners are in a line)"
-        )));
-    }
+    // Crossing edges first: a symmetric bow-tie also has no signed area, and "its corners
+    // are in a line" misled.
     for i in 0..n {
         for j in i + 1..n {
             if j == i + 1 || (i == 0 && j == n - 1) {
@@ -302,6 +299,14 @@ fn check_polygon(k: usize, poly: &[[Real; 2]]) -> Result<()> {
                 )));
             }
         }
+    }
+    let area: Real = (0..n)
+        .map(|i| orient([0.0, 0.0], poly[i], poly[(i + 1) % n]))
+        .sum();
+    if area == 0.0 {
+        return Err(Error::Parameter(format!(
+            "friction zone {k} encloses no area (its corners are in a line)"
+        )));
     }
     Ok(())
 }

@@ -32,6 +32,14 @@ pub const MAX_SUBSTEP_ANGLE: Real = 0.02;
 /// binds only past about 100 m/s with the default 0.1 m relaxation length, or for short
 /// ones (3 mm at 20 m/s: 7 sub-steps per ms; NaN from 0.17 s without it).
 pub const MAX_SUBSTEP_RELAXATION: Real = 1.0;
+/// Largest h |lambda| per sub-step of the fastest mode of the body on its spring-dampers
+/// (see `OnGround::suspension_rate`): classical Runge-Kutta is stable to 2.78 on a decay and
+/// 2.83 on an oscillation, and never adds energy to either below that. Damping ratios of 1e4
+/// at 1 ms sub-steps (h |lambda| about 160) threw a locked car 107 m into the air.
+pub const MAX_SUBSTEP_SUSPENSION: Real = 2.0;
+/// Most sub-steps per simulated second: past this (a body spinning at about 20,000 rad/s or a
+/// tread renewed as fast) the run stops with an error instead of running for hours.
+pub const MAX_SUBSTEPS_PER_SECOND: Real = 1e6;
 /// Natural frequency (Hz) of a body resting on its whole footprint on the ground: 20 Hz, so
 /// it sinks g / (2 pi 20)^2 = 0.6 mm under its weight; a box car landing on its side corner
 /// after a roll went 5.1 cm into the road at 10 Hz, 2.7 cm at 20 Hz (tests/dynamics.rs).
@@ -215,6 +223,30 @@ impl Stage {
 struct Evaluation {
     rate: Stage,
     wheels: Vec<WheelSample>,
+}
+
+/// A bound (1/s) on |lambda| of every mode of the body on its wheels' spring-dampers,
+/// linearised: with C and K the dampings and rates seen at the body's coordinates
+/// (sum over the wheels of c_k J_k^T J_k, J_k the wheel's normal velocity per body
+/// velocity), |lambda| <= lambda_max(M^-1 C) + sqrt(lambda_max(M^-1 K)), and each
+/// lambda_max is at most the trace, sum_k c_k / m_k, with 1 / m_k = 1/m + |r_k|^2 /
+/// I_min <= the inverse effective mass at the wheel for any orientation (r_k from the CG
+/// to the farthest point of the tyre). For a car at 1.3 Hz and 0.3 it is about 45 /s:
+/// 1 ms sub-steps are far inside it.
+pub fn suspension_rate(spec: &VehicleSpec, props: &MassProperties) -> Real {
+    let inverse_inertia_max = props
+        .inverse_inertia()
+        .symmetric_eigenvalues()
+        .iter()
+        .fold(0.0, |a: Real, b| a.max(*b));
+    let (mut damping, mut stiffness) = (0.0, 0.0);
+    for w in &spec.wheels {
+        let reach = w.center.coords.norm() + w.radius;
+        let inverse_mass = 1.0 / props.mass() + reach * reach * inverse_inertia_max;
+        damping += w.damping * inverse_mass;
+        stiffness += w.spring_rate * inverse_mass;
+    }
+    damping + stiffness.sqrt()
 }
 
 impl OnGround {
@@ -428,6 +460,29 @@ impl OnGround {
         }
     }
 
+    /// True when the ground carries the body: a wheel's spring pushes (its centre lower than
+    /// its tyre's radius plus the spring's free travel F0 / k above the ground) or a point
+    /// of the body is in the ground. A body in the air, falling or at the top of a bounce,
+    /// is not at rest whatever its speed along the ground.
+    pub fn supported(&self, body: &RigidBody, ground: &Ground) -> bool {
+        let x = body.position();
+        let rot = body.orientation().to_rotation_matrix();
+        let r = rot.matrix();
+        if let Some(spec) = &self.vehicle {
+            for wheel in &spec.wheels {
+                let c = x + r * wheel.center.coords;
+                let Some(g) = ground.below(&c) else {
+                    continue;
+                };
+                let h = (c - g.point).dot(&g.normal);
+                if wheel.static_load + wheel.spring_rate * (wheel.radius - h) > 0.0 {
+                    return true;
+                }
+            }
+        }
+        self.deepest(body, ground).is_some()
+    }
+
     /// The deepest of the body's contact points in the ground (m) and where it is (world),
     /// None when none is.
     pub fn deepest(&self, body: &RigidBody, ground: &Ground) -> Option<(Real, Point)> {
@@ -514,10 +569,11 @@ impl OnGround {
     }
 
     /// Sub-steps for a span of `dt` s from `body`'s state: at most [`MAX_SUBSTEP`] s, a
-    /// rotation of [`MAX_SUBSTEP_ANGLE`] and a tread renewal of [`MAX_SUBSTEP_RELAXATION`]
+    /// rotation of [`MAX_SUBSTEP_ANGLE`], a tread renewal of [`MAX_SUBSTEP_RELAXATION`]
     /// (from the fastest a contact patch can move now: CG speed plus angular speed times the
-    /// farthest wheel's reach, each doubled for what the span may add).
-    fn substeps(&self, body: &RigidBody, dt: Real) -> usize {
+    /// farthest wheel's reach, each doubled for what the span may add) and
+    /// [`MAX_SUBSTEP_SUSPENSION`] of the suspension's fastest mode.
+    fn substeps(&self, body: &RigidBody, dt: Real) -> Result<usize> {
         let w = body.angular_velocity().norm();
         let by_time = (dt / MAX_SUBSTEP).ceil();
         let by_angle = (w * dt / MAX_SUBSTEP_ANGLE).ceil();
@@ -533,7 +589,27 @@ impl OnGround {
             }
             None => 1.0,
         };
-        by_time.max(by_angle).max(by_relaxation).max(1.0) as usize
+        let by_suspension = match &self.vehicle {
+            Some(spec) => {
+                (dt * suspension_rate(spec, body.props()) / MAX_SUBSTEP_SUSPENSION).ceil()
+            }
+            None => 1.0,
+        };
+        let n = by_time
+            .max(by_angle)
+            .max(by_relaxation)
+            .max(by_suspension)
+            .max(1.0);
+        if n > (dt * MAX_SUBSTEPS_PER_SECOND).max(1.0) {
+            return Err(Error::Simulation(format!(
+                "the motion on the ground needs {n:.0} integration sub-steps for {dt} s, more \
+                 than {MAX_SUBSTEPS_PER_SECOND:.0} per simulated second (angular speed \
+                 {w:.1} rad/s, speed {:.1} m/s): the run was stopped; check the vehicle's \
+                 speeds and its tyre's relaxation length",
+                body.velocity().norm()
+            )));
+        }
+        Ok(n as usize)
     }
 
     /// Advances the body and the treads by `dt` s (> 0) from time `t0` (s).
@@ -591,7 +667,7 @@ impl OnGround {
         if dt <= 0.0 {
             return Ok(());
         }
-        let n = self.substeps(body, dt);
+        let n = self.substeps(body, dt)?;
         let h = dt / n as Real;
         let props = body.props().clone();
         let mut s = self.stage_of(body);

@@ -807,3 +807,40 @@ fn offset_frontal_normal_follows_the_faces_that_met_not_the_deep_overlap() {
         imp.normal_time
     );
 }
+
+/// A box driven square and centrally into a fixed wall (no ground: torque-free) bounces back
+/// at eps times its speed: delta-V = -(1 + eps) v to round-off, because the wall's inverse
+/// mass and inertia are exactly 0 (issue 24: an inverse mass of 1e-9 for obstacles, a
+/// 1.5e-6 relative change here, was caught by the Python tests only). The wall never moves.
+#[test]
+fn a_box_square_into_a_fixed_wall_bounces_at_eps_times_its_speed() {
+    let (m, v, eps) = (1500.0, 15.0, 0.1);
+    let mut w = World::new();
+    let car = w
+        .add_body(
+            box_shape(4.6, 1.8, 1.4),
+            box_props(m, 4.6, 1.8, 1.4),
+            &state(-3.0, 0.0, 0.7, 0.0, Vector::new(v, 0.0, 0.0)),
+        )
+        .unwrap();
+    let pose = crashsim_core::math::Isometry::translation(0.5, 0.0, 1.0);
+    let wall = w.add_obstacle(box_shape(1.0, 6.0, 2.0), &pose).unwrap();
+    let params = ContactParams {
+        restitution: eps,
+        ..ContactParams::default()
+    };
+    w.set_contact(car, wall, params).unwrap();
+    let out = w.run(0.5, 1e-3).unwrap();
+    assert_eq!(out.impacts.len(), 1, "{:?}", out.contacts);
+    let imp = &out.impacts[0];
+    let k = if imp.body1 == car { 0 } else { 1 };
+    let dv = imp.velocity_after[k] - imp.velocity_before[k];
+    assert!(
+        (dv.x + (1.0 + eps) * v).abs() < 1e-12 * v && dv.y.abs() < 1e-12 && dv.z.abs() < 1e-12,
+        "delta-V {dv:?}, expected ({}, 0, 0)",
+        -(1.0 + eps) * v
+    );
+    let wall_end = &out.sample(out.len() - 1)[wall];
+    assert_eq!(wall_end.position, Point::from(pose.translation.vector));
+    assert_eq!(wall_end.velocity, Vector::zeros());
+}

@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim import _core
 from crashsim.environment.surfaces import friction as as_friction
 from crashsim.errors import MeshError, ParameterError
+from crashsim.names import check_name
 from crashsim.vehicles.meshio import MeshSource, describe, load_mesh
 
 __all__ = ["FrictionZone", "Ground"]
@@ -65,7 +66,7 @@ class FrictionZone:
         object.__setattr__(self, "polygon", poly)
         object.__setattr__(self, "friction", as_friction(friction, "zone friction"))
         object.__setattr__(self, "surface", friction if isinstance(friction, str) else None)
-        object.__setattr__(self, "name", name)
+        object.__setattr__(self, "name", None if name is None else check_name(name, "a zone"))
 
     def label(self, index: int) -> str:
         """How messages name the zone."""

@@ -31,6 +31,7 @@ from numpy.typing import NDArray
 
 from crashsim import _core
 from crashsim.errors import MeshError, ParameterError
+from crashsim.names import check_name
 from crashsim.vehicles.meshio import MeshSource, check_mesh, load_mesh
 from crashsim.vehicles.stiffness import FACES, FaceStiffness, Stiffness
 
@@ -80,8 +81,7 @@ class Obstacle:
     ) -> None:
         if not isinstance(mesh, trimesh.Trimesh):
             raise MeshError(f"an obstacle's mesh must be a trimesh.Trimesh, got {type(mesh)}")
-        if not isinstance(name, str) or not name:
-            raise ParameterError(f"an obstacle needs a non-empty name (a str), got {name!r}")
+        check_name(name, "an obstacle")
         check_mesh(mesh, f"obstacle {name!r}")
         self._mesh = mesh
         self._name = name
@@ -252,9 +252,7 @@ class Obstacle:
         """The same obstacle under another name (e.g. a row of identical poles)."""
         other = Obstacle.__new__(Obstacle)
         other.__dict__.update(self.__dict__)
-        if not isinstance(name, str) or not name:
-            raise ParameterError(f"an obstacle needs a non-empty name (a str), got {name!r}")
-        other._name = name
+        other._name = check_name(name, "an obstacle")
         return other
 
     def with_stiffness(self, stiffness: Any) -> Obstacle:

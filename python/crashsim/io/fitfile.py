@@ -473,9 +473,10 @@ def _factor(unit: str | None) -> float:
 def format_fit(fit: FitResult, spec: FitSpec | None = None) -> str:
     """The fit's answer as text in the units the file wrote (``spec``; SI where it wrote
     plain numbers, or without a spec): every unknown's best value, its 95 % ranges (the
-    Jacobian's +-1.96 sigma, all unknowns at once, the sampling's and the scan's chi^2 + 3.84)
-    and its bounds; every evidence
-    item's figure, the fitted run's, the residual in the item's unit and in tolerances."""
+    Jacobian's +-1.96 sigma, all unknowns at once, the sampling's and the scan's chi^2 + 3.84,
+    as the verdict quotes them: widened, or its reason where withheld) and its bounds; every
+    evidence item's figure, the fitted run's, the residual in the item's unit and in
+    tolerances; the verdict with its reasons."""
     spec = spec if spec is not None and len(spec.types) == len(fit.residuals) else None
     head = (
         f"fit ({fit.method}): chi^2 = {fit.objective:.4g} over "
@@ -498,13 +499,21 @@ def format_fit(fit: FitResult, spec: FitSpec | None = None) -> str:
         def pair(a: float, b: float, f: float = f) -> str:
             return f"{_number(a / f)} .. {_number(b / f)}"
 
-        scan = fit.scan_ranges.get(n) if fit.scan_ranges else None
-        sampled = fit.sample_ranges.get(n) if fit.sample_ranges else None
+        def cell(ranges: Mapping[str, tuple[float, float] | None] | None, n: str = n) -> str:
+            """One kind of range: "-" when not computed, the verdict's few words ("at upper
+            bound") where it withholds it."""
+            if ranges is None:
+                return "-"
+            r = ranges.get(n)
+            if r is None:
+                return (fit.verdict.range_note(n) if fit.verdict is not None else "") or "-"
+            return pair(*r)
+
         si = "" if unit is None else f"  (= {fit.values[n]:.6g} {fit.units[n]})"
         lines.append(
-            f"{n:<22} {_number(fit.values[n] / f, 6):>11}  {pair(*fit.ranges[n]):>23}  "
-            f"{pair(*fit.joint_ranges[n]):>23}  {pair(*sampled) if sampled else '-':>23}  "
-            f"{pair(*scan) if scan else '-':>21}  {pair(*fit.bounds[n]):>21}  "
+            f"{n:<22} {_number(fit.values[n] / f, 6):>11}  {cell(fit.ranges):>23}  "
+            f"{cell(fit.joint_ranges):>23}  {cell(fit.sample_ranges):>23}  "
+            f"{cell(fit.scan_ranges):>21}  {pair(*fit.bounds[n]):>21}  "
             f"{unit or fit.units[n]}{si}"
         )
     lines += [
@@ -527,6 +536,8 @@ def format_fit(fit: FitResult, spec: FitSpec | None = None) -> str:
                 f"{_number(r.measured[c] / f, 4):>10} {_number(r.residual[c] / f, 3):>10} "
                 f"{r.normalised[c]:>8.2f}  {unit or r.unit}"
             )
+    if fit.verdict is not None:
+        lines += ["", *fit.verdict.lines()]
     if fit.message:
         lines += ["", f"solver: {fit.message}"]
     return "\n".join(lines)

@@ -46,6 +46,7 @@ from numpy.typing import NDArray
 from crashsim.environment.ground import FrictionZone, Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import CrashsimError, ParameterError
+from crashsim.filekind import special_file
 from crashsim.io.fitfile import read_fit
 from crashsim.io.studyfile import read_study
 from crashsim.io.tomlvalues import (
@@ -61,6 +62,7 @@ from crashsim.io.tomlvalues import (
     _Table,
     parse_quantity,
 )
+from crashsim.names import check_name
 from crashsim.result import Result
 from crashsim.scene import DEFAULT_MAX_DURATION, Scene
 from crashsim.vehicles.generator import PRESETS, SHAPE_PARAMETERS
@@ -367,8 +369,7 @@ def _vehicle(t: _Table, base: Path) -> Vehicle:
 
 def _body(t: _Table, base: Path) -> Vehicle:
     name = t.string("name")
-    if not name.strip():
-        t.fail("name", "a vehicle needs a non-empty name")
+    _wrap(t, "name", lambda: check_name(name, "a vehicle"))
     given = [g for g in _GEOMETRY if t.has(g)]
     t.taken.update(_GEOMETRY)
     if len(given) != 1:
@@ -477,18 +478,27 @@ def _mesh_options(t: _Table, base: Path) -> tuple[dict[str, Any], Path]:
         m.finish()
     if not name:
         where.fail(key, "the mesh file name is empty")
-    path = Path(name).expanduser()
-    if not path.is_absolute():
-        path = base / path
-    if not path.is_file():
-        where.fail(
-            key,
-            f'mesh file "{name}" does not exist (looked for {path.resolve()}); paths are relative '
-            "to the scene file",
-        )
+    path = _input_file(where, key, name, base, "mesh")
     if options:
         _wrap(where, None, lambda: _check_mesh_options(options))
     return options, path
+
+
+def _input_file(where: _Table, key: str, name: str, base: Path, what: str) -> Path:
+    """The file ``name`` (relative to the scene file's folder ``base``) that a ``what`` key
+    names, checked to be a file there (a folder, a named pipe or a device is not read)."""
+    path = Path(name).expanduser()
+    path = path if path.is_absolute() else base / path
+    kind = special_file(path)
+    if kind is not None:
+        where.fail(key, f'{what} file "{name}" is {kind}, not a file (at {path.resolve()})')
+    if not path.is_file():
+        where.fail(
+            key,
+            f'{what} file "{name}" does not exist (looked for {path.resolve()}); paths are '
+            "relative to the scene file",
+        )
+    return path
 
 
 def _check_mesh_options(options: dict[str, Any]) -> None:
@@ -703,7 +713,7 @@ def _inputs(t: _Table) -> DriverInputs | None:
                 r.fail("exchange", f"expected a whole number from 1, got {_show(n)}")
             at = ("exchange", n)
         r.taken.update(("time", "exchange"))
-        fraction = r.number("fraction", 1.0)
+        fraction = r.number("fraction") if r.has("fraction") else None
         r.finish()
         states.append((wheel, state, at, fraction))
     if states:
@@ -740,15 +750,7 @@ def _ground(t: _Table | None, base: Path) -> Ground | None:
                 if m.has(k):
                     kwargs[k] = m.string(k)
             m.finish()
-        path = Path(name).expanduser()
-        path = path if path.is_absolute() else base / path
-        if not path.is_file():
-            where.fail(
-                key,
-                f'terrain file "{name}" does not exist (looked for {path.resolve()}); paths are '
-                "relative to the scene file",
-            )
-        kwargs["terrain"] = path
+        kwargs["terrain"] = _input_file(where, key, name, base, "terrain")
     t.taken.add("terrain")
     for k in ("friction", "body_friction"):
         if t.has(k):
@@ -767,6 +769,8 @@ def _ground(t: _Table | None, base: Path) -> Ground | None:
         mu = z.raw("friction")
         mu = mu if isinstance(mu, str) else z.number("friction")
         name = z.string("name", None)
+        if name is not None:
+            _wrap(z, "name", lambda n=name: check_name(n, "a zone"))
         z.finish()
         zones.append(_wrap(z, None, lambda c=corners, mu=mu, n=name: FrictionZone(c, mu, n)))
     kwargs["zones"] = zones
@@ -776,8 +780,7 @@ def _ground(t: _Table | None, base: Path) -> Ground | None:
 
 def _obstacle(t: _Table, scene: Scene, base: Path) -> None:
     name = t.string("name")
-    if not name.strip():
-        t.fail("name", "an obstacle needs a non-empty name")
+    _wrap(t, "name", lambda: check_name(name, "an obstacle"))
     given = [g for g in _OBSTACLE_SHAPES if t.has(g)]
     t.taken.update(_OBSTACLE_SHAPES)
     if len(given) != 1:
@@ -1056,6 +1059,9 @@ def load_scene(path: str | Path) -> SceneFile:
     """Read a scene file (TOML, UTF-8; see docs/scene-format.md). Raises SceneFileError with a
     one-line message naming the file and the key for every mistake in it."""
     p = Path(path)
+    kind = special_file(p)
+    if kind is not None:  # never opened: a named pipe would wait, /dev/zero never end
+        raise SceneFileError(f"is {kind}, not a scene file", file=str(p))
     try:
         text = p.read_text(encoding="utf-8")
     except FileNotFoundError:

@@ -35,13 +35,26 @@ if TYPE_CHECKING:
     from crashsim.batch import BatchResult
     from crashsim.scene import Scene
 
-__all__ = ["local_cluster", "run_dask"]
+__all__ = ["local_cluster", "require_distributed", "run_dask"]
 
 Array = NDArray[np.float64]
 
 MAX_CHUNK = 256  # variants per task at most
 TASKS_PER_WORKER = 4  # full-size chunks per worker (when n allows), then shrinking ones
 CONNECT_TIMEOUT = "10s"  # how long to try reaching a scheduler given by its address
+
+
+def require_distributed() -> None:
+    """StudyError, before any work, when dask.distributed cannot be imported (the study extra
+    installs it)."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError as e:
+        raise StudyError(
+            f"the Dask backend needs dask.distributed, which cannot be imported ({e}): "
+            "pip install 'dask[distributed]' (or 'crashsim[study]'), or run the study on this "
+            'machine (backend "local")'
+        ) from None
 
 
 def local_cluster(n_workers: int | None = None) -> Any:

@@ -12,7 +12,6 @@ Values and parameters are checked here: StudyError naming the path.
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -24,7 +23,7 @@ from numpy.typing import NDArray
 from crashsim.errors import StudyError
 from crashsim.studies.distributions import Distribution
 
-__all__ = ["Linspace", "grid", "linspace", "monte_carlo_sample", "one_at_a_time"]
+__all__ = ["Linspace", "grid", "grid_size", "linspace", "monte_carlo_sample", "one_at_a_time"]
 
 Array = NDArray[np.float64]
 
@@ -37,7 +36,8 @@ class Linspace:
     stop: float
     count: int
 
-    def values(self, key: str | None = None) -> Array:
+    def size(self, key: str | None = None) -> int:
+        """The number of values, checked (StudyError naming ``key``) without making them."""
         at = f'"{key}": ' if key else ""
         if isinstance(self.count, bool) or not isinstance(self.count, int | np.integer):
             raise StudyError(f"{at}linspace count must be a whole number, got {self.count!r}", key)
@@ -51,7 +51,10 @@ class Linspace:
                 "ends; give a count >= 2, or a single value",
                 key,
             )
-        return np.linspace(float(self.start), float(self.stop), int(self.count))
+        return int(self.count)
+
+    def values(self, key: str | None = None) -> Array:
+        return np.linspace(float(self.start), float(self.stop), self.size(key))
 
     def __str__(self) -> str:
         return f"{self.start:g}:{self.stop:g}:{self.count}"
@@ -87,15 +90,33 @@ def _axis(key: str, values: Any) -> Array:
     return np.asarray(out, dtype=np.float64)
 
 
-def grid(spec: Mapping[str, Any]) -> dict[str, Array]:
-    """The full factorial of ``spec`` ({path: values or Linspace}): n = the product of the
-    counts, the first path varying slowest."""
+def grid_size(spec: Mapping[str, Any]) -> int:
+    """The number of variants of the full factorial of ``spec``, found without making it."""
     if not spec:
         raise StudyError("a sweep needs at least one parameter path with values")
-    axes = {k: _axis(k, v) for k, v in spec.items()}
-    rows = list(itertools.product(*(range(a.size) for a in axes.values())))
-    idx = np.asarray(rows, dtype=np.int64).reshape(len(rows), len(axes))
-    return {k: a[idx[:, c]] for c, (k, a) in enumerate(axes.items())}
+    sizes = []
+    for k, v in spec.items():
+        if isinstance(v, Linspace):
+            sizes.append(v.size(k))
+        elif isinstance(v, str) or not isinstance(v, Sequence | np.ndarray):
+            sizes.append(1)
+        else:
+            sizes.append(len(v))
+    return math.prod(sizes)
+
+
+def grid(spec: Mapping[str, Any]) -> dict[str, Array]:
+    """The full factorial of ``spec`` ({path: values or Linspace}): n = the product of the
+    counts, the first path varying slowest (``itertools.product`` order), each column made
+    at once (n values; no list of n rows)."""
+    grid_size(spec)  # an empty spec or a bad count, before any values are made
+    axes = [_axis(k, v) for k, v in spec.items()]
+    sizes = [a.size for a in axes]
+    out = {}
+    for c, (k, a) in enumerate(zip(spec, axes, strict=True)):
+        slower, faster = math.prod(sizes[:c]), math.prod(sizes[c + 1:])
+        out[k] = np.tile(np.repeat(a, faster), slower)
+    return out
 
 
 def _check_distributions(distributions: Mapping[str, Any]) -> None:

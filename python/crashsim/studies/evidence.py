@@ -13,14 +13,17 @@ ImpactPoint            impact ``impact``'s centroid (x, y) minus (x, y)    m
 TyreMark               mean 2-D distance of the mark's points to the       m
                        wheel's path (its contact patch over the run)
 PostImpactSpeed        CG speed at the vehicle's separation after impact   m/s
-                       ``impact`` minus speed
+                       ``impact`` (which it must be in) minus speed
 =====================  =================================================  =================
 
 The tolerance plays the part of one standard deviation: a fit's objective is the sum of the
 squared residuals divided by their tolerances (dimensionless), and its 95 % ranges are
 +-1.96 sigma of that model. A run with no rest (the run ended first) is read at its last
-sample; an item that the run cannot give (no such impact, no separation) has the residual
-MISSING (in tolerances) so that the fit moves away from it.
+sample; an item that the run cannot give (no such impact, an impact the vehicle is not in,
+no separation) has the residual MISSING (in tolerances) so that the fit moves away from it,
+and ``absent(result)`` says why: a fit whose fitted run cannot give an item does not fit
+(crashsim.studies.verdict). ``caveat(result)``: a rest item's vehicle still moving when a
+run until rest ended (a poor fit).
 
 Rest positions, headings and EDR delta-V are read from the batch engine's columns
 (``uses_result = False``), so a fit with only these evaluates its candidates as batches; an
@@ -37,7 +40,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
-from crashsim.errors import StudyError
+from crashsim.errors import ParameterError, StudyError
 
 if TYPE_CHECKING:
     from crashsim.result import Result
@@ -141,6 +144,16 @@ class Evidence:
     def target(self) -> Array:
         raise NotImplementedError
 
+    def absent(self, result: Result) -> str | None:
+        """Why ``result`` cannot give this item (its residual is then no residual: a fit
+        to it does not fit), or None when it can."""
+        return None
+
+    def caveat(self, result: Result) -> str | None:
+        """What makes the figure ``result`` gives for this item doubtful in a run until rest
+        (a poor fit), or None."""
+        return None
+
     def difference(self, measured: Array) -> Array:
         """Residual in the item's unit (measured - evidence); NaN where the run has none."""
         return np.asarray(measured, dtype=np.float64) - self.target()
@@ -149,6 +162,26 @@ class Evidence:
         """The residual in tolerances; MISSING where the run gave nothing."""
         out = np.asarray(diff, dtype=np.float64) / float(self.tolerance)  # type: ignore[attr-defined]
         return np.where(np.isfinite(out), out, MISSING)
+
+
+def _no_impact(result: Result, impact: int, vehicle: str | None = None) -> str | None:
+    """Why ``result`` has no impact number ``impact`` (of ``vehicle``), or None."""
+    n = len(result.impacts)
+    if n < impact:
+        had = "no impact" if n == 0 else f"{n} impact{'s' if n > 1 else ''}"
+        return f"the fitted run has {had}, the evidence is of impact {impact}"
+    pair = result.impacts[impact - 1].vehicles
+    if vehicle is not None and vehicle not in pair:
+        return (f"impact {impact} of the fitted run is between {pair[0]} and {pair[1]}, not "
+                f"{vehicle}")  # fmt: skip
+    return None
+
+
+def _still_moving(result: Result, vehicle: str) -> str | None:
+    if result.rest(vehicle) is not None:
+        return None
+    return (f"{vehicle} was still moving when the fitted run ended ({result.t[-1]:.3g} s): its "
+            "rest is read at the last sample (a longer max_duration?)")  # fmt: skip
 
 
 def _col(columns: Mapping[str, np.ndarray], key: str, i: int) -> float:
@@ -185,6 +218,9 @@ class RestPosition(Evidence):
         p = result.trajectory(self.vehicle).position[-1]
         return np.array([p[0], p[1]], dtype=np.float64)
 
+    def caveat(self, result: Result) -> str | None:
+        return _still_moving(result, self.vehicle)
+
 
 @dataclass(frozen=True)
 class RestHeading(Evidence):
@@ -213,6 +249,9 @@ class RestHeading(Evidence):
         from crashsim.result import _heading
 
         return np.array([_heading(result.trajectory(self.vehicle).orientation[-1])])
+
+    def caveat(self, result: Result) -> str | None:
+        return _still_moving(result, self.vehicle)
 
 
 @dataclass(frozen=True)
@@ -251,6 +290,9 @@ class EDRDeltaV(Evidence):
         body = np.asarray(result.delta_v_body(imp, self.vehicle), dtype=np.float64)
         return np.array([body[0], -body[1]])  # EDR: lateral + right
 
+    def absent(self, result: Result) -> str | None:
+        return _no_impact(result, self.impact, self.vehicle)
+
 
 @dataclass(frozen=True)
 class ImpactPoint(Evidence):
@@ -277,6 +319,9 @@ class ImpactPoint(Evidence):
         c = result.impacts[self.impact - 1].centroid
         return np.array([c[0], c[1]], dtype=np.float64)
 
+    def absent(self, result: Result) -> str | None:
+        return _no_impact(result, self.impact)
+
 
 @dataclass(frozen=True)
 class TyreMark(Evidence):
@@ -302,6 +347,10 @@ class TyreMark(Evidence):
         v = next(x for x in scene.vehicles if x.name == self.vehicle)
         if v.wheels is None:
             raise FitError(f"{label}: vehicle {self.vehicle!r} has no wheels", key=label)
+        try:
+            v.wheels.index(self.wheel)
+        except ParameterError as e:  # it lists the wheels
+            raise FitError(f"{label}: {e}", key=label) from None
 
     def target(self) -> Array:
         return np.zeros(1)
@@ -342,13 +391,21 @@ class PostImpactSpeed(Evidence):
         return np.array([self.speed], dtype=np.float64)
 
     def from_result(self, result: Result) -> Array:
-        if len(result.impacts) < self.impact:
-            return np.array([math.nan])
+        t = self._separation(result)
+        return np.array([math.nan if t is None else t.speed])
+
+    def _separation(self, result: Result) -> Any:
+        """The vehicle's first separation at or after impact ``impact`` (None: none)."""
+        if _no_impact(result, self.impact, self.vehicle) is not None:
+            return None
         t = result.impacts[self.impact - 1].time
-        for s in result.separations(self.vehicle):
-            if s.time >= t:
-                return np.array([s.speed])
-        return np.array([math.nan])
+        return next((s for s in result.separations(self.vehicle) if s.time >= t), None)
+
+    def absent(self, result: Result) -> str | None:
+        why = _no_impact(result, self.impact, self.vehicle)
+        if why is None and self._separation(result) is None:
+            why = f"{self.vehicle} does not separate after impact {self.impact} in the fitted run"
+        return why
 
 
 _VALUES = {

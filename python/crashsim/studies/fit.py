@@ -40,6 +40,12 @@ The uncertainty, the tolerances taken as one standard deviation (so chi^2 is not
 - a scan of the objective along each unknown (the others held at the optimum): where chi^2
   rises by at most 3.84 (``scan_ranges``), narrower than the others when unknowns are
   correlated; for the picture.
+
+The verdict (crashsim.studies.verdict, ``verdict``): chi^2 over the items the fitted run
+gives against its degrees of freedom (a p-value), the unknowns at a bound, the items the
+fitted run cannot give; fits, poor fit (the ranges widened by the Birge ratio; withheld for
+an unknown at a bound) or does not fit (the ranges withheld). Every range above is returned
+as the verdict quotes it.
 """
 
 from __future__ import annotations
@@ -62,6 +68,7 @@ from numpy.typing import NDArray
 from crashsim.errors import CrashsimError, StudyError
 from crashsim.studies import paths
 from crashsim.studies.evidence import MISSING, Evidence, FitError, check_evidence
+from crashsim.studies.verdict import Verdict, judge
 
 if TYPE_CHECKING:
     from crashsim.result import Result
@@ -102,9 +109,15 @@ class FitResult:
 
     ``values`` {path: best value}; ``start``, ``bounds``; ``objective`` chi^2 (sum of the
     squared residuals in tolerances); ``residuals`` one ItemResidual per evidence item;
+    ``verdict`` (crashsim.studies.verdict.Verdict): fits, poor fit or does not fit, with
+    chi^2, its degrees of freedom and p-value, the unknowns at a bound, the evidence the
+    fitted run cannot give, and the reasons; every range below is as the verdict lets it be
+    quoted: widened by its ``scale`` (a poor fit's Birge ratio), or None where withheld
+    (every unknown of a fit that does not fit; an unknown at a bound or not fixed);
     ``covariance`` (k, k) from the Jacobian at the optimum (None when it could not be
     formed), ``sigma`` {path: standard deviation} (inf where the evidence does not fix the
-    unknown), ``ranges`` {path: (lo, hi)} the 95 % range +-1.96 sigma (within the bounds);
+    unknown; both with the tolerances as given, not widened),
+    ``ranges`` {path: (lo, hi)} the 95 % range +-1.96 sigma (within the bounds);
     ``joint_ranges`` the same for all unknowns at once: +-sqrt(chi^2_k(0.95)) sigma, the box
     around the joint 95 % ellipsoid (3.08 sigma for four unknowns);
     ``sample_ranges`` {path: (lo, hi)} the 95 % range by importance sampling of the posterior
@@ -125,8 +138,8 @@ class FitResult:
     residuals: list[ItemResidual]
     covariance: Array | None
     sigma: dict[str, float]
-    ranges: dict[str, tuple[float, float]]
-    joint_ranges: dict[str, tuple[float, float]]
+    ranges: dict[str, tuple[float, float] | None]
+    joint_ranges: dict[str, tuple[float, float] | None]
     evidence: list[Evidence]
     scene: Scene
     result: Result | None
@@ -135,9 +148,10 @@ class FitResult:
     interrupted: bool = False
     message: str = ""
     scan: dict[str, tuple[Array, Array]] | None = None
-    scan_ranges: dict[str, tuple[float, float]] | None = None
-    sample_ranges: dict[str, tuple[float, float]] | None = None
+    scan_ranges: dict[str, tuple[float, float] | None] | None = None
+    sample_ranges: dict[str, tuple[float, float] | None] | None = None
     samples: Any = None
+    verdict: Verdict | None = None
     elapsed: float = 0.0
     extra: dict[str, Any] = field(default_factory=dict)
 
@@ -158,9 +172,11 @@ class FitResult:
             f"{'95 % (sampling)':>21} {'along it alone':>21}  unit",
         ]
 
-        def span(r: dict[str, tuple[float, float]] | None, n: str) -> str:
+        def span(r: dict[str, tuple[float, float] | None] | None, n: str) -> str:
             v = r.get(n) if r else None
-            return f"{v[0]:.5g} .. {v[1]:.5g}" if v else "-"
+            if v is None:
+                return (self.verdict.range_note(n) if r and self.verdict else "") or "-"
+            return f"{v[0]:.5g} .. {v[1]:.5g}"
 
         for n in self.names:
             lines.append(
@@ -179,13 +195,16 @@ class FitResult:
                     f"{r.label:<36} {c or '-':<13} {r.evidence[k]:>10.4g} {r.measured[k]:>10.4g} "
                     f"{r.residual[k]:>10.3g} {r.normalised[k]:>7.2f}  {r.unit}"
                 )
+        if self.verdict is not None:
+            lines += ["", *self.verdict.lines()]
         if self.message:
             lines += ["", f"solver: {self.message}"]
         return "\n".join(lines)
 
     def __repr__(self) -> str:
         v = ", ".join(f"{n}={self.values[n]:.5g}" for n in self.names)
-        return f"FitResult({v}; chi2={self.objective:.4g}, runs={self.n_runs})"
+        said = "" if self.verdict is None else f", {self.verdict.status}"
+        return f"FitResult({v}; chi2={self.objective:.4g}{said}, runs={self.n_runs})"
 
     def plot(
         self,
@@ -203,10 +222,11 @@ class FitResult:
 
     def to_dict(self) -> dict[str, Any]:
         """The fit as plain data for JSON (SI units and radians, as the attributes): the
-        best values, bounds, start, sigma, 95 % ranges (Jacobian and scan), the objective,
-        every item's residual, the scans, the covariance, the run count and the interrupted
-        flag. A number that is not finite (sigma where the evidence does not fix an
-        unknown) is None."""
+        verdict, the best values, bounds, start, sigma, 95 % ranges (Jacobian, all at once,
+        sampling, scan: None where the verdict withholds one), the objective, every item's
+        residual, the scans, the covariance, the run count and the interrupted flag. A
+        number that is not finite (sigma where the evidence does not fix an unknown) is
+        None."""
 
         def num(v: Any) -> float | None:
             v = float(v)
@@ -215,9 +235,13 @@ class FitResult:
         def nums(a: Any) -> list[Any]:
             return [num(v) if np.ndim(v) == 0 else nums(v) for v in np.asarray(a, float)]
 
-        scan_ranges = self.scan_ranges
+        def spans(r: dict[str, tuple[float, float] | None] | None) -> Any:
+            return None if r is None else {n: None if v is None else nums(v)
+                                           for n, v in r.items()}  # fmt: skip
+
         scan = self.scan
         return {
+            "verdict": None if self.verdict is None else self.verdict.to_dict(),
             "method": self.method,
             "unknowns": list(self.names),
             "units": dict(self.units),
@@ -225,11 +249,10 @@ class FitResult:
             "start": {n: num(v) for n, v in self.start.items()},
             "bounds": {n: nums(b) for n, b in self.bounds.items()},
             "sigma": {n: num(v) for n, v in self.sigma.items()},
-            "ranges": {n: nums(r) for n, r in self.ranges.items()},
-            "joint_ranges": {n: nums(r) for n, r in self.joint_ranges.items()},
-            "scan_ranges": (
-                None if scan_ranges is None else {n: nums(r) for n, r in scan_ranges.items()}
-            ),
+            "ranges": spans(self.ranges),
+            "joint_ranges": spans(self.joint_ranges),
+            "sample_ranges": spans(self.sample_ranges),
+            "scan_ranges": spans(self.scan_ranges),
             "objective": num(self.objective),
             "residuals": [
                 {
@@ -279,6 +302,8 @@ class _Problem:
         self.use_result = any(e.uses_result for e in evidence)
         self.max_impacts = max([1] + [int(getattr(e, "impact", 1)) for e in evidence])
         self.cache: dict[bytes, Array] = {}
+        self.gave: dict[bytes, NDArray[np.bool_]] = {}  # per candidate: the items its run gave
+        self.given = np.zeros(len(evidence), dtype=np.int64)  # per item: the runs that gave it
         self.n_runs = 0
         self.best_x: Array | None = None
         self.best_r: Array | None = None
@@ -298,9 +323,11 @@ class _Problem:
             unique.setdefault(keys[i], i)
         rows = list(unique.values())
         if rows:
-            out = self._run(xs[rows])
-            for i, r in zip(rows, out, strict=True):
+            out, gave = self._run(xs[rows])
+            for i, r, g in zip(rows, out, gave, strict=True):
                 self.cache[keys[i]] = r
+                self.gave[keys[i]] = g
+                self.given += g
                 c = self.chi2(r)
                 if c < self.best:
                     self.best, self.best_x, self.best_r = c, xs[i].copy(), r
@@ -309,7 +336,20 @@ class _Problem:
                 self.progress(self.n_runs, self.best)
         return np.array([self.cache[k] for k in keys])
 
-    def _run(self, xs: Array) -> Array:
+    def gave_items(self, x: Array) -> NDArray[np.bool_]:
+        """Per evidence item: whether the run of candidate ``x`` (run already) gave it."""
+        return self.gave[np.asarray(x, dtype=np.float64).tobytes()]
+
+    def _row(self, diffs: Sequence[Array]) -> tuple[Array, NDArray[np.bool_]]:
+        """A run's residuals (in tolerances; MISSING where it gave nothing) from each item's
+        difference (in its unit), and per item whether the run gave it."""
+        gave = np.array([bool(np.all(np.isfinite(d))) for d in diffs])
+        row = np.concatenate([e.normalised(d) for e, d in zip(self.evidence, diffs, strict=True)])
+        return row, gave
+
+    def _run(self, xs: Array) -> tuple[Array, NDArray[np.bool_]]:
+        """(c, m) residuals of (c, k) candidates and (c, items) whether each run gave each
+        item."""
         values = {n: xs[:, j] for j, n in enumerate(self.names)}
         arrays = paths.overrides(self.scene, values, n=len(xs))
         if self.use_result:
@@ -327,12 +367,13 @@ class _Problem:
             raise _Interrupted
         failed = {e.index for e in br.errors}
         out = np.full((len(xs), self.m), MISSING)
+        gave = np.zeros((len(xs), len(self.evidence)), dtype=bool)
         for i in range(len(xs)):
             if i in failed or not br.finished[i]:
                 continue
-            parts = [e.normalised(e.difference(e.measured(br.columns, i))) for e in self.evidence]
-            out[i] = np.concatenate(parts)
-        return out
+            out[i], gave[i] = self._row([e.difference(e.measured(br.columns, i))
+                                         for e in self.evidence])  # fmt: skip
+        return out, gave
 
     def run_one(self, scene: Scene, stop: threading.Event | None = None) -> Result:
         kw = self.run_kw
@@ -348,25 +389,26 @@ class _Problem:
                                  progress=check)  # fmt: skip
             return scene.run(duration=kw["duration"], dt=kw["dt"], progress=check)
 
-    def from_result(self, result: Result) -> Array:
-        parts = [e.normalised(e.difference(e.from_result(result))) for e in self.evidence]
-        return np.concatenate(parts)
+    def from_result(self, result: Result) -> tuple[Array, NDArray[np.bool_]]:
+        return self._row([e.difference(e.from_result(result)) for e in self.evidence])
 
-    def _run_results(self, arrays: Mapping[str, Array], n: int) -> Array:
+    def _run_results(self, arrays: Mapping[str, Array], n: int
+                     ) -> tuple[Array, NDArray[np.bool_]]:  # fmt: skip
         stop = threading.Event()
 
-        def one(i: int) -> Array:
+        def one(i: int) -> tuple[Array, NDArray[np.bool_]]:
             try:
                 result = self.run_one(paths.apply_overrides(self.scene, arrays, i), stop)
             except CrashsimError:
-                return np.full(self.m, MISSING)
+                return np.full(self.m, MISSING), np.zeros(len(self.evidence), dtype=bool)
             return self.from_result(result)
 
         workers = (os.cpu_count() or 1) if self.threads is None else self.threads
         pool = concurrent.futures.ThreadPoolExecutor(max_workers=max(1, min(workers, n)))
         try:
             futures = [pool.submit(one, i) for i in range(n)]
-            return np.array([f.result() for f in futures])
+            done = [f.result() for f in futures]
+            return np.array([r for r, _ in done]), np.array([g for _, g in done])
         except KeyboardInterrupt as e:
             stop.set()
             raise _Interrupted from e
@@ -774,6 +816,53 @@ def _crossing(g: Array, c: Array, i0: int, level: float, idx: range) -> float:
     return float(g[prev])
 
 
+# -- the verdict ------------------------------------------------------------------------------
+
+
+def _verdict(
+    prob: _Problem,
+    items: list[Evidence],
+    residuals: list[ItemResidual],
+    names: list[str],
+    units: dict[str, str],
+    best: Array,
+    lo: Array,
+    hi: Array,
+    sigma: Array,
+    result: Result | None,
+    ran: bool,
+    until_rest: bool,
+    interrupted: bool,
+    lower_sample: float | None,
+) -> Verdict:
+    """The verdict (crashsim.studies.verdict) on the fit at ``best``: chi^2 over the items
+    its run gave; the items it did not give, each with the fitted run's reason and how many
+    of the runs tried gave it; a rest item's caveat (a run until rest that ended first)."""
+    unavailable: dict[str, str] = {}
+    caveats: dict[str, str] = {}
+    tested: list[tuple[str, float]] = []
+    gave = prob.gave_items(best) if ran else np.zeros(len(items), dtype=bool)
+    for i, (e, r) in enumerate(zip(items, residuals, strict=True)):
+        if not ran:
+            continue
+        if not gave[i]:
+            why = (e.absent(result) if result is not None else None) or \
+                "the fitted run gave no figure for it"  # fmt: skip
+            tried = int(prob.given[i])
+            unavailable[r.label] = (f"{why} ({tried or 'none'} of the {prob.n_runs} runs tried "
+                                    f"gave it)")  # fmt: skip
+            continue
+        if until_rest and result is not None:
+            caveat = e.caveat(result)
+            if caveat is not None:
+                caveats[r.label] = caveat
+        tested += [(f"{r.label} {c}".rstrip(), float(v))
+                   for c, v in zip(r.components, r.normalised, strict=True)]  # fmt: skip
+    return judge(tested, names, best, lo, hi, sigma, unavailable=unavailable,
+                 caveats=caveats, interrupted=interrupted, lower_sample=lower_sample,
+                 units=units)  # fmt: skip
+
+
 # -- the entry point --------------------------------------------------------------------------
 
 
@@ -856,6 +945,7 @@ def fit(
     scans = scan_ranges = None
     sampled: _Samples | None = None
     history: list[float] = []
+    lower_sample: float | None = None
     n_samples = 50 * len(names) if samples is None else int(samples)
     try:
         u0 = (x0 - lo) / (hi - lo)
@@ -873,7 +963,8 @@ def fit(
             if sampled is not None:
                 c_best = prob.chi2(prob.residuals(best[None])[0])
                 if sampled.chi2.min() < c_best - 1.0:
-                    message += (f"; a sample has chi^2 {sampled.chi2.min():.4g} < the "
+                    lower_sample = float(sampled.chi2.min())
+                    message += (f"; a sample has chi^2 {lower_sample:.4g} < the "
                                 f"optimum's {c_best:.4g}: the solve stopped short")  # fmt: skip
         if scan:
             scans, scan_ranges = _scan(prob, names, best, sigma, lo, hi, scan_points)
@@ -894,8 +985,8 @@ def fit(
             result = prob.run_one(fitted)
         except CrashsimError:
             result = None
-    r_best = prob.residuals(best[None])[0] if not interrupted or prob.best_x is not None \
-        else np.full(prob.m, MISSING)  # fmt: skip
+    ran = not interrupted or prob.best_x is not None  # best is a candidate that ran
+    r_best = prob.residuals(best[None])[0] if ran else np.full(prob.m, MISSING)
     at = 0
     for e, label in zip(items, labels, strict=True):
         nr = r_best[at : at + e.size]
@@ -908,6 +999,8 @@ def fit(
             measured = e.target() + diff
         residuals.append(ItemResidual(label, e.unit, e.components, np.asarray(measured, float),
                                       e.target(), np.asarray(diff, float), nr))  # fmt: skip
+    verdict = _verdict(prob, items, residuals, names, units, best, lo, hi, sigma, result,
+                       ran, until == "rest", interrupted, lower_sample)  # fmt: skip
     ranges = {  # within the bounds: the unknowns' prior
         n: (float(max(lo[j], best[j] - Z_95 * sigma[j])),
             float(min(hi[j], best[j] + Z_95 * sigma[j])))
@@ -927,6 +1020,10 @@ def fit(
         n: (float(sampled.ranges[j, 0]), float(sampled.ranges[j, 1]))
         for j, n in enumerate(names)
     }  # fmt: skip
+
+    def quoted(r: dict[str, tuple[float, float]] | None) -> Any:
+        return verdict.apply(names, best, lo, hi, r)  # widened or withheld by the verdict
+
     return FitResult(
         names=names,
         units=units,
@@ -937,8 +1034,8 @@ def fit(
         residuals=residuals,
         covariance=cov,
         sigma={n: float(s) for n, s in zip(names, sigma, strict=True)},
-        ranges=ranges,
-        joint_ranges=joint_ranges,
+        ranges=quoted(ranges),
+        joint_ranges=quoted(joint_ranges),
         evidence=items,
         scene=fitted,
         result=result,
@@ -947,9 +1044,10 @@ def fit(
         interrupted=interrupted,
         message=message,
         scan=scans,
-        scan_ranges=scan_ranges,
-        sample_ranges=sample_ranges,
+        scan_ranges=quoted(scan_ranges),
+        sample_ranges=quoted(sample_ranges),
         samples=sampled,
+        verdict=verdict,
         elapsed=time.monotonic() - began,
         extra={"global_history": history} if method == "global" else {},
     )

@@ -1,7 +1,8 @@
 """The picture of a fit (FitResult.plot): the fitted run over the evidence, seen from above,
 and the objective along each unknown around the optimum (the scan, the samples, the 95 %
-ranges: green the Jacobian's, orange dashed the sampling's), each unknown in the unit it was
-written in when given (a scene file's: ``crashsim fit``), else SI with angles in degrees."""
+ranges as the fit's verdict quotes them: green the Jacobian's, orange dashed the sampling's;
+the verdict leads the title), each unknown in the unit it was written in when given (a scene
+file's: ``crashsim fit``), else SI with angles in degrees."""
 
 from __future__ import annotations
 
@@ -39,7 +40,8 @@ def plot_fit(
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.set_title(f"fitted run (chi^2 = {fit.objective:.3g}) over the evidence (red)")
+    said = "" if fit.verdict is None else f"{fit.verdict.status.upper()}: "
+    ax.set_title(f"{said}fitted run (chi^2 = {fit.objective:.3g}) over the evidence (red)")
     result = fit.result
     if result is not None:
         for i, name in enumerate(result.vehicles):
@@ -105,12 +107,12 @@ def plot_fit(
             a.plot(xs * scale, ((xs - best) / s) ** 2, color="0.5", lw=1, ls="--",
                    label="Jacobian")  # fmt: skip
         a.axhline(3.84, color=EVIDENCE, lw=0.8, ls=":")
-        lo, hi = fit.ranges[n]
-        if math.isfinite(lo) and math.isfinite(hi):
-            a.axvspan(lo * scale, hi * scale, color="C2", alpha=0.15)
-        if fit.sample_ranges is not None:
-            for v in fit.sample_ranges[n]:
-                a.axvline(v * scale, color="C1", lw=1.0, ls="--")
+        span = fit.ranges[n]  # None where the verdict withholds it
+        if span is not None and math.isfinite(span[0]) and math.isfinite(span[1]):
+            a.axvspan(span[0] * scale, span[1] * scale, color="C2", alpha=0.15)
+        sampled = fit.sample_ranges.get(n) if fit.sample_ranges is not None else None
+        for v in sampled or ():
+            a.axvline(v * scale, color="C1", lw=1.0, ls="--")
         a.axvline(best * scale, color="k", lw=0.8)
         a.set_xlabel(f"{n} ({shown})")
         a.set_ylabel("chi^2 - best")

@@ -37,12 +37,32 @@ if TYPE_CHECKING:
 
     from crashsim.scene import Scene
 
-__all__ = ["FailedVariant", "Study", "monte_carlo", "run_study", "sweep"]
+__all__ = [
+    "MAX_STUDY_BYTES",
+    "FailedVariant",
+    "Study",
+    "UnknownColumnError",
+    "check_size",
+    "monte_carlo",
+    "run_study",
+    "sweep",
+]
 
 Array = NDArray[np.float64]
 
 DEFAULT_CHUNK = 256  # variants per batch call on this machine
 OK, FAILED, NOT_RUN = "ok", "failed", "not run"
+# Bytes a study's arrays may take at most (inputs, the engine's override arrays, outputs,
+# status), unless ``max_study_bytes`` says otherwise; as a run's history limit (1 GiB).
+MAX_STUDY_BYTES = 1 << 30
+
+
+class UnknownColumnError(StudyError, KeyError):
+    """A study has no column of that name (a StudyError; a KeyError too, as a lookup by
+    name is). The message lists the inputs and some outputs."""
+
+    def __str__(self) -> str:  # the message, not KeyError's quoted repr of it
+        return str(self.args[0])
 
 
 @dataclass(frozen=True)
@@ -106,7 +126,7 @@ class Study:
             return self.inputs[name]
         if name in self.outputs:
             return self.outputs[name]
-        raise KeyError(
+        raise UnknownColumnError(
             f"no column {name!r}: the inputs are {', '.join(self.inputs)}; outputs such as "
             f"{', '.join(list(self.outputs)[:4])}, ... (study.outputs)"
         )
@@ -184,11 +204,51 @@ class _Progress:
             self.bar.close()
 
 
+def _show_bytes(b: int) -> str:
+    return f"{b / (1 << 30):,.2f} GiB" if b >= 1 << 30 else f"{b / (1 << 20):,.1f} MiB"
+
+
+def check_size(
+    scene: Scene, keys: list[str], n: int, max_impacts: int, max_bytes: int | None = None
+) -> None:
+    """StudyError before anything is allocated when the arrays of a study of ``n`` variants
+    varying ``keys`` would take more than ``max_bytes`` (default MAX_STUDY_BYTES): per
+    variant 8 bytes an input, the engine's override arrays (as paths.overrides makes them
+    for one variant), each output column (as run_batch makes them for none) and the status."""
+    if max_bytes is None:
+        max_bytes = MAX_STUDY_BYTES
+    if isinstance(max_bytes, bool) or not isinstance(max_bytes, int | np.integer) or max_bytes < 1:
+        raise StudyError(
+            f"max_study_bytes = {max_bytes!r} is invalid: give a positive whole number of "
+            "bytes (e.g. 2**30)"
+        )
+    probe = paths.overrides(scene, {k: np.zeros(1) for k in keys})  # StudyError: a bad path
+    outputs = empty_columns(scene, 0, max_impacts)
+    status = np.dtype(object).itemsize + np.dtype(f"U{len(NOT_RUN)}").itemsize
+    per = (8 * len(keys) + sum(a.nbytes for a in probe.values())
+           + sum(c.dtype.itemsize for c in outputs.values()) + status)  # fmt: skip
+    need = n * per
+    if need <= max_bytes:
+        return
+    raise StudyError(
+        f"the study's {n:,} variants would take {_show_bytes(need)} ({per:,} bytes each: "
+        f"{len(keys)} inputs, the engine's overrides, {len(outputs)} outputs, the status), "
+        f"more than the study limit of {_show_bytes(int(max_bytes))}: run at most "
+        f"{int(max_bytes) // per:,} variants at a time (a smaller n or fewer values to "
+        "sweep; Monte Carlo studies with different seeds add up), or raise the limit "
+        "(max_study_bytes)"
+    )
+
+
 def _check_options(
     backend: str, duration: float | None, dt: float, until: str | None
 ) -> tuple[float, float]:
     if backend not in ("local", "dask"):
         raise StudyError(f'backend = {backend!r} is unknown: use "local" or "dask"')
+    if backend == "dask":
+        from crashsim.studies.dask_backend import require_distributed
+
+        require_distributed()
     if until is not None and until != "rest":
         raise StudyError(f'until = {until!r} is unknown: use until="rest" or None')
     if duration is None:
@@ -218,14 +278,16 @@ def run_study(
     max_impacts: int = 2,
     seed: int | None = None,
     distributions: Mapping[str, Distribution] | None = None,
+    max_study_bytes: int | None = None,
 ) -> Study:
     """Run the variants ``values`` ({path: (n,) values, SI}) of ``scene``: the common engine
     of :func:`sweep`, :func:`monte_carlo` and the sensitivity designs."""
     duration, dt = _check_options(backend, duration, dt, until)
-    overrides = paths.overrides(scene, values)  # StudyError for an unknown path, up front
-    n = int(next(iter(values.values())).size) if values else 0
+    n = int(np.asarray(next(iter(values.values()))).size) if values else 0
     if n < 1:
         raise StudyError("the study has no variants")
+    check_size(scene, list(values), n, max_impacts, max_study_bytes)
+    overrides = paths.overrides(scene, values)  # StudyError for a path given twice, ...
     if chunk_size is not None and (
         isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1
     ):
@@ -326,6 +388,7 @@ def sweep(
     progress: bool | Callable[[int, int], None] | None = True,
     chunk_size: int | None = None,
     max_impacts: int = 2,
+    max_study_bytes: int | None = None,
 ) -> Study:
     """Run the full factorial of ``grid`` ({path: values (a list, or
     crashsim.studies.linspace(start, stop, count))}, SI), the first path varying slowest.
@@ -335,12 +398,16 @@ def sweep(
     cores) or "dask" (``client``: a dask.distributed Client, a scheduler address, or None for
     a LocalCluster of this machine's cores, closed afterwards). ``progress``: True draws a bar
     on stderr, a callable gets (done, n), False nothing. ``max_impacts``: impacts reported as
-    columns. Returns a :class:`Study`."""
+    columns. ``max_study_bytes``: the study's arrays at most (default MAX_STUDY_BYTES, 1 GiB;
+    a larger study is refused before its design is made: :func:`check_size`). Returns a
+    :class:`Study`."""
+    _check_options(backend, duration, dt, until)
+    check_size(scene, list(grid), design.grid_size(grid), max_impacts, max_study_bytes)
     values = design.grid(grid)
     return run_study(
         scene, values, kind="sweep", duration=duration, dt=dt, until=until, backend=backend,
         client=client, threads=threads, progress=progress, chunk_size=chunk_size,
-        max_impacts=max_impacts,
+        max_impacts=max_impacts, max_study_bytes=max_study_bytes,
     )
 
 
@@ -359,15 +426,18 @@ def monte_carlo(
     progress: bool | Callable[[int, int], None] | None = True,
     chunk_size: int | None = None,
     max_impacts: int = 2,
+    max_study_bytes: int | None = None,
 ) -> Study:
     """Run ``n`` variants whose inputs are drawn from ``distributions`` ({path:
     crashsim.studies.uniform / normal / triangular / class_table}, SI) with
     ``numpy.random.default_rng(seed)``: the same seed gives the same variants. Other
     arguments as for :func:`sweep`. StudyError naming the path for an invalid distribution."""
+    _check_options(backend, duration, dt, until)
+    check_size(scene, list(distributions), design._count(n), max_impacts, max_study_bytes)
     values = design.monte_carlo_sample(distributions, n, seed)
     return run_study(
         scene, values, kind="montecarlo", duration=duration, dt=dt, until=until,
         backend=backend, client=client, threads=threads, progress=progress,
         chunk_size=chunk_size, max_impacts=max_impacts, seed=seed,
-        distributions=distributions,
+        distributions=distributions, max_study_bytes=max_study_bytes,
     )

@@ -27,7 +27,7 @@ import numpy as np
 from crashsim.errors import StudyError
 from crashsim.studies import design, paths
 from crashsim.studies.distributions import Distribution
-from crashsim.studies.run import Study, run_study
+from crashsim.studies.run import Study, check_size, run_study
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -129,6 +129,11 @@ class Sobol:
         """The indices of one output, one row per path."""
         if output in self.skipped:
             raise StudyError(f"no Sobol indices for {output!r}: {self.skipped[output]}")
+        analysed = list(dict.fromkeys(self.indices.index.get_level_values("output")))
+        if output not in analysed:
+            self.study[output]  # UnknownColumnError for a column the study does not have
+            raise StudyError(f"no Sobol indices for {output!r}: the outputs analysed are "
+                             f"{', '.join(analysed)}")  # fmt: skip
         return self.indices.xs(output, level="output")
 
     def plot(self, path: Any = None, output: str | None = None) -> Any:
@@ -164,6 +169,8 @@ def sobol(
             f"{1 << max(0, n.bit_length() - 1)} or {1 << n.bit_length()})"
         )
     keys = list(distributions)
+    check_size(scene, keys, n * (len(keys) + 2), run.get("max_impacts", 2),
+               run.get("max_study_bytes"))  # fmt: skip
     problem = {"num_vars": len(keys), "names": keys, "bounds": [[0.0, 1.0]] * len(keys)}
     u = sample.sample(problem, n, calc_second_order=False, seed=seed)
     values = {k: np.asarray(distributions[k].ppf(u[:, c]), dtype=np.float64)

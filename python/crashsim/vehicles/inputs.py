@@ -101,14 +101,15 @@ def _brake(value: Any, name: str) -> Brake:
 @dataclass(frozen=True)
 class WheelStateSwitch:
     """From ``at`` on, ``wheel`` (a name, an axle, "all" or an index) is ``state``: "free",
-    "locked" or "braked" at ``fraction`` of the friction (a wheel jammed by the crush).
-    ``at`` is a time (s) or ("exchange", n): the vehicle's n-th impulse exchange (1 = its
-    first), whichever the other party."""
+    "locked" or "braked" at ``fraction`` of the friction (a wheel jammed by the crush; the
+    fraction is required for "braked" and only for it). ``at`` is a time (s) or
+    ("exchange", n): the vehicle's n-th impulse exchange (1 = its first), whichever the other
+    party."""
 
     wheel: str | int
     state: str
     at: float | tuple[str, int]
-    fraction: float = 1.0
+    fraction: float | None = None
 
 
 def _switch(value: Any, k: int) -> WheelStateSwitch:
@@ -160,12 +161,19 @@ def _switch(value: Any, k: int) -> WheelStateSwitch:
             ) from e
         if not math.isfinite(at):
             raise ParameterError(f"wheel_states[{k}]: time {at} is not a finite number of s")
+    if state != "braked":
+        if item.fraction is not None:
+            raise ParameterError(f"wheel_states[{k}]: a fraction is for the 'braked' state only")
+        return WheelStateSwitch(item.wheel, state, at, None)
+    if item.fraction is None:
+        raise ParameterError(
+            f"wheel_states[{k}]: 'braked' needs its fraction of the friction (0-1): "
+            "(wheel, 'braked', at, fraction); a wheel that does not turn at all is 'locked'"
+        )
     try:
         fraction = float(item.fraction)
     except (TypeError, ValueError) as e:
         raise ParameterError(f"wheel_states[{k}]: fraction must be a number in [0, 1]") from e
-    if state != "braked" and fraction != 1.0:
-        raise ParameterError(f"wheel_states[{k}]: a fraction is for the 'braked' state only")
     if not 0.0 <= fraction <= 1.0:
         raise ParameterError(
             f"wheel_states[{k}]: braked fraction = {fraction} is invalid: it must lie in [0, 1]"
@@ -287,11 +295,12 @@ class DriverInputs:
                 drive[i] = t
         switches = []
         for k, s in enumerate(self.wheel_states):
+            fraction = 1.0 if s.fraction is None else s.fraction  # the engine's unused value
             for i in _targets(wheels, s.wheel, f"{what}: wheel_states[{k}]"):
                 if isinstance(s.at, tuple):
-                    switches.append((i, "exchange", float(s.at[1]), s.state, s.fraction))
+                    switches.append((i, "exchange", float(s.at[1]), s.state, fraction))
                 else:
-                    switches.append((i, "time", float(s.at), s.state, s.fraction))
+                    switches.append((i, "time", float(s.at), s.state, fraction))
         out: dict[str, Any] = {"switches": switches}
         if self.steer is not None:
             out["steer"] = self.steer

@@ -41,6 +41,7 @@ import trimesh
 from numpy.typing import NDArray
 
 from crashsim.errors import MeshError, ParameterError
+from crashsim.filekind import special_file
 from crashsim.units import FOOT
 from crashsim.vehicles.plausibility import check_size
 
@@ -74,6 +75,10 @@ DEGENERATE_RATIO = 1e-10
 # not pass: move it near the origin); beyond about 9e10 trimesh's vertex merging, which
 # rounds to 1e-8 of a unit in 64-bit integers, overflows (a RuntimeWarning and garbage).
 MAX_COORDINATE = 1e9
+
+# Bytes of a mesh file read to check its header before trimesh reads the file (a PLY header
+# must end within them).
+HEADER_BYTES = 1 << 20
 
 
 # -- units and axes ----------------------------------------------------------------------------
@@ -198,6 +203,81 @@ def check_mesh(mesh: trimesh.Trimesh, what: str) -> None:
         )
 
 
+def _ply_header(head: bytes, size: int) -> str | None:
+    lines = head.split(b"\n", 2)
+    if lines[0].rstrip(b"\r") != b"ply":
+        return 'it does not start with the line "ply"'
+    words = lines[1].split() if len(lines) > 1 else []
+    if len(words) != 3 or words[0] != b"format" or words[1] not in PLY_ENCODINGS:
+        return (
+            'its second line is not "format ascii 1.0" (or binary_little_endian, '
+            "binary_big_endian)"
+        )
+    if not any(line.strip() == b"end_header" for line in head.split(b"\n")[:-1]):
+        return f"its header does not end (end_header) within its first {HEADER_BYTES:,} bytes"
+    return None
+
+
+def _stl_header(head: bytes, size: int) -> str | None:
+    if head.lstrip()[:5].lower() == b"solid":  # ASCII
+        return None
+    count = int.from_bytes(head[80:84], "little") if size >= 84 else 0
+    if size == 84 + 50 * count:  # binary: an 80-byte header, the count, 50 bytes a triangle
+        return None
+    return (
+        'it is neither ASCII (starting with "solid") nor binary (84 bytes and 50 a triangle: '
+        f"{84 + 50 * count:,} bytes for the {count:,} triangles its header gives, not {size:,})"
+    )
+
+
+def _text_header(head: bytes, size: int) -> str | None:
+    return "it holds NUL bytes, and the format is text" if b"\0" in head else None
+
+
+def _off_header(head: bytes, size: int) -> str | None:
+    lines = (line.split(b"#", 1)[0].strip() for line in head.split(b"\n"))
+    first = next((line for line in lines if line), b"")
+    if not (first.split() or [b""])[0].upper().endswith(b"OFF") or b"\0" in head:
+        return 'it does not start with "OFF" (or COFF, NOFF, ...)'
+    return None
+
+
+def _glb_header(head: bytes, size: int) -> str | None:
+    if head[:4] != b"glTF" or int.from_bytes(head[4:8], "little") != 2:
+        return 'it does not start with "glTF" and version 2'
+    return None
+
+
+PLY_ENCODINGS = (b"ascii", b"binary_little_endian", b"binary_big_endian")
+# A cheap check per suffix of the file's first HEADER_BYTES (and its size), before trimesh,
+# whose loaders read the whole file first: a 1 GB file of zeros named .ply took 24 s and
+# 8.5 GB to be refused.
+_HEADERS = {
+    "ply": _ply_header,
+    "stl": _stl_header,
+    "obj": _text_header,
+    "off": _off_header,
+    "glb": _glb_header,
+}
+
+
+def _check_header(path: Path, what: str) -> None:
+    """MeshError when the start of the file cannot be its format's (by its suffix)."""
+    suffix = path.suffix.lower().lstrip(".")
+    check = _HEADERS.get(suffix)
+    if check is None:
+        return
+    try:
+        with open(path, "rb") as f:
+            head = f.read(HEADER_BYTES)
+        size = path.stat().st_size
+    except OSError as e:
+        raise MeshError(f"cannot read {what}: {e.strerror or e}") from e
+    why = check(head, size)
+    if why is not None:
+        raise MeshError(f"{what} is not a .{suffix} file: {why}")
+
+
 def describe(source: MeshSource) -> str:
     """How error messages name a mesh source."""
     if isinstance(source, trimesh.Trimesh | trimesh.Scene):
@@ -238,8 +318,12 @@ def load_mesh(
         mesh = _flatten(source, what).copy()  # the caller's object is left as it was
     else:
         path = Path(source)
+        kind = special_file(path)
+        if kind is not None:
+            raise MeshError(f"{what} is {kind}, not a file: give the mesh file itself")
         if not path.is_file():
             raise MeshError(f"no mesh file at {str(path)!r}: check the path")
+        _check_header(path, what)
         try:
             # process=False: check the vertices as written before trimesh repairs anything.
             loaded: Any = trimesh.load_scene(path, process=False)

@@ -34,6 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import MeshError, ParameterError
+from crashsim.names import check_name
 from crashsim.units import POUND
 from crashsim.vehicles import plausibility
 from crashsim.vehicles.generator import PRESETS, BodyParams, body_params, generate_body
@@ -398,8 +399,7 @@ class Vehicle:
     ) -> None:
         if not isinstance(mesh, trimesh.Trimesh):
             raise MeshError(f"mesh must be a trimesh.Trimesh, got {type(mesh).__name__}")
-        if not isinstance(name, str) or not name:
-            raise ParameterError(f"a vehicle needs a non-empty name (a str), got {name!r}")
+        check_name(name, "a vehicle")
         check_mesh(mesh, "the mesh")
         mass = _as_float(mass, "mass", "kg")
         cg_v = _point(cg, "cg")

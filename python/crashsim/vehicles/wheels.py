@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import ParameterError
+from crashsim.names import check_name
 
 __all__ = [
     "ABBREVIATIONS",
@@ -39,6 +40,7 @@ __all__ = [
     "Tyre",
     "Wheels",
     "dynamics_defaults",
+    "wheel_index",
 ]
 
 Array = NDArray[np.float64]
@@ -76,6 +78,27 @@ def _number(value: Any, name: str, unit: str) -> float:
     if not math.isfinite(x):
         raise ParameterError(f"{name} = {x} is invalid: give a finite number ({unit})")
     return x
+
+
+def wheel_index(names: Sequence[str], wheel: str | int) -> int:
+    """The index in ``names`` of a wheel given by its name ("front_left", also "Front left"),
+    short name ("FL") or index: the one lookup of Wheels.index and the Result's wheel
+    records. ParameterError listing the names otherwise."""
+    if isinstance(wheel, int | np.integer) and not isinstance(wheel, bool):
+        if 0 <= int(wheel) < len(names):
+            return int(wheel)
+    elif isinstance(wheel, str):
+        key = wheel.strip()
+        key = ABBREVIATIONS.get(key.upper(), key) if key.upper() in ABBREVIATIONS else key
+        for k in (key, key.lower().replace(" ", "_").replace("-", "_")):
+            if k in names:
+                return list(names).index(k)
+    short = [k for k, v in ABBREVIATIONS.items() if v in names]
+    raise ParameterError(
+        f"unknown wheel {wheel!r}: the wheels are {', '.join(names)}"
+        + (f" (or {', '.join(short)})" if short else "")
+        + f" or an index 0-{len(names) - 1}"
+    )
 
 
 def _renamed(error: ParameterError, names: Sequence[str], prefix: str = "") -> ParameterError:
@@ -284,9 +307,11 @@ class Wheels:
     fields). Other layouts: :meth:`custom`. ``source`` says where the numbers came from
     ("user", or the class table for a generated vehicle).
 
-    Raises ParameterError naming the wheel for a bad number (a negative rate, a radius <= 0)
-    or a CG that is not over the wheels (the engine's checks); wheels outside the body are
-    found when the wheels are put on a vehicle (:meth:`crashsim.Vehicle.with_wheels`).
+    Raises ParameterError naming the wheel for a bad number (a radius <= 0, a natural
+    frequency past (0, 20] Hz, a damping ratio past [0, 5]) or a CG that is not over the wheels
+    (the engine's checks); wheels outside the body and explicit rates (whose frequency and
+    ratio need the vehicle's mass) are checked when the wheels are put on a vehicle
+    (:meth:`crashsim.Vehicle.with_wheels`).
     """
 
     def __init__(
@@ -414,6 +439,8 @@ class Wheels:
         wheel_names = tuple(f"wheel_{k}" for k in range(n)) if names is None else tuple(names)
         if len(wheel_names) != n or len(set(wheel_names)) != n:
             raise ParameterError(f"names must be {n} different wheel names, got {wheel_names}")
+        for w in wheel_names:
+            check_name(w, "a wheel")
         self = cls.__new__(cls)
         self._init(
             wheel_names,
@@ -456,8 +483,9 @@ class Wheels:
         self.tyre: Tyre = Tyre.coerce(tyre)
         self.source = "user"
         # What only the engine knows: CG over the wheels, positive numbers (weight scales).
-        self.spec(1.0)
-        self._check(self._probe(), 1.0, "")
+        # Explicit rates wait for the vehicle's mass (check_on): the frequency and damping
+        # ratio they make with each wheel's load have bounds.
+        self._check(self._probe(), 1.0, "", explicit_rates=False)
 
     def _probe(self) -> _core.SceneSpec:
         """A scene spec with a box body around these wheels, of 1 kg."""
@@ -468,7 +496,7 @@ class Wheels:
     def check_inputs(self, **inputs: Any) -> None:
         """The engine's checks of driver inputs (SceneSpec.set_vehicle's steer, brake, drive,
         switches) on these wheels; the engine's ParameterError otherwise."""
-        self._probe().set_vehicle(0, **self.spec(1.0), **inputs)
+        self._probe().set_vehicle(0, **self.spec(1.0, explicit_rates=False), **inputs)
 
     # -- what the engine gets --------------------------------------------------------------
 
@@ -498,21 +526,7 @@ class Wheels:
     def index(self, wheel: str | int) -> int:
         """The engine's index of a wheel: its name ("front_left"), short name ("FL") or
         index. ParameterError listing the names otherwise."""
-        if isinstance(wheel, int | np.integer) and not isinstance(wheel, bool):
-            if 0 <= int(wheel) < len(self._names):
-                return int(wheel)
-        elif isinstance(wheel, str):
-            key = wheel.strip()
-            key = ABBREVIATIONS.get(key.upper(), key) if key.upper() in ABBREVIATIONS else key
-            key = key.lower().replace(" ", "_").replace("-", "_")
-            if key in self._names:
-                return self._names.index(key)
-        short = [k for k, v in ABBREVIATIONS.items() if v in self._names]
-        raise ParameterError(
-            f"unknown wheel {wheel!r}: the wheels are {', '.join(self._names)}"
-            + (f" (or {', '.join(short)})" if short else "")
-            + f" or an index 0-{len(self._names) - 1}"
-        )
+        return wheel_index(self._names, wheel)
 
     def axle(self, axle: str) -> tuple[int, ...]:
         """The indices of an axle's wheels ("front" or "rear"; the usual four only)."""
@@ -532,9 +546,10 @@ class Wheels:
         except ParameterError as e:
             raise _renamed(e, self._names) from e
 
-    def spec(self, mass: float) -> dict[str, Any]:
+    def spec(self, mass: float, *, explicit_rates: bool = True) -> dict[str, Any]:
         """SceneSpec.set_vehicle keywords (centers, radii, steerable, static_loads, spring_rates,
-        damping, tyre) for a vehicle of ``mass`` kg."""
+        damping, tyre) for a vehicle of ``mass`` kg; ``explicit_rates=False`` leaves given
+        rates out (the springs from the frequency and ratio instead)."""
         loads = self.static_loads(mass)
         d = _defaults()
         rates = np.empty(len(self))
@@ -546,9 +561,9 @@ class Wheels:
                 rates[k], damp[k] = _core.suspension(float(f), float(freq), float(zeta))
             except ParameterError as e:
                 raise ParameterError(f"wheel {self._names[k]!r}: {e}") from e
-        if self._rates is not None:
+        if self._rates is not None and explicit_rates:
             rates = self._rates.copy()
-        if self._damping is not None:
+        if self._damping is not None and explicit_rates:
             damp = self._damping.copy()
         return {
             "centers": self._centers,
@@ -560,9 +575,11 @@ class Wheels:
             "tyre": self.tyre.to_core(),
         }
 
-    def _check(self, world: _core.SceneSpec, mass: float, prefix: str) -> None:
+    def _check(
+        self, world: _core.SceneSpec, mass: float, prefix: str, *, explicit_rates: bool = True
+    ) -> None:
         try:
-            world.set_vehicle(0, **self.spec(mass))
+            world.set_vehicle(0, **self.spec(mass, explicit_rates=explicit_rates))
         except ParameterError as e:
             raise _renamed(e, self._names, prefix) from e
 

@@ -78,6 +78,11 @@ impl Table {
     }
 }
 
+/// Largest braking deceleration demand accepted (m/s^2): 20, about 2 g. Road tyres give
+/// 0.8-1.2 g on dry asphalt; a demand past the friction is capped by it, so a larger one only
+/// hides a mistake (100 m/s^2 was accepted and ran as full braking).
+pub const MAX_BRAKING_DECELERATION: Real = 20.0;
+
 /// What a wheel's brake does.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Braking {
@@ -171,9 +176,14 @@ impl DriverInputs {
                         )));
                     }
                 }
-                Some(Braking::Deceleration(t)) if t.range().0 < 0.0 => {
+                Some(Braking::Deceleration(t))
+                    if t.range().0 < 0.0 || t.range().1 > MAX_BRAKING_DECELERATION =>
+                {
+                    let (lo, hi) = t.range();
                     return Err(Error::Parameter(format!(
-                        "wheel {k}: a braking deceleration must be >= 0 m/s^2"
+                        "wheel {k}: a braking deceleration must lie in [0, 20] m/s^2 (got {lo} \
+                         to {hi}): no tyre brakes harder than about 1.2 g; to brake at the \
+                         friction limit give a braking fraction of 1"
                     )));
                 }
                 Some(Braking::Deceleration(_)) => {}

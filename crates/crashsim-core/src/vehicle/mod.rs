@@ -11,6 +11,7 @@ pub use inputs::{Braking, DriverInputs, Table, Trigger, WheelState, WheelSwitch}
 pub use tyre::{Tyre, TyreForce, TyreModel, WheelAction, MAGIC_FORMULA_DEFAULTS};
 pub use wheel::{
     static_loads, WheelSpec, DEFAULT_DAMPING_RATIO, DEFAULT_NATURAL_FREQUENCY, GRAVITY,
+    MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,
 };
 
 use crate::error::{Error, Result};

@@ -53,6 +53,11 @@ const ROLLING_RESISTANCE_SPEED: Real = 0.1;
 /// there), with the tread deflected sigma times this (3.5 cm at sigma 0.1 m).
 const MAGIC_FORMULA_MAX_SLIP: Real = 0.35;
 
+/// Largest rolling resistance coefficient accepted: 0.3, a passenger tyre in sand (Wong,
+/// Theory of Ground Vehicles, 4th ed., table 1.1: 0.015 on concrete, 0.08 on medium-hard
+/// soil, 0.30 on sand). Past it the wheel is ploughing, not rolling.
+pub const MAX_ROLLING_RESISTANCE: Real = 0.3;
+
 /// A typical dry passenger tyre's Magic Formula factors (B 1/rad, C, E) (Pacejka, Tire and
 /// Vehicle Dynamics, 3rd ed., ch. 4): the defaults of [`TyreModel::MagicFormula`] where a
 /// caller gives none.
@@ -146,11 +151,12 @@ impl Tyre {
                 "a tyre's relaxation length must be > 0 m (about 0.1 m)",
             ));
         }
-        if self.rolling_resistance < 0.0 {
+        if !(0.0..=MAX_ROLLING_RESISTANCE).contains(&self.rolling_resistance) {
             return Err(Error::parameter(
                 "rolling_resistance",
                 self.rolling_resistance,
-                "a rolling resistance coefficient must be >= 0 (about 0.012)",
+                "a rolling resistance coefficient must lie in [0, 0.3] (about 0.012 on \
+                 asphalt, 0.08 on firm soil, 0.3 in sand)",
             ));
         }
         match self.model {

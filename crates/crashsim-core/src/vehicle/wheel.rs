@@ -24,6 +24,18 @@ pub const DEFAULT_NATURAL_FREQUENCY: Real = 1.3;
 /// Default damping ratio of a wheel's spring-damper: 0.3, inside the 0.2-0.4 of passenger
 /// cars (Gillespie, ch. 5).
 pub const DEFAULT_DAMPING_RATIO: Real = 0.3;
+/// Highest natural frequency a wheel's spring may have with its share of the sprung mass
+/// (Hz): 20 Hz. Cars ride at 1.0-1.5 Hz, sports cars and trucks at up to 2.5-3 Hz (Gillespie,
+/// ch. 5), and a tyre alone, with no suspension (about 200 kN/m under a quarter of a 1.6 t
+/// car), at about 3.5 Hz: 20 Hz is stiffer than any road vehicle. The integration's sub-steps
+/// shrink with the stiffest mode ([`crate::motion`]), so this bound is what keeps the work per
+/// simulated second bounded.
+pub const MAX_NATURAL_FREQUENCY: Real = 20.0;
+/// Highest damping ratio a wheel's spring-damper may have: 5. Cars are damped at 0.2-0.4
+/// (Gillespie, ch. 5) and 1 is critical (no overshoot); at 5 the damper alone holds the wheel
+/// (it takes 10 times the natural period to return halfway). As for the frequency, the bound
+/// keeps the sub-steps it asks for (at most 6 per ms at 20 Hz and 5) bounded.
+pub const MAX_DAMPING_RATIO: Real = 5.0;
 
 /// One wheel of a vehicle.
 #[derive(Clone, Debug, PartialEq)]
@@ -56,20 +68,8 @@ impl WheelSpec {
     ) -> Result<WheelSpec> {
         require_finite("natural_frequency", natural_frequency)?;
         require_finite("damping_ratio", damping_ratio)?;
-        if natural_frequency <= 0.0 {
-            return Err(Error::parameter(
-                "natural_frequency",
-                natural_frequency,
-                "a wheel's natural frequency must be > 0 Hz (about 1.3 Hz for a car)",
-            ));
-        }
-        if damping_ratio < 0.0 {
-            return Err(Error::parameter(
-                "damping_ratio",
-                damping_ratio,
-                "a damping ratio must be >= 0 (about 0.3 for a car)",
-            ));
-        }
+        check_natural_frequency("natural_frequency", natural_frequency)?;
+        check_damping_ratio("damping_ratio", damping_ratio)?;
         let m = static_load / GRAVITY;
         let omega = 2.0 * std::f64::consts::PI * natural_frequency;
         let k = m * omega * omega;
@@ -127,7 +127,25 @@ impl WheelSpec {
                 "a damping coefficient must be >= 0 N s/m",
             ));
         }
-        Ok(())
+        // Given as rates (N/m, N s/m) or as a frequency and a ratio, the same bounds.
+        check_natural_frequency(&name("natural frequency"), self.natural_frequency())?;
+        check_damping_ratio(&name("damping ratio"), self.damping_ratio())
+    }
+
+    /// The sprung mass on the wheel (kg): its static load over g.
+    #[inline]
+    pub fn sprung_mass(&self) -> Real {
+        self.static_load / GRAVITY
+    }
+
+    /// Natural frequency of the spring with the wheel's sprung mass (Hz).
+    pub fn natural_frequency(&self) -> Real {
+        (self.spring_rate / self.sprung_mass()).sqrt() / (2.0 * std::f64::consts::PI)
+    }
+
+    /// Damping ratio of the spring-damper with the wheel's sprung mass: c / (2 sqrt(k m)).
+    pub fn damping_ratio(&self) -> Real {
+        self.damping / (2.0 * (self.spring_rate * self.sprung_mass()).sqrt())
     }
 
     /// The spring-damper's normal load (N, >= 0) at compression `compression` = R - h (m) and
@@ -136,6 +154,36 @@ impl WheelSpec {
     pub fn normal_load(&self, compression: Real, rate: Real) -> Real {
         (self.static_load + self.spring_rate * compression + self.damping * rate).max(0.0)
     }
+}
+
+fn check_natural_frequency(name: &str, f: Real) -> Result<()> {
+    // The slack lets a frequency given as exactly the bound pass its round trip through k.
+    if f > 0.0 && f <= MAX_NATURAL_FREQUENCY * (1.0 + 1e-12) {
+        return Ok(());
+    }
+    Err(Error::parameter(
+        name,
+        format!("{f} Hz"),
+        &format!(
+            "a wheel's natural frequency with its share of the weight must lie in (0, \
+             {MAX_NATURAL_FREQUENCY}] Hz (about 1.3 Hz for a car, 2-3 Hz for a truck; a tyre \
+             without suspension about 3.5 Hz); stiffer springs are no road vehicle's"
+        ),
+    ))
+}
+
+fn check_damping_ratio(name: &str, zeta: Real) -> Result<()> {
+    if (0.0..=MAX_DAMPING_RATIO * (1.0 + 1e-12)).contains(&zeta) {
+        return Ok(());
+    }
+    Err(Error::parameter(
+        name,
+        zeta,
+        &format!(
+            "a wheel's damping ratio must lie in [0, {MAX_DAMPING_RATIO}] (about 0.3 for a \
+             car; 1 is critical damping)"
+        ),
+    ))
 }
 
 /// Static loads (N) of wheels at body-frame positions `xy` (m from the CG) carrying `weight`

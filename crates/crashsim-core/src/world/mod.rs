@@ -155,6 +155,9 @@ pub struct World {
     slow_since: Vec<Option<Real>>,
     /// When each body on the ground came to rest after it last moved (s), if it has.
     stopped_at: Vec<Option<Real>>,
+    /// Since when each body on the ground has been settled (s), if it is: on the ground with
+    /// every velocity component small (stepper.rs, a run until rest).
+    settled_since: Vec<Option<Real>>,
     /// The latest predictions of bodies on the ground (each an integration of its own):
     /// a step asks for the same ones several times (swept box, speed bound, search, advance).
     predictions: Mutex<Vec<Prediction>>,
@@ -245,6 +248,9 @@ impl World {
                 "an obstacle's pose has a non-finite number".into(),
             ));
         }
+        for x in t.iter() {
+            crate::error::require_coordinate("an obstacle's position", *x)?;
+        }
         let body = RigidBody::immovable(Point::from(t), pose.rotation);
         Ok(self.push_body(shape, body, Motion::Fixed))
     }
@@ -277,6 +283,7 @@ impl World {
         });
         self.slow_since.push(None);
         self.stopped_at.push(None);
+        self.settled_since.push(None);
         index
     }
 

@@ -36,12 +36,17 @@ pub const REST_TIME: Real = 0.2;
 /// A body faster than this along the ground (m/s) is moving again: its time to rest starts
 /// over.
 pub const MOVING_SPEED: Real = 10.0 * REST_SPEED;
-/// A run until rest stops once, besides, every body on the ground has settled: its CG speed
-/// (vertical too) below REST_SPEED and its angular speed about every axis below this (rad/s,
-/// 2 deg/s). Speed and yaw rate alone stopped a run while the car still rocked on its springs
-/// after a skid (wheel loads 5 % off the axle shares); the rest time reported is the one of
-/// travel and yaw.
+/// A run until rest stops once, besides, every body on the ground has settled for
+/// [`REST_TIME`]: its angular speed about every axis below this (rad/s, 2 deg/s) ... Speed and
+/// yaw rate alone stopped a run while the car still rocked on its springs after a skid (wheel
+/// loads 5 % off the axle shares), and a settled instant alone stopped a dropped car at the
+/// bottom of its bounce (its CG 0.40 m up against a static 0.55 m); the rest time reported is
+/// the one of travel and yaw.
 pub const SETTLED_ANGULAR_SPEED: Real = 2.0 * std::f64::consts::PI / 180.0;
+/// ... and its CG speed (vertical too) below this (m/s): a bounce on 1.3 Hz springs whose
+/// speed stays under it for [`REST_TIME`] is under 1.5 mm high. At REST_SPEED a dropped car
+/// ended its run 5 mm above its static height, still moving at 0.04 m/s.
+pub const SETTLED_SPEED: Real = 0.01;
 
 /// How a run stops and keeps its history of states.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -54,10 +59,10 @@ pub struct RunOptions {
     /// Largest history a run may keep (bytes, default [`DEFAULT_MAX_HISTORY_BYTES`]): a run
     /// whose estimate is larger is refused before it starts, with the interval that fits.
     pub max_history_bytes: u64,
-    /// Stop as soon as every body on the ground is at rest (speed along the ground below
-    /// [`REST_SPEED`] and yaw rate below [`REST_YAW_RATE`] for [`REST_TIME`]) and settled
-    /// ([`SETTLED_ANGULAR_SPEED`]); the duration is then the longest the run may take. Needs
-    /// a ground.
+    /// Stop as soon as every body on the ground is at rest (on the ground, speed along it
+    /// below [`REST_SPEED`] and yaw rate below [`REST_YAW_RATE`] for [`REST_TIME`]) and settled
+    /// as long ([`SETTLED_SPEED`], [`SETTLED_ANGULAR_SPEED`]); the duration is then the longest
+    /// the run may take. Needs a ground.
     pub until_rest: bool,
     /// Keep the history of states (default true). False keeps only the last sample (the end
     /// of the run) besides the impacts, the contact log and the rest times: what a batch's
@@ -334,31 +339,57 @@ impl World {
         Ok(out)
     }
 
-    /// Updates since when each body on the ground has been slow enough to be at rest, and when
-    /// it first came to rest after it last moved (faster than [`MOVING_SPEED`] or yawing
-    /// faster than ten times [`REST_YAW_RATE`]): the time to rest reported, which the rock on
-    /// the springs after a skid (a few cm/s back and forth) does not push back.
+    /// Updates, for each body on the ground, since when it has been slow enough to be at rest,
+    /// when it first came to rest after it last moved, and since when it has settled.
+    ///
+    /// Slow: on the ground (see [`crate::motion::OnGround::supported`]) with its speed along the ground below
+    /// [`REST_SPEED`] and its yaw rate below [`REST_YAW_RATE`]. Moving again: faster than
+    /// [`MOVING_SPEED`] along the ground or vertically, yawing faster than ten times
+    /// [`REST_YAW_RATE`], or off the ground. The time it came to rest is the time to rest
+    /// reported: the bounce and rock on the springs after a skid (a few cm/s back and forth)
+    /// do not push it back, but a fall or a bounce off the ground does (a car dropped from
+    /// 10 m was "at rest at t = 0.001 s" while it fell). Settled: on the ground with every
+    /// velocity component below [`SETTLED_SPEED`] and every angular one below
+    /// [`SETTLED_ANGULAR_SPEED`]; a run until rest waits for [`REST_TIME`] of it, so it does
+    /// not stop at the bottom of a bounce.
     fn track_rest(&mut self) {
+        let Some(ground) = &self.ground else {
+            return;
+        };
         for (i, wb) in self.bodies.iter().enumerate() {
-            if !matches!(wb.motion, Motion::OnGround(_)) {
+            let Motion::OnGround(motion) = &wb.motion else {
                 continue;
-            }
-            // Travel along the ground and yaw: the bounce and rock on the springs after a stop
-            // are settling, not travel (they are waited for before a run until rest stops).
+            };
             let v = wb.body.velocity();
-            let slow =
-                v.x.hypot(v.y) < REST_SPEED && wb.body.angular_velocity().z.abs() < REST_YAW_RATE;
+            let w = wb.body.angular_velocity();
+            let along = v.x.hypot(v.y);
+            let travel_slow = along < REST_SPEED && w.z.abs() < REST_YAW_RATE;
+            let fast = along > MOVING_SPEED
+                || v.z.abs() > MOVING_SPEED
+                || w.z.abs() > 10.0 * REST_YAW_RATE;
+            // Only a body that may be or stay at rest needs to know whether it is carried.
+            let on_ground = if travel_slow || (!fast && self.stopped_at[i].is_some()) {
+                motion.supported(&wb.body, ground)
+            } else {
+                true
+            };
+            let slow = travel_slow && on_ground;
             self.slow_since[i] = if slow {
                 self.slow_since[i].or(Some(self.time))
             } else {
                 None
             };
-            let yaw = wb.body.angular_velocity().z.abs();
-            if v.x.hypot(v.y) > MOVING_SPEED || yaw > 10.0 * REST_YAW_RATE {
+            if fast || !on_ground {
                 self.stopped_at[i] = None;
             } else if slow && self.stopped_at[i].is_none() {
                 self.stopped_at[i] = Some(self.time);
             }
+            let settled = slow && v.norm() < SETTLED_SPEED && w.norm() < SETTLED_ANGULAR_SPEED;
+            self.settled_since[i] = if settled {
+                self.settled_since[i].or(Some(self.time))
+            } else {
+                None
+            };
         }
     }
 
@@ -372,14 +403,14 @@ impl World {
         }
     }
 
-    /// True when every body on the ground has been slow for [`REST_TIME`] and has settled
-    /// (angular speed below [`SETTLED_ANGULAR_SPEED`]).
+    /// True when every body on the ground has been slow for [`REST_TIME`] and settled for as
+    /// long.
     fn all_at_rest(&self) -> bool {
+        let held =
+            |since: Option<Real>| since.is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12);
         self.bodies.iter().enumerate().all(|(i, wb)| {
             !matches!(wb.motion, Motion::OnGround(_))
-                || (self.slow_since[i].is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12)
-                    && wb.body.velocity().norm() < REST_SPEED
-                    && wb.body.angular_velocity().norm() < SETTLED_ANGULAR_SPEED)
+                || (held(self.slow_since[i]) && held(self.settled_since[i]))
         })
     }
 

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 
 from crashsim.errors import ParameterError
 from crashsim.io.viewer.data import DEFAULT_MAX_SAMPLES, page_data
-from crashsim.io.viewer.files import ReportFileError, report_page_data
+from crashsim.io.viewer.files import ReportFileError, check_report_path, report_page_data
 from crashsim.io.viewer.meshes import DEFAULT_MAX_TRIANGLES
 from crashsim.io.viewer.page import check_output_path, page_source, write_page
 
@@ -79,6 +79,7 @@ def view_report(
     ``cs.view``) has what a report cannot give (tyre marks, friction zones, rest outlines,
     the overlap points), and any other file is not ours; ParameterError, before any work."""
     src = Path(report)
+    check_report_path(src)  # first: a missing report is the mistake to name
     out = check_output_path(src.parent / PAGE_FILE if path is None else path)
     if out.exists() and not force and page_source(out) != "report":
         what = (

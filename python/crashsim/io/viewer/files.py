@@ -23,6 +23,7 @@ from __future__ import annotations
 import copy
 import csv
 import json
+import math
 import struct
 from pathlib import Path
 from typing import Any
@@ -32,6 +33,7 @@ from numpy.typing import NDArray
 
 from crashsim._core import __version__
 from crashsim.errors import InputError
+from crashsim.filekind import special_file
 from crashsim.io.viewer.data import (
     FORMAT,
     FORMAT_VERSION,
@@ -44,7 +46,7 @@ from crashsim.io.viewer.data import (
 )
 from crashsim.io.viewer.meshes import pack_array
 
-__all__ = ["CSV_FILE", "GLB_FILE", "ReportFileError", "report_page_data"]
+__all__ = ["CSV_FILE", "GLB_FILE", "ReportFileError", "check_report_path", "report_page_data"]
 
 Array = NDArray[np.float64]
 
@@ -88,17 +90,42 @@ def _array(doc: Any, path: str, shape: tuple[int, ...], where: Path) -> Array:
     return a
 
 
+def check_report_path(path: Path) -> None:
+    """ReportFileError unless ``path`` is a file (a folder, a named pipe or a device is not
+    opened)."""
+    kind = special_file(path)
+    if kind is not None:
+        raise ReportFileError(f"{path}: is {kind}, not a report file")
+    if not path.is_file():
+        raise ReportFileError(f"{path}: no such file")
+
+
 def _read_report(path: Path) -> dict[str, Any]:
+    check_report_path(path)
     try:
         text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ReportFileError(f"{path}: no such file") from None
     except (OSError, UnicodeDecodeError) as e:
         raise ReportFileError(f"{path}: cannot read it ({e})") from e
+
+    def finite(text: str) -> float:  # every number, also 1e999, Infinity, NaN
+        value = float(text)
+        if not math.isfinite(value):
+            raise ReportFileError(
+                f"{path}: the number {text[:24]} is not finite: a report holds finite numbers "
+                "(null where there is none)"
+            )
+        return value
+
+    def whole(text: str) -> int:  # within a float's range: counts and masses alike
+        finite(text)
+        return int(text)
+
     try:
-        doc = json.loads(text)
+        doc = json.loads(text, parse_float=finite, parse_int=whole, parse_constant=finite)
     except json.JSONDecodeError as e:
         raise ReportFileError(f"{path}: not JSON ({e})") from e
+    except RecursionError:
+        raise ReportFileError(f"{path}: nested too deeply to be a crashsim report") from None
     if not isinstance(doc, dict) or doc.get("schema") != _SCHEMA:
         raise ReportFileError(
             f'{path}: not a crashsim report (no "schema": "{_SCHEMA}"); give the '
