@@ -177,6 +177,35 @@ def test_progress_flag_draws_the_bar(tmp_path: Path) -> None:
     assert done.stderr.endswith("100.0 %  t = 1000.000 of 1000 s\n")
 
 
+POLE = """format_version = 1
+[run]
+duration = "0.2 s"
+dt = "1 ms"
+[[vehicles]]
+name = "red"
+box = { length = "4.5 m", width = "1.8 m", height = "1.4 m" }
+mass = "1450 kg"
+position = ["-3 m", "0.4 m", "0.7 m"]
+speed = "10 m/s"
+[[obstacles]]
+name = "pole"
+pole = { diameter = "0.3 m", height = "6 m" }
+position = [0, 0, 0]
+"""  # a box car into a pole, no ground: one exchange, at 0.17 s
+
+
+def test_run_draws_an_impact_with_a_fixed_obstacle(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Was: "impact 1 is with the fixed obstacle 'pole': no picture of it", no impact-1.png.
+    (tmp_path / "pole.toml").write_text(POLE, encoding="utf-8")
+    assert main(["run", str(tmp_path / "pole.toml"), "--out", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    assert "no picture" not in out and str(tmp_path / "out" / "impact-1.png") in out
+    img = matplotlib.image.imread(tmp_path / "out" / "impact-1.png")
+    assert img.shape[:2] == (984, 1800) and float(np.ptp(img[..., :3])) > 0.5
+
+
 # -- check ---------------------------------------------------------------------------------
 
 
@@ -351,6 +380,69 @@ def test_out_on_read_only_folder_exits_2(
     assert "cannot write into the output folder" in capsys.readouterr().err
 
 
+def test_demo_runs_the_intersection_case_to_rest_and_writes_its_folder(tmp_path: Path) -> None:
+    # Was: `crashsim demo` ran the seed's box-car impact without a ground and wrote nothing.
+    # Now: generated cars on a ground, run to rest, a lamp post; the report's essentials
+    # printed, the report, pictures and case page written to ./crashsim-demo-out.
+    done = crashsim("demo", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr
+    out = tmp_path / "crashsim-demo-out"  # the default folder, in the current one
+    report = json.loads((out / "report.json").read_text(encoding="utf-8"))
+    text = done.stdout
+    assert text.startswith("crashsim demo: red (generated sedan, ")
+    # the case: a ground, two cars at rest, an impact between them and one with the lamp post
+    assert report["run"]["on_ground"]
+    pairs = [tuple(i["vehicles"]) for i in report["impacts"]]
+    assert pairs[0] == ("red", "blue") and ("blue", "lamp post") in pairs
+    assert all(r["at_rest"] for r in report["run_out"])
+    # what it prints is the report's: every impact's delta-V, PDOF and energy, each rest
+    for imp in report["impacts"]:
+        a, b = imp["vehicles"]
+        assert (f"impact {imp['number']}: {a} -> {b} at {imp['exchange_time']:.3f} s, closing "
+                f"{imp['closing_speed']:.2f} m/s") in text  # fmt: skip
+        assert f"energy dissipated {imp['energy']['dissipated'] / 1e3:.1f} kJ" in text
+        for p in imp["parties"]:
+            dv = p["delta_v"]["magnitude"]
+            assert (f"{p['name']:<5} delta-V {dv:.2f} m/s ({dv * 3.6:.1f} km/h), PDOF "
+                    f"{p['pdof_deg']:.0f} deg ({p['clock']} o'clock)") in text  # fmt: skip
+    for r in report["run_out"]:
+        x, y = r["end"]["position"][:2]
+        rest = f"{r['vehicle']:<5} at rest at {r['rest_time']:.2f} s at ({x:.2f}, {y:.2f}) m"
+        assert rest in text
+    # the files it names
+    names = ["report.json", "time-histories.csv", "trajectories.png", "motion.glb", "case.html"]
+    names += [f"impact-{k}.png" for k in range(1, len(pairs) + 1)]
+    assert sorted(p.name for p in out.iterdir()) == sorted(names)
+    assert "wrote: " + ", ".join(str(Path("crashsim-demo-out") / n) for n in
+                                 [names[0], names[1], names[2], *names[5:], names[3], names[4]]
+                                 ) in text  # fmt: skip
+    for name in names:
+        if name.endswith(".png"):
+            img = matplotlib.image.imread(out / name)
+            assert img.shape[0] > 500 and float(np.ptp(img[..., :3])) > 0.5, name
+    from crashsim.io.viewer.page import page_source
+
+    assert page_source(out / "case.html") == "run"
+    assert f"open {Path('crashsim-demo-out') / 'case.html'} in a browser" in text
+
+
+def test_demo_out_and_speed(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "demo"
+    assert main(["demo", "--out", str(out), "--speed", "50 km/h", "--no-pictures"]) == 0
+    text = capsys.readouterr().out
+    assert "at 50 km/h into the left side of blue" in text
+    assert sorted(p.name for p in out.iterdir()) == ["case.html", "report.json",
+                                                     "time-histories.csv"]  # fmt: skip
+    (tmp_path / "file").write_text("x", encoding="utf-8")
+    assert main(["demo", "--out", str(tmp_path / "file")]) == 2  # checked before the run
+    assert "is a file" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as done:
+        main(["demo", "--speed", "3 kg"])
+    assert done.value.code == 2
+    assert "'3 kg': give a number of mph or a speed with its unit" in capsys.readouterr().err
+
+
 def test_demo_speed_negative_exits_2_with_prefix(capsys: pytest.CaptureFixture[str]) -> None:
     # Was: exit 1 and "no impulse exchange happened within the run" without the prefix.
     for argv in (["demo", "--speed", "-5"], ["demo", "--speed=-5"], ["demo", "--speed", "0"]):
@@ -363,7 +455,7 @@ def test_demo_speed_negative_exits_2_with_prefix(capsys: pytest.CaptureFixture[s
 
 
 def test_demo_without_an_exchange_exits_1_with_prefix(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["demo", "--duration", "10 ms"]) == 1
+    assert main(["demo", "--impact-only", "--duration", "10 ms"]) == 1
     out, err = capsys.readouterr()
     assert out == ""
     assert err.startswith("crashsim: error: no impulse exchange happened within the 0.01 s run")
@@ -375,7 +467,7 @@ def test_demo_too_fast_to_exchange_advises_a_lower_speed(
 ) -> None:
     # issue 24: at 1e9 mph red passed through blue in nanoseconds and was told "a higher
     # --speed"
-    assert main(["demo", "--speed", "1e9"]) == 1
+    assert main(["demo", "--impact-only", "--speed", "1e9"]) == 1
     err = capsys.readouterr().err
     assert err == (
         "crashsim: error: no impulse exchange happened within the 0.5 s run: red at 1e+09 mph "
@@ -458,7 +550,7 @@ def test_ctrl_c_exits_130(tmp_path: Path) -> None:
 
 
 def test_demo_and_montecarlo_still_run(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["demo"]) == 0
+    assert main(["demo", "--impact-only"]) == 0
     assert "red's travel past first overlap: 0.4023 m" in capsys.readouterr().out
     assert main(["dtp-montecarlo", "--samples", "2000", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["samples"] == 2000

@@ -299,6 +299,26 @@ def test_obstacle_reports_are_valid_json_with_the_vehicle_taking_all_the_energy(
     assert "wall is a fixed obstacle" in str(report)
 
 
+@pytest.mark.parametrize("heading_deg, side, face", [(0.0, "-x", "rear"), (90.0, "+y", "left")])
+def test_a_poles_struck_side_is_named_in_its_frame(heading_deg, side, face) -> None:
+    # Was: "pole is a fixed obstacle ...; struck face: rear": the engine names the face of the
+    # obstacle's frame turned to the car with a vehicle's words (stiffness.rs Face::facing;
+    # world/geometry.rs); the report now says which side of its frame that is.
+    scene = cs.Scene()
+    scene.add(cs.Vehicle.box(4.5, 1.8, 1.4, mass=1500.0, name="car"), (0.0, 0.0, 0.7),
+              velocity=(10.0, 0.0, 0.0))  # fmt: skip
+    scene.add_obstacle(cs.Obstacle.pole(0.3), (3.0, 0.2), heading=math.radians(heading_deg))
+    report = cs.report(scene.run(0.3))
+    (imp,) = report.impacts
+    assert imp.obstacle.struck_face == face and imp.obstacle.struck_side == side
+    text = str(report)
+    assert "pole is a fixed obstacle" in text and f"struck on its {side} side" in text
+    assert "struck face: rear" not in text and "struck face: left" not in text
+    data = json.loads(report.to_json())
+    jsonschema.validate(data, report_schema())
+    assert data["impacts"][0]["obstacle"]["struck_side"] == side
+
+
 def test_an_obstacle_with_stiffness_gives_an_automatic_depth_of_penetration() -> None:
     car = cs.Vehicle.box(
         4.5, 1.8, 1.4, mass=1500.0, name="car", stiffness=cs.vehicle_class("sedan").stiffness

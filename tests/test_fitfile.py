@@ -247,6 +247,46 @@ def test_the_answer_in_the_files_units() -> None:
     assert "red.speed" in format_fit(fit)  # without a spec: SI
 
 
+def test_the_picture_in_the_files_units() -> None:
+    # Was: fit.png's scans along red.speed in m/s while the table gave the file's km/h.
+    case = load_scene(EXAMPLE)
+    spec = case.fit
+    options = dict(spec.kwargs(), scan_points=3, samples=0)
+    fit = cs.fit(case.scene, spec.unknowns, spec.evidence[:2], dt=case.run.dt,
+                 max_duration=case.run.longest, progress=False, **options)  # fmt: skip
+    assert spec.display_units() == {"red.speed": ("km/h", KMH), "red.heading": ("deg", DEG)}
+    fig = fit.plot(units=spec.display_units())
+    panels = {a.get_xlabel(): a for a in fig.axes[1:]}
+    assert set(panels) == {"red.speed (km/h)", "red.heading (deg)"}
+    for name, label, unit in (("red.speed", "red.speed (km/h)", KMH),
+                              ("red.heading", "red.heading (deg)", DEG)):  # fmt: skip
+        xs, _ = fit.scan[name]
+        (scan,) = [line for line in panels[label].lines if line.get_label() == "scan"]
+        assert np.allclose(scan.get_xdata(), xs / unit, rtol=1e-12, atol=0)
+        best = [line for line in panels[label].lines if line.get_color() == "k"]
+        assert best[0].get_xdata()[0] == pytest.approx(fit.values[name] / unit, rel=1e-12)
+    assert fit.values["red.speed"] / KMH == pytest.approx(60.0, rel=5e-3)  # the table's 60
+    # without units: SI, angles in degrees
+    plain = {a.get_xlabel() for a in fit.plot().axes[1:]}
+    assert plain == {"red.speed (m/s)", "red.heading (deg)"}
+
+
+def test_crashsim_fit_draws_fit_png_in_the_files_units(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    drawn: list[object] = []
+    plot = cs.FitResult.plot
+
+    def spy(self, path=None, units=None):  # type: ignore[no-untyped-def]
+        drawn.append(units)
+        return plot(self, path, units)
+
+    monkeypatch.setattr(cs.FitResult, "plot", spy)
+    assert main(["fit", str(EXAMPLE), "--out", str(tmp_path / "fit"), "--no-scan"]) == 0
+    assert drawn == [{"red.speed": ("km/h", KMH), "red.heading": ("deg", DEG)}]
+    assert (tmp_path / "fit" / "fit.png").stat().st_size > 10_000
+
+
 # -- crashsim fit -------------------------------------------------------------------------------
 
 
@@ -361,3 +401,30 @@ def test_the_format_document_names_every_fit_key_and_evidence_type() -> None:
     words = {*FIT_KEYS, *EVIDENCE_KEYS, *(k for _, keys, _ in EVIDENCE_KEYS.values() for k in keys)}
     missing = sorted(k for k in words if f"`{k}`" not in doc)
     assert not missing, f"docs/scene-format.md does not describe {missing}"
+
+
+def test_the_docs_give_the_fit_defaults_the_code_has() -> None:
+    # Was: scene-format.md gave step 0.001 and seed "fresh entropy", fitting.md step 1e-2 and
+    # seed 0; the code's are cs.fit's keyword defaults (the file's [fit] leaves them to it).
+    import inspect
+    import re
+
+    defaults = {k: p.default for k, p in inspect.signature(cs.fit).parameters.items()}
+    table = (REPO / "docs" / "scene-format.md").read_text(encoding="utf-8")
+    section = table[table.index("`[fit]`:\n") : table.index("`[[evidence]]`, one section")]
+    rows = [r.split("|") for r in section.splitlines() if r.startswith("| `")]
+    for key in ("seed", "popsize", "maxiter", "max_nfev", "step", "scan", "scan_points"):
+        # | `key`, `key2` | type | default, default2 | meaning |
+        cells = next(c for c in rows if f"`{key}`" in c[1])
+        names = re.findall(r"`(\w+)`", cells[1])
+        value = [w.strip().strip("`") for w in cells[3].split(",")][names.index(key)]
+        expected = defaults[key]
+        if isinstance(expected, bool):
+            assert value == str(expected).lower(), (key, value)
+        else:
+            assert float(value) == expected, (key, value, expected)
+    fitting = (REPO / "docs" / "fitting.md").read_text(encoding="utf-8")
+    assert float(re.search(r"a step of `step` = ([0-9.e-]+)", fitting).group(1)) == defaults["step"]
+    assert int(re.search(r"`seed` \(default (\d+)\)", fitting).group(1)) == defaults["seed"]
+    with pytest.raises(FitFileError, match=r"\(default 0\.01\)"):
+        _load(FIT.replace("[fit]\n", "[fit]\nstep = 0.7\n") + EV)

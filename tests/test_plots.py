@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from pathlib import Path
 
 import crashsim as cs
@@ -18,6 +19,7 @@ import matplotlib.image as mpimg
 import numpy as np
 import pytest
 import shapely
+import trimesh
 from conftest import mesh_mass, seed_side_impact
 from crashsim import _core, plots
 from crashsim.plots import (
@@ -65,6 +67,14 @@ def patch_polygon(fig, gid: str) -> shapely.Geometry:
     for ring in rings[1:]:  # even-odd: a hole's ring cuts it out, a part's ring adds it
         out = out.symmetric_difference(ring)
     return out
+
+
+def patch_polygon_in(fig, ax, gid: str) -> shapely.Geometry:
+    """patch_polygon of one panel."""
+    found = [a for a in ax.patches if a.get_gid() == gid]
+    assert len(found) == 1, gid
+    rings = [shapely.Polygon(r) for r in found[0].get_path().to_polygons(closed_only=True)]
+    return shapely.union_all(rings)
 
 
 def arrows(fig, colour: str) -> list[np.ndarray]:
@@ -118,6 +128,54 @@ def test_rolled_box_silhouette_is_the_wider_strip() -> None:
     assert np.allclose(
         shapely.bounds(sil), [-RED[0] / 2, -width / 2, RED[0] / 2, width / 2], rtol=0, atol=1e-9
     )
+
+
+def test_a_closed_mesh_is_outlined_by_its_up_facing_triangles_an_open_one_by_all() -> None:
+    # The outline of a solid is the union of its triangles facing up (half of them: 1.7 s ->
+    # 1.3 s for the demo's run picture); an open mesh keeps them all.
+    car = cs.Vehicle.generate("sedan")
+    faces = np.asarray(car.mesh.faces)
+    for r in (rotation(0.3, 0.1, 0.2), rotation(2.0, -0.3, 0.5), rotation(0.0, 0.0, 3.0)):
+        p = np.array([1.0, -2.0, 0.6])
+        world = (car.body_vertices @ r.T + p)[:, :2]
+        every = shapely.union_all(shapely.polygons(world[faces]), grid_size=1e-9)
+        assert silhouette(car, p, r).symmetric_difference(every).area < 1e-8
+    box = trimesh.creation.box((4.0, 1.8, 1.4))
+    roofless = trimesh.Trimesh(box.vertices, box.faces[box.face_normals[:, 2] < 0.5])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # an open mesh: the loader says so
+        open_car = cs.Vehicle.from_mesh(roofless, mass=1500.0, cg=(0.0, 0.0, 0.0))
+    closed_car = cs.Vehicle.from_mesh(box, mass=1500.0, cg=(0.0, 0.0, 0.0))
+    p, r = np.array([0.0, 0.0, 0.7]), rotation(0.2, 0.1, 0.0)
+    assert plots._closed(closed_car) and not plots._closed(open_car)
+    assert silhouette(open_car, p, r).symmetric_difference(silhouette(closed_car, p, r)).area < 1e-8
+
+
+def test_silhouette_where_geos_meets_a_non_noded_intersection() -> None:
+    # The generated sedan at rest after the demo's impact (tilted 0.2 deg): GEOS's union of its
+    # projected triangles raised "TopologyException: found non-noded intersection"; they are
+    # united again snapped to SNAP_GRID (1 um). The outline covers every projected vertex and
+    # reaches the projection's bounds (to the snapping).
+    car = cs.Vehicle.generate("sedan", name="red")
+    p = np.array([1.3421106093799675, -0.9782412717082506, 0.5471214573812396])
+    r = np.array(
+        [
+            [0.04828542092909405, -0.9988302382733881, -0.0025832608128058022],
+            [0.9988319826573678, 0.048289805862297586, -0.0016628501235617596],
+            [0.001785650148272198, -0.0024999521012177275, 0.9999952808353846],
+        ]
+    )
+    world = (car.body_vertices @ r.T + p)[:, :2]
+    tri = world[np.asarray(car.mesh.faces)]
+    with pytest.raises(shapely.errors.GEOSException, match="non-noded"):
+        shapely.union_all(shapely.polygons(tri))  # what the picture met
+    sil = silhouette(car, p, r)
+    assert sil.geom_type == "Polygon"
+    assert np.allclose(shapely.bounds(sil), [*world.min(0), *world.max(0)], rtol=0, atol=2e-6)
+    assert shapely.buffer(sil, 2e-6).contains(shapely.multipoints(world))
+    # the area of the snapped union is the unsnapped one's to round-off (1 nm grid)
+    fine = shapely.union_all(shapely.polygons(tri), grid_size=1e-9)
+    assert sil.area == pytest.approx(fine.area, abs=1e-5)
 
 
 def test_drawn_box_outlines_equal_the_rectangles(seed90: cs.Result) -> None:
@@ -282,6 +340,40 @@ def test_real_mesh_impact_draws_the_true_outlines(tmp_path: Path) -> None:
         expected = silhouette(result.vehicle(name), p, r)
         assert drawn.symmetric_difference(expected).area < 1e-9
     assert (tmp_path / "sedan_pickup.png").stat().st_size > 0
+
+
+def test_an_impact_with_a_fixed_obstacle_is_drawn(tmp_path: Path) -> None:
+    # Was: plot_impact drew two vehicles only (a KeyError on the obstacle's delta-V), and
+    # `crashsim run` wrote no impact-N.png for an obstacle. The pole is drawn where it stands,
+    # the impulse on it at the centroid in grey; only the car has a velocity and a delta-V.
+    car = cs.Vehicle.box(*RED, mass=1450.0, name="red")
+    scene = cs.Scene(depth_of_penetration=0.030)
+    scene.add(car, position=(-3.0, 0.4, 0.7), velocity=(10.0, 0.0, 0.0))
+    scene.add_obstacle(cs.Obstacle.pole(0.3, name="pole"), (0.0, 0.0, 0.0))
+    result = scene.run(duration=0.2, dt=1e-3)
+    (imp,) = result.impacts
+    assert imp.obstacle == "pole"
+    fig = plot_impact(result, tmp_path / "impact-1.png")
+    assert (tmp_path / "impact-1.png").stat().st_size > 10_000
+    pole = cs.Obstacle.pole(0.3)
+    for drawn in (patch_polygon_in(fig, ax, "obstacle:pole") for ax in fig.axes):
+        outline = shapely.union_all(shapely.polygons(pole.mesh.vertices[pole.mesh.faces][..., :2]))
+        assert drawn.symmetric_difference(outline).area < 1e-9  # at (0, 0), heading 0
+    j_unit = legend_scale(fig, "impulse on the vehicle") * 1e3  # N s per m of arrow
+    v_unit = legend_scale(fig, "delta-V of the CG")
+    (on_pole,) = arrows(fig, plots.OBSTACLE_EDGE)
+    assert np.allclose(on_pole[0], imp.centroid[:2], rtol=0, atol=1e-9)
+    assert np.allclose(on_pole[1] - on_pole[0], imp.impulse_on("pole")[:2] / j_unit, atol=1e-9)
+    red = {tuple(np.round(a[0], 9)): a[1] - a[0] for a in arrows(fig, "#d62728")}
+    assert len(red) == 3  # velocity at first overlap, impulse on red, delta-V
+    cg = result.pose("red", imp.time)[0][:2]
+    assert np.allclose(red[tuple(np.round(cg, 9))], imp.delta_v["red"][:2] / v_unit, atol=1e-9)
+    caption = fig.get_suptitle()
+    assert caption.startswith("Impact 1 of 1: red and pole")
+    assert f"delta-V red {imp.speed_change('red'):.2f} m/s" in caption
+    assert "pole is fixed (no delta-V)" in caption
+    texts = [t.get_text() for leg in fig.legends for t in leg.get_texts()]
+    assert "pole: fixed obstacle (infinite mass)" in texts
 
 
 def test_impact_errors(seed90: cs.Result) -> None:

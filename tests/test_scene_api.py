@@ -186,7 +186,7 @@ def test_scene_runs_are_repeatable_and_independent() -> None:
 def test_demo_command(capsys: pytest.CaptureFixture[str]) -> None:
     from crashsim.cli import main
 
-    assert main(["demo"]) == 0
+    assert main(["demo", "--impact-only"]) == 0
     out = capsys.readouterr().out
     assert "red's travel past first overlap: 0.4023 m = 1.320 ft" in out
     assert "delta-V red" in out and "delta-V blue" in out and "energy dissipated" in out
@@ -199,7 +199,7 @@ def test_demo_command(capsys: pytest.CaptureFixture[str]) -> None:
 
 def test_python_dash_m_crashsim_demo() -> None:
     out = subprocess.run(
-        [sys.executable, "-m", "crashsim", "demo", "--json"],
+        [sys.executable, "-m", "crashsim", "demo", "--impact-only", "--json"],
         capture_output=True, text=True, check=True, timeout=120,
     )  # fmt: skip
     data = json.loads(out.stdout)

@@ -28,6 +28,7 @@ from crashsim.io.scenefile import load_scene
 from crashsim.io.viewer import ReportFileError, files, view, view_report
 from crashsim.io.viewer.data import keep_samples, page_data
 from crashsim.io.viewer.meshes import decimate, pack_array, pack_mesh, unpack_array
+from crashsim.io.viewer.page import page_source
 from scipy.interpolate import CubicHermiteSpline
 from scipy.spatial.transform import Rotation, Slerp
 from selenium import webdriver
@@ -230,6 +231,35 @@ def test_command_line_run_html_and_view(tmp_path: Path, capsys: pytest.CaptureFi
     assert main(["view", str(tmp_path / "nothing.json")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 3 and all(e.startswith("crashsim: error:") for e in err)
+
+
+def test_view_keeps_the_richer_page_of_run_html(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Was: `crashsim view out/report.json` silently replaced the case.html that `run --html`
+    # wrote from the Result (losing the tyre marks, zones, rest outlines, overlap points).
+    out = tmp_path / "out"
+    assert main(["run", str(EXAMPLES / "seed-90deg.toml"), "--out", str(out), "--html"]) == 0
+    page = out / "case.html"
+    rich = page.read_bytes()
+    assert page_source(page) == "run"
+    capsys.readouterr()
+    assert main(["view", str(out / "report.json")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"crashsim: error: {page} exists and is a ")
+    assert "--force" in err and "--out" in err
+    assert page.read_bytes() == rich  # untouched
+    with pytest.raises(cs.ParameterError, match="written from the run"):
+        view_report(out / "report.json")
+    # another file is not ours either; a page from a report is replaced (nothing is lost)
+    other = tmp_path / "notes.html"
+    other.write_text("<p>my notes</p>", encoding="utf-8")
+    with pytest.raises(cs.ParameterError, match="not a case page written from a report"):
+        view_report(out / "report.json", other)
+    assert main(["view", str(out / "report.json"), "--force"]) == 0
+    assert page_source(page) == "report" and page.read_bytes() != rich
+    assert view_report(out / "report.json") == page  # again: a report's page, replaced
+    assert page_source(page) == "report"
 
 
 def test_the_report_marks_a_run_on_the_ground(seed: cs.Result) -> None:

@@ -11,9 +11,11 @@ page (one offline HTML file: the 3-D scene, a timeline and the report; crashsim.
 ``crashsim check case.toml`` runs a scene file and checks the engine's first overlaps against
 the independent python-fcl cross-check; it fails (exit 1) when they disagree.
 
-``crashsim demo`` runs the built-in side impact (the seed's first worked example): a red box
-car at 30 mph square into the driver (left) side of a stationary blue box car, with the
-default contact parameters (depth of penetration 30 ms, restitution 0.1, friction 0.6).
+``crashsim demo`` runs the built-in intersection case to rest (crashsim.demo: two generated
+cars on dry asphalt, the struck one into a lamp post), prints the report's essentials and
+writes the report, pictures and case page into a folder (``--out``, else crashsim-demo-out);
+``--impact-only`` runs the seed's first worked example instead (two box cars, no ground,
+the first exchange, printed only).
 
 ``crashsim sweep case.toml --vary red.speed=10:20:5 --vary restitution=0,0.1,0.2`` and
 ``crashsim montecarlo case.toml -n 1000 --seed 1 --dist "red.speed=normal(15 m/s, 1 m/s)"`` run
@@ -59,18 +61,16 @@ import numpy as np
 from crashsim._core import __version__
 from crashsim.analysis.crosscheck import cross_check
 from crashsim.analysis.montecarlo import PERCENTILES, dtp_montecarlo, plot_dtp_histogram
-from crashsim.analysis.report import build_report
+from crashsim.analysis.report import Report, build_report
 from crashsim.errors import CrashsimError, InputError, ParameterError, SimulationError
 from crashsim.io.export import export_glb
 from crashsim.io.scenefile import SceneFile, load_scene, parse_quantity
 from crashsim.io.viewer import PAGE_FILE, view, view_report
 from crashsim.plots import plot_impact, plot_trajectories
 from crashsim.result import Result
-from crashsim.scene import Scene
-from crashsim.units import deg, mph, to_ft, to_mph
-from crashsim.vehicles.vehicle import Vehicle
+from crashsim.units import mph
 
-__all__ = ["EXIT_FAILED", "EXIT_INPUT", "EXIT_INTERRUPTED", "demo_scene", "main", "write_csv"]
+__all__ = ["EXIT_FAILED", "EXIT_INPUT", "EXIT_INTERRUPTED", "main", "write_csv"]
 
 EXIT_FAILED = 1  # the run or the check failed
 EXIT_INPUT = 2  # bad input: a malformed scene file, bad arguments
@@ -81,61 +81,8 @@ CSV_FILE = "time-histories.csv"
 GLB_FILE = "motion.glb"
 TRAJECTORIES_FILE = "trajectories.png"
 
-DEMO_GAP = 0.5  # m between red's front and blue's side at t = 0
-
-
-def demo_scene(speed_mph: float = 30.0) -> Scene:
-    """The demo: red (4.5 x 1.8 x 1.4 m, 1450 kg) heading +x at ``speed_mph`` into the left
-    side of blue (4.6 x 1.8 x 1.45 m, 1500 kg, at rest, heading +90 deg so its left side faces
-    -x), 0.3 m ahead of blue's CG. Both stand on the ground (z = 0); default parameters."""
-    red = Vehicle.box(length=4.5, width=1.8, height=1.4, mass=1450.0, name="red")
-    blue = Vehicle.box(length=4.6, width=1.8, height=1.45, mass=1500.0, name="blue")
-    scene = Scene()
-    # Blue's left side is the plane x = -0.9 m (half its width); red's front is 2.25 m ahead
-    # of its CG.
-    red_x = -0.9 - DEMO_GAP - 4.5 / 2.0
-    scene.add(red, position=(red_x, 0.3, 0.7), heading=0.0, velocity=(mph(speed_mph), 0, 0))
-    scene.add(blue, position=(0.0, 0.0, 0.725), heading=deg(90.0))
-    return scene
-
-
-def _vec(v: np.ndarray, digits: int = 3) -> str:
-    # + 0.0 turns a rounded -0.0 into 0.0
-    return "(" + ", ".join(f"{round(float(x), digits) + 0.0:.{digits}f}" for x in v) + ")"
-
-
-def _report(result: Result, scene: Scene, speed_mph: float) -> str:
-    """The demo's first exchange, in words and numbers."""
-    imp = result.impacts[0]
-    p = scene.contact_parameters("red", "blue")
-    red0 = result.state_at("red", imp.first_contact_time)["position"]
-    red1 = result.state_at("red", imp.time)["position"]
-    travel = float(np.linalg.norm(red1 - red0))
-    lines = [
-        f"crashsim demo: red ({speed_mph:g} mph) square into the driver side of blue (at rest)",
-        f"  depth of penetration {p['depth_of_penetration'] * 1e3:g} ms, restitution "
-        f"{p['restitution']:g}, friction {p['friction']:g}",
-        f"  first overlap            t0 = {imp.first_contact_time * 1e3:8.3f} ms",
-        f"  impulse exchange         t  = {imp.time * 1e3:8.3f} ms",
-        f"  red's travel past first overlap: {travel:.4f} m = {to_ft(travel):.3f} ft",
-        f"  impulse centroid (world) {_vec(imp.centroid)} m",
-        f"  normal (red -> blue)     {_vec(imp.normal, 4)}",
-        f"  impulse on blue          {_vec(imp.impulse, 1)} N s "
-        f"({'sliding' if imp.sliding else 'full'} impact)",
-    ]
-    for name in imp.vehicles:
-        dv = imp.delta_v[name]
-        body = result.delta_v_body(imp, name)
-        size = float(np.linalg.norm(dv))
-        lines += [
-            f"  delta-V {name:<5}            {_vec(dv)} m/s = {_vec(to_mph(dv), 2)} mph (world)",
-            f"    |dV| = {size:.3f} m/s = {to_mph(size):.2f} mph; in {name}'s frame: "
-            f"longitudinal {body[0]:+.3f} m/s, lateral {-body[1]:+.3f} m/s (+right)",
-        ]
-    lines.append(f"  energy dissipated        {imp.energy_dissipated / 1e3:.2f} kJ")
-    if len(result.impacts) > 1:
-        lines.append(f"  ({len(result.impacts) - 1} further exchange(s) follow)")
-    return "\n".join(lines)
+DEMO_OUT = "crashsim-demo-out"  # the demo's folder in the current one
+DEMO_MAX_DURATION = 15.0  # s: the demo's longest run to rest
 
 
 class RunFailed(Exception):
@@ -143,24 +90,39 @@ class RunFailed(Exception):
 
 
 def _demo(args: argparse.Namespace) -> int:
-    scene = demo_scene(args.speed)
-    result = scene.run(duration=args.duration, dt=args.dt)
+    from crashsim import demo
+
+    dt = 1e-3 if args.dt is None else args.dt
+    if args.impact_only:
+        speed = demo.IMPACT_SPEED if args.speed is None else args.speed
+        duration = 0.5 if args.duration is None else args.duration
+        scene = demo.impact_scene(speed)
+        result = scene.run(duration=duration, dt=dt)
+        if not result.impacts:
+            raise RunFailed(demo.no_exchange(result, duration, demo.IMPACT_GAP))
+        print(json.dumps(result.to_dict(), indent=2) if args.json
+              else demo.impact_summary(result, scene, speed))  # fmt: skip
+        return 0
+    out = Path(DEMO_OUT if args.out is None else args.out)
+    _check_writable(out)  # before the run
+    speed = demo.SPEED if args.speed is None else args.speed
+    longest = DEMO_MAX_DURATION if args.duration is None else args.duration
+    result = demo.intersection_scene(speed).run(
+        until="rest", max_duration=longest, dt=dt, progress=_no_progress
+    )
+    if not result.impacts:
+        raise RunFailed(demo.no_exchange(result, longest, demo.intersection_gap()))
+    _make(out)
+    report = build_report(result)
+    title = "crashsim demo: a two-car intersection case run to rest"
+    written = _write_run(result, report, out, pictures=not args.no_pictures,
+                         glb=not args.no_pictures, html=out / PAGE_FILE, title=title)  # fmt: skip
     if args.json:
         print(json.dumps(result.to_dict(), indent=2))
         return 0
-    if not result.impacts:
-        x = result.trajectory("red").position[:, 0]  # m, red drives along +x
-        what, advice = (
-            (f"did not reach blue ({DEMO_GAP:g} m away)", "a longer --duration or a higher")
-            if x[-1] - x[0] < DEMO_GAP  # its front never reached blue's side
-            else ("passed through blue without one (an overlap that brief is taken for a "
-                  "graze)", "a lower")  # fmt: skip
-        )
-        raise RunFailed(
-            f"no impulse exchange happened within the {args.duration:g} s run: red at "
-            f"{args.speed:g} mph {what}; give {advice} --speed"
-        )
-    print(_report(result, scene, args.speed))
+    print(demo.intersection_summary(report, speed))
+    print("wrote: " + ", ".join(str(p) for p in written))
+    print(f"open {out / PAGE_FILE} in a browser: the 3-D scene, its timeline and the report")
     return 0
 
 
@@ -273,15 +235,18 @@ _duration = _positive_time("the simulated time", "0.5 s")
 _record_interval = _positive_time("the recording interval", "10 ms")
 
 
-def _speed_mph(text: str) -> float:
-    """argparse type of the demo's speed: a number of mph, > 0."""
+def _demo_speed(text: str) -> float:
+    """argparse type of the demo's speed: a number of mph or a speed with its unit ("60
+    km/h"), > 0; m/s."""
+    number = _number_or_text(text)
     try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number of mph") from None
+        value = mph(number) if isinstance(number, float) else parse_quantity(number, "speed")
+    except ParameterError:
+        raise argparse.ArgumentTypeError(f"{text!r}: give a number of mph or a speed with its "
+                                         'unit, e.g. 30 or "50 km/h"') from None  # fmt: skip
     if not (value > 0.0 and math.isfinite(value)):
         raise argparse.ArgumentTypeError(
-            f"{text!r} mph: red must drive towards blue, give a finite speed > 0 (e.g. 30)"
+            f"{text!r}: red must drive towards blue, give a finite speed > 0 (e.g. 30)"
         )
     return value
 
@@ -336,12 +301,34 @@ def write_csv(result: Result, path: str | Path) -> list[str]:
     return header
 
 
-def _summary_and_json(result: Result, json_path: Path | None) -> str:
-    """The report's summary table, writing report.json when a path is given."""
-    report = build_report(result)
-    if json_path is not None:
-        report.write_json(json_path)
-    return str(report.summary_table())
+def _write_run(
+    result: Result,
+    report: Report,
+    out: Path,
+    *,
+    report_json: bool = True,
+    csv: bool = True,
+    pictures: bool = True,
+    glb: bool = True,
+    html: Path | None = None,
+    title: str | None = None,
+) -> list[Path]:
+    """Writes a run's files into the folder ``out`` (made): report.json, the time histories,
+    the pictures, the GLB and the case page (at ``html``) as asked; returns their paths."""
+    written: list[Path] = []
+    if report_json:
+        report.write_json(out / REPORT_FILE)
+        written.append(out / REPORT_FILE)
+    if csv:
+        write_csv(result, out / CSV_FILE)
+        written.append(out / CSV_FILE)
+    if pictures:
+        written += _pictures(result, out)
+    if glb:
+        written += _glb(result, out)
+    if html is not None:
+        written.append(view(result, html, title=title))
+    return written
 
 
 def _simulate(args: argparse.Namespace, case: SceneFile) -> Result:
@@ -428,23 +415,21 @@ def _run(args: argparse.Namespace) -> int:
     print(_header(case))
     result = _simulate(args, case)
     _make(out)
-    written: list[Path] = []
     want = case.output
-    json_path = out / REPORT_FILE if want.report else None
-    summary = _summary_and_json(result, json_path)
-    if json_path is not None:
-        written.append(json_path)
-    if want.csv:
-        write_csv(result, out / CSV_FILE)
-        written.append(out / CSV_FILE)
-    if want.pictures and not args.no_pictures:
-        written += _pictures(result, out)
-    if want.glb and not args.no_pictures:
-        written += _glb(result, out)
-    if html is not None:
-        written.append(view(result, html, title=case.title or None))
+    report = build_report(result)
+    written = _write_run(
+        result,
+        report,
+        out,
+        report_json=want.report,
+        csv=want.csv,
+        pictures=want.pictures and not args.no_pictures,
+        glb=want.glb and not args.no_pictures,
+        html=html,
+        title=case.title or None,
+    )
     # printed last: the files are complete even when the reader of stdout stops early
-    print(summary)
+    print(report.summary_table())
     if not result.impacts:
         print("no impulse exchange happened within the run")
     print("wrote: " + ", ".join(str(p) for p in written) if written else "wrote nothing")
@@ -468,7 +453,7 @@ def _html_path(args: argparse.Namespace, out: Path) -> Path | None:
 
 
 def _view(args: argparse.Namespace) -> int:
-    path = view_report(args.report, args.out)
+    path = view_report(args.report, args.out, force=args.force)
     print(f"wrote: {path}")
     return 0
 
@@ -476,11 +461,7 @@ def _view(args: argparse.Namespace) -> int:
 def _pictures(result: Result, out: Path) -> list[Path]:
     plot_trajectories(result, out / TRAJECTORIES_FILE)
     paths = [out / TRAJECTORIES_FILE]
-    for k, imp in enumerate(result.impacts):
-        if imp.obstacle is not None:
-            # plot_impact draws two vehicles; an obstacle's picture is not made yet
-            print(f"impact {k + 1} is with the fixed obstacle {imp.obstacle!r}: no picture of it")
-            continue
+    for k in range(len(result.impacts)):  # with a vehicle or a fixed obstacle
         path = out / f"impact-{k + 1}.png"
         plot_impact(result, path, impact=k)
         paths.append(path)
@@ -636,7 +617,7 @@ def _fit(args: argparse.Namespace) -> int:
     if not args.no_pictures:
         import matplotlib.pyplot as plt
 
-        fig = fit.plot(out / FIT_PICTURE)
+        fig = fit.plot(out / FIT_PICTURE, units=spec.display_units())  # the table's units
         plt.close(fig)
         written.append(out / FIT_PICTURE)
     if fit.result is not None and case.output.report:
@@ -969,15 +950,24 @@ def _parser() -> argparse.ArgumentParser:
         help="write the case page (offline HTML) of a report.json written by `run --out`",
         description="Writes the case page of a run (docs/viewer.md) from the report.json "
         "that `crashsim run --out DIR` wrote and the files beside it: time-histories.csv (the "
-        "motion) and the meshes (the report's own, when written with meshes, else motion.glb).",
+        "motion) and the meshes (the report's own, when written with meshes, else motion.glb). "
+        "An existing page is replaced only when it was written from a report too (or with "
+        "--force).",
         epilog="Exit codes: 0 success, 1 writing the page failed, 2 bad input (a missing or "
-        "malformed report or file beside it, an unwritable --out).",
+        "malformed report or file beside it, an unwritable --out, a page there that was not "
+        "written from a report).",
     )
     view_cmd.add_argument("report", type=Path, help="the report.json of a run")
     view_cmd.add_argument(
         "--out",
         metavar="PATH",
         help=f"the page to write (default: {PAGE_FILE} beside the report)",
+    )
+    view_cmd.add_argument(
+        "--force",
+        action="store_true",
+        help="replace the page even when it is not one written from a report (e.g. the richer "
+        "page of `run --html`: tyre marks, zones, rest outlines)",
     )
     view_cmd.set_defaults(func=_view)
     check = sub.add_parser(
@@ -992,19 +982,32 @@ def _parser() -> argparse.ArgumentParser:
     check.set_defaults(func=_check)
     demo = sub.add_parser(
         "demo",
-        help="run the built-in 30 mph side impact and print what happened",
-        description="A red box car drives square into the driver side of a stationary blue "
-        "box car; prints the first overlap, the exchange, the centroid, normal, impulse, "
-        "delta-V and the energy dissipated.",
+        help="run the built-in intersection case to rest; print it; write pictures and page",
+        description="Two generated cars at an intersection on dry asphalt: red (a sedan, 60 "
+        "km/h) into the left side of blue (an SUV crossing at 30 km/h), which then strikes a "
+        "lamp post; both run on their tyres to rest. Prints each impact's delta-V, PDOF, "
+        "energy and EES and each car's rest, and writes into the output folder the report "
+        f"({REPORT_FILE}), the time histories, the pictures ({TRAJECTORIES_FILE}, "
+        f"impact-N.png), the 3-D motion ({GLB_FILE}) and the case page ({PAGE_FILE}). "
+        "--impact-only runs the seed's first worked example instead (two box cars, 30 mph, no "
+        "ground) and prints its first exchange (writes nothing).",
+        epilog="Exit codes: 0 success, 1 no exchange within the run (or writing failed), 2 bad "
+        "input (also an output folder that cannot be created or written), 130 interrupted.",
     )
-    demo.add_argument("--speed", type=_speed_mph, default=30.0, help="red's speed, mph (30)")
-    demo.add_argument(
-        "--dt", type=_step, default=1e-3, help='largest time step ("1 ms" or seconds; 0.001)'
-    )
-    demo.add_argument(
-        "--duration", type=_duration, default=0.5, help='simulated time ("0.5 s" or seconds; 0.5)'
-    )
-    demo.add_argument("--json", action="store_true", help="print the result as JSON")
+    demo.add_argument("--out", metavar="DIR",
+                      help=f"output folder (default {DEMO_OUT} in the current folder)")  # fmt: skip
+    demo.add_argument("--speed", type=_demo_speed, help='red\'s speed: mph, or with its unit '
+                      '("50 km/h"); default 60 km/h, with --impact-only 30 mph')  # fmt: skip
+    demo.add_argument("--impact-only", action="store_true", help="the seed's first worked "
+                      "example: two box cars, no ground, its first exchange printed")  # fmt: skip
+    demo.add_argument("--dt", type=_step, help='largest time step ("1 ms" or seconds; 1 ms)')
+    demo.add_argument("--duration", type=_duration, help='simulated time ("0.5 s" or seconds): '
+                      f"the longest run to rest ({DEMO_MAX_DURATION:g} s), with --impact-only "
+                      "the run (0.5 s)")  # fmt: skip
+    demo.add_argument("--no-pictures", action="store_true",
+                      help="write neither the PNG pictures nor the GLB (faster)")  # fmt: skip
+    demo.add_argument("--json", action="store_true", help="print the run's result as JSON "
+                      "(Result.to_dict) instead of the summary")  # fmt: skip
     demo.set_defaults(func=_demo)
     sw = sub.add_parser(
         "sweep",

@@ -56,6 +56,10 @@ SLIVER_AREA = 1e-4
 # A rotation is a pure yaw when its z column is (0, 0, 1) to this tolerance: the outline is
 # then the body-frame one turned and moved (exact), else the mesh is projected afresh.
 YAW_ONLY_TOL = 1e-12
+# When GEOS cannot union the projected triangles as they are (a "non-noded intersection" of
+# nearly parallel edges, met on a generated sedan tilted 0.2 deg), they are united again with
+# their vertices snapped to this grid (m): far below what a picture shows.
+SNAP_GRID = 1e-6
 
 
 def vehicle_colour(index: int) -> str:
@@ -90,7 +94,11 @@ def _projected_union(xy: Array, faces: NDArray[np.int64]) -> Any:
             "drawn top-down"
         )
     # Shared vertices are projected once, so neighbouring triangles share exact edges.
-    union = shapely.union_all(shapely.polygons(tri[keep]))
+    polygons = shapely.polygons(tri[keep])
+    try:
+        union = shapely.union_all(polygons)
+    except shapely.errors.GEOSException:
+        union = shapely.union_all(polygons, grid_size=SNAP_GRID)
     return _clean(union)
 
 
@@ -111,10 +119,28 @@ def _clean(geom: Any) -> Any:
 
 
 @functools.lru_cache(maxsize=32)
+def _closed(vehicle: Vehicle) -> bool:
+    """Whether the vehicle's mesh bounds a solid (watertight, consistently wound outward): its
+    outline seen from above is then the union of the triangles facing up alone (the top of the
+    solid over every point of its shadow), half of them."""
+    mesh = vehicle.mesh
+    return bool(mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0.0)
+
+
+@functools.lru_cache(maxsize=32)
 def _body_silhouette(vehicle: Vehicle) -> Any:
     """The outline of the body-frame mesh projected along body z (m, CG at the origin)."""
+    return _projected_union(*_shadow_faces(vehicle, vehicle.body_vertices))
+
+
+def _shadow_faces(vehicle: Vehicle, points: Array) -> tuple[Array, NDArray[np.int64]]:
+    """The x-y of the mesh's vertices at ``points`` (n, 3) and the triangles whose union is
+    its outline seen from above: those facing up for a closed mesh, else all."""
     faces = np.asarray(vehicle.mesh.faces, dtype=np.int64)
-    return _projected_union(vehicle.body_vertices[:, :2].copy(), faces)
+    if _closed(vehicle):
+        tri = points[faces]
+        faces = faces[np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])[:, 2] > 0.0]
+    return points[:, :2].copy(), faces
 
 
 def silhouette(
@@ -138,8 +164,7 @@ def silhouette(
         return affinity.affine_transform(
             base, [r[0, 0], r[0, 1], r[1, 0], r[1, 1], float(p[0]), float(p[1])]
         )
-    world = vehicle.body_vertices @ r.T + p
-    return _projected_union(world[:, :2].copy(), np.asarray(vehicle.mesh.faces, dtype=np.int64))
+    return _projected_union(*_shadow_faces(vehicle, vehicle.body_vertices @ r.T + p))
 
 
 # -- drawing helpers -----------------------------------------------------------------------
@@ -519,8 +544,10 @@ def plot_impact(
       delta-V (m/s); the outlines at the timer's start dotted, to show the travel in between.
 
     Velocity and delta-V arrows share one scale, impulses have their own; both scales are in
-    the legend (1 m of arrow = ...). ``impact`` is an index into ``result.impacts`` or one of
-    them. Writes a PNG (or any format matplotlib knows by the suffix) to ``path`` when given,
+    the legend (1 m of arrow = ...). An impact with a fixed obstacle draws the obstacle filled
+    grey (as far as a vehicle's length beyond the vehicles), the impulse on it in grey, and
+    neither a velocity nor a delta-V for it. ``impact`` is an index into ``result.impacts`` or
+    one of them. Writes a PNG (or any format matplotlib knows by the suffix) to ``path`` when given,
     IMPACT_FIGSIZE inches at ``dpi``; returns the Figure (Agg canvas, no pyplot state)."""
     _check_scene(result)
     index, imp = _impact_of(result, impact)
@@ -528,17 +555,24 @@ def plot_impact(
     from matplotlib.lines import Line2D
     from matplotlib.patches import FancyArrowPatch, Patch
 
-    names = list(imp.vehicles)
+    names = list(imp.vehicles)  # the pair: two vehicles, or a vehicle and a fixed obstacle
+    moving = list(imp.moving)
     start = _timer_start(result, index, imp)
     colours = {n: vehicle_colour(result.vehicles.index(n)) for n in result.vehicles}
+    if imp.obstacle is not None:
+        colours[imp.obstacle] = OBSTACLE_EDGE
     others = [n for n in result.vehicles if n not in names]
     t0, t1 = imp.first_contact_time, imp.time
     at_contact = {n: _Pose(result, n, t0) for n in result.vehicles}
     at_exchange = {n: _Pose(result, n, t1) for n in result.vehicles}
-    velocity = {n: result.state(n, t0)["velocity"][:2] for n in names}
-    dv = {n: imp.delta_v[n][:2] for n in names}
+    velocity = {n: result.state(n, t0)["velocity"][:2] for n in moving}
+    dv = {n: imp.delta_v[n][:2] for n in moving}
     j_on = {n: imp.impulse_on(n)[:2] for n in names}
     size = max(p.length for p in at_exchange.values())
+    outlines = [p.outline for p in [*at_contact.values(), *at_exchange.values()]]
+    obstacle = (
+        None if imp.obstacle is None else _obstacle_near(result, imp.obstacle, outlines, size)
+    )
 
     # Arrow scales (unit per m of arrow): the longest velocity about half the longest vehicle,
     # the impulses shorter, so that the one on vehicle 1 rarely reaches its CG's delta-V.
@@ -556,11 +590,14 @@ def plot_impact(
     # Panel 1: the timer's start (first overlap or closing again).
     _draw_paths(ax1, result, t1)
     paths = _path_points(result)
+    if obstacle is not None:
+        for ax in (ax1, ax2):
+            _draw_obstacle(ax, obstacle, imp.obstacle)
     for n in result.vehicles:
         _draw_vehicle(ax1, at_contact[n], colours[n], gid=f"silhouette:{n}:first_contact")
     tips = []
     busy = [paths, centroid[None, :2]]  # where labels should not go
-    for n in names:
+    for n in moving:
         cg = at_contact[n].position
         _arrow(ax1, cg, velocity[n] / v_unit, colours[n], 2.6, 6.0)
         busy.append(_segment_points(cg, velocity[n] / v_unit))
@@ -646,10 +683,13 @@ def plot_impact(
             head=22.0,
             edge="black",
         )
+        tips.append(centroid[:2] + j_on[n] / j_unit)
+        busy.append(_segment_points(centroid, j_on[n] / j_unit))
+    for n in moving:
         cg = at_exchange[n].position
         _arrow(ax2, cg, dv[n] / v_unit, colours[n], 3.2, 8.0, style="simple", head=20.0)
-        tips += [centroid[:2] + j_on[n] / j_unit, cg[:2] + dv[n] / v_unit]
-        busy += [_segment_points(centroid, j_on[n] / j_unit), _segment_points(cg, dv[n] / v_unit)]
+        tips.append(cg[:2] + dv[n] / v_unit)
+        busy.append(_segment_points(cg, dv[n] / v_unit))
     for n in result.vehicles:
         _label(ax2, at_exchange[n], colours[n], np.concatenate(busy), n)
     ax2.plot(
@@ -669,8 +709,7 @@ def plot_impact(
         fontsize=11,
     )
 
-    outlines = [p.outline for p in [*at_contact.values(), *at_exchange.values()]]
-    view = _bounds(outlines, [*tips, centroid])
+    view = _bounds(outlines + ([] if obstacle is None else [obstacle]), [*tips, centroid])
 
     # Legend: vehicles, then symbols, then arrows with their scales.
     handles: list[Any] = []
@@ -679,6 +718,9 @@ def plot_impact(
         v = result.vehicle(n)
         handles.append(Patch(facecolor=to_rgba(colours[n], 0.22), edgecolor=colours[n]))
         labels.append(f"{n}: {v.mass:.0f} kg, outline seen from above")
+    if imp.obstacle is not None:
+        handles.append(Patch(facecolor=OBSTACLE_COLOUR, edgecolor="0.1", alpha=0.9))
+        labels.append(f"{imp.obstacle}: fixed obstacle (infinite mass)")
     handles += [
         Line2D([], [], color="0.3", lw=0.9, ls="-.", marker=">", ms=7, mfc="0.3", mec="0.3"),
         Line2D([], [], ls="", marker="o", ms=9, mfc="white", mec="0.3", mew=1.8),
@@ -725,8 +767,10 @@ def plot_impact(
         + " - top view, world frame (z up, out of the page), metres"
     )
     line2 = f"closing speed {_speeds(imp.closing_speed)} at the centroid;  " + ";  ".join(
-        f"delta-V {n} {_speeds(imp.speed_change(n))}" for n in names
+        f"delta-V {n} {_speeds(imp.speed_change(n))}" for n in moving
     )
+    if imp.obstacle is not None:
+        line2 += f";  {imp.obstacle} is fixed (no delta-V)"
     line3 = (
         f"impulse {np.linalg.norm(j) / 1e3:.2f} kN s (vertical part "
         f"{round(j[2] / 1e3, 2) + 0.0:+.2f} kN s, "
@@ -1084,6 +1128,7 @@ def plot_trajectories(
 MARK_DARKEN = 0.6  # tyre marks: the vehicle's colour this much of the way to black
 MARK_WIDTH = 2.4  # pt
 OBSTACLE_COLOUR = "0.55"
+OBSTACLE_EDGE = "0.35"  # the impulse on a fixed obstacle in an impact diagram
 # Tints of the friction zones, in the order given (cycled).
 ZONE_COLOURS = ("#6cbf6c", "#6fa8dc", "#e0b050", "#b48ad6", "#e07b7b", "#7fcfc4")
 OBSTACLE_REACH = 6.0  # m: an obstacle is drawn, and widens the view, this far beyond the run
@@ -1244,6 +1289,38 @@ def _obstacle_outline(result: Result, name: str) -> Any:
     world = np.asarray(obstacle.mesh.vertices, dtype=np.float64) @ np.asarray(rotation).T
     world += np.asarray(position)
     return _projected_union(world[:, :2].copy(), np.asarray(obstacle.mesh.faces, dtype=np.int64))
+
+
+def _obstacle_near(result: Result, name: str, outlines: list[Any], reach: float) -> Any:
+    """The part of a fixed obstacle's outline within ``reach`` (m) of the box around
+    ``outlines`` (a long wall or barrier is cut there, so the view stays on the impact)."""
+    import shapely
+
+    x0, y0, x1, y1 = _bounds(outlines, [])
+    near = shapely.box(x0 - reach, y0 - reach, x1 + reach, y1 + reach)
+    return shapely.intersection(_obstacle_outline(result, name), near)
+
+
+def _draw_obstacle(ax: Axes, outline: Any, name: str) -> None:
+    """A fixed obstacle's outline, filled grey (as plot_trajectories draws it)."""
+    patch = _patch(
+        outline, facecolor=OBSTACLE_COLOUR, edgecolor="0.1", lw=1.0, alpha=0.9, zorder=1.9
+    )
+    patch.set_gid(f"obstacle:{name}")
+    ax.add_patch(patch)
+    spot = np.asarray(outline.representative_point().coords)[0]
+    ax.annotate(
+        name,
+        (float(spot[0]), float(spot[1])),
+        xytext=(8, -8),
+        textcoords="offset points",
+        ha="left",
+        va="top",
+        fontsize=9,
+        color="0.1",
+        zorder=9.0,
+        bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "0.4", "lw": 0.6, "alpha": 0.85},
+    )
 
 
 def _draw_obstacles(

@@ -71,6 +71,9 @@ _SCHEMA_FILE = ("schema", "report-1.schema.json")
 FULL, SLIDING = "full", "sliding"
 BY_STIFFNESS = "stiffness"
 UNKNOWN = "unknown"
+# An obstacle's struck face as the side of its own frame it is on: the engine names faces
+# with a vehicle's words (front +x, rear -x, left +y, right -y), which mean nothing on a pole.
+FACE_SIDES = {"front": "+x", "rear": "-x", "left": "+y", "right": "-y", UNKNOWN: UNKNOWN}
 EQUAL_SHARES = "equal (stiffness unknown)"
 RIGID_OBSTACLE = "rigid obstacle"
 
@@ -339,10 +342,12 @@ class VehicleImpactReport:
 @dataclass(frozen=True)
 class ObstacleImpactReport:
     """The fixed obstacle's side of an exchange with a vehicle: ``name``, ``role`` (1 or 2
-    in the pair), ``struck_face`` (of its own frame), ``spring_rate`` (k = B W, N/m; None
-    without stiffness), ``centroid_body`` (the centroid in the obstacle's frame, m). It has
-    an infinite mass (``effective_mass`` is None in the JSON), never moves and has no
-    delta-V."""
+    in the pair), ``struck_face`` (the engine's name of the face of its own frame whose
+    stiffness is taken: front +x, rear -x, left +y, right -y) and ``struck_side`` (the same
+    as the side of its frame: "+x", "-x", "+y", "-y"; the words a reader is given, since a
+    pole has no front or rear), ``spring_rate`` (k = B W, N/m; None without stiffness),
+    ``centroid_body`` (the centroid in the obstacle's frame, m). It has an infinite mass
+    (``effective_mass`` is None in the JSON), never moves and has no delta-V."""
 
     name: str
     role: int
@@ -353,11 +358,16 @@ class ObstacleImpactReport:
     def __post_init__(self) -> None:
         _freeze_arrays(self)
 
+    @property
+    def struck_side(self) -> str:
+        return FACE_SIDES[self.struck_face]
+
     def to_dict(self) -> dict[str, Any]:
         return {
             "name": self.name,
             "role": int(self.role),
             "struck_face": self.struck_face,
+            "struck_side": self.struck_side,
             "effective_mass": None,
             "spring_rate": _opt(self.spring_rate),
             "centroid_body": _vec(self.centroid_body),
@@ -937,7 +947,8 @@ def _impact_lines(imp: ImpactReport, primary: int | None = None) -> list[str]:
         o = imp.obstacle
         lines.append(
             f"  {o.name} is a fixed obstacle (infinite mass, no delta-V); centroid in its "
-            f"frame {_fmt3(o.centroid_body, 4)} m; struck face: {o.struck_face}"
+            f"frame {_fmt3(o.centroid_body, 4)} m; struck on its {o.struck_side} side (its "
+            f"frame; the {o.struck_face} face for its stiffness)"
         )
     lines.append("")
     lines += _table(

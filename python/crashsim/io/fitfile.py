@@ -61,7 +61,7 @@ from crashsim.studies.evidence import (
     TyreMark,
     check_evidence,
 )
-from crashsim.studies.fit import METHODS
+from crashsim.studies.fit import METHODS, STEP
 
 if TYPE_CHECKING:
     from crashsim.scene import Scene
@@ -174,6 +174,11 @@ class FitSpec:
     def kwargs(self) -> dict[str, Any]:
         """method, start and the options, as keywords of crashsim.fit."""
         return {"method": self.method, "start": dict(self.start), **self.options}
+
+    def display_units(self) -> dict[str, tuple[str, float]]:
+        """{unknown: (the unit the file wrote its bounds in, SI per unit)}, for
+        FitResult.plot: the picture in the units of the printed table."""
+        return {n: (u, _factor(u)) for n, u in self.units.items()}
 
 
 # -- units written ----------------------------------------------------------------------------
@@ -325,7 +330,7 @@ def _fit_table(data: Any, scene: Scene, file: str) -> FitSpec:
         step = fit.number("step")
         if not 0.0 < step < 0.5:
             fit.fail("step", f"{step:g}: the difference step is a fraction of each unknown's "
-                     "range: give a number > 0 and < 0.5 (default 0.001)")  # fmt: skip
+                     f"range: give a number > 0 and < 0.5 (default {STEP:g})")  # fmt: skip
         options["step"] = step
     if fit.has("scan"):
         options["scan"] = fit.boolean("scan", True)

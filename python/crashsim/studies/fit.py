@@ -78,6 +78,7 @@ __all__ = ["FitError", "FitResult", "ItemResidual", "fit"]
 
 Array = NDArray[np.float64]
 METHODS = ("least_squares", "global")
+STEP = 1e-2  # the Jacobian's difference step by default, a fraction of each unknown's range
 CHI2_95 = 3.841458820694124  # 95 % quantile of chi^2 with one degree of freedom
 XTOL, FTOL, GTOL = 1e-5, 1e-10, 1e-10  # the local solve's tolerances (scaled unknowns)
 Z_95 = 1.959963984540054  # two-sided 95 % of the normal distribution
@@ -205,13 +206,19 @@ class FitResult:
         said = "" if self.verdict is None else f", {self.verdict.status}"
         return f"FitResult({v}; chi2={self.objective:.4g}{said}, runs={self.n_runs})"
 
-    def plot(self, path: str | PathLike[str] | None = None) -> Any:
+    def plot(
+        self,
+        path: str | PathLike[str] | None = None,
+        units: Mapping[str, tuple[str, float]] | None = None,
+    ) -> Any:
         """The fitted run over the evidence (top-down: paths, rest outlines and headings with
         tolerance circles, marks, impact points) and the objective along each unknown around
-        the optimum; written to ``path`` (PNG, SVG, PDF) when given. Returns the Figure."""
+        the optimum; written to ``path`` (PNG, SVG, PDF) when given. Returns the Figure.
+        ``units``: {unknown: (unit name, SI per unit)} to show unknowns in (default SI, angles
+        in degrees; ``FitSpec.display_units()`` gives a scene file's)."""
         from crashsim.studies.fitplot import plot_fit
 
-        return plot_fit(self, path)
+        return plot_fit(self, path, units)
 
     def to_dict(self) -> dict[str, Any]:
         """The fit as plain data for JSON (SI units and radians, as the attributes): the
@@ -873,7 +880,7 @@ def fit(
     progress: bool | Callable[[int, float], None] = True,
     seed: int | None = 0,
     threads: int | None = None,
-    step: float = 1e-2,
+    step: float = STEP,
     max_nfev: int = 60,
     popsize: int = 8,
     maxiter: int = 30,

@@ -1,11 +1,13 @@
 """The picture of a fit (FitResult.plot): the fitted run over the evidence, seen from above,
 and the objective along each unknown around the optimum (the scan, the samples, the 95 %
 ranges as the fit's verdict quotes them: green the Jacobian's, orange dashed the sampling's;
-the verdict leads the title)."""
+the verdict leads the title), each unknown in the unit it was written in when given (a scene
+file's: ``crashsim fit``), else SI with angles in degrees."""
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from os import PathLike
 from typing import TYPE_CHECKING, Any
 
@@ -19,7 +21,13 @@ if TYPE_CHECKING:
 EVIDENCE = "#d62728"  # colour of the evidence (red); the fitted run in the vehicles' colours
 
 
-def plot_fit(fit: FitResult, path: str | PathLike[str] | None = None) -> Any:
+def plot_fit(
+    fit: FitResult,
+    path: str | PathLike[str] | None = None,
+    units: Mapping[str, tuple[str, float]] | None = None,
+) -> Any:
+    """``units``: {unknown: (unit name, SI per unit)} for the unknowns to show in another
+    unit than SI (e.g. {"red.speed": ("km/h", 1 / 3.6)})."""
     from matplotlib.patches import Circle
 
     from crashsim.plots import _new_figure, silhouette, vehicle_colour
@@ -79,8 +87,13 @@ def plot_fit(fit: FitResult, path: str | PathLike[str] | None = None) -> Any:
     for j, n in enumerate(fit.names):
         a = fig.add_subplot(grid[j, 1])
         best = fit.values[n]
-        unit = fit.units[n]
-        scale, shown = (180.0 / math.pi, "deg") if unit == "rad" else (1.0, unit)
+        if units is not None and n in units:
+            shown, factor = units[n]
+            scale = 1.0 / factor
+        elif fit.units[n] == "rad":
+            scale, shown = 180.0 / math.pi, "deg"
+        else:
+            scale, shown = 1.0, fit.units[n]
         if fit.samples is not None:  # its lower edge: the profile (the others free)
             keep = fit.samples.chi2 - fit.objective <= 4.0 * 3.84
             a.plot(fit.samples.x[keep, j] * scale, fit.samples.chi2[keep] - fit.objective, ".",

@@ -20,10 +20,11 @@ import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from crashsim.errors import ParameterError
 from crashsim.io.viewer.data import DEFAULT_MAX_SAMPLES, page_data
 from crashsim.io.viewer.files import ReportFileError, check_report_path, report_page_data
 from crashsim.io.viewer.meshes import DEFAULT_MAX_TRIANGLES
-from crashsim.io.viewer.page import check_output_path, write_page
+from crashsim.io.viewer.page import check_output_path, page_source, write_page
 
 if TYPE_CHECKING:
     from crashsim.result import Result
@@ -64,15 +65,31 @@ def view_report(
     report: str | os.PathLike[str],
     path: str | os.PathLike[str] | None = None,
     *,
+    force: bool = False,
     max_triangles: int = DEFAULT_MAX_TRIANGLES,
     max_samples: int = DEFAULT_MAX_SAMPLES,
 ) -> Path:
     """Writes the case page of a report.json written by ``crashsim run --out`` (the files
     beside it give the motion and the meshes; see :mod:`.files`) to ``path`` (default:
     case.html beside the report); returns the path. ReportFileError (an InputError) when
-    the report or the files it needs are missing or malformed."""
+    the report or the files it needs are missing or malformed.
+
+    It replaces an existing file only when that is a page written from a report too (nothing
+    is lost), or with ``force``: a page written from the run (``crashsim run --html``,
+    ``cs.view``) has what a report cannot give (tyre marks, friction zones, rest outlines,
+    the overlap points), and any other file is not ours; ParameterError, before any work."""
     src = Path(report)
     check_report_path(src)  # first: a missing report is the mistake to name
     out = check_output_path(src.parent / PAGE_FILE if path is None else path)
+    if out.exists() and not force and page_source(out) != "report":
+        what = (
+            "a case page written from the run (crashsim run --html), with the tyre marks, "
+            "zones, rest outlines and overlap points a report cannot give"
+            if page_source(out) == "run"
+            else "not a case page written from a report"
+        )
+        raise ParameterError(
+            f"{out} exists and is {what}: give another --out, or --force to replace it"
+        )
     data = report_page_data(src, max_triangles=max_triangles, max_samples=max_samples)
     return write_page(data, out)

@@ -15,7 +15,7 @@ from typing import Any
 from crashsim._core import __version__
 from crashsim.errors import ParameterError
 
-__all__ = ["THREE_REVISION", "check_output_path", "render_page", "write_page"]
+__all__ = ["THREE_REVISION", "check_output_path", "page_source", "render_page", "write_page"]
 
 THREE_REVISION = "111"  # the vendored three.js (static/three/README.md)
 _PLACEHOLDER = re.compile(r"\{\{([A-Z]+)\}\}")
@@ -40,6 +40,7 @@ def render_page(data: dict[str, Any]) -> str:
     payload = json.dumps(data, separators=(",", ":"), allow_nan=False).replace("<", "\\u003c")
     values = {
         "TITLE": html.escape(str(data.get("title", "crashsim case"))),
+        "SOURCE": html.escape(str(data.get("source", "run"))),
         "VERSION": html.escape(str(__version__)),
         "CSS": _static("viewer.css"),
         "DATA": payload,
@@ -49,6 +50,23 @@ def render_page(data: dict[str, Any]) -> str:
     }
     # one pass: text put in is never searched for placeholders again
     return _PLACEHOLDER.sub(lambda m: values[m.group(1)], _static("page.html"))
+
+
+_SOURCE = re.compile(rb'<meta name="crashsim-source" content="([a-z]+)">')
+_HEAD_BYTES = 4096  # the <meta> elements come first: a page's head fits in this
+
+
+def page_source(path: str | os.PathLike[str]) -> str | None:
+    """What an existing case page was made from: "run" (a Result: ``cs.view``, ``crashsim run
+    --html``) or "report" (``crashsim view``); None for any other file or a page written before
+    pages said so."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(_HEAD_BYTES)
+    except OSError:
+        return None
+    found = _SOURCE.search(head)
+    return found.group(1).decode() if found else None
 
 
 def check_output_path(path: str | os.PathLike[str]) -> Path:

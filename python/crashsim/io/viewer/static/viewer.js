@@ -688,7 +688,7 @@
     numbers('C residual (SAE 880223)', 'm', 'deformation.spring_model.residual_crush', 4);
     sec.appendChild(table);
     if (imp.obstacle) {
-      sec.appendChild(el('p', { class: 'muted', text: imp.obstacle.name + ' is a fixed obstacle (infinite mass, no \u0394V); struck face ' + imp.obstacle.struck_face + '.' }));
+      sec.appendChild(el('p', { class: 'muted', text: imp.obstacle.name + ' is a fixed obstacle (infinite mass, no \u0394V); struck on its ' + (imp.obstacle.struck_side || imp.obstacle.struck_face) + ' side (its frame).' }));
     }
     const notes = [...imp.notes];
     for (const p of parties) for (const n of p.deformation.notes) notes.push(p.name + ': ' + n);
