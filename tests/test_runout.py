@@ -332,9 +332,15 @@ wheels = "rear"
     )
     case = loads_scene(text, base_dir=tmp_path)
     inputs = case.scene.inputs("red")
-    assert inputs is not None and inputs.steer is not None
-    assert inputs.steer[-1, 1] == pytest.approx(math.radians(2.0))
+    assert inputs is not None and inputs.steering_wheel is not None
+    assert inputs.steering_wheel[-1, 1] == pytest.approx(math.radians(32.0))
+    assert inputs.steering_ratio == 16.0
     assert inputs.brake["all"].kind == "deceleration"
+    # the engine turns the front wheels through the linkage: the outer (right, in a turn to
+    # the left) by 32 / 16 = 2 deg, the inner more (full Ackermann)
+    steer = case.simulate().wheel_steer("red")
+    assert steer[1, -1] == pytest.approx(math.radians(2.0), rel=1e-12)
+    assert steer[0, -1] > steer[1, -1] and steer[2, -1] == steer[3, -1] == 0.0
 
 
 ZONE2 = "\n[[ground.zones]]\npolygon = [[35, 0], [50, 0], [50, 3]]\nfriction = 0.3"

@@ -71,6 +71,13 @@ EXPECTED = {
     "Hz": 1.0,
     "N s/m": 1.0,
     "kN s/m": 1000.0,
+    "N m/rad": 1.0,
+    "N m/deg": 1.0 / cs.deg(1.0),
+    "kN m/rad": 1000.0,
+    "1/rad": 1.0,
+    "1/deg": 1.0 / cs.deg(1.0),
+    "rad/g": 1.0,
+    "deg/g": cs.deg(1.0),
 }
 
 # crashsim.units' own helpers: the factor is exactly the helper's value of 1.

@@ -29,6 +29,7 @@ FACTOR = {
     "lb/in^2": LBF / IN**2,
     "kN/m": 1e3,
     "kN/m^2": 1e3,
+    "deg/g": math.pi / 180.0,  # roll per g of lateral acceleration: rad per g
 }
 REL = 1e-12  # conversions are exact products: only round-off may differ
 
@@ -116,7 +117,7 @@ def test_every_number_finite_positive_with_finite_positive_sd():
         if fig.sd is not None:
             assert math.isfinite(fig.sd) and fig.sd > 0.0, (name, key)
         n += 1
-    assert n == 7 * 17
+    assert n == 7 * 18
 
 
 @pytest.mark.parametrize("name", list(PLAUSIBLE))

@@ -92,18 +92,30 @@ def test_wheel_names_short_names_and_axles() -> None:
 def test_tyre_defaults_come_from_the_engine_and_bad_tyres_are_named() -> None:
     d = _core.dynamics_defaults()
     resolved = Tyre().resolved()
-    assert resolved["saturation_angle"] == d["saturation_angle"]
+    # the reconstruction programs' linear tyre: 1 per 10 deg, whatever the road (issue 19)
+    assert resolved["cornering"] == d["cornering"] == pytest.approx(180.0 / (10.0 * math.pi))
     assert resolved["relaxation_length"] == d["relaxation_length"]
-    assert resolved["rolling_resistance"] == d["rolling_resistance"]
-    assert Tyre().to_core() == {"model": "linear"}
+    assert resolved["rolling_resistance"] == d["rolling_resistance"] == 0.0
+    assert resolved["combined"] == "braking_priority" and resolved["load_sensitivity"] == 0.0
+    assert Tyre().to_core() == _core.Tyre("linear")
+    # the saturation angle at mu = 1 is the cornering coefficient's equivalent input
+    assert Tyre(saturation_angle=0.125).resolved()["cornering"] == 8.0
     mf = Tyre("magic_formula", b=10.0, c=1.9, e=0.97)
-    assert mf.to_core() == {"model": "magic_formula", "b": 10.0, "c": 1.9, "e": 0.97}
+    assert mf.resolved() == {"model": "magic_formula", "b": 10.0, "c": 1.9, "e": 0.97,
+                             "relaxation_length": 0.1, "rolling_resistance": 0.0,
+                             "combined": "braking_priority", "load_sensitivity": 0.0}  # fmt: skip
+    old = Tyre("linear_friction_scaled").resolved()
+    assert old["saturation_angle"] == pytest.approx(math.radians(10.0))
     cases = [
-        ({"model": "bald"}, "tyre model 'bald' is unknown"),
+        ({"model": "bald"}, "tyre model \"bald\" is unknown"),
         ({"relaxation_length": -1.0}, "tyre: relaxation_length = -1 is invalid"),
         ({"model": "magic_formula", "c": 3.0}, "C in \\(0, 2\\)"),
-        ({"b": 10.0}, "belong to model 'magic_formula'"),
-        ({"model": "magic_formula", "saturation_angle": 0.2}, "belongs to model 'linear'"),
+        ({"b": 10.0}, "b do\\(es\\) not belong to model \"linear\""),
+        ({"model": "magic_formula", "saturation_angle": 0.2}, "not belong to model"),
+        ({"cornering": 5.0, "saturation_angle": 0.2}, "not both"),
+        ({"cornering": 0.0}, "cornering_coefficient = 0 is invalid"),
+        ({"combined": "ellipse"}, "combined = \"ellipse\" is unknown"),
+        ({"load_sensitivity": 1.0}, "load_sensitivity = 1 is invalid"),
         ({"rolling_resistance": "low"}, "must be a number"),
         # issue 24: 5 was accepted (and capped by the friction)
         ({"rolling_resistance": 5.0}, r"rolling_resistance = 5 is invalid: .* \[0, 0.3\]"),
@@ -233,7 +245,9 @@ def test_inputs_resolve_axles_wheels_and_the_steering_ratio() -> None:
         wheel_states=[("front", "locked", "exchange 2"), ("RL", "braked", 1.5, 0.5)],
     )
     core = inputs.to_core(w)
-    np.testing.assert_allclose(core["steer"], [[0.0, 0.0], [1.0, 0.1]])
+    # the steering-wheel angle goes to the engine with the ratio (the linkage divides)
+    assert core["steer"][0] == "steering_wheel" and core["steering_ratio"] == 16.0
+    np.testing.assert_allclose(core["steer"][1], [[0.0, 0.0], [1.0, 1.6]])
     kinds = [None if b is None else b[0] for b in core["brake"]]
     assert kinds == ["fraction", "fraction", "fraction", "deceleration"]
     np.testing.assert_array_equal(core["brake"][0][1], [[0.0, 0.0], [1.0, 1.0]])
@@ -256,7 +270,6 @@ def test_inputs_resolve_axles_wheels_and_the_steering_ratio() -> None:
         ({"steer": [(0.0, 0.0), (1.0, 0.1), (0.5, 0.2)]}, r"the steer table's times .*row 2"),
         ({"brake": {"front": [(0.0, 0.0), (0.0, 1.0)]}}, r"the brake\['front'\] table's times"),
         ({"drive": {"rear": [(1.0, 0.0), (0.5, 10.0)]}}, r"the drive\['rear'\] table's times"),
-        ({"steering_wheel": [(0.0, 0.0)]}, "needs the steering_ratio"),
         ({"steer": [(0.0, float("nan"))]}, "steer table value at row 0"),
         ({"brake": "hard"}, "the brake table must be numbers"),
         ({"wheel_states": [("FL", "smashed", 0.0)]}, r"wheel_states\[0\]: state 'smashed'"),
@@ -276,6 +289,8 @@ def test_bad_input_tables_are_errors_naming_the_table(kwargs, match) -> None:
     "kwargs, match",
     [
         ({"steer": 1.2}, "'car' inputs: the road-wheel steering angle reaches 68.8 deg"),
+        ({"steering_wheel": [(0.0, 0.0), (1.0, 3.0)]}, "needs the vehicle's steering ratio"),
+        ({"steer": {"RL": 0.1}}, "wheel 'rear_left' has a steering table but does not steer"),
         ({"brake": 1.5}, "wheel 'front_left': a braking fraction must lie in"),
         # issue 24: 100 m/s^2 was accepted and ran as full braking
         ({"brake": cs.Brake.deceleration(100.0)}, r"a braking deceleration must lie in \[0, 20\]"),

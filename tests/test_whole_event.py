@@ -14,6 +14,7 @@ import math
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import crashsim as cs
 import jsonschema
@@ -244,10 +245,15 @@ def test_wheel_centres_follow_the_ground_and_the_steering() -> None:
     poses = zip(tr.position, tr.orientation, strict=True)
     hubs = np.array([p + car.wheels.centers @ rotation_matrix(q).T for p, q in poses])
     assert np.ptp(hubs[:, 0, 2]) > 0.02
-    # the steering: the steerable (front) wheels turn with the table, the rear ones do not
+    # the steering: the steerable (front) wheels turn through the linkage, the rear ones do
+    # not. The table is the outer wheel's angle (the right one in a turn to the left); the
+    # inner one is full Ackermann's, cot(inner) = cot(outer) - track / wheelbase.
     angles = result.wheel_steer("car")
-    np.testing.assert_allclose(angles[0], np.interp(result.t, [0.0, 0.5], [0.0, 0.1]))
-    np.testing.assert_array_equal(angles[0], angles[1])
+    outer = np.interp(result.t, [0.0, 0.5], [0.0, 0.1])
+    np.testing.assert_allclose(angles[1], outer, rtol=1e-12)
+    turning = outer > 0.0
+    inner = np.arctan(1.0 / (1.0 / np.tan(outer[turning]) - 1.55 / (A + B)))
+    np.testing.assert_allclose(angles[0][turning], inner, rtol=1e-12)
     assert not np.any(angles[2:])
 
 
@@ -258,13 +264,19 @@ def test_the_run_out_picture_draws_marks_under_the_wheels(into_wall, tmp_path: P
     fig = plot_trajectories(into_wall, tmp_path / "run.png")
     (ax,) = fig.axes
     marks = into_wall.tyre_marks("car")
-    drawn = {line.get_gid(): line for line in ax.lines if (line.get_gid() or "").startswith("tyre")}
+    drawn: dict[str, list[Any]] = {}
+    for line in ax.lines:
+        if (line.get_gid() or "").startswith("tyre"):
+            drawn.setdefault(line.get_gid(), []).append(line)
     assert set(drawn) == {f"tyre-mark:car:{w}" for w, lines in marks.items() if lines}
     for wheel, lines in marks.items():
         if not lines:
             continue
-        xy = np.asarray(drawn[f"tyre-mark:car:{wheel}"].get_xydata())
-        np.testing.assert_allclose(xy, lines[0][:, :2])
+        # every mark of the wheel, in time order (a wheel may leave several)
+        got = drawn[f"tyre-mark:car:{wheel}"]
+        assert len(got) == len(lines)
+        for line, mark in zip(got, lines, strict=True):
+            np.testing.assert_allclose(np.asarray(line.get_xydata()), mark[:, :2])
     # every mark point lies under the car's outline at that instant (the tyre is under the body)
     record = into_wall.wheels("car")
     for w in range(len(record.names)):
@@ -396,7 +408,9 @@ def test_the_glb_wheels_follow_the_run(tmp_path: Path) -> None:
                 [[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]]
             )
             np.testing.assert_allclose(transform[:3, :3], body @ yaw, atol=1e-6)
-    assert steer_angles[0, -1] == pytest.approx(0.08) and steer_angles[2, -1] == 0.0
+    # the outer (right) front wheel at the table's 0.08, the inner more, the rear ones not
+    assert steer_angles[1, -1] == pytest.approx(0.08) and steer_angles[2, -1] == 0.0
+    assert steer_angles[0, -1] > steer_angles[1, -1]
     # the car climbs the terrain: the front wheels sit one radius above it, along its normal
     n = np.array([-0.05, 0.0, 1.0]) / math.hypot(0.05, 1.0)
     for i in range(4):

@@ -26,6 +26,7 @@ __all__ = [
     "SimulationError",
     "World",
     "__version__",
+    "Tyre",
     "dynamics_defaults",
     "free_motion",
     "overlap_region",
@@ -128,9 +129,35 @@ def suspension(
 
 def dynamics_defaults() -> dict[str, float]:
     """The engine's defaults for the ground, wheels and tyres (gravity, natural_frequency,
-    damping_ratio, saturation_angle, relaxation_length, rolling_resistance, tyre_friction,
-    body_friction, magic_formula_b, magic_formula_c, magic_formula_e) and its rest thresholds
-    (rest_speed m/s, rest_yaw_rate rad/s, rest_time s)."""
+    damping_ratio, cornering (1/rad), load_sensitivity, ackermann, relaxation_length,
+    rolling_resistance, tyre_friction, body_friction, magic_formula_b, magic_formula_c,
+    magic_formula_e) and its rest thresholds (rest_speed m/s, rest_yaw_rate rad/s, rest_time
+    s)."""
+
+@final
+class Tyre:
+    """A tyre, checked by the engine when made: model "linear" (cornering 1/rad, or its
+    saturation_angle at mu = 1, rad), "linear_friction_scaled" (saturation_angle rad) or
+    "magic_formula" (b 1/rad, c, e); relaxation_length (m), rolling_resistance, combined
+    ("braking_priority" | "circle"), load_sensitivity. None: the engine's default."""
+
+    def __new__(
+        cls,
+        model: str = "linear",
+        *,
+        cornering: float | None = None,
+        saturation_angle: float | None = None,
+        b: float | None = None,
+        c: float | None = None,
+        e: float | None = None,
+        relaxation_length: float | None = None,
+        rolling_resistance: float | None = None,
+        combined: str | None = None,
+        load_sensitivity: float | None = None,
+    ) -> Tyre: ...
+    def resolved(self) -> dict[str, Any]:
+        """Every parameter as the engine runs it."""
+    def __eq__(self, value: object, /) -> bool: ...
 
 def free_motion(
     mass: float,
@@ -263,19 +290,27 @@ class SceneSpec:
         static_loads: ArrayLike,
         spring_rates: ArrayLike,
         damping: ArrayLike,
-        tyre: dict[str, Any] | None = None,
-        steer: ArrayLike | None = None,
-        brake: list[tuple[str, ArrayLike] | None] = ...,
+        tyre: Tyre | None = None,
+        steering_ratio: float | None = None,
+        ackermann: float | None = None,
+        steering_reference: str | None = None,
+        anti_roll: list[tuple[int, int, float]] = ...,
+        abs: bool = True,
+        steer: tuple[str, Any] | None = None,
+        brake: list[tuple[str, ArrayLike, float | None] | None] = ...,
         drive: list[ArrayLike | None] = ...,
         switches: list[tuple[int, str, float, str, float]] = ...,
     ) -> None:
         """Give a body wheels: centres (n, 3) m in the body frame at static ride height, radii
-        (m), steerable flags, static loads (N), spring rates (N/m), damping (N s/m); a tyre
-        dict (model "linear" with saturation_angle rad, or "magic_formula" with b, c, e;
-        relaxation_length m, rolling_resistance); the road-wheel steering angle table (k, 2)
-        of (s, rad); per wheel braking None or ("fraction" | "deceleration", (k, 2) table of
-        (s, fraction) or (s, m/s^2)) and drive-force tables (s, N); wheel-state switches
-        (wheel, "time" | "exchange", when, "free" | "locked" | "braked", braked fraction)."""
+        (m), steerable flags, static loads (N), spring rates (N/m), damping (N s/m); a Tyre;
+        the steering linkage (steering ratio, Ackermann fraction, the input's reference wheel
+        "outer" or "centre"); anti-roll bars (left wheel, right wheel, roll stiffness N m/rad);
+        ABS; the steering input ("road_wheel" | "steering_wheel", (k, 2) table of (s, rad)) or
+        ("per_wheel", [table or None per wheel]); per wheel braking None or ("fraction" |
+        "deceleration", (k, 2) table of (s, fraction) or (s, m/s^2), None) or ("distributed",
+        (s, m/s^2) table, the wheel's share of the vehicle's brake force) and drive-force
+        tables (s, N); wheel-state switches (wheel, "time" | "exchange", when, "free" |
+        "locked" | "braked", braked fraction)."""
     def set_contact(self, body1: int, body2: int, params: ContactParams) -> None:
         """Parameters of the pair (body1, body2); every pair of bodies but two obstacles
         collides with the defaults unless set here. The normal points from body1 into body2.

@@ -283,7 +283,8 @@ class WheelRecord(NamedTuple):
     meets the ground (m; the point below the wheel centre when the wheel is in the air),
     ``load`` (n, k) its normal load (N, 0 in the air), ``force`` (n, k, 3) the ground's force
     on the tyre (N: normal plus tyre forces), ``sliding`` (n, k) True where the contact patch
-    slides at the friction limit (it leaves a tyre mark)."""
+    slides at the friction limit (it leaves a tyre mark), ``steer`` (n, k) its road-wheel
+    angle (rad, + left, about the body z axis; through the steering linkage)."""
 
     names: tuple[str, ...]
     t: Array
@@ -291,6 +292,7 @@ class WheelRecord(NamedTuple):
     load: Array
     force: Array
     sliding: NDArray[np.bool_]
+    steer: Array
 
 
 class RestState(NamedTuple):
@@ -427,6 +429,7 @@ class Result:
                 load=_frozen(raw["wheel_load"][sel]),
                 force=_frozen(raw["wheel_force"][sel]),
                 sliding=_frozen_bool(raw["wheel_sliding"][sel]),
+                steer=_frozen(raw["wheel_steer"][sel]),
             )
             row += n
         rest = list(raw.get("rest", [None] * len(self.bodies)))
@@ -672,20 +675,10 @@ class Result:
 
     def wheel_steer(self, vehicle: Any) -> Array:
         """(n, k) each wheel's road-wheel steering angle at the sample times ``t`` (rad, + to
-        the left, about the body z axis): the driver's steer table (linear between rows,
-        held beyond them) on the steerable wheels, 0 on the others and without inputs."""
-        name = self._vehicle_name(vehicle)
-        record = self.wheels(name)
-        v = self.vehicle(name)
-        out = np.zeros((len(record.names), len(self.t)))
-        inputs = self.scene.inputs(name) if self.scene is not None else None
-        if inputs is not None and inputs.steer is not None and v.wheels is not None:
-            table = np.asarray(inputs.steer, dtype=np.float64)
-            angle = np.interp(self.t, table[:, 0], table[:, 1])
-            for k, steers in enumerate(v.wheels.steerable):
-                if steers:
-                    out[k] = angle
-        return _frozen(out)
+        the left, about the body z axis), as the engine ran it: the driver's input through
+        the steering linkage (Ackermann geometry) or the wheel's own table; 0 on wheels that
+        do not steer."""
+        return self.wheels(vehicle).steer
 
     def tyre_marks(self, vehicle: Any, min_length: float = 0.0) -> dict[str, list[Array]]:
         """The stretches where each wheel's contact patch slid at the friction limit (skid

@@ -718,7 +718,8 @@ class Scene:
                 what = f"vehicle {p.vehicle.name!r}"
                 inputs = {} if p.inputs is None else p.inputs.to_core(w, f"{what} inputs")
                 try:
-                    spec.set_vehicle(i, **w.spec(p.vehicle.mass), **inputs)
+                    # the inputs' steering ratio (if given) replaces the wheels'
+                    spec.set_vehicle(i, **{**w.spec(p.vehicle.mass), **inputs})
                 except ParameterError as e:  # pragma: no cover - checked when put together
                     raise ParameterError(f"{what}: {e}") from e
         duration_s, dt_s, until_rest, interval, max_bytes = settings

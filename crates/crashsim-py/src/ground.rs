@@ -3,8 +3,8 @@
 use core::ground::{FrictionZone, Ground};
 use core::math::{Point, Real};
 use core::vehicle::{
-    Braking, DriverInputs, Table, Trigger, Tyre, TyreModel, VehicleSpec, WheelSpec, WheelState,
-    WheelSwitch,
+    AntiRollBar, Braking, CombinedSlip, DriverInputs, SteerInput, Steering, Table, Trigger,
+    TyreModel, VehicleSpec, WheelSpec, WheelState, WheelSwitch,
 };
 use crashsim_core as core;
 use numpy::{AllowTypeChange, PyArrayLike1, PyArrayLike2};
@@ -76,51 +76,166 @@ pub fn ground(
         .map_err(errors::to_py)
 }
 
-/// A tyre from a dict (missing keys take the core's defaults).
-pub fn tyre(d: Option<&Bound<'_, PyDict>>) -> PyResult<Tyre> {
-    let mut t = Tyre::default();
-    let Some(d) = d else {
-        return Ok(t);
-    };
-    let get = |key: &str| -> PyResult<Option<Real>> {
-        match d.get_item(key)? {
-            Some(v) if !v.is_none() => {
-                Ok(Some(v.extract().map_err(|_| {
-                    errors::parameter(format!("tyre {key} must be a number"))
-                })?))
+/// A tyre, checked by the core when it is made (crashsim.Tyre builds one).
+#[pyclass(frozen, eq, module = "crashsim._core")]
+#[derive(Clone, PartialEq)]
+pub struct Tyre {
+    pub inner: core::vehicle::Tyre,
+}
+
+#[pymethods]
+impl Tyre {
+    /// model "linear" (cornering: the cornering coefficient, 1/rad, or saturation_angle:
+    /// its equivalent at mu = 1, rad), "linear_friction_scaled" (saturation_angle, rad) or
+    /// "magic_formula" (b 1/rad, c, e); relaxation_length (m), rolling_resistance (-),
+    /// combined ("braking_priority" or "circle"), load_sensitivity (-). None: the engine's
+    /// default.
+    #[new]
+    #[pyo3(signature = (model = "linear", *, cornering = None, saturation_angle = None, b = None, c = None, e = None, relaxation_length = None, rolling_resistance = None, combined = None, load_sensitivity = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        model: &str,
+        cornering: Option<Real>,
+        saturation_angle: Option<Real>,
+        b: Option<Real>,
+        c: Option<Real>,
+        e: Option<Real>,
+        relaxation_length: Option<Real>,
+        rolling_resistance: Option<Real>,
+        combined: Option<&str>,
+        load_sensitivity: Option<Real>,
+    ) -> PyResult<Tyre> {
+        let mut t = core::vehicle::Tyre::default();
+        let foreign = |names: &[(&str, bool)], model: &str| -> PyResult<()> {
+            let given: Vec<&str> = names.iter().filter(|(_, g)| *g).map(|(n, _)| *n).collect();
+            if given.is_empty() {
+                Ok(())
+            } else {
+                Err(errors::parameter(format!(
+                    "tyre {} do(es) not belong to model {model:?} (linear: cornering or \
+                     saturation_angle; linear_friction_scaled: saturation_angle; \
+                     magic_formula: b, c, e)",
+                    given.join(", ")
+                )))
             }
-            _ => Ok(None),
+        };
+        let mf = [("b", b.is_some()), ("c", c.is_some()), ("e", e.is_some())];
+        t.model = match model {
+            "linear" => {
+                foreign(&mf, model)?;
+                let cornering =
+                    match (cornering, saturation_angle) {
+                        (Some(_), Some(_)) => return Err(errors::parameter(
+                            "tyre: give the cornering coefficient or the saturation angle, not \
+                             both (the saturation angle at mu = 1 is 1 / cornering)"
+                                .into(),
+                        )),
+                        (Some(c), None) => c,
+                        (None, Some(a)) => {
+                            if !(a.is_finite() && a > 0.0) {
+                                return Err(errors::parameter(format!(
+                                    "tyre saturation_angle = {a} is invalid: it must be > 0 rad"
+                                )));
+                            }
+                            1.0 / a
+                        }
+                        (None, None) => core::vehicle::DEFAULT_CORNERING_COEFFICIENT,
+                    };
+                core::vehicle::TyreModel::Linear { cornering }
+            }
+            "linear_friction_scaled" => {
+                foreign(&mf, model)?;
+                foreign(&[("cornering", cornering.is_some())], model)?;
+                core::vehicle::TyreModel::LinearFrictionScaled {
+                    saturation_angle: saturation_angle.unwrap_or(10f64.to_radians()),
+                }
+            }
+            "magic_formula" => {
+                foreign(
+                    &[
+                        ("cornering", cornering.is_some()),
+                        ("saturation_angle", saturation_angle.is_some()),
+                    ],
+                    model,
+                )?;
+                let [b0, c0, e0] = core::vehicle::MAGIC_FORMULA_DEFAULTS;
+                core::vehicle::TyreModel::MagicFormula {
+                    b: b.unwrap_or(b0),
+                    c: c.unwrap_or(c0),
+                    e: e.unwrap_or(e0),
+                }
+            }
+            other => {
+                return Err(errors::parameter(format!(
+                    "tyre model {other:?} is unknown: use \"linear\" (the reconstruction \
+                     programs' tyre), \"linear_friction_scaled\" or \"magic_formula\""
+                )))
+            }
+        };
+        if let Some(v) = relaxation_length {
+            t.relaxation_length = v;
         }
-    };
-    let model: String = match d.get_item("model")? {
-        Some(v) if !v.is_none() => v
-            .extract()
-            .map_err(|_| errors::parameter("tyre model must be a string".into()))?,
-        _ => "linear".into(),
-    };
-    t.model = match model.as_str() {
-        "linear" => TyreModel::Linear {
-            saturation_angle: get("saturation_angle")?.unwrap_or(10f64.to_radians()),
-        },
-        "magic_formula" => TyreModel::MagicFormula {
-            b: get("b")?.unwrap_or(core::vehicle::MAGIC_FORMULA_DEFAULTS[0]),
-            c: get("c")?.unwrap_or(core::vehicle::MAGIC_FORMULA_DEFAULTS[1]),
-            e: get("e")?.unwrap_or(core::vehicle::MAGIC_FORMULA_DEFAULTS[2]),
-        },
-        other => {
-            return Err(errors::parameter(format!(
-                "tyre model {other:?} is unknown: use \"linear\" (the reconstruction tyre) or \
-                 \"magic_formula\""
-            )))
+        if let Some(v) = rolling_resistance {
+            t.rolling_resistance = v;
         }
-    };
-    if let Some(v) = get("relaxation_length")? {
-        t.relaxation_length = v;
+        if let Some(v) = load_sensitivity {
+            t.load_sensitivity = v;
+        }
+        if let Some(v) = combined {
+            t.combined = match v {
+                "braking_priority" => CombinedSlip::BrakingPriority,
+                "circle" => CombinedSlip::Circle,
+                other => {
+                    return Err(errors::parameter(format!(
+                        "tyre combined = {other:?} is unknown: use \"braking_priority\" (the \
+                         brake force kept, the lateral force from what the friction leaves) or \
+                         \"circle\" (both scaled onto the friction circle)"
+                    )))
+                }
+            };
+        }
+        t.validate().map_err(errors::to_py)?;
+        Ok(Tyre { inner: t })
     }
-    if let Some(v) = get("rolling_resistance")? {
-        t.rolling_resistance = v;
+
+    /// Every parameter as the engine runs it: model, its own parameters (cornering 1/rad;
+    /// saturation_angle rad; b, c, e), relaxation_length, rolling_resistance, combined,
+    /// load_sensitivity.
+    fn resolved<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        let t = &self.inner;
+        match t.model {
+            TyreModel::Linear { cornering } => {
+                d.set_item("model", "linear")?;
+                d.set_item("cornering", cornering)?;
+            }
+            TyreModel::LinearFrictionScaled { saturation_angle } => {
+                d.set_item("model", "linear_friction_scaled")?;
+                d.set_item("saturation_angle", saturation_angle)?;
+            }
+            TyreModel::MagicFormula { b, c, e } => {
+                d.set_item("model", "magic_formula")?;
+                d.set_item("b", b)?;
+                d.set_item("c", c)?;
+                d.set_item("e", e)?;
+            }
+        }
+        d.set_item("relaxation_length", t.relaxation_length)?;
+        d.set_item("rolling_resistance", t.rolling_resistance)?;
+        d.set_item(
+            "combined",
+            match t.combined {
+                CombinedSlip::BrakingPriority => "braking_priority",
+                CombinedSlip::Circle => "circle",
+            },
+        )?;
+        d.set_item("load_sensitivity", t.load_sensitivity)?;
+        Ok(d)
     }
-    Ok(t)
+
+    fn __repr__(&self) -> String {
+        format!("Tyre({:?})", self.inner)
+    }
 }
 
 /// One wheel-state switch: (wheel, "time" | "exchange", when, "free" | "locked" |
@@ -172,9 +287,12 @@ pub fn vehicle(
     static_loads: &Bound<'_, PyAny>,
     spring_rates: &Bound<'_, PyAny>,
     damping: &Bound<'_, PyAny>,
-    tyre_params: Option<&Bound<'_, PyDict>>,
-    steer: Option<&Bound<'_, PyAny>>,
-    brake: Vec<Option<(String, Bound<'_, PyAny>)>>,
+    tyre: Option<&Tyre>,
+    linkage: Steering,
+    anti_roll: Vec<(usize, usize, Real)>,
+    abs: bool,
+    steer: Option<(String, Bound<'_, PyAny>)>,
+    brake: Vec<Option<(String, Bound<'_, PyAny>, Option<Real>)>>,
     drive: Vec<Option<Bound<'_, PyAny>>>,
     switches: Vec<Bound<'_, PyAny>>,
 ) -> PyResult<VehicleSpec> {
@@ -207,21 +325,52 @@ pub fn vehicle(
     for (k, b) in brake.into_iter().enumerate() {
         brakes.push(match b {
             None => None,
-            Some((kind, t)) => {
+            Some((kind, t, share)) => {
                 let t = table(&t, &format!("wheel {k} braking"))?;
-                Some(match kind.as_str() {
-                    "fraction" => Braking::Fraction(t),
-                    "deceleration" => Braking::Deceleration(t),
-                    other => {
+                Some(match (kind.as_str(), share) {
+                    ("fraction", None) => Braking::Fraction(t),
+                    ("deceleration", None) => Braking::Deceleration(t),
+                    ("distributed", Some(share)) => Braking::Distributed {
+                        deceleration: t,
+                        share,
+                    },
+                    (other, _) => {
                         return Err(errors::parameter(format!(
-                            "braking is a 'fraction' of the friction or a 'deceleration', not \
-                             {other:?}"
+                            "braking is ('fraction' | 'deceleration', table) or \
+                             ('distributed', table, share), not {other:?}"
                         )))
                     }
                 })
             }
         });
     }
+    let steer = match steer {
+        None => None,
+        Some((kind, value)) => Some(match kind.as_str() {
+            "road_wheel" => SteerInput::RoadWheel(table(&value, "steering")?),
+            "steering_wheel" => SteerInput::SteeringWheel(table(&value, "steering wheel")?),
+            "per_wheel" => {
+                let tables: Vec<Option<Bound<'_, PyAny>>> = value.extract().map_err(|_| {
+                    errors::parameter(
+                        "per-wheel steering is a list with one table or None per wheel".into(),
+                    )
+                })?;
+                let mut out = Vec::with_capacity(tables.len());
+                for (k, t) in tables.iter().enumerate() {
+                    out.push(match t {
+                        None => None,
+                        Some(t) => Some(table(t, &format!("wheel {k} steering"))?),
+                    });
+                }
+                SteerInput::PerWheel(out)
+            }
+            other => {
+                return Err(errors::parameter(format!(
+                    "steering is 'road_wheel', 'steering_wheel' or 'per_wheel', not {other:?}"
+                )))
+            }
+        }),
+    };
     let mut drives = Vec::with_capacity(drive.len());
     for (k, d) in drive.into_iter().enumerate() {
         drives.push(match d {
@@ -230,14 +379,24 @@ pub fn vehicle(
         });
     }
     let inputs = DriverInputs {
-        steer: steer.map(|s| table(s, "steering")).transpose()?,
+        steer,
         brake: brakes,
         drive: drives,
         switches: switches.iter().map(switch).collect::<PyResult<_>>()?,
     };
     Ok(VehicleSpec {
         wheels,
-        tyre: tyre(tyre_params)?,
+        tyre: tyre.map_or_else(core::vehicle::Tyre::default, |t| t.inner.clone()),
+        steering: linkage,
+        anti_roll: anti_roll
+            .into_iter()
+            .map(|(left, right, roll_stiffness)| AntiRollBar {
+                left,
+                right,
+                roll_stiffness,
+            })
+            .collect(),
+        abs,
         inputs,
     })
 }

@@ -460,7 +460,8 @@ fn free_motion<'py>(
 }
 
 /// The wheels' records: `wheel_counts` (per body), `wheel_contact` (W, k, 3) m,
-/// `wheel_load` (W, k) N, `wheel_force` (W, k, 3) N, `wheel_sliding` (W, k) bool; and
+/// `wheel_load` (W, k) N, `wheel_force` (W, k, 3) N, `wheel_sliding` (W, k) bool,
+/// `wheel_steer` (W, k) rad (each wheel's road-wheel angle about the body z axis); and
 /// `rest` (per body: the time it came to rest, s, or None).
 fn wheels_to_dict(py: Python<'_>, d: &Bound<'_, PyDict>, out: &core::RunOutput) -> PyResult<()> {
     let n: usize = out.wheel_counts.iter().sum();
@@ -475,6 +476,7 @@ fn wheels_to_dict(py: Python<'_>, d: &Bound<'_, PyDict>, out: &core::RunOutput) 
     let mut force = Vec::new();
     let mut load = Vec::new();
     let mut sliding = Vec::new();
+    let mut steer = Vec::new();
     contact
         .try_reserve_exact(n * k * 3)
         .map_err(|_| memory("wheel contacts"))?;
@@ -486,6 +488,9 @@ fn wheels_to_dict(py: Python<'_>, d: &Bound<'_, PyDict>, out: &core::RunOutput) 
     sliding
         .try_reserve_exact(n * k)
         .map_err(|_| memory("wheel marks"))?;
+    steer
+        .try_reserve_exact(n * k)
+        .map_err(|_| memory("wheel steering"))?;
     for w in 0..n {
         for s in 0..k {
             let sample = &out.wheels_at(s)[w];
@@ -493,6 +498,7 @@ fn wheels_to_dict(py: Python<'_>, d: &Bound<'_, PyDict>, out: &core::RunOutput) 
             force.extend_from_slice(sample.force.as_slice());
             load.push(sample.load);
             sliding.push(sample.sliding);
+            steer.push(sample.steer);
         }
     }
     let shape3 = |v: Vec<f64>| Array3::from_shape_vec((n, k, 3), v).expect("the shape fits");
@@ -508,6 +514,12 @@ fn wheels_to_dict(py: Python<'_>, d: &Bound<'_, PyDict>, out: &core::RunOutput) 
     d.set_item(
         "wheel_sliding",
         Array2::from_shape_vec((n, k), sliding)
+            .expect("the shape fits")
+            .into_pyarray(py),
+    )?;
+    d.set_item(
+        "wheel_steer",
+        Array2::from_shape_vec((n, k), steer)
             .expect("the shape fits")
             .into_pyarray(py),
     )?;
@@ -564,8 +576,8 @@ fn suspension(
 fn dynamics_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
     let t = core::vehicle::Tyre::default();
-    let core::vehicle::TyreModel::Linear { saturation_angle } = t.model else {
-        unreachable!("the default tyre is the reconstruction tyre")
+    let core::vehicle::TyreModel::Linear { cornering } = t.model else {
+        unreachable!("the default tyre is the reconstruction programs' linear tyre")
     };
     d.set_item("gravity", core::vehicle::GRAVITY)?;
     d.set_item(
@@ -573,7 +585,9 @@ fn dynamics_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         core::vehicle::DEFAULT_NATURAL_FREQUENCY,
     )?;
     d.set_item("damping_ratio", core::vehicle::DEFAULT_DAMPING_RATIO)?;
-    d.set_item("saturation_angle", saturation_angle)?;
+    d.set_item("cornering", cornering)?;
+    d.set_item("load_sensitivity", t.load_sensitivity)?;
+    d.set_item("ackermann", core::vehicle::DEFAULT_ACKERMANN)?;
     d.set_item("relaxation_length", t.relaxation_length)?;
     d.set_item("rolling_resistance", t.rolling_resistance)?;
     d.set_item("tyre_friction", core::ground::DEFAULT_TYRE_FRICTION)?;
@@ -597,6 +611,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<spec::SceneSpec>()?;
     m.add_class::<spec::ContactParams>()?;
     m.add_class::<records::Impact>()?;
+    m.add_class::<ground::Tyre>()?;
     m.add_function(wrap_pyfunction!(batch::run_batch, m)?)?;
     m.add_function(wrap_pyfunction!(shapes_overlap, m)?)?;
     m.add_function(wrap_pyfunction!(overlap_region, m)?)?;

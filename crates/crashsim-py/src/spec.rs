@@ -250,8 +250,9 @@ impl SceneSpec {
         Ok(())
     }
 
-    /// Gives a body wheels, a tyre (a dict) and driver inputs (see the stub).
-    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new()))]
+    /// Gives a body wheels, a tyre, the steering linkage, anti-roll bars and driver inputs
+    /// (see the stub).
+    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steering_ratio = None, ackermann = None, steering_reference = None, anti_roll = Vec::new(), abs = true, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new()))]
     #[allow(clippy::too_many_arguments)]
     fn set_vehicle(
         &mut self,
@@ -262,12 +263,32 @@ impl SceneSpec {
         static_loads: &Bound<'_, PyAny>,
         spring_rates: &Bound<'_, PyAny>,
         damping: &Bound<'_, PyAny>,
-        tyre: Option<&Bound<'_, PyDict>>,
-        steer: Option<&Bound<'_, PyAny>>,
-        brake: Vec<Option<(String, Bound<'_, PyAny>)>>,
+        tyre: Option<&ground::Tyre>,
+        steering_ratio: Option<f64>,
+        ackermann: Option<f64>,
+        steering_reference: Option<&str>,
+        anti_roll: Vec<(usize, usize, f64)>,
+        abs: bool,
+        steer: Option<(String, Bound<'_, PyAny>)>,
+        brake: Vec<Option<(String, Bound<'_, PyAny>, Option<f64>)>>,
         drive: Vec<Option<Bound<'_, PyAny>>>,
         switches: Vec<Bound<'_, PyAny>>,
     ) -> PyResult<()> {
+        let reference = match steering_reference {
+            None | Some("outer") => core::vehicle::SteerReference::Outer,
+            Some("centre") | Some("center") => core::vehicle::SteerReference::Centre,
+            Some(other) => {
+                return Err(errors::parameter(format!(
+                    "steering_reference = {other:?} is unknown: the input's road-wheel angle is \
+                     the 'outer' wheel's (the reconstruction programs') or the axle 'centre''s"
+                )))
+            }
+        };
+        let linkage = core::vehicle::Steering {
+            ratio: steering_ratio,
+            ackermann: ackermann.unwrap_or(core::vehicle::DEFAULT_ACKERMANN),
+            reference,
+        };
         let spec = ground::vehicle(
             centers,
             radii,
@@ -276,6 +297,9 @@ impl SceneSpec {
             spring_rates,
             damping,
             tyre,
+            linkage,
+            anti_roll,
+            abs,
             steer,
             brake,
             drive,

@@ -431,9 +431,6 @@ class _Wheels:
         ]
         self.result = result
         self.moving = bool(getattr(result, "on_ground", False))
-        inputs = result.scene.inputs(name) if result.scene is not None else None
-        self.steer = None if inputs is None else inputs.steer  # rows (time s, angle rad)
-        self.steerable = np.asarray(v.wheels.steerable, dtype=bool)
         if self.moving:
             # the wheels' centres in the body frame at the samples (m), one sample per time
             # (at an exchange the last one; the centres do not jump there)
@@ -445,6 +442,8 @@ class _Wheels:
             rel = centres - tr.position[last][None, :, :]
             self.t = t[last]
             self.offsets = np.einsum("kji,nkj->nki", rot, rel)  # R^T (c - p), (n, k, 3)
+            # each wheel's road-wheel angle as the engine ran it (rad, body z)
+            self.steer = result.wheel_steer(name)[:, last]
 
     def poses(self, t: float) -> list[tuple[Array, Array]]:
         """(centre (3,) m world, glTF quaternion (x, y, z, w)) of each wheel at t."""
@@ -452,13 +451,10 @@ class _Wheels:
         p = np.asarray(s["position"], dtype=np.float64)
         q = np.asarray(s["orientation"], dtype=np.float64)
         r = rotation_matrix(q)
-        angle = (
-            0.0 if self.steer is None else float(np.interp(t, self.steer[:, 0], self.steer[:, 1]))
-        )
         out = []
         for k in range(len(self.names)):
             b = np.array([np.interp(t, self.t, self.offsets[k, :, i]) for i in range(3)])
-            yaw = angle if self.steerable[k] else 0.0
+            yaw = float(np.interp(t, self.t, self.steer[k]))
             turn = np.array([math.cos(yaw / 2.0), 0.0, 0.0, math.sin(yaw / 2.0)])
             out.append((p + r @ b, _gltf_quaternion(_multiply(q, turn))))
         return out

@@ -251,20 +251,30 @@ WHEEL_KEYS = (
     "damping_ratio",
     "spring_rates",
     "damping",
+    "anti_roll",
+    "roll_gradient",
+    "anti_roll_front_share",
+    "steering_ratio",
+    "ackermann",
+    "steering_reference",
+    "abs",
 )
 TYRE_KEYS = (
     "model",
+    "cornering",
     "saturation_angle",
     "b",
     "c",
     "e",
     "relaxation_length",
     "rolling_resistance",
+    "combined",
+    "load_sensitivity",
 )
 INPUT_KEYS = ("steer", "steering_wheel", "steering_ratio", "brake", "drive", "wheel_states")
-BRAKE_KEYS = ("time", "fraction", "deceleration", "wheels")
+BRAKE_KEYS = ("time", "fraction", "deceleration", "wheels", "front_share")
 DRIVE_KEYS = ("time", "force", "wheels")
-STEER_KEYS = ("time", "angle")
+STEER_KEYS = ("time", "angle", "wheels")
 STATE_KEYS = ("wheel", "state", "time", "exchange", "fraction")
 _BOX_KEYS = ("length", "width", "height", "ground_clearance")
 MESH_KEYS = ("file", "units", "up", "forward", "ground", "center", "solid")
@@ -597,10 +607,15 @@ def _wheels(t: _Table, vehicle: Vehicle) -> Vehicle:
         values: dict[str, Any] = {"model": ty.string("model", "linear", choices=TYRE_MODELS)}
         if ty.has("saturation_angle"):
             values["saturation_angle"] = ty.quantity("saturation_angle", "angle", low="> 0")
-        for k in ("b", "c", "e", "rolling_resistance"):
+        if ty.has("cornering"):
+            values["cornering"] = ty.quantity("cornering", "per angle", low="> 0")
+        ty.taken.add("cornering")
+        for k in ("b", "c", "e", "rolling_resistance", "load_sensitivity"):
             if ty.has(k):
                 values[k] = ty.number(k)
             ty.taken.add(k)
+        if ty.has("combined"):
+            values["combined"] = ty.string("combined", choices=("braking_priority", "circle"))
         if ty.has("relaxation_length"):
             values["relaxation_length"] = ty.quantity("relaxation_length", "length", low="> 0")
         ty.taken.add("relaxation_length")
@@ -629,6 +644,20 @@ def _wheels(t: _Table, vehicle: Vehicle) -> Vehicle:
         given["spring_rates"] = _axle_pair(w, "spring_rates", "force per width")
     if w.has("damping"):
         given["damping"] = _axle_pair(w, "damping", "damping")
+    if w.has("anti_roll"):
+        given["anti_roll"] = w.vector("anti_roll", "roll stiffness", sizes=(2,))
+    if w.has("roll_gradient"):
+        given["roll_gradient"] = w.quantity("roll_gradient", "roll gradient", low="> 0")
+    for k in ("anti_roll_front_share", "steering_ratio", "ackermann"):
+        if w.has(k):
+            given[k] = w.number(k)
+    if w.has("steering_reference"):
+        given["steering_reference"] = w.string("steering_reference", choices=("outer", "centre"))
+    if w.has("abs"):
+        value = w.raw("abs")
+        if not isinstance(value, bool):
+            w.fail("abs", f"expected true or false, got {value!r}")
+        given["abs"] = value
     w.taken.update(WHEEL_KEYS)
     w.finish()
     old = vehicle.wheels
@@ -651,10 +680,15 @@ def _rows(t: _Table, k: str, keys: tuple[str, ...]) -> list[_Table]:
     return t.tables(k, keys) if t.has(k) else []
 
 
-def _angle_table(rows: list[_Table]) -> list[tuple[float, float]]:
-    out = []
+def _angle_tables(rows: list[_Table]) -> dict[str, list[tuple[float, float]]]:
+    """The rows' (time, angle) tables by their ``wheels`` ("linkage": through the steering
+    linkage, the rows without ``wheels``)."""
+    out: dict[str, list[tuple[float, float]]] = {}
     for r in rows:
-        out.append((r.quantity("time", "time"), r.quantity("angle", "angle")))
+        where = r.string("wheels", "linkage")
+        out.setdefault(where, []).append(
+            (r.quantity("time", "time"), r.quantity("angle", "angle"))
+        )
         r.finish()
     return out
 
@@ -665,16 +699,21 @@ def _inputs(t: _Table) -> DriverInputs | None:
     if i is None:
         return None
     kwargs: dict[str, Any] = {}
-    steer = _angle_table(_rows(i, "steer", STEER_KEYS))
-    wheel = _angle_table(_rows(i, "steering_wheel", STEER_KEYS))
+    steer = _angle_tables(_rows(i, "steer", STEER_KEYS))
+    wheel = _angle_tables(_rows(i, "steering_wheel", STEER_KEYS))
+    if "linkage" in steer and len(steer) > 1:
+        i.fail("steer", "give steer rows for the linkage (no wheels) or per wheel, not both")
     if steer:
-        kwargs["steer"] = steer
+        kwargs["steer"] = steer["linkage"] if "linkage" in steer else steer
+    if set(wheel) - {"linkage"}:
+        i.fail("steering_wheel", "the steering wheel turns the linkage: its rows take no wheels")
     if wheel:
-        kwargs["steering_wheel"] = wheel
+        kwargs["steering_wheel"] = wheel["linkage"]
     if i.has("steering_ratio"):
         kwargs["steering_ratio"] = i.number("steering_ratio")
     i.taken.add("steering_ratio")
     brakes: dict[str, tuple[str, list[tuple[float, float]]]] = {}
+    shares: dict[str, float] = {}
     for r in _rows(i, "brake", BRAKE_KEYS):
         kinds = [k for k in ("fraction", "deceleration") if r.has(k)]
         if len(kinds) != 1:
@@ -683,13 +722,26 @@ def _inputs(t: _Table) -> DriverInputs | None:
         value = r.number(kind) if kind == "fraction" else r.quantity(kind, "acceleration")
         r.taken.update(("fraction", "deceleration"))
         where = r.string("wheels", "all")
+        if r.has("front_share"):
+            if kind != "deceleration" or where != "all":
+                r.fail("front_share", "a front/rear split is for the whole vehicle's deceleration")
+            share = r.number("front_share")
+            if shares.get(where, share) != share:
+                r.fail("front_share", "give the same front_share on every row")
+            shares[where] = share
+            kind = "distributed"
         row = (r.quantity("time", "time"), value)
         r.finish()
         if where in brakes and brakes[where][0] != kind:
-            r.fail(kind, f'the brake rows of "{where}" mix fraction and deceleration')
+            r.fail(kind, f'the brake rows of "{where}" mix kinds (fraction, deceleration, split)')
         brakes.setdefault(where, (kind, []))[1].append(row)
     if brakes:
-        kwargs["brake"] = {w: Brake(k, np.array(rows)) for w, (k, rows) in brakes.items()}
+        kwargs["brake"] = {
+            w: Brake.distributed(np.array(rows), shares[w])
+            if k == "distributed"
+            else Brake(k, np.array(rows))
+            for w, (k, rows) in brakes.items()
+        }
     drives: dict[str, list[tuple[float, float]]] = {}
     for r in _rows(i, "drive", DRIVE_KEYS):
         where = r.string("wheels", "all")

@@ -83,6 +83,9 @@ DIMENSIONS: dict[str, str] = {
     "acceleration": "m/s^2",
     "frequency": "Hz",
     "damping": "N s/m",
+    "roll stiffness": "N m/rad",  # an anti-roll bar's (moment per roll angle)
+    "per angle": "1/rad",  # a tyre's cornering coefficient (cornering stiffness per load)
+    "roll gradient": "rad/g",  # roll per g of lateral acceleration
 }
 
 UNITS: dict[str, Unit] = {
@@ -143,6 +146,16 @@ UNITS: dict[str, Unit] = {
     # damping (a suspension's damper)
     "N s/m": Unit("damping", 1.0),
     "kN s/m": Unit("damping", 1000.0),
+    # roll stiffness (an anti-roll bar's)
+    "N m/rad": Unit("roll stiffness", 1.0),
+    "N m/deg": Unit("roll stiffness", 180.0 / math.pi),
+    "kN m/rad": Unit("roll stiffness", 1000.0),
+    # per angle (a tyre's cornering coefficient: cornering stiffness per unit load)
+    "1/rad": Unit("per angle", 1.0),
+    "1/deg": Unit("per angle", 180.0 / math.pi),
+    # roll gradient (roll per g of steady lateral acceleration)
+    "rad/g": Unit("roll gradient", 1.0),
+    "deg/g": Unit("roll gradient", math.pi / 180.0),
 }
 
 # Other spellings of the units above, after whitespace is collapsed and "*", "·" become " ".
@@ -156,6 +169,10 @@ _ALIASES: dict[str, str] = {
     "m/s2": "m/s^2",
     "ft/s2": "ft/s^2",
     "Ns/m": "N s/m",
+    "Nm/deg": "N m/deg",
+    "Nm/rad": "N m/rad",
+    "/deg": "1/deg",
+    "/rad": "1/rad",
     "kNs/m": "kN s/m",
     "kg m2": "kg m^2",
     "kg m²": "kg m^2",

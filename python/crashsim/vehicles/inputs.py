@@ -68,13 +68,17 @@ def _table(value: Any, name: str) -> Array:
 
 @dataclass(frozen=True)
 class Brake:
-    """A braking demand: ``kind`` "fraction" (of the friction available at the wheel, 0-1)
-    or "deceleration" (m/s^2: each wheel's force at most its load times demand / g, so every
-    wheel braked this way decelerates the vehicle at the demand while friction allows), and
-    its ``table`` of (time s, value) rows."""
+    """A braking demand: ``kind`` "fraction" (of the friction available at the wheel, 0-1),
+    "deceleration" (m/s^2: each wheel's force at most its load times demand / g, so every
+    wheel braked this way decelerates the vehicle at the demand while friction allows: the
+    ideal distribution) or "distributed" (m/s^2: the vehicle's brake force m a split between
+    the axles at a fixed ``front_share``, each axle's equally between its wheels; a wheel asked
+    for more than its friction locks unless the vehicle has ABS), and its ``table`` of
+    (time s, value) rows."""
 
     kind: str
     table: Array
+    front_share: float | None = None
 
     @classmethod
     def fraction(cls, table: TableLike) -> Brake:
@@ -83,13 +87,25 @@ class Brake:
 
     @classmethod
     def deceleration(cls, table: TableLike) -> Brake:
-        """Braking at a deceleration demand (m/s^2)."""
+        """Braking at a deceleration demand (m/s^2), each wheel in proportion to its load."""
         return cls("deceleration", _table(table, "braking deceleration"))
+
+    @classmethod
+    def distributed(cls, table: TableLike, front_share: float) -> Brake:
+        """The vehicle braked at a deceleration demand (m/s^2) with a fixed front/rear split of
+        its brake force: ``front_share`` (0-1; passenger cars 0.6-0.8) to the front axle."""
+        share = float(front_share)
+        if not 0.0 <= share <= 1.0:
+            raise ParameterError(
+                f"front_share = {front_share} is invalid: the front axle's share of the brake "
+                "force must lie in [0, 1] (passenger cars 0.6-0.8)"
+            )
+        return cls("distributed", _table(table, "braking deceleration"), share)
 
 
 def _brake(value: Any, name: str) -> Brake:
     if isinstance(value, Brake):
-        if value.kind not in ("fraction", "deceleration"):
+        if value.kind not in ("fraction", "deceleration", "distributed"):
             raise ParameterError(
                 f"{name}: braking is a 'fraction' of the friction or a 'deceleration', not "
                 f"{value.kind!r}"
@@ -196,9 +212,11 @@ def _targets(wheels: Wheels, key: str | int, what: str) -> tuple[int, ...]:
 class DriverInputs:
     """A vehicle's driver inputs and wheel states (SI; see the module docstring).
 
-    - ``steer``: road-wheel angle of the steerable wheels (rad, + left), a table or a number;
-      or ``steering_wheel`` (rad) with ``steering_ratio`` (steering-wheel angle per road-wheel
-      angle, e.g. 16).
+    - ``steer``: road-wheel angle (rad, + left) of the steering linkage's reference (the
+      steered axle's centre; each wheel turns through the linkage's Ackermann geometry), a
+      table or a number; or a mapping from steerable wheels to their own tables (per-wheel
+      angles replace the linkage); or ``steering_wheel`` (rad) over the steering ratio (the
+      vehicle's, :class:`crashsim.Wheels`, or ``steering_ratio`` here).
     - ``brake``: a table of fractions (or a :class:`Brake`) for every wheel, or a mapping
       from wheels, axles or "all" to tables or Brakes.
     - ``drive``: drive force (N, + forward): a table for the whole vehicle (split equally
@@ -215,7 +233,7 @@ class DriverInputs:
     def __init__(
         self,
         *,
-        steer: TableLike | None = None,
+        steer: TableLike | Mapping[str | int, TableLike] | None = None,
         steering_wheel: TableLike | None = None,
         steering_ratio: float | None = None,
         brake: TableLike | Brake | Mapping[str | int, TableLike | Brake] | None = None,
@@ -227,25 +245,21 @@ class DriverInputs:
         self.steering_ratio: float | None = None
         self.steering_wheel: Array | None = None
         self.steer: Array | None = None
+        self.wheel_steer: dict[str | int, Array] = {}
         if steering_wheel is not None:
-            if steering_ratio is None:
-                raise ParameterError(
-                    "steering_wheel needs the steering_ratio (steering-wheel angle per road-"
-                    "wheel angle, about 15-20 for a car)"
-                )
-            ratio = float(steering_ratio)
-            if not math.isfinite(ratio) or ratio <= 0.0:
-                raise ParameterError(
-                    f"steering_ratio = {steering_ratio} is invalid: it must be > 0 (about 16)"
-                )
-            self.steering_ratio = ratio
+            if steering_ratio is not None:
+                ratio = float(steering_ratio)
+                if not math.isfinite(ratio) or ratio <= 0.0:
+                    raise ParameterError(
+                        f"steering_ratio = {steering_ratio} is invalid: it must be > 0 (about 16)"
+                    )
+                self.steering_ratio = ratio
             self.steering_wheel = _table(steering_wheel, "steering_wheel")
-            road = self.steering_wheel.copy()
-            road[:, 1] /= ratio
-            road.setflags(write=False)
-            self.steer = road
         elif steering_ratio is not None:
             raise ParameterError("steering_ratio is for steering_wheel: drop it or give that")
+        elif isinstance(steer, Mapping):
+            for key, t in steer.items():
+                self.wheel_steer[key] = _table(t, f"steer[{key!r}]")
         elif steer is not None:
             self.steer = _table(steer, "steer")
         self.brake: dict[str | int, Brake] = {}
@@ -277,13 +291,16 @@ class DriverInputs:
         """SceneSpec.set_vehicle keywords (steer, brake, drive, switches) for these wheels,
         checked by the engine; ``what`` names the vehicle in messages."""
         n = len(wheels)
-        brake: list[tuple[str, Array] | None] = [None] * n
+        brake: list[tuple[str, Array, float | None] | None] = [None] * n
         # "all" first, then axles, then wheels: the most specific key wins.
         order = sorted(self.brake, key=lambda k: _rank(k))
         for key in order:
             b = self.brake[key]
+            if b.kind == "distributed":
+                brake = _distributed(b, key, wheels, f"{what}: brake[{key!r}]")
+                continue
             for i in _targets(wheels, key, f"{what}: brake[{key!r}]"):
-                brake[i] = (b.kind, b.table)
+                brake[i] = (b.kind, b.table, None)
         drive: list[Array | None] = [None] * n
         for key in sorted(self.drive, key=lambda k: _rank(k)):
             targets = _targets(wheels, key, f"{what}: drive[{key!r}]")
@@ -303,7 +320,17 @@ class DriverInputs:
                     switches.append((i, "time", float(s.at), s.state, fraction))
         out: dict[str, Any] = {"switches": switches}
         if self.steer is not None:
-            out["steer"] = self.steer
+            out["steer"] = ("road_wheel", self.steer)
+        elif self.steering_wheel is not None:
+            out["steer"] = ("steering_wheel", self.steering_wheel)
+            if self.steering_ratio is not None:
+                out["steering_ratio"] = self.steering_ratio
+        elif self.wheel_steer:
+            per: list[Array | None] = [None] * n
+            for key, table in self.wheel_steer.items():
+                for i in _targets(wheels, key, f"{what}: steer[{key!r}]"):
+                    per[i] = table
+            out["steer"] = ("per_wheel", per)
         if any(b is not None for b in brake):
             out["brake"] = brake
         if any(d is not None for d in drive):
@@ -313,7 +340,8 @@ class DriverInputs:
         except ParameterError as e:
             text = str(e)
             if self.steering_wheel is not None and "steering angle" in text:
-                text += f" (steering_wheel / steering_ratio {self.steering_ratio:g})"
+                ratio = self.steering_ratio or wheels.steering_ratio
+                text += f" (steering_wheel / steering_ratio {ratio:g})"
             raise ParameterError(f"{what}: {_named(text, wheels)}") from e
         return out
 
@@ -321,6 +349,10 @@ class DriverInputs:
         parts = []
         if self.steer is not None:
             parts.append(f"steer={len(self.steer)} rows")
+        if self.steering_wheel is not None:
+            parts.append(f"steering_wheel={len(self.steering_wheel)} rows")
+        if self.wheel_steer:
+            parts.append(f"steer={list(self.wheel_steer)}")
         if self.brake:
             parts.append(f"brake={list(self.brake)}")
         if self.drive:
@@ -328,6 +360,25 @@ class DriverInputs:
         if self.wheel_states:
             parts.append(f"wheel_states={len(self.wheel_states)}")
         return f"DriverInputs({', '.join(parts)})"
+
+
+def _distributed(
+    b: Brake, key: str | int, wheels: Wheels, what: str
+) -> list[tuple[str, Array, float | None] | None]:
+    """Every wheel's share of a vehicle-level distributed brake (the usual four wheels)."""
+    if _rank(key) != 0:
+        raise ParameterError(
+            f"{what}: a distributed brake (Brake.distributed) is the whole vehicle's: give it "
+            "for 'all' (brake=Brake.distributed(...))"
+        )
+    front = wheels.axle("front")
+    rear = wheels.axle("rear")
+    assert b.front_share is not None
+    out: list[tuple[str, Array, float | None] | None] = [None] * len(wheels)
+    for axle, share in ((front, b.front_share), (rear, 1.0 - b.front_share)):
+        for i in axle:
+            out[i] = ("distributed", b.table, share / len(axle))
+    return out
 
 
 def _rank(key: str | int) -> int:

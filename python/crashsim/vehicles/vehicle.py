@@ -825,6 +825,7 @@ class Vehicle:
         else:
             track_v, wheel_source = track, "track: user"
         wheel_source += "; axles and tyre radius: the generated body"
+        wheel_source += f"; anti-roll bars: the roll gradient of {table}"
         front_axle = params.length / 2.0 - params.front_overhang
         vehicle = vehicle.with_wheels(
             wheelbase=params.wheelbase,
@@ -834,6 +835,7 @@ class Vehicle:
             cg_height=float(vehicle.cg[2]),
             tyre=tyre,
             source=wheel_source,
+            roll_gradient=vc.roll_gradient.value,
         )
         findings = plausibility.size_findings(mesh.extents)
         findings += plausibility.check_density(

@@ -14,7 +14,8 @@ Lengths follow the vehicle body frame (ISO 8855: x forward, y left, z up): ``len
 front axle, ``cg_height`` above the ground. ``yaw_inertia`` is about the vertical axis through the
 centre of mass. ``track_front`` and ``track_rear`` are the distances
 between the wheel centres of an axle (along y); ``tyre_radius`` is the tyre's rolling radius
-(m). Crush stiffness per face: force per unit width F/W = A + B C (see
+(m); ``roll_gradient`` the body's roll per g of steady lateral acceleration (rad per g), which
+sets the anti-roll bars of a vehicle on the class's wheels. Crush stiffness per face: force per unit width F/W = A + B C (see
 :mod:`crashsim.vehicles.stiffness`); the "side" face gives both "left" and "right".
 """
 
@@ -54,6 +55,7 @@ _FIELDS = (
     "track_front",
     "track_rear",
     "tyre_radius",
+    "roll_gradient",
 )
 _FACES = ("front", "rear", "side")
 
@@ -115,6 +117,7 @@ class VehicleClass:
     track_front: Figure
     track_rear: Figure
     tyre_radius: Figure
+    roll_gradient: Figure
     front: FaceData
     rear: FaceData
     side: FaceData

@@ -51,8 +51,9 @@ ABBREVIATIONS = {"FL": "front_left", "FR": "front_right", "RL": "rear_left", "RR
 """Short names of the usual four wheels."""
 AXLES = {"front": ("front_left", "front_right"), "rear": ("rear_left", "rear_right")}
 """The wheels of each axle of the usual four."""
-TYRE_MODELS = ("linear", "magic_formula")
-"""The tyre models: the reconstruction tyre and Pacejka's Magic Formula."""
+TYRE_MODELS = ("linear", "linear_friction_scaled", "magic_formula")
+"""The tyre models: the reconstruction programs' linear tyre, crashsim's law before 2026-11
+(mu Fz at the saturation angle on every road) and Pacejka's Magic Formula."""
 
 
 @functools.cache
@@ -155,84 +156,91 @@ def check_with_engine(**kwargs: Any) -> None:
 
 @dataclass(frozen=True)
 class Tyre:
-    """The tyre on every wheel of a vehicle.
+    """The tyre on every wheel of a vehicle (SI; the engine checks every value when it is
+    made, :class:`crashsim._core.Tyre`).
 
-    ``model``: "linear" (default: the reconstruction tyre, lateral force linear in the slip
-    angle up to ``saturation_angle`` (rad), then mu Fz, the resultant inside the friction
-    circle) or "magic_formula" (Pacejka's D sin(C atan(B a - E (B a - atan(B a)))) with
-    D = mu Fz, factors ``b`` (1/rad), ``c``, ``e``). ``relaxation_length`` (m) and
-    ``rolling_resistance`` (force / load) apply to both. A field left None takes the
-    engine's default (:meth:`resolved` shows them; :func:`dynamics_defaults`).
+    ``model``:
+
+    - "linear" (default): the reconstruction programs' linear tyre, lateral force
+      ``cornering * Fz * alpha`` (``cornering`` the cornering coefficient, 1/rad; default 1
+      per 10 deg) capped at the friction the longitudinal force leaves; or give the
+      ``saturation_angle`` (rad), its equivalent at mu = 1 (``cornering = 1 / angle``);
+    - "linear_friction_scaled": crashsim's law before 2026-11, mu Fz at ``saturation_angle``
+      (rad, default 10 deg) on every road (softer on slippery roads);
+    - "magic_formula": Pacejka's D sin(C atan(B a - E (B a - atan(B a)))) with factors ``b``
+      (1/rad), ``c``, ``e`` at mu = 1 and D = mu Fz by similarity.
+
+    ``relaxation_length`` (m), ``rolling_resistance`` (force / load; default 0, as the
+    reconstruction programs: give 0.010-0.015 for passenger tyres on asphalt), ``combined``
+    ("braking_priority", the default: the brake force kept and the lateral force from what the
+    friction leaves; or "circle": both scaled onto the friction circle), ``load_sensitivity``
+    (cornering stiffness proportional to Fz^(1 - e); default 0). A field left None takes the
+    engine's default (:meth:`resolved` shows every value as run).
     """
 
     model: str = "linear"
+    cornering: float | None = None
     saturation_angle: float | None = None
     b: float | None = None
     c: float | None = None
     e: float | None = None
     relaxation_length: float | None = None
     rolling_resistance: float | None = None
+    combined: str | None = None
+    load_sensitivity: float | None = None
 
     def __post_init__(self) -> None:
-        if not isinstance(self.model, str) or self.model not in TYRE_MODELS:
-            raise ParameterError(
-                f"tyre model {self.model!r} is unknown: use 'linear' (the reconstruction "
-                "tyre) or 'magic_formula'"
-            )
+        if not isinstance(self.model, str):
+            raise ParameterError(f"tyre model must be a string, got {self.model!r}")
         units = {
+            "cornering": "1/rad",
             "saturation_angle": "rad",
             "b": "1/rad",
             "c": "1",
             "e": "1",
             "relaxation_length": "m",
             "rolling_resistance": "1",
+            "load_sensitivity": "1",
         }
         for name, unit in units.items():
             value = getattr(self, name)
             if value is not None:
                 object.__setattr__(self, name, _number(value, f"tyre {name}", unit))
-        if self.model == "linear":
-            given = [k for k in ("b", "c", "e") if getattr(self, k) is not None]
-            if given:
-                raise ParameterError(
-                    f"tyre {', '.join(given)} belong to model 'magic_formula', not 'linear': "
-                    "give model='magic_formula' or drop them"
-                )
-        elif self.saturation_angle is not None:
-            raise ParameterError(
-                "tyre saturation_angle belongs to model 'linear' (the reconstruction tyre): "
-                "the Magic Formula's shape comes from b, c and e"
-            )
+        if self.combined is not None and not isinstance(self.combined, str):
+            raise ParameterError(f"tyre combined must be a string, got {self.combined!r}")
         try:
-            check_with_engine(tyre=self.to_core())
+            core = _core.Tyre(self.model, **self._given())
         except ParameterError as err:
             raise ParameterError(f"tyre: {err}") from err
+        object.__setattr__(self, "_core", core)
 
-    def to_core(self) -> dict[str, Any]:
-        """The dict SceneSpec.set_vehicle takes (fields left None are omitted: engine defaults)."""
-        out: dict[str, Any] = {"model": self.model}
-        for k in ("saturation_angle", "b", "c", "e", "relaxation_length", "rolling_resistance"):
-            value = getattr(self, k)
-            if value is not None:
-                out[k] = value
-        return out
+    def _given(self) -> dict[str, Any]:
+        names = (
+            "cornering",
+            "saturation_angle",
+            "b",
+            "c",
+            "e",
+            "relaxation_length",
+            "rolling_resistance",
+            "combined",
+            "load_sensitivity",
+        )
+        return {k: getattr(self, k) for k in names if getattr(self, k) is not None}
+
+    def to_core(self) -> _core.Tyre:
+        """The engine's tyre (checked when this Tyre was made)."""
+        core: _core.Tyre = self.__dict__["_core"]
+        return core
 
     def resolved(self) -> dict[str, Any]:
         """Every parameter as the engine runs it: the given ones and the engine's defaults
-        for the others (the Magic Formula's b, c, e defaults are not exported by the engine:
-        None when not given)."""
-        d = _defaults()
-        out: dict[str, Any] = {"model": self.model}
-        if self.model == "linear":
-            out["saturation_angle"] = (
-                d["saturation_angle"] if self.saturation_angle is None else self.saturation_angle
-            )
-        else:
-            out.update(b=self.b, c=self.c, e=self.e)
-        for k in ("relaxation_length", "rolling_resistance"):
-            value = getattr(self, k)
-            out[k] = d[k] if value is None else value
-        return out
+        for the others (model, cornering 1/rad or saturation_angle rad or b, c, e;
+        relaxation_length m, rolling_resistance, combined, load_sensitivity)."""
+        return dict(self.to_core().resolved())
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (_tyre_from, (self.model, self._given()))
 
     @classmethod
     def coerce(cls, value: Tyre | dict[str, Any] | None) -> Tyre:
@@ -252,7 +260,41 @@ class Tyre:
         raise ParameterError(f"tyre must be a crashsim.Tyre or a dict, got {value!r}")
 
 
+def _tyre_from(model: str, given: dict[str, Any]) -> Tyre:
+    return Tyre(model, **given)
+
+
 # -- wheels ---------------------------------------------------------------------------------------
+
+
+def _roll_input(
+    anti_roll: Any, roll_gradient: Any, front_share: Any, *, axles: bool
+) -> tuple[Any, ...]:
+    """How the usual four wheels' anti-roll bars are given: ("axles", (front, rear)) N m/rad,
+    ("gradient", rad per g, front share or None), or ("bars", ()) for none."""
+    if anti_roll is not None and roll_gradient is not None:
+        raise ParameterError(
+            "give anti_roll (each axle's bar, N m/rad) or roll_gradient (the vehicle's roll "
+            "per g of lateral acceleration, rad), not both"
+        )
+    share = None if front_share is None else _number(front_share, "anti_roll_front_share", "1")
+    if share is not None and not 0.0 <= share <= 1.0:
+        raise ParameterError(f"anti_roll_front_share = {share} is invalid: it must lie in [0, 1]")
+    if anti_roll is not None:
+        if share is not None:
+            raise ParameterError("anti_roll_front_share is for roll_gradient: drop it or give that")
+        return ("axles", _pair(anti_roll, "anti_roll", "N m/rad"))
+    if roll_gradient is not None:
+        g = _number(roll_gradient, "roll_gradient", "rad per g")
+        if g <= 0.0:
+            raise ParameterError(
+                f"roll_gradient = {g} rad per g is invalid: it must be > 0 (a sedan rolls "
+                "about 6 deg per g: 0.105)"
+            )
+        return ("gradient", g, share)
+    if share is not None:
+        raise ParameterError("anti_roll_front_share is for roll_gradient: drop it or give that")
+    return ("bars", ())
 
 
 def _pair(value: Any, name: str, unit: str) -> tuple[float, float]:
@@ -329,6 +371,13 @@ class Wheels:
         spring_rates: ArrayLike | None = None,
         damping: ArrayLike | None = None,
         tyre: Tyre | dict[str, Any] | None = None,
+        anti_roll: tuple[float, float] | None = None,
+        roll_gradient: float | None = None,
+        anti_roll_front_share: float | None = None,
+        steering_ratio: float | None = None,
+        ackermann: float | None = None,
+        steering_reference: str | None = None,
+        abs: bool = True,
     ) -> None:
         wb = _number(wheelbase, "wheelbase", "m")
         a = _number(cg_to_front_axle, "cg_to_front_axle", "m")
@@ -365,12 +414,15 @@ class Wheels:
             damping,
             tyre,
             axles=(0, 0, 1, 1),
+            linkage=(steering_ratio, ackermann, steering_reference, abs),
         )
+        self._roll = _roll_input(anti_roll, roll_gradient, anti_roll_front_share, axles=True)
         self.wheelbase: float | None = wb
         self.track: tuple[float, float] | None = (tf, tr)
         self.cg_to_front_axle: float | None = a
         self.cg_height: float | None = h
         self.steer: str = steer
+        self._check(self._probe(), 1.0, "", explicit_rates=False)
 
     @classmethod
     def from_class(
@@ -385,7 +437,8 @@ class Wheels:
     ) -> Wheels:
         """The usual four wheels of a built-in vehicle class
         (:func:`crashsim.vehicles.vehicle_data.vehicle_class`): its wheelbase, CG position,
-        CG height, front and rear track and tyre radius (docs/vehicle-data.md). Given
+        CG height, front and rear track, tyre radius and roll gradient (anti-roll bars that give
+        it, unless ``anti_roll`` is given) (docs/vehicle-data.md). Given
         ``wheelbase`` or ``width`` (m), the CG's distance to the front axle scales with the
         wheelbase and the tracks with the width; ``cg_to_front_axle`` and ``cg_height``
         replace the class's; other keywords as for the constructor (``radius``, ``tyre``,
@@ -397,6 +450,8 @@ class Wheels:
         w = vc.width.value if width is None else _number(width, "width", "m")
         a = vc.cg_to_front_axle.value * wb / vc.wheelbase.value
         kwargs.setdefault("radius", vc.tyre_radius.value)
+        if kwargs.get("anti_roll") is None and kwargs.get("roll_gradient") is None:
+            kwargs["roll_gradient"] = vc.roll_gradient.value
         out = cls(
             wb,
             (vc.track_front.value * w / vc.width.value, vc.track_rear.value * w / vc.width.value),
@@ -420,10 +475,17 @@ class Wheels:
         spring_rates: ArrayLike | None = None,
         damping: ArrayLike | None = None,
         tyre: Tyre | dict[str, Any] | None = None,
+        anti_roll: Sequence[tuple[str | int, str | int, float]] = (),
+        steering_ratio: float | None = None,
+        ackermann: float | None = None,
+        steering_reference: str | None = None,
+        abs: bool = True,
     ) -> Wheels:
         """Any layout of at least 3 wheels: ``centers`` (n, 3) body frame at static ride
         height (m), ``radii`` (one or n, m), ``steerable`` flags, ``names`` (default
-        "wheel_0", ...); springs as for the constructor (one number or one per wheel)."""
+        "wheel_0", ...); springs as for the constructor (one number or one per wheel);
+        ``anti_roll`` bars as (left wheel, right wheel, roll stiffness N m/rad); the steering
+        linkage and ABS as for the constructor."""
         try:
             c = np.asarray(centers, dtype=np.float64)
         except (TypeError, ValueError) as e:
@@ -453,9 +515,21 @@ class Wheels:
             damping,
             tyre,
             axles=None,
+            linkage=(steering_ratio, ackermann, steering_reference, abs),
         )
         self.wheelbase = self.track = self.cg_to_front_axle = self.cg_height = None
         self.steer = "custom"
+        bars = []
+        for k, bar in enumerate(anti_roll):
+            if not isinstance(bar, tuple | list) or len(bar) != 3:
+                raise ParameterError(
+                    f"anti_roll[{k}] must be (left wheel, right wheel, roll stiffness N m/rad), "
+                    f"got {bar!r}"
+                )
+            left, right = self.index(bar[0]), self.index(bar[1])
+            bars.append((left, right, _number(bar[2], f"anti_roll[{k}] roll stiffness", "N m/rad")))
+        self._roll = ("bars", tuple(bars))
+        self._check(self._probe(), 1.0, "", explicit_rates=False)
         return self
 
     def _init(
@@ -470,6 +544,7 @@ class Wheels:
         damping: Any,
         tyre: Any,
         axles: Sequence[int] | None,
+        linkage: tuple[float | None, float | None, str | None, bool],
     ) -> None:
         n = len(names)
         self._names = names
@@ -482,10 +557,26 @@ class Wheels:
         self._damping = _per_wheel(damping, "damping", "N s/m", n, axles)
         self.tyre: Tyre = Tyre.coerce(tyre)
         self.source = "user"
-        # What only the engine knows: CG over the wheels, positive numbers (weight scales).
-        # Explicit rates wait for the vehicle's mass (check_on): the frequency and damping
-        # ratio they make with each wheel's load have bounds.
-        self._check(self._probe(), 1.0, "", explicit_rates=False)
+        ratio, ackermann, reference, abs_ = linkage
+        self.steering_ratio: float | None = (
+            None if ratio is None else _number(ratio, "steering_ratio", "1")
+        )
+        self.ackermann: float | None = (
+            None if ackermann is None else _number(ackermann, "ackermann", "1")
+        )
+        if reference is not None and reference not in ("outer", "centre"):
+            raise ParameterError(
+                f"steering_reference = {reference!r} is unknown: the steering input's road-wheel "
+                "angle is the 'outer' wheel's (default, as the reconstruction programs) or the "
+                "axle 'centre''s"
+            )
+        self.steering_reference: str | None = reference
+        if not isinstance(abs_, bool | np.bool_):
+            raise ParameterError(f"abs must be True or False, got {abs_!r}")
+        self.abs: bool = bool(abs_)
+        # The constructors then ask the engine what only it knows (CG over the wheels,
+        # positive numbers; weight scales): explicit rates wait for the vehicle's mass
+        # (check_on), as the frequency and damping ratio they make with each load have bounds.
 
     def _probe(self) -> _core.SceneSpec:
         """A scene spec with a box body around these wheels, of 1 kg."""
@@ -496,7 +587,7 @@ class Wheels:
     def check_inputs(self, **inputs: Any) -> None:
         """The engine's checks of driver inputs (SceneSpec.set_vehicle's steer, brake, drive,
         switches) on these wheels; the engine's ParameterError otherwise."""
-        self._probe().set_vehicle(0, **self.spec(1.0, explicit_rates=False), **inputs)
+        self._probe().set_vehicle(0, **{**self.spec(1.0, explicit_rates=False), **inputs})
 
     # -- what the engine gets --------------------------------------------------------------
 
@@ -573,7 +664,44 @@ class Wheels:
             "spring_rates": rates,
             "damping": damp,
             "tyre": self.tyre.to_core(),
+            "steering_ratio": self.steering_ratio,
+            "ackermann": self.ackermann,
+            "steering_reference": self.steering_reference,
+            "anti_roll": self.anti_roll_bars(mass, loads, rates),
+            "abs": self.abs,
         }
+
+    def anti_roll_bars(
+        self, mass: float, loads: Array | None = None, rates: Array | None = None
+    ) -> list[tuple[int, int, float]]:
+        """The anti-roll bars for a vehicle of ``mass`` kg, as the engine takes them: (left
+        wheel, right wheel, roll stiffness N m/rad). From a roll gradient G (rad of roll per g
+        of lateral acceleration, the whole vehicle rolling about the ground on its springs and
+        bars): the roll stiffness it needs, ``K = m g h (1 / G + 1)`` (the roll moment m a_y h
+        plus the CG's own m g h phi), less what the springs give (``(k_l + k_r) t^2 / 4`` per
+        axle), split front : rear by ``anti_roll_front_share`` (default: the static front axle
+        load's share, as PC-Crash's wheel loads split the lateral load transfer in a fishhook,
+        0.644 against 0.641); none if the springs alone are stiffer."""
+        kind = self._roll[0]
+        if kind == "bars":
+            return [tuple(b) for b in self._roll[1]]  # type: ignore[misc]
+        if kind == "axles":
+            front, rear = self._roll[1]
+            return [(0, 1, front), (2, 3, rear)]
+        _, gradient, share = self._roll
+        if loads is None:
+            loads = self.static_loads(mass)
+        if rates is None:
+            rates = self.spec(mass)["spring_rates"]
+        assert self.track is not None and self.cg_height is not None
+        g = _defaults()["gravity"]
+        needed = mass * g * self.cg_height * (1.0 / gradient + 1.0)
+        tf, tr = self.track
+        springs = (rates[0] + rates[1]) * tf**2 / 4.0 + (rates[2] + rates[3]) * tr**2 / 4.0
+        bars = max(0.0, needed - springs)
+        if share is None:
+            share = float((loads[0] + loads[1]) / np.sum(loads))
+        return [(0, 1, share * bars), (2, 3, (1.0 - share) * bars)]
 
     def _check(
         self, world: _core.SceneSpec, mass: float, prefix: str, *, explicit_rates: bool = True

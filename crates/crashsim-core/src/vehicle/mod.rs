@@ -9,8 +9,11 @@ pub mod tyre;
 pub mod wheel;
 
 pub use inputs::{Braking, DriverInputs, Table, Trigger, WheelState, WheelSwitch};
-pub use steering::{LinkageGeometry, SteerInput, Steering, DEFAULT_ACKERMANN};
-pub use tyre::{Tyre, TyreForce, TyreModel, WheelAction, MAGIC_FORMULA_DEFAULTS};
+pub use steering::{LinkageGeometry, SteerInput, SteerReference, Steering, DEFAULT_ACKERMANN};
+pub use tyre::{
+    CombinedSlip, Tyre, TyreForce, TyreModel, WheelAction, DEFAULT_CORNERING_COEFFICIENT,
+    MAGIC_FORMULA_DEFAULTS,
+};
 pub use wheel::{
     static_loads, AntiRollBar, WheelSpec, DEFAULT_DAMPING_RATIO, DEFAULT_NATURAL_FREQUENCY,
     GRAVITY, MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,

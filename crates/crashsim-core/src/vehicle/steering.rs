@@ -2,17 +2,21 @@
 //! angle (rad, about the body's z axis, + to the left).
 //!
 //! The driver's input is the steering-wheel angle (divided by the steering ratio) or the
-//! road-wheel angle `delta` of the linkage's reference: a virtual wheel at the centre of the
-//! steered axle farthest from the turn centre's line. The turn centre lies on the line
-//! `x = x_ref` of the wheels that do not steer (their mean x; the rear axle of a car), at
-//! `R = (x_s - x_ref) / tan(delta)` to the side; each steered wheel at `(x_i, y_i)` turns to
+//! road-wheel angle `delta` of the linkage's reference wheel, on the steered axle farthest
+//! from the turn centre's line (x_s): by default the wheel on the outside of the turn, as the
+//! reconstruction programs steer (PC-Crash's 15 mph run of a 2004 sedan loops on the radius
+//! of its outer front wheel at 360 deg / 15.9; see docs/vehicle-model.md), or a virtual wheel
+//! at the axle's centre (the single-track model's angle). The turn centre lies on the line
+//! `x = x_ref` of the wheels that do not steer (their mean x; the rear axle of a car); each
+//! steered wheel at `(x_i, y_i)` turns to
 //!
-//! `tan(delta_i) = (x_i - x_ref) tan(delta) / ((x_s - x_ref) - a (y_i - y_c) tan(delta))`,
+//! `tan(delta_i) = (x_i - x_ref) tan(delta) / ((x_s - x_ref) + a (y_r - y_i) tan(delta))`,
 //!
-//! `y_c` the wheels' centre line and `a` the Ackermann fraction: 1 points every wheel at the
-//! turn centre (full Ackermann: the inner wheel turns more, `cot(delta_o) - cot(delta_i) =
-//! track / wheelbase`), 0 turns the reference axle's wheels alike (parallel steer). Between,
-//! the inner-outer difference at small angles is `a` times Ackermann's. A second steered
+//! `y_r` the reference's y (the outer wheel's, or the wheels' centre line) and `a` the
+//! Ackermann fraction: 1 points every wheel at the turn centre (full Ackermann: the inner
+//! wheel turns more, `cot(delta_o) - cot(delta_i) = track / wheelbase`), 0 turns the reference
+//! axle's wheels alike (parallel steer). Between, the inner-outer difference at small angles
+//! is `a` times Ackermann's. A second steered
 //! axle nearer the turn centre's line turns less, as a truck's linkage makes it. Without a
 //! wheel that does not steer (every wheel steers) there is no turn centre's line: every
 //! steered wheel turns by `delta` (crab steering), whatever `a`.
@@ -46,6 +50,23 @@ pub struct Steering {
     /// Ackermann fraction `a` (-, in [0, 1.5]): 1 full Ackermann (default), 0 parallel steer;
     /// more than 1 is "pro-Ackermann" beyond the geometric one.
     pub ackermann: Real,
+    /// Which wheel the input's road-wheel angle is: the outer one (default) or the axle's
+    /// centre.
+    pub reference: SteerReference,
+}
+
+/// Which wheel the steering input's road-wheel angle belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case")
+)]
+pub enum SteerReference {
+    /// The reference axle's wheel on the outside of the turn (the reconstruction programs').
+    Outer,
+    /// A virtual wheel at the reference axle's centre (the single-track model's angle).
+    Centre,
 }
 
 impl Default for Steering {
@@ -53,6 +74,7 @@ impl Default for Steering {
         Steering {
             ratio: None,
             ackermann: DEFAULT_ACKERMANN,
+            reference: SteerReference::Outer,
         }
     }
 }
@@ -82,6 +104,9 @@ pub struct LinkageGeometry {
     x_s: Real,
     /// y of the wheels' centre line.
     y_c: Real,
+    /// y of the reference axle's leftmost and rightmost steered wheels.
+    y_left: Real,
+    y_right: Real,
 }
 
 impl LinkageGeometry {
@@ -108,7 +133,22 @@ impl LinkageGeometry {
                 }),
             None => 0.0,
         };
-        LinkageGeometry { x_ref, x_s, y_c }
+        // The reference axle's wheels: the steered ones within 1 cm of x_s.
+        let axle = || {
+            wheels
+                .iter()
+                .filter(|w| w.steerable && (w.center.x - x_s).abs() <= 0.01)
+                .map(|w| w.center.y)
+        };
+        let y_left = axle().fold(y_c, Real::max);
+        let y_right = axle().fold(y_c, Real::min);
+        LinkageGeometry {
+            x_ref,
+            x_s,
+            y_c,
+            y_left,
+            y_right,
+        }
     }
 }
 
@@ -165,8 +205,16 @@ impl Steering {
             return delta; // every wheel steers: no turn centre's line
         };
         let tan = delta.tan();
+        // The reference's y: the outer wheel's (on the right in a turn to the left, + delta,
+        // when the axle lies ahead of the turn centre's line) or the centre line.
+        let ahead = geometry.x_s > x_ref;
+        let y_r = match self.reference {
+            SteerReference::Centre => geometry.y_c,
+            SteerReference::Outer if (delta > 0.0) == ahead => geometry.y_right,
+            SteerReference::Outer => geometry.y_left,
+        };
         let num = (x - x_ref) * tan;
-        let den = (geometry.x_s - x_ref) - self.ackermann * (y - geometry.y_c) * tan;
+        let den = (geometry.x_s - x_ref) + self.ackermann * (y_r - y) * tan;
         // The reference's side of the line (num and den of one sign) keeps den's sign; a
         // wheel turned past 90 deg cannot be, so den > 0 for the reference's axle is checked
         // with the inputs.
@@ -246,7 +294,10 @@ impl Steering {
         let tan = delta_max.tan();
         for (k, w) in wheels.iter().enumerate().filter(|(_, w)| w.steerable) {
             let lever = (geometry.x_s - x_ref).abs();
-            let inward = self.ackermann * (w.center.y - geometry.y_c).abs() * tan;
+            let span = (w.center.y - geometry.y_right)
+                .abs()
+                .max((w.center.y - geometry.y_left).abs());
+            let inward = self.ackermann * span * tan;
             if lever - inward <= 0.0 {
                 return Err(Error::Parameter(format!(
                     "wheel {k} would turn past 90 deg at the largest steering angle ({:.1} deg \
@@ -293,23 +344,39 @@ mod tests {
     #[test]
     fn full_ackermann_points_every_wheel_at_the_turn_centre() {
         let wheels = car();
-        let s = Steering::default();
-        for delta in [0.05_f64, 0.3, -0.5] {
-            let a = angles(&s, &wheels, delta);
-            // cot(outer) - cot(inner) = track / wheelbase, the inner being the left wheel in a
-            // left turn; both wheels' normals meet on the rear axle's line at R = L / tan(delta).
-            let (left, right) = (a[0], a[1]);
-            let expected = 1.55 / 2.75;
-            let got = 1.0 / right.tan() - 1.0 / left.tan();
-            assert!(
-                (got - expected).abs() < 1e-12,
-                "{delta}: {got} vs {expected}"
-            );
-            let r = 2.75 / delta.tan();
-            assert!((2.75 / left.tan() - (r - 0.775)).abs() < 1e-12);
-            assert!((a[2], a[3]) == (0.0, 0.0));
-            if delta > 0.0 {
-                assert!(left > delta && right < delta);
+        for reference in [SteerReference::Outer, SteerReference::Centre] {
+            let s = Steering {
+                reference,
+                ..Steering::default()
+            };
+            for delta in [0.05_f64, 0.3, -0.5] {
+                let a = angles(&s, &wheels, delta);
+                // cot(outer) - cot(inner) = track / wheelbase: both wheels' normals meet on
+                // the rear axle's line.
+                let (inner, outer) = if delta > 0.0 {
+                    (a[0], a[1])
+                } else {
+                    (a[1], a[0])
+                };
+                let expected = 1.55 / 2.75;
+                let got = (1.0 / outer.tan() - 1.0 / inner.tan()) * delta.signum();
+                assert!(
+                    (got - expected).abs() < 1e-12,
+                    "{delta}: {got} vs {expected}"
+                );
+                match reference {
+                    // The input is the outer wheel's angle (PC-Crash's 360 deg / 15.9 =
+                    // 22.64 deg gives an inner 28.64 deg on a 2.692 x 1.524 m car).
+                    SteerReference::Outer => assert!((outer - delta).abs() < 1e-15),
+                    // The input is the axle centre's: R = L / tan(delta) there.
+                    SteerReference::Centre => {
+                        let r = 2.75 / delta.tan();
+                        let left = a[0];
+                        assert!((2.75 / left.tan() - (r - 0.775)).abs() < 1e-12);
+                    }
+                }
+                assert!((a[2], a[3]) == (0.0, 0.0));
+                assert!(inner.abs() > outer.abs());
             }
         }
     }
@@ -329,8 +396,8 @@ mod tests {
             ..Steering::default()
         };
         let (h, f) = (
-            angles(&half, &wheels, 0.01),
-            angles(&Steering::default(), &wheels, 0.01),
+            angles(&half, &wheels, 0.001),
+            angles(&Steering::default(), &wheels, 0.001),
         );
         let ratio = (h[0] - h[1]) / (f[0] - f[1]);
         assert!((ratio - 0.5).abs() < 1e-3, "{ratio}");
