@@ -761,6 +761,12 @@ def _scene_record(result: Result, include_meshes: bool) -> dict[str, Any]:
                     "velocity": _vec(tr.velocity[0]),
                     "angular_velocity": _vec(tr.angular_velocity[0]),
                 },
+                # optional: a vehicle on its wheels in a run on the ground
+                **(
+                    {"wheels": _plain(v.wheels.describe(v.mass))}
+                    if v.wheels is not None and getattr(result, "on_ground", False)
+                    else {}
+                ),
             }
         )
     out: dict[str, Any] = {
@@ -1104,6 +1110,7 @@ class Report:
         if self.run_out:
             lines.append("")
             lines += run_out_lines(self.run_out, _table, obstacles=bool(self.result.obstacles))
+            lines += _vehicle_data_lines(self.result)
         return "\n".join(lines)
 
     def __str__(self) -> str:
@@ -1148,6 +1155,55 @@ class Report:
         with open(path, "w", encoding="utf-8") as f:
             f.write(self.to_json(include_meshes))
             f.write("\n")
+
+
+def _vehicle_data_lines(result: Result) -> list[str]:
+    """The vehicles on the ground as the engine ran them: tyre, steering, springs and bars."""
+    lines: list[str] = []
+    for name in result.vehicles:
+        v = result.vehicle(name)
+        if v.wheels is None:
+            continue
+        d = v.wheels.describe(v.mass)
+        if not lines:
+            lines += ["", "Vehicles on their wheels (as run):"]
+        t = d["tyre"]
+        law = {
+            "linear": f"linear, cornering {math.radians(t.get('cornering', 0.0)):.4f} per deg "
+            f"(1 per {1.0 / math.radians(t.get('cornering', 1.0)):.1f} deg)",
+            "linear_friction_scaled": "linear scaled by the friction, mu Fz at "
+            f"{math.degrees(t.get('saturation_angle', 0.0)):.1f} deg",
+            "magic_formula": f"Magic Formula B {t.get('b')}, C {t.get('c')}, E {t.get('e')}",
+        }[t["model"]]
+        lines.append(
+            f"  {name}: tyre {law}; relaxation length {t['relaxation_length']:.3f} m; rolling "
+            f"resistance {t['rolling_resistance']:g}; combined slip {t['combined']}; load "
+            f"sensitivity {t['load_sensitivity']:g}"
+        )
+        st = d["steering"]
+        ratio = "none" if st["ratio"] is None else f"{st['ratio']:g}"
+        lines.append(
+            f"  {name}: steering ratio {ratio}, Ackermann {st['ackermann']:g} (input: the "
+            f"{st['reference']} wheel's angle); ABS {'on' if d['abs'] else 'off'}"
+        )
+        freq = ", ".join(f"{f:.2f}" for f in d["natural_frequencies"])
+        zeta = ", ".join(f"{z:.2f}" for z in d["damping_ratios"])
+        springs = f"  {name}: springs {freq} Hz, damping ratios {zeta}"
+        if "roll_stiffness" in d:
+            rs = d["roll_stiffness"]
+            springs += (
+                f"; roll stiffness front {math.radians(rs['front']):.0f}, rear "
+                f"{math.radians(rs['rear']):.0f} N m/deg ("
+                + ", ".join(
+                    f"bar {b['left']}-{b['right']} {math.radians(b['roll_stiffness']):.0f}"
+                    for b in d["anti_roll"]
+                )
+                + ")"
+            )
+            if d.get("roll_gradient") is not None:
+                springs += f"; roll gradient {math.degrees(d['roll_gradient']):.1f} deg/g"
+        lines.append(springs)
+    return lines
 
 
 def _engagement_record(e: Engagement) -> dict[str, Any]:

@@ -671,6 +671,57 @@ class Wheels:
             "abs": self.abs,
         }
 
+    def describe(self, mass: float) -> dict[str, Any]:
+        """What the engine runs for a vehicle of ``mass`` kg, as plain data (SI): the wheels
+        (names, body-frame centres m, radii m, steerable, static loads N, spring rates N/m,
+        damping N s/m, natural frequencies Hz and damping ratios), the anti-roll bars (left,
+        right, roll stiffness N m/rad) and each axle's roll stiffness (springs and bars), the
+        steering linkage (ratio, Ackermann fraction, reference wheel), ABS, the tyre as run,
+        and where the numbers came from."""
+        spec = self.spec(mass)
+        g = _defaults()["gravity"]
+        loads = np.asarray(spec["static_loads"], dtype=np.float64)
+        rates = np.asarray(spec["spring_rates"], dtype=np.float64)
+        damping = np.asarray(spec["damping"], dtype=np.float64)
+        sprung = loads / g
+        bars = [
+            {"left": self._names[b[0]], "right": self._names[b[1]], "roll_stiffness": float(b[2])}
+            for b in spec["anti_roll"]
+        ]
+        out: dict[str, Any] = {
+            "source": self.source,
+            "names": list(self._names),
+            "centers": self._centers.tolist(),
+            "radii": self._radii.tolist(),
+            "steerable": list(self._steerable),
+            "static_loads": loads.tolist(),
+            "spring_rates": rates.tolist(),
+            "damping": damping.tolist(),
+            "natural_frequencies": (np.sqrt(rates / sprung) / (2.0 * math.pi)).tolist(),
+            "damping_ratios": (damping / (2.0 * np.sqrt(rates * sprung))).tolist(),
+            "anti_roll": bars,
+            "steering": {
+                "ratio": self.steering_ratio,
+                "ackermann": _defaults()["ackermann"] if self.ackermann is None else self.ackermann,
+                "reference": self.steering_reference or "outer",
+            },
+            "abs": self.abs,
+            "tyre": self.tyre.resolved(),
+        }
+        if self.steer != "custom" and self.track is not None:
+            tf, tr = self.track
+            bar = {b[0]: float(b[2]) for b in spec["anti_roll"]}
+            out["roll_stiffness"] = {
+                "front": float((rates[0] + rates[1]) * tf**2 / 4.0 + bar.get(0, 0.0)),
+                "rear": float((rates[2] + rates[3]) * tr**2 / 4.0 + bar.get(2, 0.0)),
+            }
+            if self.cg_height is not None:
+                total = out["roll_stiffness"]["front"] + out["roll_stiffness"]["rear"]
+                moment = mass * g * self.cg_height
+                # rad per g: phi = m a h / (K - m g h), the roll axis at the ground
+                out["roll_gradient"] = float(moment / (total - moment)) if total > moment else None
+        return out
+
     def anti_roll_bars(
         self, mass: float, loads: Array | None = None, rates: Array | None = None
     ) -> list[tuple[int, int, float]]:
