@@ -1191,14 +1191,13 @@ def _vehicle_data_lines(result: Result) -> list[str]:
         springs = f"  {name}: springs {freq} Hz, damping ratios {zeta}"
         if "roll_stiffness" in d:
             rs = d["roll_stiffness"]
+            bars = ", ".join(
+                f"bar {b['left']}-{b['right']} {math.radians(b['roll_stiffness']):.0f}"
+                for b in d["anti_roll"]
+            )
             springs += (
                 f"; roll stiffness front {math.radians(rs['front']):.0f}, rear "
-                f"{math.radians(rs['rear']):.0f} N m/deg ("
-                + ", ".join(
-                    f"bar {b['left']}-{b['right']} {math.radians(b['roll_stiffness']):.0f}"
-                    for b in d["anti_roll"]
-                )
-                + ")"
+                f"{math.radians(rs['rear']):.0f} N m/deg ({bars or 'springs only, no bars'})"
             )
             if d.get("roll_gradient") is not None:
                 springs += f"; roll gradient {math.degrees(d['roll_gradient']):.1f} deg/g"
