@@ -107,9 +107,13 @@ def _brake(value: Any, name: str) -> Brake:
     if isinstance(value, Brake):
         if value.kind not in ("fraction", "deceleration", "distributed"):
             raise ParameterError(
-                f"{name}: braking is a 'fraction' of the friction or a 'deceleration', not "
-                f"{value.kind!r}"
+                f"{name}: braking is a 'fraction' of the friction, a 'deceleration' or "
+                f"'distributed', not {value.kind!r}"
             )
+        if value.kind == "distributed":
+            if value.front_share is None:
+                raise ParameterError(f"{name}: a distributed brake needs its front_share")
+            return Brake.distributed(value.table, value.front_share)
         return Brake(value.kind, _table(value.table, name))
     return Brake("fraction", _table(value, name))
 

@@ -575,8 +575,8 @@ class Wheels:
             raise ParameterError(f"abs must be True or False, got {abs_!r}")
         self.abs: bool = bool(abs_)
         # The constructors then ask the engine what only it knows (CG over the wheels,
-        # positive numbers; weight scales): explicit rates wait for the vehicle's mass
-        # (check_on), as the frequency and damping ratio they make with each load have bounds.
+        # positive numbers; weight scales): explicit rates and the anti-roll bars wait for the
+        # vehicle's mass (check_on), as the frequencies they make with each load have bounds.
 
     def _probe(self) -> _core.SceneSpec:
         """A scene spec with a box body around these wheels, of 1 kg."""
@@ -639,8 +639,9 @@ class Wheels:
 
     def spec(self, mass: float, *, explicit_rates: bool = True) -> dict[str, Any]:
         """SceneSpec.set_vehicle keywords (centers, radii, steerable, static_loads, spring_rates,
-        damping, tyre) for a vehicle of ``mass`` kg; ``explicit_rates=False`` leaves given
-        rates out (the springs from the frequency and ratio instead)."""
+        damping, tyre, steering, anti-roll bars, abs) for a vehicle of ``mass`` kg;
+        ``explicit_rates=False`` leaves given rates and the bars out (the springs from the
+        frequency and ratio instead): what the checks without the vehicle's mass take."""
         loads = self.static_loads(mass)
         d = _defaults()
         rates = np.empty(len(self))
@@ -667,7 +668,7 @@ class Wheels:
             "steering_ratio": self.steering_ratio,
             "ackermann": self.ackermann,
             "steering_reference": self.steering_reference,
-            "anti_roll": self.anti_roll_bars(mass, loads, rates),
+            "anti_roll": self.anti_roll_bars(mass, loads, rates) if explicit_rates else [],
             "abs": self.abs,
         }
 
