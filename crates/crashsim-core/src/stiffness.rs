@@ -111,6 +111,34 @@ impl Stiffness {
     pub fn is_complete(&self) -> bool {
         self.faces.iter().all(Option::is_some)
     }
+
+    /// True when no face has data (a fixed obstacle without data is rigid).
+    pub fn is_none(&self) -> bool {
+        self.faces.iter().all(Option::is_none)
+    }
+}
+
+/// Series stiffness k' = k1 k2 / (k1 + k2) (N/m) of two struck faces; an infinite rate is a
+/// rigid face (a fixed obstacle without stiffness data), so k' is the other one.
+pub fn series_rate(k1: Real, k2: Real) -> Real {
+    match (k1.is_infinite(), k2.is_infinite()) {
+        (true, true) => Real::INFINITY,
+        (true, false) => k2,
+        (false, true) => k1,
+        (false, false) => k1 * k2 / (k1 + k2),
+    }
+}
+
+/// The share of the total crush body 1 takes, C1 / (C1 + C2) = k2 / (k1 + k2) (seed eqs.
+/// 34-35: equal spring forces); 1 against a rigid body 2 (infinite k2), 0 against a rigid
+/// body 1; None when both rates are zero or both infinite (no split is defined).
+pub fn crush_share(k1: Real, k2: Real) -> Option<Real> {
+    match (k1.is_infinite(), k2.is_infinite()) {
+        (true, true) => None,
+        (true, false) => Some(0.0),
+        (false, true) => Some(1.0),
+        (false, false) => (k1 + k2 > 0.0).then(|| k2 / (k1 + k2)),
+    }
 }
 
 /// Effective mass (kg) of a body along the unit direction `n` at lever arm `r` (m, world):
@@ -130,6 +158,21 @@ pub fn effective_mass(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_rigid_face_takes_no_crush_and_leaves_the_other_spring() {
+        assert_eq!(series_rate(2e5, 6e5), 1.5e5);
+        assert_eq!(series_rate(2e5, Real::INFINITY), 2e5);
+        assert_eq!(series_rate(Real::INFINITY, 6e5), 6e5);
+        assert_eq!(crush_share(2e5, 6e5), Some(0.75));
+        assert_eq!(crush_share(2e5, Real::INFINITY), Some(1.0));
+        assert_eq!(crush_share(Real::INFINITY, 6e5), Some(0.0));
+        assert_eq!(crush_share(0.0, 0.0), None);
+        assert_eq!(crush_share(Real::INFINITY, Real::INFINITY), None);
+        assert!(Stiffness::none().is_none());
+        let one = Stiffness::none().with(Face::Left, FaceStiffness::new(1e4, 1e5).unwrap());
+        assert!(!one.is_none() && !one.is_complete());
+    }
 
     #[test]
     fn the_struck_face_follows_the_direction() {

@@ -844,3 +844,88 @@ fn a_box_square_into_a_fixed_wall_bounces_at_eps_times_its_speed() {
     assert_eq!(wall_end.position, Point::from(pose.translation.vector));
     assert_eq!(wall_end.velocity, Vector::zeros());
 }
+
+/// A fixed obstacle without stiffness data is rigid in the seed's spring model (issue 19,
+/// item 8): the automatic dt_p is sqrt(m / (B W)) from the car's own face alone, and the
+/// stiffness centroid lies on the wall's face, so the car takes the whole crush v dt_p. The
+/// impact stays central: delta-V = -(1 + eps) v. Before, both modes refused the wall.
+#[test]
+fn a_rigid_obstacle_takes_no_crush_in_the_spring_model() {
+    let (m, v, b, eps, width) = (1500.0, 15.0, 0.9e6, 0.1, 1.8);
+    let mut w = World::new();
+    let car = w
+        .add_body(
+            box_shape(4.6, width, 1.4),
+            box_props(m, 4.6, width, 1.4),
+            &state(-3.0, 0.0, 0.7, 0.0, Vector::new(v, 0.0, 0.0)),
+        )
+        .unwrap();
+    w.set_stiffness(car, stiffness(b, 0.8e6, 0.5e6)).unwrap();
+    // Its face at x = 0, 6 m wide: the car's whole width W = 1.8 m meets it.
+    let pose = crashsim_core::math::Isometry::translation(0.5, 0.0, 1.0);
+    let wall = w.add_obstacle(box_shape(1.0, 6.0, 2.0), &pose).unwrap();
+    let params = ContactParams {
+        depth_of_penetration: DepthOfPenetration::Auto,
+        centroid: CentroidMode::Stiffness,
+        restitution: eps,
+        ..ContactParams::default()
+    };
+    w.set_contact(car, wall, params).unwrap();
+    let out = w.run(0.5, 1e-3).unwrap();
+    assert_eq!(out.impacts.len(), 1, "{:?}", out.contacts);
+    let imp = &out.impacts[0];
+    assert_eq!((imp.body1, imp.body2), (car, wall));
+    // Central: the effective mass is the car's; k' = B W (the wall's rate is infinite).
+    let [k_car, k_wall] = imp.spring_rates.unwrap();
+    assert!((k_car - b * width).abs() < 1e-6 * b && k_wall == Real::INFINITY);
+    let expected = (m / (b * width)).sqrt();
+    assert!(
+        (imp.depth_of_penetration - expected).abs() < 2e-9,
+        "dt_p {} vs {expected}",
+        imp.depth_of_penetration
+    );
+    // On the wall's face, across the middle of the contact.
+    let p = imp.centroid;
+    assert!(
+        p.x.abs() < 1e-9 && p.y.abs() < 1e-12 && (p.z - 0.7).abs() < 1e-12,
+        "{p:?}"
+    );
+    // The car's front went v dt_p past the face: all of it is the car's crush (1 um).
+    let k = out.times.iter().rposition(|&s| s == imp.time).unwrap();
+    let crush = out.sample(k)[car].position.x + 2.3 - p.x;
+    assert!((crush - v * expected).abs() < 1e-6, "crush {crush}");
+    let dv = imp.velocity_after[0] - imp.velocity_before[0];
+    assert!((dv.x + (1.0 + eps) * v).abs() < 1e-12 * v && dv.y.abs() < 1e-12);
+}
+
+/// An obstacle with stiffness on some faces only is not rigid: the stiffness modes still
+/// need every face (its message says how to fix it).
+#[test]
+fn an_obstacle_with_partial_stiffness_is_refused_by_the_stiffness_modes() {
+    let mut w = World::new();
+    let car = w
+        .add_body(
+            box_shape(4.6, 1.8, 1.4),
+            box_props(1500.0, 4.6, 1.8, 1.4),
+            &state(-3.0, 0.0, 0.7, 0.0, Vector::zeros()),
+        )
+        .unwrap();
+    w.set_stiffness(car, stiffness(1e6, 1e6, 1e6)).unwrap();
+    let pose = crashsim_core::math::Isometry::translation(0.5, 0.0, 1.0);
+    let wall = w.add_obstacle(box_shape(1.0, 6.0, 2.0), &pose).unwrap();
+    let rear = FaceStiffness::new(1e5, 5e6).unwrap();
+    w.set_stiffness(wall, Stiffness::none().with(Face::Rear, rear))
+        .unwrap();
+    let params = ContactParams {
+        depth_of_penetration: DepthOfPenetration::Auto,
+        ..ContactParams::default()
+    };
+    match w.set_contact(car, wall, params) {
+        Err(Error::Parameter(msg)) => assert!(
+            msg.contains("body 1 has no stiffness on its front face")
+                && msg.contains("none at all for a rigid obstacle"),
+            "{msg}"
+        ),
+        other => panic!("expected a parameter error, got {other:?}"),
+    }
+}

@@ -11,7 +11,7 @@ use crate::contact::{
 };
 use crate::math::{Matrix, Point, Real, Vector};
 use crate::overlap::{overlap_region, OverlapRegion};
-use crate::stiffness::{effective_mass, Face};
+use crate::stiffness::{crush_share, effective_mass, series_rate, Face};
 
 /// The time tolerance (s) of the end of a narrow overlap that ends before it covers the
 /// footprint: 40 um of approach at 40 m/s.
@@ -77,6 +77,8 @@ pub(super) struct ContactGeometry {
     pub(super) centroid: Point,
     pub(super) faces: [Face; 2],
     pub(super) width: Real,
+    /// k = B W of the struck faces (N/m); infinite for a rigid fixed obstacle (one without
+    /// stiffness data); None when a vehicle's struck face has no data.
     pub(super) spring_rates: Option<[Real; 2]>,
     pub(super) effective_mass: [Real; 2],
     /// When the volume normal was taken, if not at these states.
@@ -84,14 +86,15 @@ pub(super) struct ContactGeometry {
 }
 
 impl ContactGeometry {
-    /// sqrt(m'/k') (s) from the reduced effective mass and the series spring rate; infinite
-    /// without stiffness data or contact width.
+    /// sqrt(m'/k') (s) from the reduced effective mass and the series spring rate (the
+    /// vehicle's own against a rigid obstacle); infinite without stiffness data or contact
+    /// width.
     fn spring_time(&self) -> Real {
         let Some([k1, k2]) = self.spring_rates else {
             return Real::INFINITY;
         };
         let [m1, m2] = self.effective_mass;
-        let k = k1 * k2 / (k1 + k2);
+        let k = series_rate(k1, k2);
         // The reduced mass; against an immovable obstacle (infinite mass), the other's.
         let m = match (m1.is_infinite(), m2.is_infinite()) {
             (false, false) => m1 * m2 / (m1 + m2),
@@ -395,20 +398,26 @@ impl World {
             Face::facing(&pose2.inverse_transform_vector(&-normal)),
         ];
         let width = rmax.y - rmin.y;
-        let spring_rates = match (w1.stiffness.face(faces[0]), w2.stiffness.face(faces[1])) {
-            (Some(s1), Some(s2)) => Some([s1.spring_rate(width), s2.spring_rate(width)]),
+        // A fixed obstacle without stiffness data is rigid: an infinite rate (contact.rs).
+        let rate = |i: usize, face: Face| match self.bodies[i].stiffness.face(face) {
+            Some(s) => Some(s.spring_rate(width)),
+            None if self.is_rigid(i) => Some(Real::INFINITY),
+            None => None,
+        };
+        let spring_rates = match (rate(pair.body1, faces[0]), rate(pair.body2, faces[1])) {
+            (Some(k1), Some(k2)) => Some([k1, k2]),
             _ => None,
         };
         let centroid = match &pair.params.centroid {
             CentroidMode::Auto => Point::from(frame.transpose() * ((rmin + rmax) * 0.5)),
             CentroidMode::Stiffness => {
                 // Body 1's undeformed surface is at the region's far end along +n, body 2's at
-                // the near end: C1 = rmax.n - P.n, C2 = P.n - rmin.n, C1 : C2 = k2 : k1.
+                // the near end: C1 = rmax.n - P.n, C2 = P.n - rmin.n, C1 : C2 = k2 : k1. A
+                // rigid obstacle takes no crush: P is on its surface, the common-tangent plane
+                // through its part of the region (a barrier's edge).
                 let mut c = (rmin + rmax) * 0.5;
-                if let Some([k1, k2]) = spring_rates {
-                    if k1 + k2 > 0.0 {
-                        c.x = rmax.x - k2 / (k1 + k2) * (rmax.x - rmin.x);
-                    }
+                if let Some(share) = spring_rates.and_then(|[k1, k2]| crush_share(k1, k2)) {
+                    c.x = rmax.x - share * (rmax.x - rmin.x);
                 }
                 Point::from(frame.transpose() * c)
             }

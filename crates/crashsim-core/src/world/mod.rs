@@ -292,6 +292,13 @@ impl World {
         matches!(self.bodies[i].motion, Motion::Fixed)
     }
 
+    /// True when body `i` is rigid in the spring model: a fixed obstacle without stiffness
+    /// data on any face (its spring rate is infinite; contact.rs, the depth of penetration
+    /// and centroid modes).
+    pub fn is_rigid(&self, i: usize) -> bool {
+        self.is_obstacle(i) && self.bodies[i].stiffness.is_none()
+    }
+
     /// Gives body `i` wheels, a tyre and driver inputs (used when the world has a ground).
     pub fn set_vehicle(&mut self, i: usize, spec: VehicleSpec) -> Result<()> {
         if self.started {
@@ -488,13 +495,21 @@ impl World {
             return Ok(());
         }
         for i in [body1, body2] {
+            if self.is_rigid(i) {
+                continue;
+            }
             let s = &self.bodies[i].stiffness;
             if let Some(face) = Face::ALL.iter().find(|f| s.face(**f).is_none()) {
+                let fix = if self.is_obstacle(i) {
+                    "give the obstacle's other faces a stiffness too, or none at all for a rigid \
+                     obstacle"
+                } else {
+                    "give the vehicle a stiffness, or use a fixed dt_p and the automatic centroid"
+                };
                 return Err(Error::Parameter(format!(
                     "body {i} has no stiffness on its {} face: depth_of_penetration = auto and \
-                     centroid = stiffness need CRASH3 A and B on every face of both vehicles \
-                     (give the vehicle a stiffness, or use a fixed dt_p and the automatic \
-                     centroid)",
+                     centroid = stiffness need CRASH3 A and B on every face of both bodies, or \
+                     none on a fixed obstacle (rigid); {fix}",
                     face.name()
                 )));
             }
