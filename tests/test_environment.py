@@ -323,15 +323,44 @@ def test_an_obstacle_with_stiffness_gives_an_automatic_depth_of_penetration() ->
     car = cs.Vehicle.box(
         4.5, 1.8, 1.4, mass=1500.0, name="car", stiffness=cs.vehicle_class("sedan").stiffness
     )
+    # some faces only: refused, saying how to fix it
     scene = cs.Scene(depth_of_penetration="auto")
     scene.add(car, (0.0, 0.0, 0.7), velocity=(10.0, 0.0, 0.0))
-    with pytest.raises(cs.ParameterError, match="obstacle 'wall' has no stiffness"):
-        scene.add_obstacle(cs.Obstacle.wall(5.0), (3.0, 0.0)).run(0.3)
+    front_only = cs.Obstacle.wall(5.0, stiffness={"front": (1e5, 5e6)})
+    with pytest.raises(cs.ParameterError, match="obstacle 'wall' has no stiffness on its rear"):
+        scene.add_obstacle(front_only, (3.0, 0.0)).run(0.3)
     stiff = cs.Scene(depth_of_penetration="auto")
     stiff.add(car, (0.0, 0.0, 0.7), velocity=(10.0, 0.0, 0.0))
     stiff.add_obstacle(cs.Obstacle.wall(5.0, stiffness=(1e5, 5e6)), (3.0, 0.0))
     (imp,) = stiff.run(0.3).impacts
     assert imp.depth_of_penetration_mode == "auto" and 0.0 < imp.depth_of_penetration <= 0.06
+
+
+def test_an_obstacle_without_stiffness_is_rigid_in_the_spring_model() -> None:
+    # issue 19.8: auto dt_p and the stiffness centroid against an obstacle without stiffness
+    # (before: a ParameterError). dt_p = sqrt(m / (B W)) from the car's front alone (central:
+    # m' = m; W = the car's 1.8 m), P on the wall's face; the report's k' is the car's.
+    b = cs.vehicle_class("sedan").stiffness.front.B
+    car = cs.Vehicle.box(
+        4.5, 1.8, 1.4, mass=1500.0, name="car", stiffness=cs.vehicle_class("sedan").stiffness
+    )
+    scene = cs.Scene(depth_of_penetration="auto", centroid="stiffness")
+    scene.add(car, (0.0, 0.0, 0.7), velocity=(10.0, 0.0, 0.0))
+    scene.add_obstacle(cs.Obstacle.wall(5.0), (3.0, 0.0))  # its face at x = 2.85 m
+    result = scene.run(0.3)
+    (imp,) = result.impacts
+    assert imp.spring_rates == {"car": pytest.approx(b * 1.8, rel=1e-12), "wall": math.inf}
+    assert imp.depth_of_penetration == pytest.approx(math.sqrt(1500.0 / (b * 1.8)), abs=2e-9)
+    assert imp.centroid[0] == pytest.approx(2.85, abs=1e-9)
+    report = cs.report(result)
+    (ir,) = report.impacts
+    assert ir.energy_split_basis == "rigid obstacle"
+    assert ir.series_stiffness == pytest.approx(b * 1.8, rel=1e-12)
+    assert ir.implied_depth_of_penetration == pytest.approx(imp.depth_of_penetration, abs=2e-9)
+    assert ir.obstacle is not None and ir.obstacle.spring_rate is None
+    text = report.to_json()
+    assert "Infinity" not in text and "NaN" not in text
+    jsonschema.validate(json.loads(text), report_schema())
 
 
 def test_obstacle_names_pairs_and_overlaps() -> None:

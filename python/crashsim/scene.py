@@ -206,18 +206,21 @@ def _needs_stiffness(params: dict[str, Any]) -> bool:
 def _check_stiffness(
     params: dict[str, Any], vehicles: tuple[Vehicle | Obstacle, Vehicle | Obstacle]
 ) -> None:
-    """ParameterError when the pair's parameters need face stiffness a vehicle lacks."""
+    """ParameterError when the pair's parameters need face stiffness a vehicle lacks. An
+    obstacle without any stiffness is rigid (the core's World::is_rigid)."""
     if not _needs_stiffness(params):
         return
     for v in vehicles:
         missing = [f for f in FACES if v.stiffness.face(f) is None]
         if missing:
             if isinstance(v, Obstacle):
+                if len(missing) == len(FACES):
+                    continue  # rigid: the vehicle's spring alone, no crush of its own
                 raise ParameterError(
                     f"obstacle {v.name!r} has no stiffness on its {', '.join(missing)} "
                     'face(s): depth_of_penetration="auto" and centroid="stiffness" need CRASH3 '
-                    "A and B on every face: give the obstacle stiffness=(A, B), or use a fixed "
-                    "depth of penetration for its pairs"
+                    "A and B on every face of an obstacle that has any: give them all (one "
+                    "stiffness=(A, B) sets every face), or none for a rigid obstacle"
                 )
             raise ParameterError(
                 f"vehicle {v.name!r} has no stiffness on its {', '.join(missing)} face(s): "
@@ -237,14 +240,15 @@ class Scene:
       Or "auto": per impact dt_p = sqrt(m'/k') from the vehicles' effective masses along the
       normal at the centroid and the series stiffness k' of the struck faces (k = B W, W the
       overlap width), clamped to 60 ms; a DepthOfPenetrationWarning outside 10-60 ms. Needs
-      face stiffness on both vehicles.
+      face stiffness on both vehicles; an obstacle without any is rigid (k' = the vehicle's).
     - restitution: in [0, 1]. friction: inter-vehicle, >= 0.
     - restitution_mode: "total" (Kudlich-Slibar, on the whole compression impulse) or
       "normal" (Newton/Brach, on the normal relative velocity).
     - normal: None (horizontal part of the overlap's volume normal, tilted up by ``pitch``
       rad), "volume" (full 3-D) or a world vector; it points from vehicle 1 into vehicle 2.
     - centroid: None (centre of the overlap region), "stiffness" (that centre moved along
-      the normal so the crush splits as C1 : C2 = k2 : k1; needs face stiffness), a world
+      the normal so the crush splits as C1 : C2 = k2 : k1; needs face stiffness; on the face
+      of an obstacle without any, which is rigid: docs/glancing.md section 7), a world
       point (m), or ``(vehicle_or_name, (x, y, z))``, a point fixed in that vehicle's body
       frame (m from its CG).
 

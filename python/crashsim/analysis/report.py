@@ -345,9 +345,10 @@ class ObstacleImpactReport:
     in the pair), ``struck_face`` (the engine's name of the face of its own frame whose
     stiffness is taken: front +x, rear -x, left +y, right -y) and ``struck_side`` (the same
     as the side of its frame: "+x", "-x", "+y", "-y"; the words a reader is given, since a
-    pole has no front or rear), ``spring_rate`` (k = B W, N/m; None without stiffness),
-    ``centroid_body`` (the centroid in the obstacle's frame, m). It has an infinite mass
-    (``effective_mass`` is None in the JSON), never moves and has no delta-V."""
+    pole has no front or rear), ``spring_rate`` (k = B W, N/m; None without stiffness:
+    then it is rigid), ``centroid_body`` (the centroid in the obstacle's frame, m). It has
+    an infinite mass (``effective_mass`` is None in the JSON), never moves and has no
+    delta-V."""
 
     name: str
     role: int
@@ -383,7 +384,8 @@ class ImpactReport:
     ``secondary`` exchange) and ``exchange_time`` (s). ``depth_of_penetration`` (s) and its
     ``depth_of_penetration_mode`` ("fixed": the pair's parameter; "auto": sqrt(m'/k') at the
     exchange); ``reduced_mass`` m' (kg) of the effective masses along n; ``series_stiffness``
-    k' = k1 k2 / (k1 + k2) (N/m, None without stiffness) and ``implied_depth_of_penetration``
+    k' = k1 k2 / (k1 + k2) (N/m, None without stiffness; the vehicle's k against a rigid
+    obstacle) and ``implied_depth_of_penetration``
     sqrt(m'/k') (s, None without stiffness). ``centroid`` and ``normal`` (unit, 1 -> 2);
     ``contact_frame`` rows n, t, b. ``impulse`` on vehicle 2 (N s) and its magnitude.
     ``impact_type`` "full" or "sliding". ``closing_speed``: the normal relative velocity at
@@ -567,25 +569,33 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
     else:
         reduced = float(penetration.reduced_mass(*m_eff))
     notes = list(impact.notes)
-    if k is not None and k[0] > 0.0 and k[1] > 0.0:
-        series = float(penetration.series_stiffness(*k))
-        implied: float | None = math.sqrt(reduced / series)
-        # E1 = E k2 / (k1 + k2): the softer vehicle absorbs more (equal spring forces)
-        shares = (k[1] / (k[0] + k[1]), k[0] / (k[0] + k[1]))
-        basis, crush_basis = BY_STIFFNESS, BY_STIFFNESS
-    elif impact.obstacle is not None:
-        # Without both stiffnesses the obstacle counts as rigid: the vehicle takes the whole
-        # crush and energy (its EES is then the equivalent barrier speed).
-        series, implied, k = None, None, None
+    series: float | None = None
+    implied: float | None = None
+    # each party's k = B W as reported (None without data, or for a rigid obstacle)
+    party_rates: tuple[float | None, float | None] = (None, None) if k is None else k
+    if impact.obstacle is not None and (k is None or math.isinf(max(k))):
+        # A fixed obstacle without stiffness data is rigid (the engine's infinite rate): the
+        # vehicle takes the whole crush and energy (its EES is then the equivalent barrier
+        # speed); with the vehicle's B W, k' is that and sqrt(m'/k') its spring's time.
         vehicle_first = names[0] != impact.obstacle
         shares = (1.0, 0.0) if vehicle_first else (0.0, 1.0)
         basis, crush_basis = RIGID_OBSTACLE, RIGID_OBSTACLE
+        if k is not None:
+            series = k[0] if vehicle_first else k[1]
+            implied = math.sqrt(reduced / series)
+            party_rates = (series, None) if vehicle_first else (None, series)
         notes.append(
-            f"{impact.obstacle} taken as rigid (no stiffness for both parties): the vehicle "
-            "takes all the crush and dissipated energy"
+            f"{impact.obstacle} taken as rigid (no stiffness data): the vehicle takes all the "
+            "crush and dissipated energy"
         )
+    elif k is not None and k[0] > 0.0 and k[1] > 0.0:
+        series = float(penetration.series_stiffness(*k))
+        implied = math.sqrt(reduced / series)
+        # E1 = E k2 / (k1 + k2): the softer vehicle absorbs more (equal spring forces)
+        shares = (k[1] / (k[0] + k[1]), k[0] / (k[0] + k[1]))
+        basis, crush_basis = BY_STIFFNESS, BY_STIFFNESS
     else:
-        series, implied, k = None, None, None
+        party_rates = (None, None)
         shares, basis, crush_basis = (0.5, 0.5), UNKNOWN, EQUAL_SHARES
         notes.append("stiffness unknown: the dissipated energy is not split, no EES")
     overlap_depth = float(impact.region_max[0] - impact.region_min[0])  # row 0 of the frame: n
@@ -607,7 +617,7 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
                 name=name,
                 role=role,
                 struck_face=str(impact.struck_faces.get(name, UNKNOWN)),
-                spring_rate=None if k is None else k[role - 1],
+                spring_rate=party_rates[role - 1],
                 centroid_body=rotation.T @ (p - position),
             )
             continue
@@ -643,7 +653,7 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
                 mass=mass,
                 struck_face=str(impact.struck_faces.get(name, UNKNOWN)),
                 effective_mass=m_eff[role - 1],
-                spring_rate=None if k is None else k[role - 1],
+                spring_rate=party_rates[role - 1],
                 centroid_body=rotation.T @ (p - position),
                 impulse=np.asarray(impact.impulse_on(name), dtype=np.float64),
                 delta_v=dv,

@@ -5,7 +5,9 @@ engine keeps fixed in the world with infinite mass and inertia. It takes part in
 detection, the depth-of-penetration timer and the exchange exactly like a vehicle (1/m = 0,
 I^-1 = 0 in the collision matrix). Its face stiffness (CRASH3 A, B per face front +x, rear
 -x, left +y, right -y of its frame) is used by ``depth_of_penetration="auto"`` and the
-stiffness centroid like a vehicle's.
+stiffness centroid like a vehicle's; an obstacle without any stiffness is rigid (an infinite
+spring: dt_p from the vehicle's face alone, the stiffness centroid on the obstacle's surface,
+the vehicle takes all the crush and energy in the report).
 
 Primitives (built with trimesh, closed and outward): each stands on z = 0 of its frame and is
 centred on its frame's z axis; :meth:`crashsim.Scene.add_obstacle` places that base point in
