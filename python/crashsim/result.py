@@ -118,7 +118,8 @@ class Impact:
     (sqrt(m'/k') from ``effective_mass`` and ``spring_rates``). ``struck_faces`` names each
     vehicle's face ("front", "rear", "left", "right") facing the other along the normal;
     ``overlap_width`` is the region's extent along the contact tangent t (m);
-    ``spring_rates`` are k = B W of the struck faces (N/m; None without stiffness data);
+    ``spring_rates`` are k = B W of the struck faces (N/m; None without stiffness data; a
+    fixed obstacle without any is rigid: inf);
     ``effective_mass`` is each vehicle's mass as felt along n at the centroid (kg);
     ``notes`` are the engine's remarks (e.g. an automatic dt_p outside 10-60 ms);
     ``normal_time`` is when the overlap's volume normal behind ``normal`` was taken (s): for a
