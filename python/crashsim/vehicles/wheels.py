@@ -271,7 +271,8 @@ def _roll_input(
     anti_roll: Any, roll_gradient: Any, front_share: Any, *, axles: bool
 ) -> tuple[Any, ...]:
     """How the usual four wheels' anti-roll bars are given: ("axles", (front, rear)) N m/rad,
-    ("gradient", rad per g, front share or None), or ("bars", ()) for none."""
+    or ("gradient", rad per g, front share or None); neither given, the sedan class's roll
+    gradient (6 deg per g)."""
     if anti_roll is not None and roll_gradient is not None:
         raise ParameterError(
             "give anti_roll (each axle's bar, N m/rad) or roll_gradient (the vehicle's roll "
@@ -294,7 +295,10 @@ def _roll_input(
         return ("gradient", g, share)
     if share is not None:
         raise ParameterError("anti_roll_front_share is for roll_gradient: drop it or give that")
-    return ("bars", ())
+    # Neither given: a car's usual roll, the sedan class's (anti_roll=(0, 0) for no bars).
+    from crashsim.vehicles.vehicle_data import vehicle_class
+
+    return ("gradient", vehicle_class("sedan").roll_gradient.value, None)
 
 
 def _pair(value: Any, name: str, unit: str) -> tuple[float, float]:
@@ -346,8 +350,15 @@ class Wheels:
     ``damping_ratio`` (one number or (front, rear); None: the engine's defaults), or
     explicit ``spring_rates`` (N/m) and ``damping`` (N s/m) (one number, (front, rear) or
     one per wheel), which take precedence. ``tyre``: a :class:`Tyre` (or a dict of its
-    fields). Other layouts: :meth:`custom`. ``source`` says where the numbers came from
-    ("user", or the class table for a generated vehicle).
+    fields). Anti-roll bars: ``anti_roll`` (front, rear) roll stiffness (N m/rad), or
+    ``roll_gradient`` (rad of roll per g of steady lateral acceleration) with
+    ``anti_roll_front_share`` (default the static front axle load's share); neither given,
+    the sedan class's 6 deg per g (``anti_roll=(0, 0)`` for none). The steering linkage:
+    ``steering_ratio`` (steering-wheel angle per road-wheel angle), ``ackermann`` (fraction,
+    default 1: full Ackermann), ``steering_reference`` ("outer", default: the input's angle is
+    the outer wheel's; or "centre"). ``abs``: anti-lock brakes (default True). Other
+    layouts: :meth:`custom`. ``source`` says where the numbers came from ("user", or the
+    class table for a generated vehicle).
 
     Raises ParameterError naming the wheel for a bad number (a radius <= 0, a natural
     frequency past (0, 20] Hz, a damping ratio past [0, 5]) or a CG that is not over the wheels
