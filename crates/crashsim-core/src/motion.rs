@@ -338,7 +338,7 @@ impl OnGround {
         let mut du = vec![[0.0; 2]; s.u.len()];
         let mut wheels = Vec::with_capacity(s.u.len());
         if let Some(spec) = &self.vehicle {
-            let steering = spec.steering_at(t);
+            let steering = spec.steering_at(t, &x, r, &s.v);
             // Each wheel's centre, the ground below it and its height above it (m).
             let mut below = Vec::with_capacity(spec.wheels.len());
             for (k, wheel) in spec.wheels.iter().enumerate() {

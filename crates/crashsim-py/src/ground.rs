@@ -346,30 +346,53 @@ pub fn vehicle(
     }
     let steer = match steer {
         None => None,
-        Some((kind, value)) => Some(match kind.as_str() {
-            "road_wheel" => SteerInput::RoadWheel(table(&value, "steering")?),
-            "steering_wheel" => SteerInput::SteeringWheel(table(&value, "steering wheel")?),
-            "per_wheel" => {
-                let tables: Vec<Option<Bound<'_, PyAny>>> = value.extract().map_err(|_| {
-                    errors::parameter(
-                        "per-wheel steering is a list with one table or None per wheel".into(),
-                    )
-                })?;
-                let mut out = Vec::with_capacity(tables.len());
-                for (k, t) in tables.iter().enumerate() {
-                    out.push(match t {
-                        None => None,
-                        Some(t) => Some(table(t, &format!("wheel {k} steering"))?),
-                    });
+        Some((kind, value)) => {
+            Some(match kind.as_str() {
+                "road_wheel" => SteerInput::RoadWheel(table(&value, "steering")?),
+                "steering_wheel" => SteerInput::SteeringWheel(table(&value, "steering wheel")?),
+                "per_wheel" => {
+                    let tables: Vec<Option<Bound<'_, PyAny>>> = value.extract().map_err(|_| {
+                        errors::parameter(
+                            "per-wheel steering is a list with one table or None per wheel".into(),
+                        )
+                    })?;
+                    let mut out = Vec::with_capacity(tables.len());
+                    for (k, t) in tables.iter().enumerate() {
+                        out.push(match t {
+                            None => None,
+                            Some(t) => Some(table(t, &format!("wheel {k} steering"))?),
+                        });
+                    }
+                    SteerInput::PerWheel(out)
                 }
-                SteerInput::PerWheel(out)
-            }
-            other => {
-                return Err(errors::parameter(format!(
-                    "steering is 'road_wheel', 'steering_wheel' or 'per_wheel', not {other:?}"
-                )))
-            }
-        }),
+                "path" => {
+                    let (points, preview, min_distance): (Bound<'_, PyAny>, Option<Real>, Option<Real>) =
+                    value.extract().map_err(|_| {
+                        errors::parameter(
+                            "a driver's path is ((n, 2) points m, preview s or None, min_distance m \
+                             or None)"
+                                .into(),
+                        )
+                    })?;
+                    let points = rows(&points, 2, "the driver's path")?
+                        .into_iter()
+                        .map(|p| [p[0], p[1]])
+                        .collect();
+                    SteerInput::Path(core::vehicle::DriverPath {
+                        points,
+                        preview: preview.unwrap_or(core::vehicle::DEFAULT_PATH_PREVIEW),
+                        min_distance: min_distance
+                            .unwrap_or(core::vehicle::DEFAULT_PATH_MIN_DISTANCE),
+                    })
+                }
+                other => {
+                    return Err(errors::parameter(format!(
+                        "steering is 'road_wheel', 'steering_wheel', 'per_wheel' or 'path', not \
+                     {other:?}"
+                    )))
+                }
+            })
+        }
     };
     let mut drives = Vec::with_capacity(drive.len());
     for (k, d) in drive.into_iter().enumerate() {

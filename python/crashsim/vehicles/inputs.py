@@ -220,7 +220,9 @@ class DriverInputs:
       steered axle's centre; each wheel turns through the linkage's Ackermann geometry), a
       table or a number; or a mapping from steerable wheels to their own tables (per-wheel
       angles replace the linkage); or ``steering_wheel`` (rad) over the steering ratio (the
-      vehicle's, :class:`crashsim.Wheels`, or ``steering_ratio`` here).
+      vehicle's, :class:`crashsim.Wheels`, or ``steering_ratio`` here); or ``path``: (n, 2)
+      world points (m) a driver follows by pure pursuit, looking ``preview`` s ahead at the
+      current speed (default 1 s) and at least ``min_distance`` m (default 3 m).
     - ``brake``: a table of fractions (or a :class:`Brake`) for every wheel, or a mapping
       from wheels, axles or "all" to tables or Brakes.
     - ``drive``: drive force (N, + forward): a table for the whole vehicle (split equally
@@ -240,12 +242,35 @@ class DriverInputs:
         steer: TableLike | Mapping[str | int, TableLike] | None = None,
         steering_wheel: TableLike | None = None,
         steering_ratio: float | None = None,
+        path: ArrayLike | None = None,
+        preview: float | None = None,
+        min_distance: float | None = None,
         brake: TableLike | Brake | Mapping[str | int, TableLike | Brake] | None = None,
         drive: TableLike | Mapping[str | int, TableLike] | None = None,
         wheel_states: Sequence[Any] = (),
     ) -> None:
-        if steer is not None and steering_wheel is not None:
-            raise ParameterError("give steer (road-wheel angle) or steering_wheel, not both")
+        given = [k for k, v in (("steer", steer), ("steering_wheel", steering_wheel),
+                                ("path", path)) if v is not None]  # fmt: skip
+        if len(given) > 1:
+            raise ParameterError(
+                f"give one steering input (steer, steering_wheel or path), not {' and '.join(given)}"
+            )
+        self.path: Array | None = None
+        self.preview: float | None = None
+        self.min_distance: float | None = None
+        if path is not None:
+            try:
+                points = np.array(path, dtype=np.float64)
+            except (TypeError, ValueError) as e:
+                raise ParameterError(f"path must be (n, 2) points (m), got {path!r}") from e
+            if points.ndim != 2 or points.shape[1] != 2:
+                raise ParameterError(f"path must be (n, 2) points (m), got shape {points.shape}")
+            points.setflags(write=False)
+            self.path = points
+            self.preview = None if preview is None else float(preview)
+            self.min_distance = None if min_distance is None else float(min_distance)
+        elif preview is not None or min_distance is not None:
+            raise ParameterError("preview and min_distance are for a path: drop them or give it")
         self.steering_ratio: float | None = None
         self.steering_wheel: Array | None = None
         self.steer: Array | None = None
@@ -329,6 +354,8 @@ class DriverInputs:
             out["steer"] = ("steering_wheel", self.steering_wheel)
             if self.steering_ratio is not None:
                 out["steering_ratio"] = self.steering_ratio
+        elif self.path is not None:
+            out["steer"] = ("path", (self.path, self.preview, self.min_distance))
         elif self.wheel_steer:
             per: list[Array | None] = [None] * n
             for key, table in self.wheel_steer.items():
@@ -357,6 +384,8 @@ class DriverInputs:
             parts.append(f"steering_wheel={len(self.steering_wheel)} rows")
         if self.wheel_steer:
             parts.append(f"steer={list(self.wheel_steer)}")
+        if self.path is not None:
+            parts.append(f"path={len(self.path)} points")
         if self.brake:
             parts.append(f"brake={list(self.brake)}")
         if self.drive:

@@ -9,7 +9,10 @@ pub mod tyre;
 pub mod wheel;
 
 pub use inputs::{Braking, DriverInputs, Table, Trigger, WheelState, WheelSwitch};
-pub use steering::{LinkageGeometry, SteerInput, SteerReference, Steering, DEFAULT_ACKERMANN};
+pub use steering::{
+    DriverPath, LinkageGeometry, SteerInput, SteerReference, Steering, DEFAULT_ACKERMANN,
+    DEFAULT_PATH_MIN_DISTANCE, DEFAULT_PATH_PREVIEW,
+};
 pub use tyre::{
     CombinedSlip, Tyre, TyreForce, TyreModel, WheelAction, DEFAULT_CORNERING_COEFFICIENT,
     MAGIC_FORMULA_DEFAULTS,
@@ -20,7 +23,7 @@ pub use wheel::{
 };
 
 use crate::error::{Error, Result};
-use crate::math::{Aabb, Real};
+use crate::math::{Aabb, Matrix, Point, Real, Vector};
 
 /// Wheels may stick out of the body's box by this much (m) before they count as outside it.
 const WHEEL_OUTSIDE_MARGIN: Real = 0.1;
@@ -101,14 +104,31 @@ impl VehicleSpec {
     }
 
     /// The linkage's geometry and the reference's road-wheel angle at time `t` (rad; None
-    /// with per-wheel tables or without steering): what [`VehicleSpec::wheel_steer`] needs.
-    pub fn steering_at(&self, t: Real) -> (LinkageGeometry, Option<Real>) {
-        let delta = self
-            .inputs
-            .steer
-            .as_ref()
-            .and_then(|input| self.steering.reference_angle(input, t));
-        (LinkageGeometry::of(&self.wheels), delta)
+    /// with per-wheel tables or without steering) for the body at `position` (CG, world, m)
+    /// turned by `rotation` (body to world) moving at `velocity` (world, m/s): what
+    /// [`VehicleSpec::wheel_steer`] needs. A driver's path is steered from the pose.
+    pub fn steering_at(
+        &self,
+        t: Real,
+        position: &Point,
+        rotation: &Matrix,
+        velocity: &Vector,
+    ) -> (LinkageGeometry, Option<Real>) {
+        let geometry = LinkageGeometry::of(&self.wheels);
+        let delta = match &self.inputs.steer {
+            Some(SteerInput::Path(path)) => {
+                let x0 = geometry.fixed_axle_x().unwrap_or(0.0);
+                let axle = position + rotation * Vector::new(x0, geometry.centre_y(), 0.0);
+                let ahead = rotation * Vector::x();
+                let flat = ahead.x.hypot(ahead.y).max(1e-12);
+                let heading = [ahead.x / flat, ahead.y / flat];
+                let speed = velocity.x * heading[0] + velocity.y * heading[1];
+                Some(path.steer([axle.x, axle.y], heading, speed, geometry.wheelbase()))
+            }
+            Some(input) => self.steering.reference_angle(input, t),
+            None => None,
+        };
+        (geometry, delta)
     }
 
     /// Road-wheel angle (rad, about the body z axis, + left) of wheel `k` at time `t`, with
@@ -120,6 +140,14 @@ impl VehicleSpec {
             (Some(SteerInput::PerWheel(tables)), _) => {
                 tables[k].as_ref().map_or(0.0, |table| table.at(t))
             }
+            (Some(SteerInput::Path(_)), Some(delta)) => self.steering.wheel_angle_from(
+                SteerReference::Centre,
+                &at.0,
+                delta,
+                w.steerable,
+                w.center.x,
+                w.center.y,
+            ),
             (_, Some(delta)) => {
                 self.steering
                     .wheel_angle(&at.0, delta, w.steerable, w.center.x, w.center.y)

@@ -93,6 +93,132 @@ pub enum SteerInput {
     SteeringWheel(Table),
     /// Each wheel's own road-wheel angle (rad, + left), None for a wheel that does not turn.
     PerWheel(Vec<Option<Table>>),
+    /// A driver following a path: the linkage's road-wheel angle steers the axle's centre
+    /// onto a circle through a point of the path ahead (pure pursuit).
+    Path(DriverPath),
+}
+
+/// Default look-ahead of a driver following a path, in time at the current speed (s): 1 s,
+/// the preview of a driver's steering at road speeds (MacAdam, "Application of an optimal
+/// preview control for simulation of closed-loop automobile driving", IEEE SMC-11, 1981, used
+/// preview times of about 1 s).
+pub const DEFAULT_PATH_PREVIEW: Real = 1.0;
+/// Default shortest look-ahead of a driver following a path (m): 3 m, about a car's wheelbase.
+pub const DEFAULT_PATH_MIN_DISTANCE: Real = 3.0;
+
+/// A driver who follows a path on the ground by pure pursuit (Coulter, "Implementation of the
+/// Pure Pursuit Path Tracking Algorithm", CMU-RI-TR-92-01, 1992): from the point of the path
+/// nearest the centre of the axle that does not steer, the goal lies `l_d = max(min_distance,
+/// preview v)` further along the path; the steer angle (the steered axle's centre, the
+/// single-track model's) is `atan(2 L sin(alpha) / l_d)`, alpha the angle from the vehicle's
+/// heading to the goal seen from that axle and L the wheelbase, within +-60 deg. Forward
+/// driving only. Past the path's end the goal runs on along its last segment.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
+pub struct DriverPath {
+    /// The path's points on the ground (world x, y, m), at least 2, consecutive ones apart.
+    pub points: Vec<[Real; 2]>,
+    /// How far ahead the driver looks, in time at the current speed (s), in (0, 10].
+    pub preview: Real,
+    /// The shortest look-ahead distance (m), > 0 (at low speed).
+    pub min_distance: Real,
+}
+
+impl DriverPath {
+    /// Checks the numbers.
+    pub fn validate(&self) -> Result<()> {
+        if self.points.len() < 2 {
+            return Err(Error::Parameter(format!(
+                "a driver's path needs at least 2 points (got {})",
+                self.points.len()
+            )));
+        }
+        for (k, p) in self.points.iter().enumerate() {
+            for v in p {
+                crate::error::require_coordinate(&format!("path point {k}"), *v)?;
+            }
+            if k > 0 {
+                let q = self.points[k - 1];
+                if (p[0] - q[0]).hypot(p[1] - q[1]) < 1e-6 {
+                    return Err(Error::Parameter(format!(
+                        "path points {} and {k} are the same point: drop one",
+                        k - 1
+                    )));
+                }
+            }
+        }
+        require_finite("path preview", self.preview)?;
+        require_finite("path min_distance", self.min_distance)?;
+        if !(self.preview > 0.0 && self.preview <= 10.0) {
+            return Err(Error::parameter(
+                "path preview",
+                format!("{} s", self.preview),
+                "a driver looks ahead (0, 10] s (about 0.5-1.5 s)",
+            ));
+        }
+        if self.min_distance <= 0.0 {
+            return Err(Error::parameter(
+                "path min_distance",
+                format!("{} m", self.min_distance),
+                "the shortest look-ahead must be > 0 m (about the wheelbase)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The point `distance` (m) along the path from the point of it nearest `p` (world x,
+    /// y), extrapolated along the last segment past the end.
+    fn goal(&self, p: [Real; 2], distance: Real) -> [Real; 2] {
+        let (mut best, mut best_s, mut s) = (Real::INFINITY, 0.0, 0.0);
+        for w in self.points.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let len = d[0].hypot(d[1]);
+            let u = (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / (len * len)).clamp(0.0, 1.0);
+            let q = [a[0] + u * d[0], a[1] + u * d[1]];
+            let gap = (p[0] - q[0]).hypot(p[1] - q[1]);
+            if gap < best {
+                (best, best_s) = (gap, s + u * len);
+            }
+            s += len;
+        }
+        let mut target = best_s + distance;
+        for w in self.points.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+            if target <= len {
+                let u = target / len;
+                return [a[0] + u * (b[0] - a[0]), a[1] + u * (b[1] - a[1])];
+            }
+            target -= len;
+        }
+        // Past the end: along the last segment.
+        let n = self.points.len();
+        let (a, b) = (self.points[n - 2], self.points[n - 1]);
+        let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+        [
+            b[0] + (b[0] - a[0]) / len * target,
+            b[1] + (b[1] - a[1]) / len * target,
+        ]
+    }
+
+    /// The steer angle (rad, + left) of the steered axle's centre for a vehicle whose
+    /// non-steered axle's centre is at `axle` (world x, y, m), heading along the unit `heading`
+    /// (world x, y) at `speed` (m/s) with wheelbase `wheelbase` (m).
+    pub fn steer(&self, axle: [Real; 2], heading: [Real; 2], speed: Real, wheelbase: Real) -> Real {
+        let l_d = self.min_distance.max(self.preview * speed.max(0.0));
+        let g = self.goal(axle, l_d);
+        let to = [g[0] - axle[0], g[1] - axle[1]];
+        let alpha = (heading[0] * to[1] - heading[1] * to[0])
+            .atan2(heading[0] * to[0] + heading[1] * to[1]);
+        (2.0 * wheelbase * alpha.sin() / l_d)
+            .atan()
+            .clamp(-MAX_ROAD_WHEEL_ANGLE, MAX_ROAD_WHEEL_ANGLE)
+    }
 }
 
 /// Where the linkage's geometry lies, body frame (m): precomputed from the wheels.
@@ -110,6 +236,22 @@ pub struct LinkageGeometry {
 }
 
 impl LinkageGeometry {
+    /// The body-frame x of the axle that does not steer (m), None when every wheel steers.
+    pub fn fixed_axle_x(&self) -> Option<Real> {
+        self.x_ref
+    }
+
+    /// The wheelbase the linkage steers about (m): from the axle that does not steer to the
+    /// steered axle farthest from it.
+    pub fn wheelbase(&self) -> Real {
+        self.x_ref.map_or(0.0, |x0| (self.x_s - x0).abs())
+    }
+
+    /// The body-frame y of the wheels' centre line (m).
+    pub fn centre_y(&self) -> Real {
+        self.y_c
+    }
+
     /// The geometry of `wheels`.
     pub fn of(wheels: &[WheelSpec]) -> LinkageGeometry {
         let fixed: Vec<Real> = wheels
@@ -184,7 +326,7 @@ impl Steering {
         match input {
             SteerInput::RoadWheel(table) => Some(table.at(t)),
             SteerInput::SteeringWheel(table) => Some(table.at(t) / self.ratio.unwrap_or(1.0)),
-            SteerInput::PerWheel(_) => None,
+            SteerInput::PerWheel(_) | SteerInput::Path(_) => None,
         }
     }
 
@@ -192,6 +334,19 @@ impl Steering {
     /// when the reference is at `delta` (rad).
     pub fn wheel_angle(
         &self,
+        geometry: &LinkageGeometry,
+        delta: Real,
+        steerable: bool,
+        x: Real,
+        y: Real,
+    ) -> Real {
+        self.wheel_angle_from(self.reference, geometry, delta, steerable, x, y)
+    }
+
+    /// [`Steering::wheel_angle`] with the input's angle the `reference` wheel's.
+    pub fn wheel_angle_from(
+        &self,
+        reference: SteerReference,
         geometry: &LinkageGeometry,
         delta: Real,
         steerable: bool,
@@ -208,7 +363,7 @@ impl Steering {
         // The reference's y: the outer wheel's (on the right in a turn to the left, + delta,
         // when the axle lies ahead of the turn centre's line) or the centre line.
         let ahead = geometry.x_s > x_ref;
-        let y_r = match self.reference {
+        let y_r = match reference {
             SteerReference::Centre => geometry.y_c,
             SteerReference::Outer if (delta > 0.0) == ahead => geometry.y_right,
             SteerReference::Outer => geometry.y_left,
@@ -228,9 +383,13 @@ impl Steering {
     pub fn validate_input(&self, input: &SteerInput, wheels: &[WheelSpec]) -> Result<()> {
         let check = |what: &str, lo: Real, hi: Real| -> Result<()> {
             if lo < -MAX_ROAD_WHEEL_ANGLE || hi > MAX_ROAD_WHEEL_ANGLE {
+                let advice = if matches!(input, SteerInput::SteeringWheel(_)) {
+                    "check the steering-wheel table and the steering ratio"
+                } else {
+                    "a steering-wheel angle goes with the steering ratio"
+                };
                 return Err(Error::Parameter(format!(
-                    "{what} reaches {:.1} deg: road wheels turn at most 60 deg (give the \
-                     steering-wheel angle with the steering ratio instead)",
+                    "{what} reaches {:.1} deg: road wheels turn at most 60 deg ({advice})",
                     if hi > MAX_ROAD_WHEEL_ANGLE { hi } else { lo }.to_degrees()
                 )));
             }
@@ -255,6 +414,18 @@ impl Steering {
                     lo / ratio,
                     hi / ratio,
                 )?;
+            }
+            SteerInput::Path(path) => {
+                path.validate()?;
+                let g = LinkageGeometry::of(wheels);
+                if g.x_ref.is_none_or(|x0| g.x_s <= x0) {
+                    return Err(Error::Parameter(
+                        "a driver's path needs steered wheels ahead of wheels that do not steer \
+                         (the pure pursuit steers the front axle about the rear one)"
+                            .into(),
+                    ));
+                }
+                return Ok(());
             }
             SteerInput::PerWheel(tables) => {
                 if tables.len() != wheels.len() {
@@ -289,7 +460,7 @@ impl Steering {
             SteerInput::SteeringWheel(t) => {
                 t.range().0.abs().max(t.range().1.abs()) / self.ratio.unwrap_or(1.0)
             }
-            SteerInput::PerWheel(_) => 0.0,
+            SteerInput::PerWheel(_) | SteerInput::Path(_) => 0.0,
         };
         let tan = delta_max.tan();
         for (k, w) in wheels.iter().enumerate().filter(|(_, w)| w.steerable) {
