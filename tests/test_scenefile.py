@@ -188,6 +188,10 @@ WANTED_EXAMPLES = {
     "runout-sedan-into-pole.toml",
     "runout-rollover-kerb.toml",
     "fit-skid.toml",
+    "manoeuvre-step-steer.toml",
+    "manoeuvre-lane-change.toml",
+    "manoeuvre-fishhook.toml",
+    "reference-sedan-steer-15mph.toml",
 }
 
 
@@ -206,8 +210,13 @@ def test_every_example_loads(path: Path) -> None:
         pytest.skip(reason)
     case = load_scene(path)
     assert case.path == path and case.title
-    # two vehicles, or one and a wall, or one vehicle's run-out to fit (a [fit] table)
-    assert len(case.scene) + len(case.scene.obstacles) >= 2 or case.fit is not None
+    # two vehicles, or one and a wall, or one vehicle's run-out to fit (a [fit] table), or a
+    # manoeuvre on a ground
+    assert (
+        len(case.scene) + len(case.scene.obstacles) >= 2
+        or case.fit is not None
+        or case.scene.ground is not None
+    )
     assert case.run.longest > 0.0 and case.run.dt > 0.0
     scene, run, output = case  # unpacks
     assert scene is case.scene and run is case.run and output is case.output

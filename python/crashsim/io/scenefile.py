@@ -271,7 +271,17 @@ TYRE_KEYS = (
     "combined",
     "load_sensitivity",
 )
-INPUT_KEYS = ("steer", "steering_wheel", "steering_ratio", "brake", "drive", "wheel_states")
+INPUT_KEYS = (
+    "steer",
+    "steering_wheel",
+    "steering_ratio",
+    "path",
+    "preview",
+    "min_distance",
+    "brake",
+    "drive",
+    "wheel_states",
+)
 BRAKE_KEYS = ("time", "fraction", "deceleration", "wheels", "front_share")
 DRIVE_KEYS = ("time", "force", "wheels")
 STEER_KEYS = ("time", "angle", "wheels")
@@ -712,6 +722,24 @@ def _inputs(t: _Table) -> DriverInputs | None:
     if i.has("steering_ratio"):
         kwargs["steering_ratio"] = i.number("steering_ratio")
     i.taken.add("steering_ratio")
+    if i.has("path"):
+        points = i.raw("path")
+        if not isinstance(points, list) or not all(
+            isinstance(p, list) and len(p) == 2 for p in points
+        ):
+            i.fail("path", "expected a list of [x, y] points (lengths, e.g. [0, 0] or [\"5 m\", \"1 m\"])")
+        xy = []
+        for k, point in enumerate(points):
+            sub = _Table({"x": point[0], "y": point[1]}, i.key(f"path[{k}]"), i.file)
+            xy.append((sub.quantity("x", "length"), sub.quantity("y", "length")))
+        kwargs["path"] = xy
+        if i.has("preview"):
+            kwargs["preview"] = i.quantity("preview", "time", low="> 0")
+        if i.has("min_distance"):
+            kwargs["min_distance"] = i.quantity("min_distance", "length", low="> 0")
+    elif i.has("preview") or i.has("min_distance"):
+        i.fail("preview" if i.has("preview") else "min_distance", "this is for a path: give path")
+    i.taken.update(("path", "preview", "min_distance"))
     brakes: dict[str, tuple[str, list[tuple[float, float]]]] = {}
     shares: dict[str, float] = {}
     for r in _rows(i, "brake", BRAKE_KEYS):
