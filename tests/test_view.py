@@ -556,6 +556,12 @@ def test_whole_event_parts_are_drawn(
     assert any(re.fullmatch(r".*grass.*: friction 0\.35", x) for x in labels), labels
     assert any(re.fullmatch(r"red at rest \(t = [0-9.]+ s\)", x) for x in labels)
     assert "wall" in browser.execute_script("return Object.keys(crashsim.poses())")
+    # the vehicles' wheels as run, in the scene inputs' table (issue 19: tyre, steering,
+    # suspension listed)
+    table = browser.find_element("id", "inputs").text
+    for needed in ("tyre linear, 1 per 10.0 deg", "steering ratio, Ackermann", "roll gradient",
+                   "springs 1.30, 1.30, 1.30, 1.30 Hz", "ABS on"):  # fmt: skip
+        assert needed in table, (needed, table)
 
 
 @pytest.mark.skipif(not SHARED_MESHES.is_dir(), reason=MISSING)

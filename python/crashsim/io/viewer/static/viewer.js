@@ -805,6 +805,28 @@
         return s ? fmt(s.A, 0) + ', ' + fmt(s.B, 0) : 'no data';
       });
     }
+    // a run on the ground: the wheels, steering and tyre as the engine ran them (the report's
+    // scene.vehicles[].wheels)
+    if (vs.some((v) => v.wheels)) {
+      const w = (f) => (v) => (v.wheels ? f(v.wheels) : '-');
+      const DEG = 180 / Math.PI;
+      row('tyre', '', w((x) => {
+        const t = x.tyre;
+        if (t.model === 'linear') return 'linear, 1 per ' + fmt(1 / (t.cornering / DEG), 1) + ' deg';
+        if (t.model === 'linear_friction_scaled') return 'mu Fz at ' + fmt(t.saturation_angle * DEG, 1) + ' deg';
+        return 'Magic Formula ' + [t.b, t.c, t.e].map((c) => fmt(c, 2)).join(', ');
+      }));
+      row('combined slip', '', w((x) => x.tyre.combined.replace('_', ' ')));
+      row('rolling resistance', '', w((x) => fmt(x.tyre.rolling_resistance, 3)));
+      row('steering ratio, Ackermann', '', w((x) => (x.steering.ratio === null ? 'none' : fmt(x.steering.ratio, 1)) +
+        ', ' + fmt(x.steering.ackermann, 2) + ' (' + x.steering.reference + ')'));
+      row('springs', 'Hz', w((x) => x.natural_frequencies.map((f) => fmt(f, 2)).join(', ')));
+      row('damping ratios', '', w((x) => x.damping_ratios.map((f) => fmt(f, 2)).join(', ')));
+      row('roll stiffness front, rear', 'N m/deg', w((x) => (x.roll_stiffness
+        ? fmt(x.roll_stiffness.front / DEG, 0) + ', ' + fmt(x.roll_stiffness.rear / DEG, 0) : '-')));
+      row('roll gradient', 'deg/g', w((x) => (x.roll_gradient === undefined || x.roll_gradient === null ? '-' : fmt(x.roll_gradient * DEG, 1))));
+      row('ABS', '', w((x) => (x.abs ? 'on' : 'off')));
+    }
     sec.appendChild(table);
     if (report.scene.obstacles && report.scene.obstacles.length) {
       sec.appendChild(el('h3', { text: 'Fixed obstacles' }));
