@@ -254,12 +254,12 @@ impl LinkageGeometry {
 
     /// The geometry of `wheels`.
     pub fn of(wheels: &[WheelSpec]) -> LinkageGeometry {
-        let fixed: Vec<Real> = wheels
+        // Called per evaluation: no allocation.
+        let (sum, count) = wheels
             .iter()
             .filter(|w| !w.steerable)
-            .map(|w| w.center.x)
-            .collect();
-        let x_ref = (!fixed.is_empty()).then(|| fixed.iter().sum::<Real>() / fixed.len() as Real);
+            .fold((0.0, 0usize), |(s, n), w| (s + w.center.x, n + 1));
+        let x_ref = (count > 0).then(|| sum / count as Real);
         let y_c = wheels.iter().map(|w| w.center.y).sum::<Real>() / wheels.len().max(1) as Real;
         let x_s = match x_ref {
             Some(x0) => wheels
