@@ -654,6 +654,8 @@ RUNOUT_MAX_DURATION = 20.0  # s, the longest a run to rest may take (either side
 # world/stepper.rs); the others come from crashsim.vehicles.wheels.dynamics_defaults().
 MAX_SUBSTEP = 1e-3  # s
 MAX_SUBSTEP_ANGLE = 0.02  # rad
+MAX_SUBSTEP_RELAXATION = 1.0  # h |v_x| / sigma per sub-step
+MAX_SUBSTEP_SUSPENSION = 2.0  # h |lambda| per sub-step of the suspension's fastest mode
 AIRBORNE_RELAXATION = 0.02  # s
 YIELD_RELAXATION = 0.005  # s
 ROLLING_RESISTANCE_SPEED = 0.1  # m/s
@@ -664,6 +666,7 @@ WHEEL_CLEARANCE = 0.05  # m
 WHEEL_HALF_WIDTH = 0.15  # m
 MOVING_SPEED_FACTOR = 10.0  # MOVING_SPEED = 10 REST_SPEED; 10 REST_YAW_RATE counts as yawing
 SETTLED_ANGULAR_SPEED = math.radians(2.0)  # rad/s
+SETTLED_SPEED = 0.01  # m/s: every velocity component, as the engine's SETTLED_SPEED
 
 
 @dataclass
@@ -741,10 +744,11 @@ def _world_inverse(r: tuple[float, ...], inv: tuple[float, ...], lx: float, ly: 
 class PeerVehicles:
     """The engine's vehicles-on-the-ground model re-written in plain Python (scalar floats
     and the math module; numpy only where a body touches the ground): gravity; each wheel a
-    vertical spring-damper whose load is max(0, F0 + k (R - h) - c dh/dt); the
-    reconstruction tyre (tread deflection u with du/dt = -slip - |vx| / sigma u, force
-    k_t u + c_t du/dt with k_t = C / sigma, C = mu Fz / alpha_sat, c_t = 2 sqrt(k_t Fz / g);
-    friction circle; elasto-plastic yield at alpha_sat sigma; a locked wheel slides against
+    vertical spring-damper whose load is max(0, F0 + k (R - h) - c dh/dt + the anti-roll
+    bar's k_bar (c_l - c_r), each travel held at its droop -F0 / k); the linear tyre (tread
+    deflection u with du/dt = -slip - |vx| / sigma u, force k_t u + c_t du/dt with
+    k_t = C / sigma, C = c Fz the cornering coefficient times the load, c_t = 2 sqrt(k_t Fz /
+    g); friction circle; elasto-plastic yield at mu sigma / c; a locked wheel slides against
     its patch velocity; rolling resistance on a rolling wheel); the body's hull points as a
     stiff spring-damper with friction where they reach the ground; classical Runge-Kutta in
     sub-steps of at most 1 ms and 0.02 rad. The same equations as
@@ -766,7 +770,7 @@ class PeerVehicles:
         self.g = d["gravity"]
         self.mu = d["tyre_friction"]
         self.body_mu = d["body_friction"]
-        self.alpha_sat = d["saturation_angle"]
+        self.cornering = d["cornering"]
         self.sigma = d["relaxation_length"]
         self.rolling = d["rolling_resistance"]
         self.rest_speed = d["rest_speed"]
@@ -776,9 +780,24 @@ class PeerVehicles:
         self.bodies: list[dict[str, Any]] = []
         for v in vehicles:
             spec = v.wheels.spec(v.mass)
-            if spec["tyre"] not in ({"model": "linear"}, {}):
+            if spec["tyre"] != type(spec["tyre"])("linear"):
                 raise ValueError(f"the peer has the default linear tyre only, not {spec['tyre']}")
+            centers = np.asarray(spec["centers"], dtype=np.float64)
+            bars = [
+                (left, right, float(k) / float(centers[left, 1] - centers[right, 1]) ** 2)
+                for left, right, k in spec["anti_roll"]
+            ]
             inertia = np.asarray(v.inertia, dtype=np.float64)
+            # the bound on the suspension's fastest mode (the engine's suspension_rate)
+            inv_i_max = float(np.linalg.eigvalsh(np.linalg.inv(inertia)).max())
+            reach = np.linalg.norm(centers, axis=1) + np.asarray(spec["radii"], dtype=np.float64)
+            inv_m = 1.0 / v.mass + reach * reach * inv_i_max
+            stiffness = float(np.sum(np.asarray(spec["spring_rates"]) * inv_m)) + sum(
+                k_bar * (inv_m[left] + inv_m[right]) for left, right, k_bar in bars
+            )
+            suspension_rate = float(np.sum(np.asarray(spec["damping"]) * inv_m)) + math.sqrt(
+                stiffness
+            )
             wheels = [
                 (
                     *(float(c) for c in spec["centers"][k]),
@@ -814,6 +833,9 @@ class PeerVehicles:
                     "inertia": inertia,
                     "inv": tuple(float(a) for a in np.linalg.inv(inertia).ravel()),
                     "wheels": wheels,
+                    "bars": bars,
+                    "reach": float(reach.max()),
+                    "suspension_rate": suspension_rate,
                     "hull": pts,
                     "hull_lo": tuple(float(a) for a in pts.min(0)),
                     "hull_hi": tuple(float(a) for a in pts.max(0)),
@@ -822,103 +844,118 @@ class PeerVehicles:
                 }
             )
 
-    def rates(self, s: list[float], locked: list[bool]) -> list[float]:
-        """d/dt of the state ``s``; ``locked[b]``: every wheel of vehicle b is locked."""
+    def rates(self, b: int, s: list[float], lk: bool) -> list[float]:
+        """d/dt of vehicle b's state ``s`` (``STRIDE`` floats); ``lk``: every wheel locked."""
         mu, sigma, g = self.mu, self.sigma, self.g
-        u_sat = self.alpha_sat * sigma  # the tread's deflection at the friction limit
-        k_per_load = mu / u_sat  # tread stiffness per unit load C / (sigma Fz)
+        u_sat = mu * sigma / self.cornering  # the tread's deflection at the friction limit
+        k_per_load = self.cornering / sigma  # tread stiffness per unit load C / (sigma Fz)
         rolling = self.rolling
         out: list[float] = []
-        for b, body in enumerate(self.bodies):
-            o = b * STRIDE
-            x0, x1, x2, qw, qx, qy, qz, v0, v1, v2, lx, ly, lz = s[o : o + 13]
-            r = _rotation(qw, qx, qy, qz)
-            r00, r01, r02, r10, r11, r12, r20, r21, r22 = r
-            wx, wy, wz = _world_inverse(r, body["inv"], lx, ly, lz)
-            lk = locked[b]
-            # wheel axes in the ground plane: the body x axis (no steering), flattened
-            hn = math.hypot(r00, r10)
-            exx, exy = r00 / hn, r10 / hn
-            pz = -x2  # the contact patch is on z = 0
-            fx_t = fy_t = fz_t = tx = ty = tz = 0.0
-            du: list[float] = []
-            for k, (cx, cy, cz, radius, f0, rate, cdamp) in enumerate(body["wheels"]):
-                rcx = r00 * cx + r01 * cy + r02 * cz
-                rcy = r10 * cx + r11 * cy + r12 * cz
-                rcz = r20 * cx + r21 * cy + r22 * cz
-                # the spring-damper: compression R - h, compression rate -(centre velocity).z
-                fz = f0 + rate * (radius - x2 - rcz) - cdamp * (v2 + wx * rcy - wy * rcx)
-                u0, u1 = s[o + 13 + 2 * k], s[o + 14 + 2 * k]
-                if fz <= 0.0:  # off the ground: no force, the tread springs back
-                    du += (-u0 / AIRBORNE_RELAXATION, -u1 / AIRBORNE_RELAXATION)
-                    continue
-                vpx = v0 + wy * pz - wz * rcy
-                vpy = v1 + wz * rcx - wx * pz
-                vx = vpx * exx + vpy * exy
-                vy = vpy * exx - vpx * exy
-                kt = k_per_load * fz
-                damp = 2.0 * math.sqrt(kt * fz / g)
-                relax = abs(vx) / sigma
-                el1 = -vy - relax * u1
-                if lk:
-                    el0 = -vx - relax * u0
-                    fx = kt * u0 + damp * el0
-                else:
-                    el0 = -u0 / AIRBORNE_RELAXATION
-                    fx = 0.0
-                fy = kt * u1 + damp * el1
-                friction = mu * fz
+        body = self.bodies[b]
+        x0, x1, x2, qw, qx, qy, qz, v0, v1, v2, lx, ly, lz = s[:13]
+        r = _rotation(qw, qx, qy, qz)
+        r00, r01, r02, r10, r11, r12, r20, r21, r22 = r
+        wx, wy, wz = _world_inverse(r, body["inv"], lx, ly, lz)
+        # wheel axes in the ground plane: the body x axis (no steering), flattened
+        hn = math.hypot(r00, r10)
+        exx, exy = r00 / hn, r10 / hn
+        pz = -x2  # the contact patch is on z = 0
+        fx_t = fy_t = fz_t = tx = ty = tz = 0.0
+        du: list[float] = []
+        # the anti-roll bars' loads: each travel R - h, held at the spring's droop
+        bar = [0.0] * len(body["wheels"])
+        for left, right, k_bar in body["bars"]:
+            travel = []
+            for cx, cy, cz, radius, f0, rate, _ in (body["wheels"][left], body["wheels"][right]):
+                h = x2 + r20 * cx + r21 * cy + r22 * cz
+                travel.append(max(radius - h, -f0 / rate))
+            f = k_bar * (travel[0] - travel[1])
+            bar[left] += f
+            bar[right] -= f
+        for k, (cx, cy, cz, radius, f0, rate, cdamp) in enumerate(body["wheels"]):
+            rcx = r00 * cx + r01 * cy + r02 * cz
+            rcy = r10 * cx + r11 * cy + r12 * cz
+            rcz = r20 * cx + r21 * cy + r22 * cz
+            # the spring-damper: compression R - h, compression rate -(centre velocity).z
+            fz = f0 + rate * (radius - x2 - rcz) - cdamp * (v2 + wx * rcy - wy * rcx) + bar[k]
+            u0, u1 = s[13 + 2 * k], s[14 + 2 * k]
+            if fz <= 0.0:  # off the ground: no force, the tread springs back
+                du += (-u0 / AIRBORNE_RELAXATION, -u1 / AIRBORNE_RELAXATION)
+                continue
+            vpx = v0 + wy * pz - wz * rcy
+            vpy = v1 + wz * rcx - wx * pz
+            vx = vpx * exx + vpy * exy
+            vy = vpy * exx - vpx * exy
+            kt = k_per_load * fz
+            relax = abs(vx) / sigma
+            # critical damping of the wheel's share of the mass, less the rolling's renewal
+            share = fz / g
+            damp = max(2.0 * math.sqrt(kt * share) - share * relax, 0.0)
+            friction = mu * fz
+            el1 = -vy - relax * u1
+            if lk:
+                # both ways dragged by the slip, the resultant at most mu Fz; at the
+                # limit the tread slides (its deflection held at u_sat)
+                el0 = -vx - relax * u0
+                fx, fy = kt * u0 + damp * el0, kt * u1 + damp * el1
                 f_lin = math.hypot(fx, fy)
-                if f_lin > friction:
+                if f_lin >= friction:
                     fx, fy = fx * friction / f_lin, fy * friction / f_lin
                 un = math.hypot(u0, u1)
-                if un >= u_sat and un > 0.0:  # at the limit the tread slides
+                if un >= u_sat and un > 0.0:
                     d0, d1 = u0 / un, u1 / un
                     radial = el0 * d0 + el1 * d1
                     cut = radial - (min(radial, 0.0) - (un - u_sat) / YIELD_RELAXATION)
                     el0, el1 = el0 - cut * d0, el1 - cut * d1
-                du += (el0, el1)
-                if not lk:
-                    fx -= rolling * fz * vx / max(abs(vx), ROLLING_RESISTANCE_SPEED)
-                total = math.hypot(fx, fy)
-                if total > friction:
-                    fx, fy = fx * friction / total, fy * friction / total
-                fwx = fx * exx - fy * exy
-                fwy = fx * exy + fy * exx
-                fx_t += fwx
-                fy_t += fwy
-                fz_t += fz
-                tx += rcy * fz - pz * fwy
-                ty += pz * fwx - rcx * fz
-                tz += rcx * fwy - rcy * fwx
-            # the body's hull: the lowest corner of its points' box first
-            lo, hi = body["hull_lo"], body["hull_hi"]
-            lowest = (
-                min(r20 * lo[0], r20 * hi[0])
-                + min(r21 * lo[1], r21 * hi[1])
-                + min(r22 * lo[2], r22 * hi[2])
-            )
-            if x2 + lowest <= 0.0:
-                f, t = self._body_contact(body, r, (x0, x1, x2), (v0, v1, v2), (wx, wy, wz))
-                fx_t, fy_t, fz_t = fx_t + f[0], fy_t + f[1], fz_t + f[2]
-                tx, ty, tz = tx + t[0], ty + t[1], tz + t[2]
-            m = body["mass"]
-            out += (
-                v0,
-                v1,
-                v2,
-                0.5 * (-wx * qx - wy * qy - wz * qz),
-                0.5 * (qw * wx + wy * qz - wz * qy),
-                0.5 * (qw * wy + wz * qx - wx * qz),
-                0.5 * (qw * wz + wx * qy - wy * qx),
-                fx_t / m,
-                fy_t / m,
-                fz_t / m - g,
-                tx,
-                ty,
-                tz,
-            )
-            out += du
+            else:
+                # rolling free: no x deflection, rolling resistance along x, the lateral
+                # force at most what the friction leaves (braking priority)
+                el0 = -u0 / AIRBORNE_RELAXATION
+                fx = -rolling * fz * vx / max(abs(vx), ROLLING_RESISTANCE_SPEED)
+                if abs(fx) >= friction:
+                    fx = math.copysign(friction, fx)
+                available = math.sqrt(max(friction * friction - fx * fx, 0.0))
+                fy_lin = kt * u1 + damp * el1
+                fy = math.copysign(min(abs(fy_lin), available), fy_lin)
+                if kt * abs(u1) >= available and u1 * el1 >= 0.0:
+                    el1 = -(u1 - math.copysign(available / kt, u1)) / YIELD_RELAXATION
+            du += (el0, el1)
+            fwx = fx * exx - fy * exy
+            fwy = fx * exy + fy * exx
+            fx_t += fwx
+            fy_t += fwy
+            fz_t += fz
+            tx += rcy * fz - pz * fwy
+            ty += pz * fwx - rcx * fz
+            tz += rcx * fwy - rcy * fwx
+        # the body's hull: the lowest corner of its points' box first
+        lo, hi = body["hull_lo"], body["hull_hi"]
+        lowest = (
+            min(r20 * lo[0], r20 * hi[0])
+            + min(r21 * lo[1], r21 * hi[1])
+            + min(r22 * lo[2], r22 * hi[2])
+        )
+        if x2 + lowest <= 0.0:
+            f, t = self._body_contact(body, r, (x0, x1, x2), (v0, v1, v2), (wx, wy, wz))
+            fx_t, fy_t, fz_t = fx_t + f[0], fy_t + f[1], fz_t + f[2]
+            tx, ty, tz = tx + t[0], ty + t[1], tz + t[2]
+        m = body["mass"]
+        out += (
+            v0,
+            v1,
+            v2,
+            0.5 * (-wx * qx - wy * qy - wz * qz),
+            0.5 * (qw * wx + wy * qz - wz * qy),
+            0.5 * (qw * wy + wz * qx - wx * qz),
+            0.5 * (qw * wz + wx * qy - wy * qx),
+            fx_t / m,
+            fy_t / m,
+            fz_t / m - g,
+            tx,
+            ty,
+            tz,
+        )
+        out += du
         return out
 
     def _body_contact(
@@ -951,26 +988,41 @@ class PeerVehicles:
         return out
 
     def advance(self, s: list[float], dt: float, locked: list[bool]) -> list[float]:
-        """The state after dt s: RK4 in n equal sub-steps (at most 1 ms and 0.02 rad each; n
-        the largest over the vehicles)."""
-        w_max = max(math.sqrt(a * a + b * b + c * c) for a, b, c in self.angular_velocities(s))
-        n = max(1, math.ceil(dt / MAX_SUBSTEP - 1e-12), math.ceil(w_max * dt / MAX_SUBSTEP_ANGLE))
-        h = dt / n
-        h2, h6 = 0.5 * h, h / 6.0
-        for _ in range(n):
-            k1 = self.rates(s, locked)
-            k2 = self.rates([a + h2 * d for a, d in zip(s, k1, strict=True)], locked)
-            k3 = self.rates([a + h2 * d for a, d in zip(s, k2, strict=True)], locked)
-            k4 = self.rates([a + h * d for a, d in zip(s, k3, strict=True)], locked)
-            s = [
-                a + h6 * (d1 + 2.0 * (d2 + d3) + d4)
-                for a, d1, d2, d3, d4 in zip(s, k1, k2, k3, k4, strict=True)
-            ]
-            for o in range(0, len(s), STRIDE):
-                qw, qx, qy, qz = s[o + 3 : o + 7]
+        """The state after dt s: each vehicle by RK4 in its own n equal sub-steps, as the
+        engine's: at most 1 ms, 0.02 rad, a tread renewal of 1 (from twice the fastest patch
+        speed) and 2 / the suspension's fastest rate each."""
+        out: list[float] = []
+        for b, (wx, wy, wz) in enumerate(self.angular_velocities(s)):
+            body = self.bodies[b]
+            sb = s[b * STRIDE : (b + 1) * STRIDE]
+            w = math.sqrt(wx * wx + wy * wy + wz * wz)
+            patch_speed = 2.0 * (
+                math.sqrt(sb[7] ** 2 + sb[8] ** 2 + sb[9] ** 2) + w * body["reach"]
+            )
+            n = max(
+                1,
+                math.ceil(dt / MAX_SUBSTEP),
+                math.ceil(w * dt / MAX_SUBSTEP_ANGLE),
+                math.ceil(dt * patch_speed / self.sigma / MAX_SUBSTEP_RELAXATION),
+                math.ceil(dt * body["suspension_rate"] / MAX_SUBSTEP_SUSPENSION),
+            )
+            h = dt / n
+            h2, h6 = 0.5 * h, h / 6.0
+            lk = locked[b]
+            for _ in range(n):
+                k1 = self.rates(b, sb, lk)
+                k2 = self.rates(b, [a + h2 * d for a, d in zip(sb, k1, strict=True)], lk)
+                k3 = self.rates(b, [a + h2 * d for a, d in zip(sb, k2, strict=True)], lk)
+                k4 = self.rates(b, [a + h * d for a, d in zip(sb, k3, strict=True)], lk)
+                sb = [
+                    a + h6 * (d1 + 2.0 * (d2 + d3) + d4)
+                    for a, d1, d2, d3, d4 in zip(sb, k1, k2, k3, k4, strict=True)
+                ]
+                qw, qx, qy, qz = sb[3:7]
                 nq = math.sqrt(qw * qw + qx * qx + qy * qy + qz * qz)
-                s[o + 3 : o + 7] = [qw / nq, qx / nq, qy / nq, qz / nq]
-        return s
+                sb[3:7] = [qw / nq, qx / nq, qy / nq, qz / nq]
+            out += sb
+        return out
 
     def pose(self, s: list[float], b: int) -> tuple[np.ndarray, np.ndarray]:
         """Vehicle b's rotation matrix (body -> world) and CG position."""
@@ -1051,6 +1103,7 @@ def python_fcl_runout(
     events: list[tuple[str, float]] = []
     exchange_info: list[dict[str, Any]] = []
     slow_since: list[float | None] = [None] * nb
+    settled_since: list[float | None] = [None] * nb
     stopped_at: list[float | None] = [None] * nb
     wall_separation = None
     n_max = round(RUNOUT_MAX_DURATION / DT)
@@ -1089,7 +1142,9 @@ def python_fcl_runout(
                 wall_separation = time.perf_counter() - t_begin
         # rest: the engine's criterion (travel and yaw slow for rest_time; the time reported
         # is the first slow instant since the vehicle last moved; the run stops once every
-        # vehicle has also settled)
+        # vehicle has also been settled for rest_time: every velocity component below
+        # SETTLED_SPEED, every angular one below SETTLED_ANGULAR_SPEED; the cars never leave
+        # the plane here, so "on the ground" always holds)
         done = True
         for b, (wx, wy, wz) in enumerate(model.angular_velocities(s)):
             o = b * STRIDE
@@ -1100,16 +1155,25 @@ def python_fcl_runout(
                 slow_since[b] = None
             elif slow_since[b] is None:
                 slow_since[b] = t
-            if speed > moving_speed or abs(wz) > moving_yaw:
+            if speed > moving_speed or abs(v2) > moving_speed or abs(wz) > moving_yaw:
                 stopped_at[b] = None
             elif slow and stopped_at[b] is None:
                 stopped_at[b] = t
-            since = slow_since[b]
+            settled = (
+                slow
+                and math.sqrt(v0 * v0 + v1 * v1 + v2 * v2) < SETTLED_SPEED
+                and math.sqrt(wx * wx + wy * wy + wz * wz) < SETTLED_ANGULAR_SPEED
+            )
+            if not settled:
+                settled_since[b] = None
+            elif settled_since[b] is None:
+                settled_since[b] = t
+            since, calm = slow_since[b], settled_since[b]
             done = done and (
                 since is not None
                 and t - since >= model.rest_time - 1e-12
-                and math.sqrt(v0 * v0 + v1 * v1 + v2 * v2) < model.rest_speed
-                and math.sqrt(wx * wx + wy * wy + wz * wz) < SETTLED_ANGULAR_SPEED
+                and calm is not None
+                and t - calm >= model.rest_time - 1e-12
             )
         if done:
             break

@@ -23,11 +23,13 @@ The car (both sides): 1500 kg, CG 1.1 m behind the front axle and 1.6 m ahead of
 4.6 x 1.8 x 1.4 m (front overhang 0.9 m, rear 1.0 m, from 0.15 m above the ground), yaw inertia
 m (L / 2)^2 = 2734 kg m^2 (roll and pitch inertia of the uniform box: crashsim only). Tyre-road
 friction 0.8. The reconstruction tyre on both sides: lateral force linear in the slip angle
-with cornering stiffness C = mu Fz / 10 deg up to mu Fz, friction circle, locked wheels
-sliding at mu Fz against the patch velocity. pycrash scales its saturation angle by mu
-(``alpha_max * mu_max``), so it is given alpha_max = 10 deg / 0.8 to make its C the same as
-crashsim's. crashsim's rolling resistance is set to 0 (pycrash has none); every other crashsim
-parameter is its default (suspension 1.3 Hz, damping ratio 0.3, relaxation length 0.1 m).
+with cornering stiffness C = Fz / 10 deg up to mu Fz (crashsim's default since issue 19;
+pycrash's with its default alpha_max = 10 deg, which it scales by mu to saturate at mu x 10
+deg), locked wheels sliding at mu Fz against the patch velocity. Both front wheels steer alike
+(crashsim's linkage set to parallel steer with the axle centre's angle as the input) so the
+closed forms of the single-track model apply. crashsim's rolling resistance is 0 (its
+default; pycrash has none); every other crashsim parameter is its default (suspension 1.3 Hz,
+damping ratio 0.3, no anti-roll bars at this level of the binding, relaxation length 0.1 m).
 pycrash takes weight in lb and divides by 32.2 ft/s^2: the weight is set so that its mass
 is 1500 kg; its g is then 9.8146 m/s^2 against crashsim's 9.80665 (0.08 %).
 
@@ -273,13 +275,15 @@ class Crashsim:
             static_loads=self.loads,
             spring_rates=self.spring_rates,
             damping=self.damping,
-            tyre={
-                "model": "linear",
-                "rolling_resistance": rolling_resistance,
-                **({"relaxation_length": relaxation_length} if relaxation_length else {}),
-            },
-            steer=steer,
-            brake=[("fraction", np.asarray(brake))] * 4 if brake is not None else [],
+            tyre=self.core.Tyre(
+                "linear",
+                rolling_resistance=rolling_resistance,
+                relaxation_length=relaxation_length,
+            ),
+            ackermann=0.0,
+            steering_reference="centre",
+            steer=None if steer is None else ("road_wheel", steer),
+            brake=[("fraction", np.asarray(brake), None)] * 4 if brake is not None else [],
             switches=switches or [],
         )
         return i
@@ -362,9 +366,9 @@ def pycrash_vehicle_inputs(
 
 
 def pycrash_sim_defaults(dt: float) -> dict[str, float]:
-    # pycrash's tyre saturates at alpha_max * mu_max: 10 deg / mu makes it 10 deg, C = mu Fz /
-    # 10 deg, as crashsim's reconstruction tyre
-    return {"dt_motion": dt, "mu_max": MU, "alpha_max": ALPHA_SAT / MU}
+    # pycrash's tyre saturates at alpha_max * mu_max: its C = Fz / alpha_max, 10 deg as
+    # crashsim's linear tyre
+    return {"dt_motion": dt, "mu_max": MU, "alpha_max": ALPHA_SAT}
 
 
 MODEL_COLUMNS = [
@@ -693,10 +697,10 @@ def make_corner(side: Crashsim, dt_pc: float) -> Case:
     out = w.run(5.0, DT)
     spec = single_spec("corner", 5.0, dt_pc, CORNER_SPEED, steer=steer)
     case = Case("corner", "2. steady cornering at 0.2 g, 20 m/s", out, 0.0, spec)
-    # the same with crashsim's default tyre (rolling resistance 0.012): for the notes
+    # the same with a rolling resistance of 0.012 (a typical car tyre's): for the notes
     w = side.world()
     side.add_car(w, (0.0, 0.0), 0.0, CORNER_SPEED, steer=steer, rolling_resistance=0.012)
-    case.extra["default_tyre"] = w.run(5.0, DT)
+    case.extra["rolling_tyre"] = w.run(5.0, DT)
     return case
 
 
@@ -976,9 +980,9 @@ def skid_rows(case: Case) -> list[Row]:
 
 def understeer_gradient(loads: np.ndarray, car: Car) -> float:
     """K (rad s^2/m) of the single-track model with the axle cornering stiffnesses
-    C = mu Fz / alpha_sat of the given wheel loads (N, FL FR RL RR)."""
-    cf = MU * (loads[0] + loads[1]) / ALPHA_SAT
-    cr = MU * (loads[2] + loads[3]) / ALPHA_SAT
+    C = Fz / alpha_sat of the given wheel loads (N, FL FR RL RR)."""
+    cf = (loads[0] + loads[1]) / ALPHA_SAT
+    cr = (loads[2] + loads[3]) / ALPHA_SAT
     return car.mass / car.wheelbase * (car.b / cf - car.a / cr)
 
 
@@ -1033,15 +1037,15 @@ def corner_rows(case: Case) -> list[Row]:
 
 def linear_single_track(steer: np.ndarray, speed: float, t: np.ndarray) -> dict[str, np.ndarray]:
     """The linear single-track model's response to a road-wheel angle table (linear between
-    its points): constant forward speed, axle cornering stiffnesses mu Fz / alpha_sat at the
+    its points): constant forward speed, axle cornering stiffnesses Fz / alpha_sat at the
     static axle loads, no tyre lag; yaw rate, lateral acceleration, heading and lateral
     position (integrated to a relative tolerance of 1e-10)."""
     from scipy.integrate import solve_ivp
 
     c = CAR
     m, iz, a, b, u = c.mass, c.izz, c.a, c.b, speed
-    cf = MU * c.mass * G * b / c.wheelbase / ALPHA_SAT
-    cr = MU * c.mass * G * a / c.wheelbase / ALPHA_SAT
+    cf = c.mass * G * b / c.wheelbase / ALPHA_SAT
+    cr = c.mass * G * a / c.wheelbase / ALPHA_SAT
 
     def forces(time_s: float, v: float, r: float) -> tuple[float, float]:
         delta = float(np.interp(time_s, steer[:, 0], steer[:, 1]))
@@ -1669,12 +1673,12 @@ def case_notes(case: Case) -> list[str]:
             f"{CAR.b / CAR.wheelbase + MU * CAR.h_cg / CAR.wheelbase:.3f}"
         )
     if case.name == "corner":
-        default = case.extra.get("default_tyre")
+        default = case.extra.get("rolling_tyre")
         if default is not None:
             s = steady(crashsim_trace(default, 0, CAR), 4.0)
             delta = neutral_steer(CORNER_SPEED, CORNER_G)
             notes.append(
-                f"crashsim with its default tyre (rolling resistance 0.012): gain "
+                f"crashsim with rolling resistance 0.012 (0 is its default): gain "
                 f"{s['r'] / delta:.4f} 1/s, speed {s['u']:.3f} m/s (rolling resistance is "
                 f"heavier on the outer wheels: an understeering yaw moment)"
             )

@@ -66,14 +66,20 @@ def main() -> None:
 
     after = t >= 3.0
     offset = course(x, y)[after] - course(rx, ry)[after]
-    print(f"CG path: largest distance from PC-Crash's {miss.max():.2f} m at {t[k]:.1f} s "
-          f"(at 2, 4, 6, 8, 10 s: {', '.join(f'{miss[np.searchsorted(t, s)]:.2f}' for s in (2, 4, 6, 8, 10))} m)")  # fmt: skip
-    print(f"course after the ramp: {np.median(offset):+.2f} deg from PC-Crash's "
-          f"(range {offset.min():+.2f} .. {offset.max():+.2f})")
+    at = ", ".join(f"{miss[np.searchsorted(t, s)]:.2f}" for s in (2, 4, 6, 8, 10))
+    print(
+        f"CG path: largest distance from PC-Crash's {miss.max():.2f} m at {t[k]:.1f} s "
+        f"(at 2, 4, 6, 8, 10 s: {at} m)"
+    )
+    print(
+        f"course after the ramp: {np.median(offset):+.2f} deg from PC-Crash's "
+        f"(range {offset.min():+.2f} .. {offset.max():+.2f})"
+    )
     speed = np.hypot(np.gradient(rx, t), np.gradient(ry, t))
     ours = np.interp(t, result.t, np.linalg.norm(tr.velocity[:, :2], axis=1))
     print(f"speed: largest difference {np.abs(ours - speed)[1:-1].max():.3f} m/s")
-    print(f"steered wheels at the end: {', '.join(f'{math.degrees(a):.2f}' for a in result.wheel_steer('sedan')[:2, -1])} deg")
+    steer = ", ".join(f"{math.degrees(a):.2f}" for a in result.wheel_steer("sedan")[:2, -1])
+    print(f"steered wheels at the end: {steer} deg")
 
 
 if __name__ == "__main__":
