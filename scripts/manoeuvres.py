@@ -28,7 +28,6 @@ from pathlib import Path
 
 import crashsim as cs
 import numpy as np
-from crashsim.plots import plot_trajectories
 from crashsim.result import rotation_matrix
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
@@ -106,7 +105,8 @@ def iso4138() -> None:
     lin = g < 0.4
     slope = np.polyfit(g[lin], understeer[lin], 1)[0]
     print(f"  understeer gradient below 0.4 g: {slope:.2f} deg/g (road wheel); "
-          f"{slope * RATIO:.1f} deg/g at the steering wheel; largest a_y {g.max():.2f} g")  # fmt: skip
+          f"{slope * RATIO:.1f} deg/g at the steering wheel; "
+          f"largest a_y {g.max():.2f} g")  # fmt: skip
     fig = Figure(figsize=(11, 4.5))
     ax1, ax2 = fig.subplots(1, 2)
     ax1.plot(tr.position[:, 0], tr.position[:, 1], lw=1.0)
@@ -143,7 +143,8 @@ def single_track(speed: float, delta: np.ndarray, t: np.ndarray, sigma: float) -
             d = np.interp(t[k - 1], t, delta)
             af, ar = (v + a * r) / speed - d, (v - b * r) / speed
             rate = np.array([(ff + fr) / MASS - speed * r, (a * ff - b * fr) / IZZ,
-                             speed / sigma * (-cf * af - ff), speed / sigma * (-cr * ar - fr)])  # fmt: skip
+                             speed / sigma * (-cf * af - ff),
+                             speed / sigma * (-cr * ar - fr)])  # fmt: skip
             s = s + rate * h / 10
         out[k] = s[1]
     return out
@@ -154,7 +155,8 @@ def iso7401() -> None:
     speed = 80 / 3.6
     # the angle of 4 m/s^2 in the steady state of a first run
     probe = math.radians(30.0)
-    first = run(cs.DriverInputs(steering_wheel=[(0.0, 0.0), (0.5, 0.0), (0.575, probe)]), speed, 4.0)
+    probe_input = cs.DriverInputs(steering_wheel=[(0.0, 0.0), (0.5, 0.0), (0.575, probe)])
+    first = run(probe_input, speed, 4.0)
     ay0 = float(np.median(lateral_acceleration(first)[first.t > 3.0]))
     sw = probe * 4.0 / ay0
     ramp = sw / math.radians(400.0)
@@ -169,9 +171,11 @@ def iso7401() -> None:
     peak = float(r.max())
     delta = np.interp(t, [0.0, 0.5, 0.5 + ramp], [0.0, 0.0, sw / RATIO])
     model = single_track(speed, delta, t, 0.1)
-    print(f"  steering wheel {math.degrees(sw):.1f} deg; steady yaw rate {math.degrees(steady):.2f} "
-          f"deg/s (the single-track model {math.degrees(model[-1]):.2f}); response time to 90 % "
-          f"{1000 * (t90 - t50):.0f} ms from the input's 50 %; overshoot {100 * (peak / steady - 1):.1f} %; "
+    print(f"  steering wheel {math.degrees(sw):.1f} deg; "
+          f"steady yaw rate {math.degrees(steady):.2f} deg/s "
+          f"(the single-track model {math.degrees(model[-1]):.2f}); response time to 90 % "
+          f"{1000 * (t90 - t50):.0f} ms from the input's 50 %; "
+          f"overshoot {100 * (peak / steady - 1):.1f} %; "
           f"roll {math.degrees(roll(result)[-1]):.2f} deg")  # fmt: skip
     fig = Figure(figsize=(11, 4.5))
     ax1, ax2 = fig.subplots(1, 2)
@@ -244,7 +248,8 @@ def iso3888() -> None:
                 for p in (0.4, 0.6, 0.8, 1.0, 1.2, 1.5)]  # fmt: skip
         table.append((kmh, *max(runs)))
     for kmh, clearance, preview in table:
-        print(f"  {kmh:.0f} km/h: least clearance to the cones {clearance:+.2f} m (preview {preview:g} s)")
+        print(f"  {kmh:.0f} km/h: least clearance to the cones {clearance:+.2f} m "
+              f"(preview {preview:g} s)")  # fmt: skip
     passed = [row for row in table if row[1] >= 0.0]
     kmh, clearance, preview = passed[-1] if passed else table[0]
     speed = kmh / 3.6
@@ -265,18 +270,20 @@ def iso3888() -> None:
         outline = silhouette(vehicle, p, r)
         ax1.fill(*outline.exterior.xy, color="tab:red", alpha=0.12, lw=0)
     ax1.plot(x, y, color="tab:red", lw=1.0, label="CG path")
-    ax1.plot(xs, path[:, 1], color="grey", lw=0.8, ls=":", label="the lanes' centre line (the path)")
+    centre_label = "the lanes' centre line (the path)"
+    ax1.plot(xs, path[:, 1], color="grey", lw=0.8, ls=":", label=centre_label)
     for start, length, centre, lane in sections:
         for edge in (centre - lane / 2, centre + lane / 2):
-            ax1.plot([start, start + length / 2, start + length], [edge] * 3, "o", color="orange", ms=4)
+            stations = [start, start + length / 2, start + length]
+            ax1.plot(stations, [edge] * 3, "o", color="orange", ms=4)
     ax1.plot([], [], "o", color="orange", ms=4, label="ISO 3888-1 cones")
     ax1.set_xlim(-5.0, 125.0)
     ax1.set_xlabel("x (m)")
     ax1.set_ylabel("y (m), stretched")
     ax1.legend(loc="upper right", fontsize=8)
-    ax1.set_title(f"ISO 3888-1 double lane change: the reference sedan at {kmh:.0f} km/h following the "
-                  f"lanes (pure pursuit, {preview:g} s preview); least clearance {clearance:+.2f} m",
-                  fontsize=10)  # fmt: skip
+    ax1.set_title(f"ISO 3888-1 double lane change: the reference sedan at {kmh:.0f} km/h "
+                  f"following the lanes (pure pursuit, {preview:g} s preview); "
+                  f"least clearance {clearance:+.2f} m", fontsize=10)  # fmt: skip
     ax2.plot([row[0] for row in table], [row[1] for row in table], "o-")
     ax2.axhline(0.0, color="grey", lw=0.8)
     ax2.set_xlabel("entrance speed (km/h)")
@@ -311,8 +318,10 @@ def fishhook() -> None:
         loads = result.wheels("sedan").load
         phi = np.degrees(roll(result))
         lift = np.min(loads, axis=1)
-        print(f"  {mph:.0f} mph: largest roll {np.abs(phi).max():.1f} deg; lowest wheel loads "
-              + ", ".join(f"{n} {lo:.0f} N" for n, lo in zip(result.wheels('sedan').names, lift, strict=True)))  # fmt: skip
+        names = result.wheels("sedan").names
+        lowest = ", ".join(f"{n} {lo:.0f} N" for n, lo in zip(names, lift, strict=True))
+        print(f"  {mph:.0f} mph: largest roll {np.abs(phi).max():.1f} deg; "
+              f"lowest wheel loads {lowest}")  # fmt: skip
         ax1.plot(result.t, phi, label=f"{mph:.0f} mph")
         ax2.plot(result.t, loads[0] + loads[2], label=f"{mph:.0f} mph, left wheels")
     ax1.set_xlabel("t (s)")

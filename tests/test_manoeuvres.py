@@ -47,7 +47,8 @@ def test_the_step_steer_follows_the_linear_single_track_model() -> None:
     steer = result.wheel_steer("sedan")[:, -1]
     delta = 0.5 * (steer[0] + steer[1])
     speed = float(np.linalg.norm(tr.velocity[-1, :2]))
-    assert tr.angular_velocity[-1, 2] == pytest.approx(speed * math.tan(delta) / WHEELBASE, rel=0.03)
+    kinematic = speed * math.tan(delta) / WHEELBASE
+    assert tr.angular_velocity[-1, 2] == pytest.approx(kinematic, rel=0.03)
     # 4 m/s^2 of steady lateral acceleration, as the input was chosen for (5 %)
     assert speed * tr.angular_velocity[-1, 2] == pytest.approx(4.0, rel=0.05)
 
@@ -57,7 +58,11 @@ def _lanes(width: float) -> list[tuple[float, float, float, float]]:
     vehicle `width` m wide (lane widths 1.1 w + 0.25, 1.2 w + 0.25, 1.3 w + 0.25 m; the side
     lane offset 3.5 m; the exit lane's right edge in line with the entry's)."""
     w1, w2, w3 = 1.1 * width + 0.25, 1.2 * width + 0.25, 1.3 * width + 0.25
-    return [(0.0, 15.0, 0.0, w1), (45.0, 25.0, w2 / 2 - w1 / 2 + 3.5, w2), (95.0, 15.0, (w3 - w1) / 2, w3)]
+    return [
+        (0.0, 15.0, 0.0, w1),
+        (45.0, 25.0, w2 / 2 - w1 / 2 + 3.5, w2),
+        (95.0, 15.0, (w3 - w1) / 2, w3),
+    ]
 
 
 def test_the_lane_change_driver_keeps_the_car_inside_the_cones() -> None:
@@ -112,8 +117,8 @@ def test_a_driver_steers_back_onto_a_straight_line_and_stays_there() -> None:
     assert abs(tr.position[-1, 1] - 2.0) < 0.05  # measured 2.6 cm, closing
     assert abs(tr.angular_velocity[-1, 2]) < 0.01  # rad/s: settled on the line
     with pytest.raises(cs.ParameterError, match="path points 0 and 1 are the same point"):
-        cs.Scene(ground=cs.Ground()).add(car, (0.0, 0.0),
-                                         inputs=cs.DriverInputs(path=[(0, 0), (0, 0), (5, 0)]))  # fmt: skip
+        inputs = cs.DriverInputs(path=[(0, 0), (0, 0), (5, 0)])
+        cs.Scene(ground=cs.Ground()).add(car, (0.0, 0.0), inputs=inputs)
     with pytest.raises(cs.ParameterError, match="path preview"):
-        cs.Scene(ground=cs.Ground()).add(car, (0.0, 0.0),
-                                         inputs=cs.DriverInputs(path=line, preview=20.0))  # fmt: skip
+        inputs = cs.DriverInputs(path=line, preview=20.0)
+        cs.Scene(ground=cs.Ground()).add(car, (0.0, 0.0), inputs=inputs)

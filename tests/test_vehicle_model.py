@@ -74,7 +74,8 @@ def _steady_state(v: float, delta: float, e: float, k_front: float, k_rear: floa
         cf, cr = _axle_stiffness(front, df, e), _axle_stiffness(rear, dr, e)
         alpha_f = MASS * ay * B / L / cf
         alpha_r = MASS * ay * A / L / cr
-        return {"ay": ay, "phi": phi, "df": df, "dr": dr, "residual": L * r / v + alpha_f - alpha_r - delta}
+        residual = L * r / v + alpha_f - alpha_r - delta
+        return {"ay": ay, "phi": phi, "df": df, "dr": dr, "residual": residual}
 
     r = brentq(lambda r: parts(r)["residual"], 1e-6, 2.0 * v * delta / L)
     return {"r": r, **parts(r)}
@@ -174,7 +175,8 @@ def test_without_abs_the_front_wheels_lock_when_their_share_exceeds_their_fricti
     locked = _stop(cs.DriverInputs(brake=brake), v, abs=False)
     assert locked == pytest.approx(v**2 / (2.0 * a), rel=0.01)
     scene = cs.Scene(ground=cs.Ground())
-    scene.add(car(abs=False), (0.0, 0.0), velocity=(v, 0.0, 0.0), inputs=cs.DriverInputs(brake=brake))
+    inputs = cs.DriverInputs(brake=brake)
+    scene.add(car(abs=False), (0.0, 0.0), velocity=(v, 0.0, 0.0), inputs=inputs)
     marks = scene.run(2.0).tyre_marks("car")
     assert marks["front_left"] and marks["front_right"]  # the locked fronts leave marks
     assert not marks["rear_left"] and not marks["rear_right"]

@@ -278,6 +278,10 @@ fn switch(obj: &Bound<'_, PyAny>) -> PyResult<WheelSwitch> {
     Ok(WheelSwitch { wheel, at, state })
 }
 
+/// One wheel's braking as `World.set_vehicle` takes it: (kind, table, share), the share given
+/// for "distributed" only.
+pub type BrakeRow<'py> = (String, Bound<'py, PyAny>, Option<Real>);
+
 /// A vehicle from the arrays and lists of `World.set_vehicle`.
 #[allow(clippy::too_many_arguments)]
 pub fn vehicle(
@@ -292,7 +296,7 @@ pub fn vehicle(
     anti_roll: Vec<(usize, usize, Real)>,
     abs: bool,
     steer: Option<(String, Bound<'_, PyAny>)>,
-    brake: Vec<Option<(String, Bound<'_, PyAny>, Option<Real>)>>,
+    brake: Vec<Option<BrakeRow<'_>>>,
     drive: Vec<Option<Bound<'_, PyAny>>>,
     switches: Vec<Bound<'_, PyAny>>,
 ) -> PyResult<VehicleSpec> {

@@ -270,7 +270,7 @@ impl SceneSpec {
         anti_roll: Vec<(usize, usize, f64)>,
         abs: bool,
         steer: Option<(String, Bound<'_, PyAny>)>,
-        brake: Vec<Option<(String, Bound<'_, PyAny>, Option<f64>)>>,
+        brake: Vec<Option<ground::BrakeRow<'_>>>,
         drive: Vec<Option<Bound<'_, PyAny>>>,
         switches: Vec<Bound<'_, PyAny>>,
     ) -> PyResult<()> {

@@ -727,7 +727,10 @@ def _inputs(t: _Table) -> DriverInputs | None:
         if not isinstance(points, list) or not all(
             isinstance(p, list) and len(p) == 2 for p in points
         ):
-            i.fail("path", "expected a list of [x, y] points (lengths, e.g. [0, 0] or [\"5 m\", \"1 m\"])")
+            i.fail(
+                "path",
+                'expected a list of [x, y] points (lengths, e.g. [0, 0] or ["5 m", "1 m"])',
+            )
         xy = []
         for k, point in enumerate(points):
             sub = _Table({"x": point[0], "y": point[1]}, i.key(f"path[{k}]"), i.file)

@@ -253,7 +253,8 @@ class DriverInputs:
                                 ("path", path)) if v is not None]  # fmt: skip
         if len(given) > 1:
             raise ParameterError(
-                f"give one steering input (steer, steering_wheel or path), not {' and '.join(given)}"
+                "give one steering input (steer, steering_wheel or path), not "
+                + " and ".join(given)
             )
         self.path: Array | None = None
         self.preview: float | None = None

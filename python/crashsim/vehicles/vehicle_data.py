@@ -15,8 +15,9 @@ front axle, ``cg_height`` above the ground. ``yaw_inertia`` is about the vertica
 centre of mass. ``track_front`` and ``track_rear`` are the distances
 between the wheel centres of an axle (along y); ``tyre_radius`` is the tyre's rolling radius
 (m); ``roll_gradient`` the body's roll per g of steady lateral acceleration (rad per g), which
-sets the anti-roll bars of a vehicle on the class's wheels. Crush stiffness per face: force per unit width F/W = A + B C (see
-:mod:`crashsim.vehicles.stiffness`); the "side" face gives both "left" and "right".
+sets the anti-roll bars of a vehicle on the class's wheels. Crush stiffness per face: force per
+unit width F/W = A + B C (see :mod:`crashsim.vehicles.stiffness`); the "side" face gives both
+"left" and "right".
 """
 
 from __future__ import annotations

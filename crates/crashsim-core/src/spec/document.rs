@@ -72,7 +72,7 @@ enum MotionDoc {
         orientation: [Real; 4],
         velocity: [Real; 3],
         angular_velocity: [Real; 3],
-        vehicle: Option<VehicleDoc>,
+        vehicle: Option<Box<VehicleDoc>>,
     },
     Fixed {
         position: [Real; 3],
@@ -340,7 +340,7 @@ fn document(spec: &SceneSpec) -> Document {
                         orientation: quat(&state.orientation),
                         velocity: v3(&state.velocity),
                         angular_velocity: v3(&state.angular_velocity),
-                        vehicle: vehicle.as_ref().map(vehicle_doc),
+                        vehicle: vehicle.as_ref().map(|v| Box::new(vehicle_doc(v))),
                     }
                 }
                 BodyMotion::Fixed { pose } => MotionDoc::Fixed {
@@ -558,7 +558,7 @@ fn spec(doc: Document) -> Result<SceneSpec> {
                 };
                 let i = out.add_body(name, shape, props, state)?;
                 if let Some(v) = v {
-                    out.set_vehicle(i, vehicle(v)?)?;
+                    out.set_vehicle(i, vehicle(*v)?)?;
                 }
                 i
             }
