@@ -51,6 +51,23 @@ pub struct GroundPoint {
     pub normal: Vector,
 }
 
+/// A plane that bounds the ground from above over a region seen from above: every ground
+/// point `g` whose (x, y) lies in the region has `normal . g <= offset` (m). `normal` is a
+/// unit vector with a positive z, so a point `p` with `normal . p > offset` lies above the
+/// ground straight below it (they differ by a vertical offset only).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GroundBound {
+    /// Unit normal of the bounding plane (z > 0).
+    pub normal: Vector,
+    /// Largest `normal . g` over the region's ground points (m); minus infinity when the
+    /// region has no ground (off the terrain).
+    pub offset: Real,
+}
+
+/// The least z of the terrain's mean normal over a box that the bound over it takes as its
+/// plane's normal: a steeper mean (a wall's faces) gives a poor bound, and z is used.
+const MIN_BOUND_NORMAL_Z: Real = 0.2;
+
 /// The ground of a world.
 #[derive(Clone, Debug)]
 pub struct Ground {
@@ -179,6 +196,20 @@ impl Ground {
         }
     }
 
+    /// A plane bounding the ground over the box `lo`..`hi` (x, y; m, world) from above: for a
+    /// terrain, a plane along the mean slope of the triangles over the box (their area-weighted
+    /// normal) moved up to the highest ground in the box (each triangle clipped to it); for the
+    /// plane z = h, that plane. A body above it touches nothing in the box.
+    pub fn bound_under(&self, lo: [Real; 2], hi: [Real; 2]) -> GroundBound {
+        match &self.surface {
+            Surface::Plane { height } => GroundBound {
+                normal: Vector::z(),
+                offset: *height,
+            },
+            Surface::Terrain(mesh) => terrain_bound(mesh, lo, hi),
+        }
+    }
+
     /// Height of the ground at (x, y) (m); None off the terrain.
     pub fn height_at(&self, x: Real, y: Real) -> Option<Real> {
         self.below(&Point::new(x, y, 0.0)).map(|g| g.point.z)
@@ -236,6 +267,116 @@ fn terrain_below(mesh: &MeshShape, p: &Point) -> Option<GroundPoint> {
         point: Point::new(p.x, p.y, top - toi),
         normal,
     })
+}
+
+/// The terrain's [`GroundBound`] over the box `lo`..`hi` seen from above (see
+/// [`Ground::bound_under`]).
+fn terrain_bound(mesh: &MeshShape, lo: [Real; 2], hi: [Real; 2]) -> GroundBound {
+    // The triangles over the box (their boxes overlap it), and their mean upward normal
+    // weighted by area: the mean slope, so bumps cost only their height.
+    let mut inside = Vec::new();
+    let mut sum = Vector::zeros();
+    let nodes = mesh.bvh().nodes();
+    let mut stack = [0u32; MAX_DEPTH];
+    let mut n = 1;
+    while n > 0 {
+        n -= 1;
+        let node = &nodes[stack[n] as usize];
+        let b = &node.aabb;
+        if b.maxs.x < lo[0] || b.mins.x > hi[0] || b.maxs.y < lo[1] || b.mins.y > hi[1] {
+            continue;
+        }
+        if node.is_leaf() {
+            for &t in mesh.bvh().leaf_primitives(node) {
+                let [a, b, c] = mesh.triangle(t);
+                let (tlo, thi) = (
+                    a.coords.inf(&b.coords).inf(&c.coords),
+                    a.coords.sup(&b.coords).sup(&c.coords),
+                );
+                if thi.x < lo[0] || tlo.x > hi[0] || thi.y < lo[1] || tlo.y > hi[1] {
+                    continue;
+                }
+                let area = (b - a).cross(&(c - a));
+                sum += if area.z < 0.0 { -area } else { area };
+                inside.push(t);
+            }
+        } else {
+            let (l, r) = mesh.bvh().children(stack[n]);
+            stack[n] = l;
+            stack[n + 1] = r;
+            n += 2;
+        }
+    }
+    let normal = Some(sum)
+        .filter(|s| s.norm() > 0.0)
+        .map(|s| s.normalize())
+        .filter(|n| n.z >= MIN_BOUND_NORMAL_Z)
+        .unwrap_or_else(Vector::z);
+    // The highest ground along it: each triangle's part over the box.
+    let mut offset = Real::NEG_INFINITY;
+    let mut poly = [Point::origin(); CLIPPED_MAX];
+    for t in inside {
+        let k = clip_to_box(mesh.triangle(t), lo, hi, &mut poly);
+        for v in &poly[..k] {
+            offset = offset.max(normal.dot(&v.coords));
+        }
+    }
+    GroundBound { normal, offset }
+}
+
+/// Most corners of a triangle clipped by the four sides of a box: 3 + 4.
+const CLIPPED_MAX: usize = 7;
+
+/// The part of triangle `tri` inside the vertical prism over the box `lo`..`hi` (x, y), as a
+/// convex polygon written to `out`; returns its number of corners (0: no part inside).
+fn clip_to_box(
+    tri: [Point; 3],
+    lo: [Real; 2],
+    hi: [Real; 2],
+    out: &mut [Point; CLIPPED_MAX],
+) -> usize {
+    let mut a = [Point::origin(); CLIPPED_MAX];
+    a[..3].copy_from_slice(&tri);
+    let mut na = 3;
+    // Each side: (axis, bound, keep the side where coordinate >= bound).
+    for (axis, bound, above) in [
+        (0, lo[0], true),
+        (0, hi[0], false),
+        (1, lo[1], true),
+        (1, hi[1], false),
+    ] {
+        let inside = |p: &Point| {
+            if above {
+                p[axis] >= bound
+            } else {
+                p[axis] <= bound
+            }
+        };
+        let mut nb = 0;
+        for i in 0..na {
+            let (p, q) = (a[i], a[(i + 1) % na]);
+            let (pin, qin) = (inside(&p), inside(&q));
+            if pin {
+                out[nb] = p;
+                nb += 1;
+            }
+            if pin != qin {
+                // The edge crosses the side: the crossing point (p and q differ along axis).
+                let s = (bound - p[axis]) / (q[axis] - p[axis]);
+                let mut c = p + (q - p) * s;
+                c[axis] = bound;
+                out[nb] = c;
+                nb += 1;
+            }
+        }
+        a[..nb].copy_from_slice(&out[..nb]);
+        na = nb;
+        if na == 0 {
+            return 0;
+        }
+    }
+    out[..na].copy_from_slice(&a[..na]);
+    na
 }
 
 /// Crossing-number test; points on an edge count as inside.
@@ -444,5 +585,93 @@ mod tests {
             g.below(&Point::new(4.0, 3.0, -2.0)).is_some(),
             "below the terrain too"
         );
+    }
+
+    #[test]
+    fn the_bound_under_a_box_follows_the_mean_slope_up_to_the_highest_ground() {
+        // The ramp z = 0.1 x: the bound over any box on it is the ramp's own plane.
+        let v = vec![
+            Point::new(0.0, 0.0, 0.0),
+            Point::new(10.0, 0.0, 1.0),
+            Point::new(10.0, 10.0, 1.0),
+            Point::new(0.0, 10.0, 0.0),
+        ];
+        let ramp = Ground::terrain(Arc::new(
+            MeshShape::new(v.clone(), vec![[0, 1, 2], [0, 2, 3]]).unwrap(),
+        ))
+        .unwrap();
+        let b = ramp.bound_under([2.0, 3.0], [6.5, 4.0]);
+        let n = Vector::new(-0.1, 0.0, 1.0).normalize();
+        assert!((b.normal - n).norm() < 1e-12);
+        assert!(
+            b.offset.abs() < 1e-12,
+            "the ramp's plane passes through the origin"
+        );
+        // A tent (ridge along y at x = 5, 1 m high): across the ridge the flanks' mean is
+        // level and the bound goes through the ridge; over one flank it is the flank's plane.
+        let mut tent = v;
+        tent[1].z = 0.0;
+        tent[2].z = 0.0;
+        tent.push(Point::new(5.0, 0.0, 1.0));
+        tent.push(Point::new(5.0, 10.0, 1.0));
+        let tent = Ground::terrain(Arc::new(
+            MeshShape::new(tent, vec![[0, 4, 5], [0, 5, 3], [4, 1, 2], [4, 2, 5]]).unwrap(),
+        ))
+        .unwrap();
+        let across = tent.bound_under([3.0, 4.0], [8.0, 6.0]);
+        assert!((across.normal - Vector::z()).norm() < 1e-12);
+        assert!((across.offset - 1.0).abs() < 1e-12);
+        let right = tent.bound_under([6.0, 4.0], [8.0, 6.0]);
+        let n = Vector::new(0.2, 0.0, 1.0).normalize();
+        assert!((right.normal - n).norm() < 1e-12);
+        assert!((right.offset - n.dot(&Vector::new(5.0, 0.0, 1.0))).abs() < 1e-12);
+        // Off the terrain there is no ground: nothing to bound.
+        let off = tent.bound_under([20.0, 20.0], [21.0, 21.0]);
+        assert_eq!(off.offset, Real::NEG_INFINITY);
+        // The plane z = h is its own bound.
+        let plane = Ground::plane(-2.5)
+            .unwrap()
+            .bound_under([0.0, 0.0], [1.0, 1.0]);
+        assert_eq!((plane.normal, plane.offset), (Vector::z(), -2.5));
+    }
+
+    #[test]
+    fn a_triangle_clipped_to_a_box_keeps_its_part_over_the_box() {
+        // z = x over the triangle x, y >= 0, x + y <= 10.
+        let tri = [
+            Point::new(0.0, 0.0, 0.0),
+            Point::new(10.0, 0.0, 10.0),
+            Point::new(0.0, 10.0, 0.0),
+        ];
+        let mut poly = [Point::origin(); CLIPPED_MAX];
+        let area = |p: &[Point]| {
+            let n = p.len();
+            0.5 * (0..n)
+                .map(|i| {
+                    orient(
+                        [0.0, 0.0],
+                        [p[i].x, p[i].y],
+                        [p[(i + 1) % n].x, p[(i + 1) % n].y],
+                    )
+                })
+                .sum::<Real>()
+                .abs()
+        };
+        // A box wholly over it: the box itself, on the plane.
+        let k = clip_to_box(tri, [2.0, 1.0], [4.0, 3.0], &mut poly);
+        assert_eq!(k, 4);
+        assert!((area(&poly[..k]) - 4.0).abs() < 1e-12);
+        assert!(poly[..k].iter().all(|p| (p.z - p.x).abs() < 1e-12));
+        // A box across the long edge: the part x + y <= 10 of [6, 9] x [2, 5], area 2, its
+        // highest corner (8, 2, 8).
+        let k = clip_to_box(tri, [6.0, 2.0], [9.0, 5.0], &mut poly);
+        assert!((area(&poly[..k]) - 2.0).abs() < 1e-12);
+        let top = poly[..k]
+            .iter()
+            .map(|p| p.z)
+            .fold(Real::NEG_INFINITY, Real::max);
+        assert!((top - 8.0).abs() < 1e-12);
+        // A box beside it: nothing.
+        assert_eq!(clip_to_box(tri, [11.0, 0.0], [12.0, 1.0], &mut poly), 0);
     }
 }
