@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -174,7 +175,15 @@ def test_progress_flag_draws_the_bar(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stderr
     # (text mode reads each carriage return as a new line)
     assert done.stderr.count("%  t = ") >= 2 and done.stderr.startswith("\n  [")
-    assert done.stderr.endswith("100.0 %  t = 1000.000 of 1000 s\n")
+    bar, _, outputs = done.stderr.partition("100.0 %  t = 1000.000 of 1000 s\n")
+    assert bar and outputs
+    # then a line per output as it is written, with its time
+    lines = outputs.splitlines()
+    assert [line.split(" ...")[0] for line in lines] == [
+        "  writing report.json",
+        "  writing time-histories.csv",
+    ]
+    assert all(re.fullmatch(r"  writing \S+ \.\.\. \d+\.\d s", line) for line in lines)
 
 
 POLE = """format_version = 1

@@ -293,3 +293,71 @@ def test_frames_pose_the_vehicles(seed45: cs.Result, tmp_path: Path) -> None:
     bare.scene = None
     with pytest.raises(cs.SceneError, match="no scene"):
         export_glb(bare, tmp_path / "x.glb")
+
+
+# -- long runs: the keys follow what moves ----------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def long_rest() -> cs.Result:
+    """A car braked to rest in about 2 s on the ground, the run going on to 60 s."""
+    car = cs.Vehicle.generate("sedan")
+    scene = cs.Scene(ground=cs.Ground())
+    locked = cs.DriverInputs(wheel_states=[(w, "locked", 0.0) for w in car.wheels])
+    scene.add(car, (0.0, 0.0), heading=0.3, velocity=(12.0, 4.0, 0.0), inputs=locked)
+    return scene.run(60.0, 1e-3)
+
+
+def test_states_at_many_times_are_the_states_at_each(long_rest: cs.Result) -> None:
+    rng = np.random.default_rng(3)
+    times = np.r_[long_rest.t[[0, 17, 2500, -1]], rng.uniform(0.0, 60.0, 30)]
+    many = long_rest.states("sedan", times)
+    assert many["position"].shape == (len(times), 3)
+    assert many["orientation"].shape == (len(times), 4)
+    for k, t in enumerate(times):
+        one = long_rest.state("sedan", float(t))
+        for key, value in one.items():
+            assert np.array_equal(many[key][k], value), (key, t)
+    # a sample time gives the sample itself
+    tr = long_rest.trajectory("sedan")
+    assert np.array_equal(many["position"][1], tr.position[17])
+    with pytest.raises(cs.SceneError, match="outside the run"):
+        long_rest.states("sedan", [1.0, 61.0])
+
+
+def test_a_vehicle_at_rest_costs_two_keys_and_the_animation_still_follows_the_run(
+    long_rest: cs.Result, tmp_path: Path
+) -> None:
+    rest = long_rest.rest("sedan")
+    assert rest is not None and rest.time < 3.0
+    doc, blob = read_glb(export_glb(long_rest, tmp_path / "run.glb", fps=30.0))
+    got = tracks(doc, blob)
+    t = got["sedan"]["t"].astype(float)
+    # every frame while it moves and settles; a handful once nothing moves (not 30 per s)
+    assert len(t) < 30 * 6 + 10, len(t)
+    assert t[0] == 0.0 and t[-1] == pytest.approx(60.0, abs=1e-5)
+    # between frames while it brakes: the chord of the path, within a (1 / 30 s)^2 / 8 of
+    # the braking's 8 m/s^2 (1.1 mm); at rest within the still keys' drift (1 mm)
+    rng = np.random.default_rng(5)
+    for when, tol in [*((w, 1.5e-3) for w in rng.uniform(0.0, 4.0, 20)),
+                      *((w, 1e-3) for w in rng.uniform(4.0, 60.0, 20))]:  # fmt: skip
+        expected = long_rest.state("sedan", float(when))["position"]
+        position = sampled(t, got["sedan"]["translation"], float(when))
+        assert np.allclose(position, expected, rtol=0, atol=tol), when
+    # the wheels' tracks share the keys
+    for name, track in got.items():
+        assert np.array_equal(track["t"], got["sedan"]["t"]), name
+
+
+def test_a_run_longer_than_the_key_budget_is_keyed_at_a_lower_rate(
+    long_rest: cs.Result, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import crashsim.io.export as export
+
+    monkeypatch.setattr(export, "MAX_KEYS", 600)  # 10 per s over the 60 s run
+    with pytest.warns(UserWarning, match="keyed at 10 per second"):
+        path = export_glb(long_rest, tmp_path / "run.glb", fps=30.0)
+    t = tracks(*read_glb(path))["sedan"]["t"].astype(float)
+    assert len(t) <= 600 + 2
+    moving = t[t < 2.0]
+    assert np.allclose(np.diff(moving), 0.1, atol=1e-6)

@@ -51,6 +51,7 @@ import math
 import os
 import sys
 import tempfile
+import time
 import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -312,22 +313,41 @@ def _write_run(
     glb: bool = True,
     html: Path | None = None,
     title: str | None = None,
+    progress: IO[str] | None = None,
 ) -> list[Path]:
     """Writes a run's files into the folder ``out`` (made): report.json, the time histories,
-    the pictures, the GLB and the case page (at ``html``) as asked; returns their paths."""
+    the pictures, the GLB and the case page (at ``html``) as asked; returns their paths.
+    ``progress``: a stream that gets a line per output as it is written, with its time (a
+    long run's pictures and histories take seconds)."""
+
+    def writing(label: str, write: Callable[[], list[Path]]) -> list[Path]:
+        if progress is None:
+            return write()
+        progress.write(f"  writing {label} ...")
+        progress.flush()
+        start = time.perf_counter()
+        try:
+            return write()
+        finally:
+            progress.write(f" {time.perf_counter() - start:.1f} s\n")
+            progress.flush()
+
+    def one(path: Path, write: Callable[[Path], object]) -> list[Path]:
+        write(path)
+        return [path]
+
     written: list[Path] = []
     if report_json:
-        report.write_json(out / REPORT_FILE)
-        written.append(out / REPORT_FILE)
+        written += writing(REPORT_FILE, lambda: one(out / REPORT_FILE, report.write_json))
     if csv:
-        write_csv(result, out / CSV_FILE)
-        written.append(out / CSV_FILE)
+        written += writing(CSV_FILE, lambda: one(out / CSV_FILE, lambda p: write_csv(result, p)))
     if pictures:
-        written += _pictures(result, out)
+        written += writing("the pictures", lambda: _pictures(result, out))
     if glb:
-        written += _glb(result, out)
+        written += writing(GLB_FILE, lambda: _glb(result, out))
     if html is not None:
-        written.append(view(result, html, title=title))
+        page = html
+        written += writing(page.name, lambda: [view(result, page, title=title)])
     return written
 
 
@@ -427,6 +447,7 @@ def _run(args: argparse.Namespace) -> int:
         glb=want.glb and not args.no_pictures,
         html=html,
         title=case.title or None,
+        progress=sys.stderr if args.progress or sys.stderr.isatty() else None,
     )
     # printed last: the files are complete even when the reader of stdout stops early
     print(report.summary_table())
@@ -903,7 +924,8 @@ def _scene_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--progress",
         action="store_true",
-        help="show the progress bar on stderr even when it is not a terminal",
+        help="show the progress bar and a line per output written on stderr even when it is "
+        "not a terminal",
     )
 
 

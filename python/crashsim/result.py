@@ -19,7 +19,7 @@ from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import ParameterError, SceneError
@@ -56,16 +56,22 @@ def _finite_or_none(x: Any) -> Any:
     return None if isinstance(x, float) and not math.isfinite(x) else x
 
 
-def rotation_matrix(q: Array) -> Array:
-    """The 3x3 rotation (body -> world) of a unit quaternion (w, x, y, z)."""
-    w, x, y, z = np.asarray(q, dtype=np.float64) / np.linalg.norm(q)
-    return np.array(
+def rotation_matrix(q: ArrayLike) -> Array:
+    """The 3x3 rotation (body -> world) of a unit quaternion (w, x, y, z); for quaternions
+    (..., 4), the rotations (..., 3, 3), each quaternion normalised."""
+    q = np.asarray(q, dtype=np.float64)
+    if q.ndim == 1:
+        w, x, y, z = q / np.linalg.norm(q)
+    else:
+        w, x, y, z = np.moveaxis(q / np.linalg.norm(q, axis=-1, keepdims=True), -1, 0)
+    r = np.array(
         [
             [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
             [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
             [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
         ]
     )
+    return r if q.ndim == 1 else np.moveaxis(r, (0, 1), (-2, -1))
 
 
 class Trajectory(NamedTuple):
@@ -350,18 +356,24 @@ def _path_length(points: Array) -> float:
     return float(np.sum(np.linalg.norm(np.diff(points, axis=0), axis=1))) if len(points) else 0.0
 
 
-def _slerp(q0: Array, q1: Array, s: float) -> Array:
-    """Spherical linear interpolation of unit quaternions (shortest arc), s in [0, 1]."""
-    q0 = q0 / np.linalg.norm(q0)
-    q1 = q1 / np.linalg.norm(q1)
-    d = float(q0 @ q1)
-    if d < 0.0:
-        q1, d = -q1, -d
-    if d > 1.0 - 1e-12:
-        q = q0 + s * (q1 - q0)
-        return q / np.linalg.norm(q)
-    theta = math.acos(min(1.0, d))
-    return (math.sin((1.0 - s) * theta) * q0 + math.sin(s * theta) * q1) / math.sin(theta)
+def _slerp(q0: Array, q1: Array, s: Array) -> Array:
+    """Spherical linear interpolation of unit quaternions (shortest arc), row by row: q0, q1
+    (m, 4), s (m,) in [0, 1]."""
+    q0 = q0 / np.linalg.norm(q0, axis=1, keepdims=True)
+    q1 = q1 / np.linalg.norm(q1, axis=1, keepdims=True)
+    d = np.einsum("ij,ij->i", q0, q1)
+    flip = d < 0.0
+    q1 = np.where(flip[:, None], -q1, q1)
+    d = np.where(flip, -d, d)
+    near = d > 1.0 - 1e-12  # nearly the same rotation: linear, normalised
+    linear = q0 + s[:, None] * (q1 - q0)
+    linear /= np.linalg.norm(linear, axis=1, keepdims=True)
+    theta = np.arccos(np.minimum(1.0, d))
+    sin = np.where(near, 1.0, np.sin(theta))  # unused where near
+    arc = (np.sin((1.0 - s) * theta)[:, None] * q0 + np.sin(s * theta)[:, None] * q1) / sin[
+        :, None
+    ]
+    return np.where(near[:, None], linear, arc)
 
 
 class Result:
@@ -515,69 +527,84 @@ class Result:
         and linear on the angular velocity (an approximation whose error shrinks with the
         sample spacing, ``record_interval``). At an exchange instant this is the state after
         the exchange; ask for ``impact.time`` minus a hair (or use ``state_before``) for the
-        one before."""
+        one before. :meth:`states` gives many times at once."""
+        many = self.states(vehicle, [time])
+        return {key: _frozen(value[0]) for key, value in many.items()}
+
+    def states(self, vehicle: Any, times: ArrayLike) -> dict[str, Array]:
+        """A vehicle's states at many ``times`` (s, each in the run), as :meth:`state` gives
+        each: position (m, 3), orientation (m, 4), velocity (m, 3), angular_velocity (m, 3)
+        for m times, in their order; its cost grows with the times asked, not the samples."""
         tr = self.trajectory(vehicle)
-        if not tr.t[0] <= time <= tr.t[-1]:
+        ts = np.asarray(times, dtype=np.float64).reshape(-1)
+        outside = ts[~((tr.t[0] <= ts) & (ts <= tr.t[-1]))]
+        if outside.size:
+            time = outside[0].item()
             raise SceneError(f"t = {time!r} s is outside the run [{tr.t[0]}, {tr.t[-1]}] s")
-        k = int(np.searchsorted(tr.t, time, side="right")) - 1
-        sample = {
+        k = np.searchsorted(tr.t, ts, side="right") - 1
+        out = {
             "position": tr.position[k],
             "orientation": tr.orientation[k],
             "velocity": tr.velocity[k],
             "angular_velocity": tr.angular_velocity[k],
         }
-        if tr.t[k] == time or self.is_obstacle(vehicle):
-            return sample
-        if self.on_ground:
-            return self._interpolated(tr, k, float(time), self._before(_name_of(vehicle), k))
-        v = self.vehicle(vehicle)
-        p, q, vel, w = _core.free_motion(
-            v.mass,
-            v.inertia,
-            sample["position"],
-            sample["orientation"],
-            sample["velocity"],
-            sample["angular_velocity"],
-            float(time - tr.t[k]),
-        )
-        return {
-            "position": _frozen(p),
-            "orientation": _frozen(q),
-            "velocity": _frozen(vel),
-            "angular_velocity": _frozen(w),
-        }
+        between = np.flatnonzero(tr.t[k] != ts)
+        if between.size and not self.is_obstacle(vehicle):
+            kb = k[between]
+            if self.on_ground:
+                part = self._interpolated(tr, kb, ts[between], _name_of(vehicle))
+            else:
+                part = self._carried(vehicle, tr, kb, ts[between])
+            for key, value in part.items():
+                out[key][between] = value
+        return {key: _frozen(value) for key, value in out.items()}
 
-    def _before(self, name: str, k: int) -> tuple[Array, Array] | None:
-        """(velocity, angular velocity) of a vehicle just before an exchange at sample k + 1
-        (its samples hold the state after it), or None when no exchange of it is there."""
-        t1 = float(self.t[k + 1])
-        for imp in self.impacts:
-            if imp.time == t1 and name in imp.delta_v:
-                return imp.velocity_before[name], imp.angular_velocity_before[name]
-        return None
-
-    @staticmethod
-    def _interpolated(
-        tr: Trajectory, k: int, time: float, before: tuple[Array, Array] | None = None
+    def _carried(
+        self, vehicle: Any, tr: Trajectory, k: NDArray[np.intp], times: Array
     ) -> dict[str, Array]:
-        """Between samples k and k + 1: Hermite position, slerp orientation, linear rates;
-        ``before``: the rates just before an exchange at sample k + 1 (its sample holds the
-        rates after it)."""
-        t0, t1 = float(tr.t[k]), float(tr.t[k + 1])
+        """Samples k carried forward to ``times`` by torque-free motion."""
+        v = self.vehicle(vehicle)
+        rows = [
+            _core.free_motion(
+                v.mass,
+                v.inertia,
+                tr.position[j],
+                tr.orientation[j],
+                tr.velocity[j],
+                tr.angular_velocity[j],
+                float(t - tr.t[j]),
+            )
+            for j, t in zip(k, times, strict=True)
+        ]
+        keys = ("position", "orientation", "velocity", "angular_velocity")
+        return {key: np.array([row[i] for row in rows]) for i, key in enumerate(keys)}
+
+    def _interpolated(
+        self, tr: Trajectory, k: NDArray[np.intp], times: Array, name: str
+    ) -> dict[str, Array]:
+        """Between samples k and k + 1 (each time its own k): Hermite position, slerp
+        orientation, linear rates, the rates at k + 1 those just before an exchange there
+        (its sample holds the rates after it)."""
+        t0, t1 = tr.t[k], tr.t[k + 1]
         h = t1 - t0
-        s = (time - t0) / h
+        s = (times - t0) / h
         h00, h10 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s
         h01, h11 = -2 * s**3 + 3 * s**2, s**3 - s**2
         p0, p1 = tr.position[k], tr.position[k + 1]
-        v0, v1 = tr.velocity[k], tr.velocity[k + 1]
-        w0, w1 = tr.angular_velocity[k], tr.angular_velocity[k + 1]
-        if before is not None:
-            v1, w1 = before
+        v0, v1 = tr.velocity[k], tr.velocity[k + 1].copy()
+        w0, w1 = tr.angular_velocity[k], tr.angular_velocity[k + 1].copy()
+        # the rates just before an exchange at k + 1 (the first impact of the vehicle there)
+        for imp in reversed(self.impacts):
+            if name in imp.delta_v:
+                hit = t1 == imp.time
+                v1[hit] = imp.velocity_before[name]
+                w1[hit] = imp.angular_velocity_before[name]
+        col = (slice(None), None)
         return {
-            "position": _frozen(h00 * p0 + h10 * h * v0 + h01 * p1 + h11 * h * v1),
-            "orientation": _frozen(_slerp(tr.orientation[k], tr.orientation[k + 1], s)),
-            "velocity": _frozen((1 - s) * v0 + s * v1),
-            "angular_velocity": _frozen((1 - s) * w0 + s * w1),
+            "position": h00[col] * p0 + (h10 * h)[col] * v0 + h01[col] * p1 + (h11 * h)[col] * v1,
+            "orientation": _slerp(tr.orientation[k], tr.orientation[k + 1], s),
+            "velocity": (1 - s)[col] * v0 + s[col] * v1,
+            "angular_velocity": (1 - s)[col] * w0 + s[col] * w1,
         }
 
     def state_before(self, vehicle: Any, impact: Impact) -> dict[str, Array]:
@@ -659,7 +686,7 @@ class Result:
             / np.asarray(spec["spring_rates"], dtype=np.float64)
         )[:, None, None]
         tr = self.trajectory(name)
-        rot = np.array([rotation_matrix(q) for q in tr.orientation])  # (k, 3, 3)
+        rot = rotation_matrix(tr.orientation)  # (k, 3, 3)
         hub = tr.position[None, :, :] + np.einsum("kij,nj->nki", rot, body)  # (n, k, 3)
         d = hub - record.contact  # the ground's normal times the hub's height above it
         h = np.linalg.norm(d, axis=2)

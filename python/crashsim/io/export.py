@@ -27,8 +27,12 @@ Animation: one animation "motion" with, per vehicle, a translation and a rotatio
 LINEAR, quaternions in glTF's (x, y, z, w) order (crashsim's are (w, x, y, z)), times in s
 from the start of the run. Keys are at ``fps`` frames per second plus every impact's first
 contact and exchange instant (the velocity jumps there, so the pose between keys is exact at
-the impacts and linear in between). glTF stores float32: positions are rounded by at most
-0.5 um within 16 m of the origin (relative 6e-8), times by a relative 6e-8.
+the impacts and linear in between); keys inside a stretch where nothing moves are left out
+(a vehicle at rest costs two keys), and a run longer than MAX_KEYS frames is keyed at a lower
+rate, with a warning. The poses are taken at all keys at once (``Result.states``), so the
+export's time grows with the keys and the run's samples, not their product. glTF stores
+float32: positions are rounded by at most 0.5 um within 16 m of the origin (relative 6e-8),
+times by a relative 6e-8.
 
 The files are written with numpy, struct and json only (no glTF library): the format is
 small, and writing it here keeps the accessor bounds and alignment under our control.
@@ -39,6 +43,7 @@ from __future__ import annotations
 import json
 import math
 import struct
+import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -76,6 +81,17 @@ OBSTACLE_COLOUR = "#8c8c8c"
 GROUND_MARGIN = 3.0  # m of ground beyond the vehicles' reach on every side
 MAX_TILES = 60  # per side of the ground: the tile grows (1, 2, 5, 10 ... m) to keep under it
 MIN_KEY_GAP = 1e-4  # s: a frame closer than this to an impact instant is dropped for it
+# Keys of the animation at most: a frame rate that would give more is lowered to fit (55 min
+# of run at 30 fps); the file and the memory taken to write it grow with the keys (7 floats
+# per animated node and key).
+MAX_KEYS = 100_000
+# A node whose translation changes less than this (m) and whose rotation's components change
+# less than STILL_ROTATION between neighbouring keys is still there; keys inside a stretch
+# where every node is still are left out (linear interpolation redraws them) until the
+# change summed since the stretch began passes STILL_DRIFT times the tolerance.
+STILL_TRANSLATION = 1e-4
+STILL_ROTATION = 1e-5  # about 2e-5 rad
+STILL_DRIFT = 10.0
 
 _GLB_MAGIC = 0x46546C67  # "glTF"
 _CHUNK_JSON = 0x4E4F534A  # "JSON"
@@ -104,10 +120,10 @@ def _linear_rgba(hex_colour: str, alpha: float = 1.0) -> list[float]:
 
 
 def _gltf_quaternion(q_wxyz: ArrayLike) -> Array:
-    """crashsim's (w, x, y, z) as glTF's (x, y, z, w), normalised."""
-    q = np.asarray(q_wxyz, dtype=np.float64).reshape(4)
-    q = q / np.linalg.norm(q)
-    return np.array([q[1], q[2], q[3], q[0]])
+    """crashsim's (w, x, y, z) as glTF's (x, y, z, w), normalised; (..., 4) row by row."""
+    q = np.asarray(q_wxyz, dtype=np.float64)
+    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    return q[..., [1, 2, 3, 0]]
 
 
 class _Gltf:
@@ -437,7 +453,7 @@ class _Wheels:
             t = result.t
             last = np.r_[np.diff(t) > 0.0, True]
             tr = result.trajectory(name)
-            rot = np.array([rotation_matrix(q) for q in tr.orientation[last]])
+            rot = rotation_matrix(tr.orientation[last])
             centres = result.wheel_centres(name)[:, last, :]  # (n, k, 3) world
             rel = centres - tr.position[last][None, :, :]
             self.t = t[last]
@@ -445,32 +461,35 @@ class _Wheels:
             # each wheel's road-wheel angle as the engine ran it (rad, body z)
             self.steer = result.wheel_steer(name)[:, last]
 
-    def poses(self, t: float) -> list[tuple[Array, Array]]:
-        """(centre (3,) m world, glTF quaternion (x, y, z, w)) of each wheel at t."""
-        s = self.result.state(self.name, t)
-        p = np.asarray(s["position"], dtype=np.float64)
-        q = np.asarray(s["orientation"], dtype=np.float64)
-        r = rotation_matrix(q)
-        out = []
+    def poses(self, times: Array) -> tuple[Array, Array]:
+        """Each wheel's centre (n, m, 3) (m, world) and glTF quaternion (x, y, z, w)
+        (n, m, 4) at the m ``times`` (s)."""
+        s = self.result.states(self.name, times)
+        p, q = s["position"], s["orientation"]
+        r = rotation_matrix(q)  # (m, 3, 3)
+        centres, quaternions = [], []
         for k in range(len(self.names)):
-            b = np.array([np.interp(t, self.t, self.offsets[k, :, i]) for i in range(3)])
-            yaw = float(np.interp(t, self.t, self.steer[k]))
-            turn = np.array([math.cos(yaw / 2.0), 0.0, 0.0, math.sin(yaw / 2.0)])
-            out.append((p + r @ b, _gltf_quaternion(_multiply(q, turn))))
-        return out
+            b = np.stack([np.interp(times, self.t, self.offsets[k, :, i]) for i in range(3)], 1)
+            half = 0.5 * np.interp(times, self.t, self.steer[k])
+            zero = np.zeros_like(half)
+            turn = np.stack([np.cos(half), zero, zero, np.sin(half)], axis=1)
+            centres.append(p + np.einsum("mij,mj->mi", r, b))
+            quaternions.append(_gltf_quaternion(_multiply(q, turn)))
+        return np.array(centres), np.array(quaternions)
 
 
 def _multiply(a: ArrayLike, b: ArrayLike) -> Array:
-    """The quaternion product a b, both (w, x, y, z)."""
-    w1, x1, y1, z1 = np.asarray(a, dtype=np.float64)
-    w2, x2, y2, z2 = np.asarray(b, dtype=np.float64)
-    return np.array(
+    """The quaternion product a b, both (w, x, y, z); (..., 4) row by row."""
+    w1, x1, y1, z1 = np.moveaxis(np.asarray(a, dtype=np.float64), -1, 0)
+    w2, x2, y2, z2 = np.moveaxis(np.asarray(b, dtype=np.float64), -1, 0)
+    return np.stack(
         [
             w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
             w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
             w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
             w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
-        ]
+        ],
+        axis=-1,
     )
 
 
@@ -502,7 +521,13 @@ def _static_wheels(doc: _Gltf, wheels: _Wheels, vehicle_node: int) -> None:
 
 def _pose(result: Result, name: str, t: float) -> tuple[Array, Array]:
     """(CG position m, glTF quaternion (x, y, z, w)) of a vehicle at time t."""
-    s = result.state(name, t)
+    positions, quaternions = _poses(result, name, np.array([t]))
+    return positions[0], quaternions[0]
+
+
+def _poses(result: Result, name: str, times: Array) -> tuple[Array, Array]:
+    """(CG positions (m, 3) m, glTF quaternions (m, 4)) of a vehicle at the m ``times``."""
+    s = result.states(name, times)
     return np.asarray(s["position"], dtype=np.float64), _gltf_quaternion(s["orientation"])
 
 
@@ -541,6 +566,28 @@ def key_times(result: Result, fps: float) -> Array:
     return times[keep]
 
 
+def _moving_keys(tracks: list[tuple[Array, Array]], always: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """Which of the keys to write, given each node's (translation (m, 3), rotation (m, 4)) at
+    the m keys: the first, the last, those marked in ``always``, and every key where a node
+    moves. A key between two steps in which every node is still (translations within
+    STILL_TRANSLATION, rotation components within STILL_ROTATION) is left out, except one
+    whenever the change summed since the stretch began passes STILL_DRIFT of those
+    tolerances (a slow creep stays drawn): a vehicle at rest costs two keys, not one per
+    frame."""
+    m = len(always)
+    if m <= 2:
+        return np.ones(m, dtype=bool)
+    change = np.zeros(m - 1)
+    for translation, rotation in tracks:
+        change = np.maximum(change, np.abs(np.diff(translation, axis=0)).max(1) / STILL_TRANSLATION)
+        change = np.maximum(change, np.abs(np.diff(rotation, axis=0)).max(1) / STILL_ROTATION)
+    still = change < 1.0
+    drift = np.floor(np.r_[0.0, np.cumsum(change)] / STILL_DRIFT)
+    droppable = np.zeros(m, dtype=bool)
+    droppable[1:-1] = still[:-1] & still[1:] & (drift[1:-1] == drift[:-2])
+    return ~droppable | always
+
+
 def export_glb(result: Result, path: str | Path, fps: float = 30.0, *, ground: bool = True) -> Path:
     """Writes the run as one animated GLB (glTF 2.0 binary) at ``path``; returns the path.
 
@@ -561,19 +608,41 @@ def export_glb(result: Result, path: str | Path, fps: float = 30.0, *, ground: b
         raise ParameterError(f"fps must be a number of frames per second, got {fps!r}") from e
     if not math.isfinite(rate) or rate <= 0.0 or rate > 10_000.0:
         raise ParameterError(f"fps = {fps!r} is invalid: give frames per second in (0, 10000]")
+    span = float(result.t[-1] - result.t[0])
+    if span * rate > MAX_KEYS:
+        lowered = MAX_KEYS / span
+        warnings.warn(
+            f"{span:.0f} s of run at {rate:g} frames per second is more than {MAX_KEYS} keys: "
+            f"the animation is keyed at {lowered:.3g} per second instead (pass a lower fps, or "
+            "export a part of the run with export_frames)",
+            stacklevel=2,
+        )
+        rate = lowered
     doc = _Gltf()
     doc.doc["asset"]["extras"] = _extras(result)
     meshes = _vehicle_meshes(doc, result)
     times = key_times(result, rate)
+    # every animated node's track at every key: (name, mesh, translation, rotation)
+    tracks: list[tuple[str, int, Array, Array]] = []
+    for name, mesh in zip(result.vehicles, meshes, strict=True):
+        tracks.append((name, mesh, *_poses(result, name, times)))
+    all_wheels = _wheels(doc, result)
+    for wheels in all_wheels:
+        if wheels.moving:
+            centres, rotations = wheels.poses(times)
+            for k, (w, mesh) in enumerate(zip(wheels.names, wheels.meshes, strict=True)):
+                tracks.append((wheel_node_name(wheels.name, w), mesh, centres[k], rotations[k]))
+    for _, _, _, rotation in tracks:  # q and -q are one rotation: keep the short way
+        flips = np.einsum("ij,ij->i", rotation[1:], rotation[:-1]) < 0.0
+        rotation *= np.r_[1.0, np.where(np.cumsum(flips) % 2 == 1, -1.0, 1.0)][:, None]
+    impacts = np.isin(times, [t for i in result.impacts for t in (i.first_contact_time, i.time)])
+    keep = _moving_keys([(tr[2], tr[3]) for tr in tracks], impacts)
+    times = times[keep]
     time_accessor = doc.accessor(times)
     samplers: list[dict[str, Any]] = []
     channels: list[dict[str, Any]] = []
-
-    def animate(name: str, mesh: int, translation: Array, rotation: Array) -> int:
-        """A node with its mesh, posed at the first key, and its two samplers."""
-        for k in range(1, len(rotation)):  # q and -q are one rotation: keep the short way
-            if float(rotation[k] @ rotation[k - 1]) < 0.0:
-                rotation[k] = -rotation[k]
+    nodes = {}
+    for name, mesh, translation, rotation in tracks:
         node = doc.node(
             {
                 "name": name,
@@ -582,34 +651,21 @@ def export_glb(result: Result, path: str | Path, fps: float = 30.0, *, ground: b
                 "rotation": [float(c) for c in rotation[0]],
             }
         )
+        nodes[name] = node
         for path_name, values in (("translation", translation), ("rotation", rotation)):
             samplers.append(
                 {
                     "input": time_accessor,
-                    "output": doc.accessor(values),
+                    "output": doc.accessor(values[keep]),
                     "interpolation": "LINEAR",
                 }
             )
             channels.append(
                 {"sampler": len(samplers) - 1, "target": {"node": node, "path": path_name}}
             )
-        return node
-
-    nodes = {}
-    for name, mesh in zip(result.vehicles, meshes, strict=True):
-        poses = [_pose(result, name, float(t)) for t in times]
-        translation = np.array([p for p, _ in poses])
-        rotation = np.array([q for _, q in poses])
-        nodes[name] = animate(name, mesh, translation, rotation)
-    for wheels in _wheels(doc, result):
+    for wheels in all_wheels:
         if not wheels.moving:
             _static_wheels(doc, wheels, nodes[wheels.name])
-            continue
-        poses_w = [wheels.poses(float(t)) for t in times]  # [key][wheel]
-        for k, (w, mesh) in enumerate(zip(wheels.names, wheels.meshes, strict=True)):
-            translation = np.array([keyed[k][0] for keyed in poses_w])
-            rotation = np.array([keyed[k][1] for keyed in poses_w])
-            animate(wheel_node_name(wheels.name, w), mesh, translation, rotation)
     _obstacles(doc, result)
     if ground:
         _ground(doc, result)
@@ -662,8 +718,9 @@ def export_frames(
             if not wheels.moving:
                 _static_wheels(doc, wheels, nodes[wheels.name])
                 continue
-            for w, mesh, (p, q) in zip(
-                wheels.names, wheels.meshes, wheels.poses(float(t)), strict=True
+            centres, rotations = wheels.poses(np.array([t]))
+            for w, mesh, p, q in zip(
+                wheels.names, wheels.meshes, centres[:, 0], rotations[:, 0], strict=True
             ):
                 doc.node(
                     {
