@@ -1,7 +1,7 @@
 """The depth-of-penetration toolkit (crashsim.analysis.penetration) against closed forms, a
 numerical
 integration of the two-mass spring equations of motion, direct quadrature of the CRASH3
-energy density, and the collision matrix of DESIGN.md.
+energy density, and the collision matrix of docs/model.md.
 
 Tolerances: algebraic identities 1e-12 relative; the ODE (DOP853, rtol 1e-12, atol 1e-15 m)
 1e-6 relative to the maximum crush; quadrature (scipy quad, epsrel 1e-13) 1e-9 relative."""
@@ -250,7 +250,7 @@ def test_effective_mass_along_matches_collision_matrix_and_planar_gamma() -> Non
         r = rng.normal(size=3) * 1.5
         n = rng.normal(size=3)
         n_unit = n / np.linalg.norm(n)
-        # one body's part of DESIGN.md's K: (1/m) E - [r]x I^-1 [r]x; m_eff = 1 / (n.K n)
+        # one body's part of K (docs/model.md): (1/m) E - [r]x I^-1 [r]x; m_eff = 1 / (n.K n)
         rx = _cross_matrix(r)
         k_mat = np.eye(3) / m - rx @ np.linalg.inv(inertia) @ rx
         expected = 1.0 / (n_unit @ k_mat @ n_unit)

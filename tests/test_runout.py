@@ -119,7 +119,7 @@ def test_a_dropped_car_is_at_rest_only_after_it_lands_and_settles(drop) -> None:
 def test_a_body_without_wheels_slides_v_squared_over_two_mu_g_at_the_default_045(speed) -> None:
     # issue 24: the default body-ground friction changed from 0.45 to 0.40 survived every
     # test (the one that looked compared the default with itself). 0.45 is the documented
-    # default (DESIGN.md section 5: 0.4-0.5; docs/ground.md), written here, not read back.
+    # default (0.4-0.5 in reconstruction texts; docs/ground.md), written here, not read back.
     # The box slides at 30 deg from x and must rest heading 30 deg in the report (a rest
     # heading negated in scenes without obstacles also survived every test).
     heading = math.radians(30.0)

@@ -31,7 +31,7 @@ def test_central_collinear_impact_matches_the_closed_form(eps: float) -> None:
     imp = head_on(eps).run(duration=0.2, dt=1e-3).impacts[0]
     assert not imp.sliding
     assert np.allclose(imp.normal, [1.0, 0.0, 0.0], rtol=0, atol=1e-12)
-    expected = (1.0 + eps) * m2 / (m1 + m2) * v  # delta-V1 (DESIGN.md invariant)
+    expected = (1.0 + eps) * m2 / (m1 + m2) * v  # delta-V1 (docs/model.md invariant)
     assert -imp.delta_v["a"][0] == pytest.approx(expected, rel=1e-9)
     assert imp.speed_change("a") == pytest.approx(expected, rel=1e-9)
     assert imp.delta_v["b"][0] == pytest.approx((1.0 + eps) * m1 / (m1 + m2) * v, rel=1e-9)

@@ -29,7 +29,7 @@ pub const TYPICAL_DEPTH_OF_PENETRATION: (Real, Real) = (0.010, 0.060);
 /// stop (19.7 m/s) at 20 mm, up to 1.4 m/s per mm of d; with this footprint delta-V grows
 /// monotonically, about as d^2 (0.5 m/s at 20 mm, 11.8 at 0.1 m), to the full impact at
 /// 0.13-0.15 m, at most 0.3 m/s per mm. 0.018 m^2 is the largest footprint that keeps the
-/// DESIGN.md contract (the 50 % offset frontal's normal within 1.3 deg, read at 2 cm); the
+/// model's contract (docs/model.md, the 50 % offset frontal's normal within 1.3 deg, read at 2 cm); the
 /// small-overlap crash data (glance-off common below about 30 % overlap) would argue for more.
 pub const NORMAL_FOOTPRINT: Real = 0.018;
 

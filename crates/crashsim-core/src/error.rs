@@ -3,6 +3,8 @@
 //! The variants map one to one onto the Python exception tree in crashsim-py
 //! (`MeshError`, `ParameterError`, `InitialOverlapError`, `SimulationError`).
 
+use crate::math::Real;
+
 /// What went wrong, with a message that says how to fix it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {
@@ -31,7 +33,7 @@ impl Error {
 }
 
 /// Checks that `value` is finite.
-pub fn require_finite(name: &str, value: f64) -> Result<()> {
+pub fn require_finite(name: &str, value: Real) -> Result<()> {
     if value.is_finite() {
         Ok(())
     } else {
@@ -44,10 +46,10 @@ pub fn require_finite(name: &str, value: f64) -> Result<()> {
 /// 0.05 m of spring travel is below one unit in the last place, so a car on a plane at
 /// z = 1e30 skidded with no load on its tyres); a scene in a national grid belongs in
 /// coordinates from a local origin.
-pub const MAX_COORDINATE: f64 = 1e6;
+pub const MAX_COORDINATE: Real = 1e6;
 
 /// Checks that `value` (m) is a finite world coordinate within [`MAX_COORDINATE`].
-pub fn require_coordinate(name: &str, value: f64) -> Result<()> {
+pub fn require_coordinate(name: &str, value: Real) -> Result<()> {
     require_finite(name, value)?;
     if value.abs() <= MAX_COORDINATE {
         Ok(())

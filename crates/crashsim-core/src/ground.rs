@@ -11,11 +11,11 @@ use crate::error::{require_coordinate, require_finite, Error, Result};
 use crate::math::{Point, Real, Vector};
 use crate::shape::MeshShape;
 
-/// Default tyre-road friction outside every zone: 0.8, dry asphalt (DESIGN.md section 5;
+/// Default tyre-road friction outside every zone: 0.8, dry asphalt (docs/ground.md;
 /// the sourced table of surfaces is the Python package's `ground_surfaces`).
 pub const DEFAULT_TYRE_FRICTION: Real = 0.8;
 /// Default friction of a vehicle's body sliding on the road (roof, side, underbody): 0.45,
-/// inside the 0.4-0.5 of DESIGN.md section 5.
+/// inside the 0.4-0.5 reconstruction texts give (docs/ground.md).
 pub const DEFAULT_BODY_FRICTION: Real = 0.45;
 /// Largest friction coefficient accepted for a surface.
 const MAX_FRICTION: Real = 2.0;

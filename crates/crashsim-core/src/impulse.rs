@@ -1,4 +1,4 @@
-//! The 3-D impulse exchange of DESIGN.md section 1 (Kudlich-Slibar, with the Newton/Brach
+//! The 3-D impulse exchange of docs/model.md, "The impulse" (Kudlich-Slibar, with the Newton/Brach
 //! normal-restitution option).
 //!
 //! Conventions: n is the unit contact normal from body 1 into body 2; r_i = P - x_i;

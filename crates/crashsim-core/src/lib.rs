@@ -3,8 +3,8 @@
 //! Vehicles are rigid bodies with triangle meshes ([`shape::MeshShape`]). When two meshes
 //! first overlap a depth-of-penetration timer starts; when it expires one pair of impulses is
 //! exchanged at the impulse centroid by the Kudlich-Slibar model ([`impulse`]). The
-//! [`world::World`] steps everything and logs every exchange. Frames and units: DESIGN.md
-//! section 1 (SI; world z up; body frame at the CG, x forward, y left, z up).
+//! [`world::World`] steps everything and logs every exchange. Frames and units:
+//! docs/model.md (SI; world z up; body frame at the CG, x forward, y left, z up).
 
 pub mod batch;
 pub mod bisect;

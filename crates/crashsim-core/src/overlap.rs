@@ -1,5 +1,5 @@
 //! Queries between two posed meshes: do they overlap, how far apart are they, and the
-//! overlap region S with its volume normal (DESIGN.md section 1).
+//! overlap region S with its volume normal (docs/model.md, "The overlap region").
 //!
 //! A pose maps body-frame points into the world. The two-tree traversals work in mesh 1's
 //! body frame: mesh 2's node boxes are carried over by the relative pose and re-boxed

@@ -1,4 +1,4 @@
-//! The whole event on the ground (DESIGN.md section 5) against closed forms: static wheel
+//! The whole event on the ground (docs/model.md, "Vehicles on the ground") against closed forms: static wheel
 //! loads, a locked-wheel skid, steady cornering, a braked vehicle on a slope, energy at rest.
 //! Tolerances are stated at each assertion.
 

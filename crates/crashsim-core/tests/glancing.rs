@@ -1,6 +1,6 @@
 //! Glancing impacts (issue 10, item 4; docs/glancing.md): two boxes head-on passing with a
 //! lateral overlap d. Delta-V must be continuous in d, grow with it, vanish as d -> 0 and keep
-//! the DESIGN.md contract cases; every exchange conserves momentum and never gains energy.
+//! the contract cases of docs/model.md; every exchange conserves momentum and never gains energy.
 
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -130,7 +130,7 @@ fn a_corner_clip_is_not_a_full_stop() {
 
 #[test]
 fn the_50_percent_offset_still_reads_its_normal_at_2_cm() {
-    // DESIGN.md contract: the 50 % offset frontal's normal within 1.3 deg of the axis
+    // the contract (docs/model.md): the 50 % offset frontal's normal within 1.3 deg of the axis
     // (atan(2 x 0.02 / 1.8) = 1.27 deg), read at 2 cm of approach: its footprint there,
     // 0.02 m x 0.9 m, is exactly NORMAL_FOOTPRINT, so the reading does not move.
     let out = oncoming(0.9);

@@ -2,7 +2,7 @@
 with its exchanges grouped (the primary and its secondary exchanges, their summed delta-V and
 energy) and every timer that ended without an impulse.
 
-Why secondary exchanges happen (DESIGN.md section 1, "After the exchange"): after an exchange
+Why secondary exchanges happen (docs/model.md, "After the exchange"): after an exchange
 a pair stays engaged while its meshes overlap. When the relative velocity at the centroid along
 the normal turns closing again, a new depth-of-penetration timer starts and another impulse
 follows. Between exchanges the motion is torque-free, so that happens only when (a) another

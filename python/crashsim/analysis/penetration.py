@@ -6,7 +6,7 @@ obeys a simple harmonic oscillator with the reduced mass m' and the series stiff
 "depth of penetration" dt_p = sqrt(m'/k') (s) is the time for which two rigid shapes would
 pass through each other at the closing speed to produce the same maximum total crush.
 Equation numbers (eq. N) refer to the seed note on the depth-of-penetration parameter
-(/work/shared/seed/000_005cd8f78e215b1b.txt); DESIGN.md section 2 lists the toolkit.
+(/work/shared/seed/000_005cd8f78e215b1b.txt); docs/model.md ("What a user gets back") lists the toolkit.
 
 Every function takes floats or numpy arrays, broadcasts them against each other, and returns
 a float when all inputs are scalars, else a float64 array. SI units throughout: kg, m, s, N,
@@ -308,7 +308,7 @@ def effective_mass_along(mass: ArrayLike, inertia: ArrayLike, r: ArrayLike, n: A
     symmetric positive definite), shape (..., 3, 3); r: from the CG to the impulse centroid,
     m, shape (..., 3); n: the impulse direction (normalised here; non-zero), shape (..., 3).
     I, r and n in one frame (world or body). This is 1 / (n . K n) for one body's part of
-    the collision matrix K (DESIGN.md); for a horizontal r and n and a principal vertical
+    the collision matrix K (docs/model.md); for a horizontal r and n and a principal vertical
     axis it equals ``effective_mass(m, I_zz, h)`` with h = |(r x n)_z|. The reduced
     effective mass of a pair along n is ``reduced_mass(m1_eff, m2_eff)``."""
     m = _positive("mass", mass, "kg")

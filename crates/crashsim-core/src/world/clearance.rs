@@ -1,6 +1,6 @@
 //! A pair's clearance front: parts of the two meshes (pairs of BVH nodes, or of triangles)
 //! known to be apart, so that a step whose motion cannot close any of those gaps needs no
-//! mesh query (the no-contact-stepped-over guarantee of DESIGN.md section 1 kept by
+//! mesh query (the no-contact-stepped-over guarantee of docs/model.md, "First overlap", kept by
 //! certificates, not by a distance query every step).
 //!
 //! The front is a tree grown from the two root nodes. Its leaves hold two convex parts

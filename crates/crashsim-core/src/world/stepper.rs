@@ -31,7 +31,7 @@ pub const DEFAULT_MAX_HISTORY_BYTES: u64 = 1 << 30;
 pub const REST_SPEED: Real = 0.05;
 /// ... and its yaw rate below this (rad/s, 0.5 deg/s) ...
 pub const REST_YAW_RATE: Real = 0.5 * std::f64::consts::PI / 180.0;
-/// ... for this long (s) (DESIGN.md section 5).
+/// ... for this long (s) (docs/model.md, "Vehicles on the ground").
 pub const REST_TIME: Real = 0.2;
 /// A body faster than this along the ground (m/s) is moving again: its time to rest starts
 /// over.
@@ -91,11 +91,11 @@ fn sample_bytes(bodies: usize, wheels: usize) -> u64 {
 
 /// Human-readable bytes (binary units, as the 1 GiB default).
 fn show_bytes(b: u64) -> String {
-    let b = b as f64;
-    if b >= (1u64 << 30) as f64 {
-        format!("{:.2} GiB", b / (1u64 << 30) as f64)
-    } else if b >= (1u64 << 20) as f64 {
-        format!("{:.1} MiB", b / (1u64 << 20) as f64)
+    let b = b as Real;
+    if b >= (1u64 << 30) as Real {
+        format!("{:.2} GiB", b / (1u64 << 30) as Real)
+    } else if b >= (1u64 << 20) as Real {
+        format!("{:.1} MiB", b / (1u64 << 20) as Real)
     } else {
         format!("{:.1} KiB", b / 1024.0)
     }
