@@ -17,5 +17,6 @@ if [ ${#missing[@]} -gt 0 ] && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/nu
 fi
 python3 -m pip install --quiet ".[test]"
 cargo test --workspace --exclude crashsim-py --quiet
-# Run pytest from tests/ so the installed package (not the source tree) is imported.
-python3 -m pytest tests
+# pytest on every core (pytest-xdist: each test runs whole in one worker, so what a test
+# checks is unchanged).
+python3 -m pytest -n auto tests
