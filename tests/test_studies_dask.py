@@ -161,7 +161,8 @@ def test_a_worker_killed_mid_study_loses_nothing_and_counts_nothing_twice(
         if killed:
             return
         busy = {w: ts for w, ts in c.processing().items() if ts}
-        assert busy, "no worker is running a chunk"
+        if not busy:  # between chunks (a loaded machine): kill at a later report
+            return
         worker = sorted(busy)[0]
         pid = c.run(os.getpid, workers=[worker])[worker]
         os.kill(pid, signal.SIGKILL)
@@ -169,7 +170,8 @@ def test_a_worker_killed_mid_study_loses_nothing_and_counts_nothing_twice(
 
     study = cs.monte_carlo(_scene(), DISTRIBUTIONS, n=120, seed=7, duration=DURATION, dt=DT,
                            progress=progress, backend="dask", client=c, chunk_size=6)
-    assert killed and killed[0][2] >= 1  # the worker died with a chunk in hand
+    assert killed, "no report found a worker running a chunk to kill"
+    assert killed[0][2] >= 1  # the worker died with a chunk in hand
     assert killed[0][1] in before
     assert killed[0][1] not in set(c.run(os.getpid).values())  # it is gone
     assert not study.interrupted
