@@ -1,9 +1,9 @@
 """crashsim's vehicle motion side by side with pycrash's (crashsim issue 11).
 
 The same manoeuvres of the same car run in crashsim (``crashsim._core.World`` with ground,
-wheels and tyres, docs/model.md "Vehicles on the ground") and in pycrash 0.0.18's planar vehicle model
-(``pycrash.vehicle_model.vehicle_model`` for one vehicle, ``pycrash.Impact`` with "IMPC" for
-two), and the figures are printed side by side with the closed forms:
+wheels and tyres, docs/model.md "Vehicles on the ground") and in pycrash 0.0.18's planar
+vehicle model (``pycrash.vehicle_model.vehicle_model`` for one vehicle, ``pycrash.Impact``
+with "IMPC" for two), and the figures are printed side by side with the closed forms:
 
 1. **Locked-wheel skid** from 20 m/s to rest: distance and time against v^2 / (2 mu g) and
    v / (mu g).

@@ -6,7 +6,8 @@ obeys a simple harmonic oscillator with the reduced mass m' and the series stiff
 "depth of penetration" dt_p = sqrt(m'/k') (s) is the time for which two rigid shapes would
 pass through each other at the closing speed to produce the same maximum total crush.
 Equation numbers (eq. N) refer to the seed note on the depth-of-penetration parameter
-(/work/shared/seed/000_005cd8f78e215b1b.txt); docs/model.md ("What a user gets back") lists the toolkit.
+(/work/shared/seed/000_005cd8f78e215b1b.txt); docs/model.md ("What a user gets back") lists
+the toolkit.
 
 Every function takes floats or numpy arrays, broadcasts them against each other, and returns
 a float when all inputs are scalars, else a float64 array. SI units throughout: kg, m, s, N,
