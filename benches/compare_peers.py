@@ -650,7 +650,7 @@ def scene_phases(setup: SceneSetup, result: Any) -> list[tuple[str, float, float
 # -- 5. the whole event: the same scene on the ground, run to rest ---------------------------
 
 RUNOUT_MAX_DURATION = 20.0  # s, the longest a run to rest may take (either side)
-# The engine's constants the peer re-uses (crates/crashsim-core/src/motion.rs, vehicle/tyre.rs,
+# The engine's constants the peer re-uses (crates/crashsim-core/src/motion/, vehicle/tyre.rs,
 # world/stepper.rs); the others come from crashsim.vehicles.wheels.dynamics_defaults().
 MAX_SUBSTEP = 1e-3  # s
 MAX_SUBSTEP_ANGLE = 0.02  # rad
@@ -752,7 +752,7 @@ class PeerVehicles:
     its patch velocity; rolling resistance on a rolling wheel); the body's hull points as a
     stiff spring-damper with friction where they reach the ground; classical Runge-Kutta in
     sub-steps of at most 1 ms and 0.02 rad. The same equations as
-    crates/crashsim-core/src/motion.rs and vehicle/ (read there, written anew here) for what
+    crates/crashsim-core/src/motion/ and vehicle/ (read there, written anew here) for what
     the scene uses: the level ground z = 0 with one friction, the linear tyre, no steering,
     brakes or drive (each wheel free or locked).
 

@@ -442,9 +442,10 @@ RUN_OUT_EXAMPLES = [
     "runout-rollover-kerb",
 ]
 SINK = 0.02  # m: nothing goes further below the ground than this
-# The engine's points of a mesh left to its wheels (crates/crashsim-core/src/motion.rs,
-# WHEEL_HALF_WIDTH and WHEEL_CLEARANCE): a mesh's own wheels are part of its rigid body, so
-# they dip when the suspension compresses; they are checked against the tyre instead.
+# The engine's points of a mesh left to its wheels (WHEEL_HALF_WIDTH and WHEEL_CLEARANCE in
+# crates/crashsim-core/src/motion/ground_contact.rs): a mesh's own wheels are part of its
+# rigid body, so they dip when the suspension compresses; they are checked against the tyre
+# instead.
 WHEEL_HALF_WIDTH, WHEEL_CLEARANCE = 0.15, 0.05
 
 
@@ -544,8 +545,8 @@ def test_the_examples_figures(examples) -> None:
 
 def test_the_rollover_lands_within_2_cm(examples) -> None:
     """Landing on its roof the SUV's hull points are slowed by inelastic impulses (the
-    engine's landing, crates/crashsim-core/src/motion.rs): 1.8 cm into the road for a moment
-    (4.6 cm with the body-ground spring alone), a few mm at rest on the spring."""
+    engine's landing, crates/crashsim-core/src/motion/ground_contact.rs): 1.8 cm into the
+    road for a moment (4.6 cm with the body-ground spring alone), a few mm at rest on the spring."""
     lowest, _ = sinking(examples["runout-rollover-kerb"], "suv")
     assert lowest.min() >= -SINK
     assert lowest[-1] >= -0.005
