@@ -69,9 +69,9 @@ from crashsim.vehicles.generator import PRESETS, SHAPE_PARAMETERS
 from crashsim.vehicles.inputs import Brake, DriverInputs
 from crashsim.vehicles.meshio import axes_rotation, unit_scale
 from crashsim.vehicles.stiffness import FACES
+from crashsim.vehicles.tyre import TYRE_MODELS, TYRE_PARAMETERS, Tyre
 from crashsim.vehicles.vehicle import SOLIDS, Vehicle
 from crashsim.vehicles.vehicle_data import vehicle_class
-from crashsim.vehicles.wheels import TYRE_MODELS, Tyre
 
 __all__ = [
     "DIMENSIONS",
@@ -259,18 +259,7 @@ WHEEL_KEYS = (
     "steering_reference",
     "abs",
 )
-TYRE_KEYS = (
-    "model",
-    "cornering",
-    "saturation_angle",
-    "b",
-    "c",
-    "e",
-    "relaxation_length",
-    "rolling_resistance",
-    "combined",
-    "load_sensitivity",
-)
+TYRE_KEYS = TYRE_PARAMETERS
 INPUT_KEYS = (
     "steer",
     "steering_wheel",

@@ -1,4 +1,5 @@
-"""Wheels and tyres: what a vehicle stands and runs on when the scene has a ground.
+"""Wheels: what a vehicle stands and runs on when the scene has a ground (its tyre:
+:mod:`crashsim.vehicles.tyre`).
 
 Frames and units: SI. Wheel centres are in the vehicle's body frame (ISO 8855: origin at the
 CG, x forward, y left, z up; m) at static ride height, so a wheel of radius R under a CG at
@@ -22,7 +23,6 @@ import functools
 import math
 import re
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -31,6 +31,8 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim import _core
 from crashsim.errors import ParameterError
 from crashsim.names import check_name
+from crashsim.vehicles.numbers import finite as _number
+from crashsim.vehicles.tyre import TYRE_MODELS, Tyre
 
 __all__ = [
     "ABBREVIATIONS",
@@ -51,9 +53,6 @@ ABBREVIATIONS = {"FL": "front_left", "FR": "front_right", "RL": "rear_left", "RR
 """Short names of the usual four wheels."""
 AXLES = {"front": ("front_left", "front_right"), "rear": ("rear_left", "rear_right")}
 """The wheels of each axle of the usual four."""
-TYRE_MODELS = ("linear", "linear_friction_scaled", "magic_formula")
-"""The tyre models: the reconstruction programs' linear tyre, crashsim's law before 2026-11
-(mu Fz at the saturation angle on every road) and Pacejka's Magic Formula."""
 
 
 @functools.cache
@@ -67,18 +66,6 @@ def dynamics_defaults() -> dict[str, float]:
     damping_ratio, saturation_angle (rad), relaxation_length (m), rolling_resistance,
     tyre_friction, body_friction, rest_speed (m/s), rest_yaw_rate (rad/s), rest_time (s)."""
     return dict(_defaults())
-
-
-def _number(value: Any, name: str, unit: str) -> float:
-    if isinstance(value, bool | str):
-        raise ParameterError(f"{name} must be a number ({unit}), got {value!r}")
-    try:
-        x = float(value)
-    except (TypeError, ValueError) as e:
-        raise ParameterError(f"{name} must be a number ({unit}), got {value!r}") from e
-    if not math.isfinite(x):
-        raise ParameterError(f"{name} = {x} is invalid: give a finite number ({unit})")
-    return x
 
 
 def wheel_index(names: Sequence[str], wheel: str | int) -> int:
@@ -149,119 +136,6 @@ def check_with_engine(**kwargs: Any) -> None:
     vehicle of four wheels; ParameterError with the engine's message otherwise."""
     world = _probe_world(np.array([1.5, 1.0, 0.5]), 1.0)
     world.set_vehicle(0, **{**_probe_spec(), **kwargs})
-
-
-# -- tyres ----------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class Tyre:
-    """The tyre on every wheel of a vehicle (SI; the engine checks every value when it is
-    made, :class:`crashsim._core.Tyre`).
-
-    ``model``:
-
-    - "linear" (default): the reconstruction programs' linear tyre, lateral force
-      ``cornering * Fz * alpha`` (``cornering`` the cornering coefficient, 1/rad; default 1
-      per 10 deg) capped at the friction the longitudinal force leaves; or give the
-      ``saturation_angle`` (rad), its equivalent at mu = 1 (``cornering = 1 / angle``);
-    - "linear_friction_scaled": crashsim's law before 2026-11, mu Fz at ``saturation_angle``
-      (rad, default 10 deg) on every road (softer on slippery roads);
-    - "magic_formula": Pacejka's D sin(C atan(B a - E (B a - atan(B a)))) with factors ``b``
-      (1/rad), ``c``, ``e`` at mu = 1 and D = mu Fz by similarity.
-
-    ``relaxation_length`` (m), ``rolling_resistance`` (force / load; default 0, as the
-    reconstruction programs: give 0.010-0.015 for passenger tyres on asphalt), ``combined``
-    ("braking_priority", the default: the brake force kept and the lateral force from what the
-    friction leaves; or "circle": both scaled onto the friction circle), ``load_sensitivity``
-    (cornering stiffness proportional to Fz^(1 - e); default 0). A field left None takes the
-    engine's default (:meth:`resolved` shows every value as run).
-    """
-
-    model: str = "linear"
-    cornering: float | None = None
-    saturation_angle: float | None = None
-    b: float | None = None
-    c: float | None = None
-    e: float | None = None
-    relaxation_length: float | None = None
-    rolling_resistance: float | None = None
-    combined: str | None = None
-    load_sensitivity: float | None = None
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.model, str):
-            raise ParameterError(f"tyre model must be a string, got {self.model!r}")
-        units = {
-            "cornering": "1/rad",
-            "saturation_angle": "rad",
-            "b": "1/rad",
-            "c": "1",
-            "e": "1",
-            "relaxation_length": "m",
-            "rolling_resistance": "1",
-            "load_sensitivity": "1",
-        }
-        for name, unit in units.items():
-            value = getattr(self, name)
-            if value is not None:
-                object.__setattr__(self, name, _number(value, f"tyre {name}", unit))
-        if self.combined is not None and not isinstance(self.combined, str):
-            raise ParameterError(f"tyre combined must be a string, got {self.combined!r}")
-        try:
-            core = _core.Tyre(self.model, **self._given())
-        except ParameterError as err:
-            raise ParameterError(f"tyre: {err}") from err
-        object.__setattr__(self, "_core", core)
-
-    def _given(self) -> dict[str, Any]:
-        names = (
-            "cornering",
-            "saturation_angle",
-            "b",
-            "c",
-            "e",
-            "relaxation_length",
-            "rolling_resistance",
-            "combined",
-            "load_sensitivity",
-        )
-        return {k: getattr(self, k) for k in names if getattr(self, k) is not None}
-
-    def to_core(self) -> _core.Tyre:
-        """The engine's tyre (checked when this Tyre was made)."""
-        core: _core.Tyre = self.__dict__["_core"]
-        return core
-
-    def resolved(self) -> dict[str, Any]:
-        """Every parameter as the engine runs it: the given ones and the engine's defaults
-        for the others (model, cornering 1/rad or saturation_angle rad or b, c, e;
-        relaxation_length m, rolling_resistance, combined, load_sensitivity)."""
-        return dict(self.to_core().resolved())
-
-    def __reduce__(self) -> tuple[Any, ...]:
-        return (_tyre_from, (self.model, self._given()))
-
-    @classmethod
-    def coerce(cls, value: Tyre | dict[str, Any] | None) -> Tyre:
-        """A Tyre from a Tyre, a dict of its fields, or None (the default tyre)."""
-        if value is None:
-            return cls()
-        if isinstance(value, Tyre):
-            return value
-        if isinstance(value, dict):
-            unknown = sorted(set(value) - {f for f in cls.__dataclass_fields__})
-            if unknown:
-                raise ParameterError(
-                    f"unknown tyre parameter(s) {', '.join(unknown)}: the tyre's parameters are "
-                    f"{', '.join(cls.__dataclass_fields__)}"
-                )
-            return cls(**value)
-        raise ParameterError(f"tyre must be a crashsim.Tyre or a dict, got {value!r}")
-
-
-def _tyre_from(model: str, given: dict[str, Any]) -> Tyre:
-    return Tyre(model, **given)
 
 
 # -- wheels ---------------------------------------------------------------------------------------
