@@ -1,28 +1,22 @@
-//! The whole event on the ground (docs/model.md, "Vehicles on the ground") against closed forms: static wheel
-//! loads, a locked-wheel skid, steady cornering, a braked vehicle on a slope, energy at rest.
+//! The whole event on the ground (docs/model.md, "Vehicles on the ground") against closed
+//! forms: static wheel loads, a locked-wheel skid, steady cornering, a braked vehicle on a
+//! slope, energy at rest. The car is tests/common's reference car.
 //! Tolerances are stated at each assertion.
 
 use std::f64::consts::PI;
 use std::sync::Arc;
 
 use crashsim_core::ground::Ground;
-use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
+use crashsim_core::math::{Point, Real, Rotation, Vector};
 use crashsim_core::vehicle::{
-    static_loads, Braking, DriverInputs, SteerInput, Table, Trigger, Tyre, VehicleSpec, WheelSpec,
-    WheelState, WheelSwitch, GRAVITY,
+    Braking, DriverInputs, SteerInput, Table, Trigger, Tyre, VehicleSpec, WheelState, WheelSwitch,
+    GRAVITY,
 };
-use crashsim_core::{
-    BodyState, ContactEventKind, MassProperties, MeshShape, RunOptions, RunOutput, World,
-};
+use crashsim_core::{BodyState, ContactEventKind, MeshShape, RunOptions, RunOutput, World};
 
-const MASS: Real = 1500.0;
-/// CG 1.1 m behind the front axle and 1.6 m ahead of the rear one, track 1.55 m, CG 0.55 m
-/// above the ground, tyre radius 0.3 m: a mid-size car on a 4.6 x 1.8 x 1.4 m box.
-const A: Real = 1.1;
-const B: Real = 1.6;
-const TRACK: Real = 1.55;
-const CG_HEIGHT: Real = 0.55;
-const RADIUS: Real = 0.3;
+mod common;
+
+use common::{all_wheels_from_start, props as car_props, wheels, A, B, CG_HEIGHT, MASS};
 
 fn car_shape() -> Arc<MeshShape> {
     // The box reaches 0.15 m above the ground; its centre is 0.25 m above the CG.
@@ -32,37 +26,8 @@ fn car_shape() -> Arc<MeshShape> {
     ))
 }
 
-fn car_props() -> MassProperties {
-    // Yaw radius of gyration 0.5 WB; roll and pitch from a 4.6 x 1.8 x 1.4 m box.
-    let wb = A + B;
-    MassProperties::new(
-        MASS,
-        Matrix::from_diagonal(&Vector::new(
-            MASS / 12.0 * (1.8f64.powi(2) + 1.4f64.powi(2)),
-            MASS / 12.0 * (4.6f64.powi(2) + 1.4f64.powi(2)),
-            MASS * (0.5 * wb).powi(2),
-        )),
-    )
-    .unwrap()
-}
-
 fn car_spec(tyre: Tyre, inputs: DriverInputs) -> VehicleSpec {
-    let xy = [
-        [A, TRACK / 2.0],
-        [A, -TRACK / 2.0],
-        [-B, TRACK / 2.0],
-        [-B, -TRACK / 2.0],
-    ];
-    let loads = static_loads(&xy, MASS * GRAVITY).unwrap();
-    let wheels = xy
-        .iter()
-        .zip(&loads)
-        .enumerate()
-        .map(|(k, (p, f))| {
-            let center = Point::new(p[0], p[1], RADIUS - CG_HEIGHT);
-            WheelSpec::sprung(center, RADIUS, k < 2, *f, 1.3, 0.3).unwrap()
-        })
-        .collect();
+    let wheels = wheels(1.3, 0.3).unwrap();
     VehicleSpec {
         wheels,
         tyre,
@@ -95,13 +60,7 @@ fn car_world_with(ground: Ground, v: Real, yaw: Real, tyre: Tyre, inputs: Driver
 
 fn locked_from_start() -> DriverInputs {
     DriverInputs {
-        switches: (0..4)
-            .map(|wheel| WheelSwitch {
-                wheel,
-                at: Trigger::Time(0.0),
-                state: WheelState::Locked,
-            })
-            .collect(),
+        switches: all_wheels_from_start(WheelState::Locked),
         ..DriverInputs::default()
     }
 }

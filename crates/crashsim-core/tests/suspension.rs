@@ -11,39 +11,22 @@
 use std::sync::Arc;
 
 use crashsim_core::ground::Ground;
-use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
+use crashsim_core::math::{Point, Real, Rotation, Vector};
 use crashsim_core::motion::{suspension_rate, MAX_SUBSTEP_SUSPENSION};
 use crashsim_core::vehicle::{
-    static_loads, AntiRollBar, DriverInputs, SteerInput, Table, Trigger, Tyre, VehicleSpec,
-    WheelSpec, WheelState, WheelSwitch, GRAVITY, MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,
+    AntiRollBar, DriverInputs, SteerInput, Table, Tyre, VehicleSpec, WheelSpec, WheelState,
+    GRAVITY, MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,
 };
-use crashsim_core::{BodyState, Error, MassProperties, MeshShape, RunOptions, World};
+use crashsim_core::{BodyState, Error, MeshShape, RunOptions, World};
 use proptest::prelude::*;
 
-const MASS: Real = 1500.0;
-/// CG 1.1 m behind the front axle and 1.6 m ahead of the rear one, track 1.55 m, CG 0.55 m
-/// above the ground, tyre radius 0.3 m (as tests/dynamics.rs).
-const A: Real = 1.1;
-const B: Real = 1.6;
-const TRACK: Real = 1.55;
-const CG_HEIGHT: Real = 0.55;
-const RADIUS: Real = 0.3;
+mod common;
+
+use common::{all_wheels_from_start, props, wheels, CG_HEIGHT, MASS, TRACK};
+
 /// Energy the treads may hold (J): four treads at the friction limit hold about 4 x 26 J at
 /// the static loads (the default tyre: 0.8 Fz at 1.7 cm), twice that for load transfer.
 const TREAD_ENERGY: Real = 250.0;
-
-fn props() -> MassProperties {
-    let wb = A + B;
-    MassProperties::new(
-        MASS,
-        Matrix::from_diagonal(&Vector::new(
-            MASS / 12.0 * (1.8f64.powi(2) + 1.4f64.powi(2)),
-            MASS / 12.0 * (4.6f64.powi(2) + 1.4f64.powi(2)),
-            MASS * (0.5 * wb).powi(2),
-        )),
-    )
-    .unwrap()
-}
 
 /// A 4.6 x 1.8 m box whose bottom is 2 m above the CG's static height over the ground: the
 /// body itself never reaches the road, so every joule is in the body, the springs or the
@@ -53,24 +36,6 @@ fn shape() -> Arc<MeshShape> {
         Vector::new(0.0, 0.0, 2.0 + 0.7 - CG_HEIGHT),
         Vector::new(2.3, 0.9, 0.7),
     ))
-}
-
-fn wheels(frequency: Real, ratio: Real) -> crashsim_core::Result<Vec<WheelSpec>> {
-    let xy = [
-        [A, TRACK / 2.0],
-        [A, -TRACK / 2.0],
-        [-B, TRACK / 2.0],
-        [-B, -TRACK / 2.0],
-    ];
-    let loads = static_loads(&xy, MASS * GRAVITY)?;
-    xy.iter()
-        .zip(&loads)
-        .enumerate()
-        .map(|(k, (p, f))| {
-            let center = Point::new(p[0], p[1], RADIUS - CG_HEIGHT);
-            WheelSpec::sprung(center, RADIUS, k < 2, *f, frequency, ratio)
-        })
-        .collect()
 }
 
 /// What the car does on the road: locked from the start, a swerve on free wheels, or braked
@@ -83,15 +48,6 @@ enum Manoeuvre {
 }
 
 fn inputs(m: Manoeuvre) -> DriverInputs {
-    let switch = |state: WheelState| {
-        (0..4)
-            .map(|wheel| WheelSwitch {
-                wheel,
-                at: Trigger::Time(0.0),
-                state: state.clone(),
-            })
-            .collect()
-    };
     let steer = |peak: Real| {
         Some(SteerInput::RoadWheel(
             Table::new("steer", &[(0.0, 0.0), (0.3, peak), (1.0, peak)]).unwrap(),
@@ -99,7 +55,7 @@ fn inputs(m: Manoeuvre) -> DriverInputs {
     };
     match m {
         Manoeuvre::Locked => DriverInputs {
-            switches: switch(WheelState::Locked),
+            switches: all_wheels_from_start(WheelState::Locked),
             ..DriverInputs::default()
         },
         Manoeuvre::Swerve => DriverInputs {
@@ -108,7 +64,7 @@ fn inputs(m: Manoeuvre) -> DriverInputs {
         },
         Manoeuvre::BrakeInTurn => DriverInputs {
             steer: steer(-0.08),
-            switches: switch(WheelState::Braked(0.5)),
+            switches: all_wheels_from_start(WheelState::Braked(0.5)),
             ..DriverInputs::default()
         },
     }

@@ -1,0 +1,64 @@
+//! The reference car of the integration tests on the ground (dynamics.rs, suspension.rs): 1500 kg,
+//! CG 1.1 m behind the front axle and 1.6 m ahead of the rear one, track 1.55 m, CG 0.55 m
+//! above the ground, tyre radius 0.3 m; roll and pitch inertia of a 4.6 x 1.8 x 1.4 m box, yaw
+//! radius of gyration half the wheelbase. SI throughout.
+
+// Each test file uses its own part of this module.
+#![allow(dead_code)]
+
+use crashsim_core::math::{Matrix, Point, Real, Vector};
+use crashsim_core::vehicle::{static_loads, Trigger, WheelSpec, WheelState, WheelSwitch, GRAVITY};
+use crashsim_core::MassProperties;
+
+pub const MASS: Real = 1500.0;
+pub const A: Real = 1.1;
+pub const B: Real = 1.6;
+pub const TRACK: Real = 1.55;
+pub const CG_HEIGHT: Real = 0.55;
+pub const RADIUS: Real = 0.3;
+
+/// The car's mass properties.
+pub fn props() -> MassProperties {
+    let wb = A + B;
+    MassProperties::new(
+        MASS,
+        Matrix::from_diagonal(&Vector::new(
+            MASS / 12.0 * (1.8f64.powi(2) + 1.4f64.powi(2)),
+            MASS / 12.0 * (4.6f64.powi(2) + 1.4f64.powi(2)),
+            MASS * (0.5 * wb).powi(2),
+        )),
+    )
+    .unwrap()
+}
+
+/// The four wheels (front left, front right, rear left, rear right; the fronts steer) on
+/// springs of natural frequency `frequency` (Hz) and damping ratio `ratio`, each carrying its
+/// axle's share of the weight at static ride height.
+pub fn wheels(frequency: Real, ratio: Real) -> crashsim_core::Result<Vec<WheelSpec>> {
+    let xy = [
+        [A, TRACK / 2.0],
+        [A, -TRACK / 2.0],
+        [-B, TRACK / 2.0],
+        [-B, -TRACK / 2.0],
+    ];
+    let loads = static_loads(&xy, MASS * GRAVITY)?;
+    xy.iter()
+        .zip(&loads)
+        .enumerate()
+        .map(|(k, (p, f))| {
+            let center = Point::new(p[0], p[1], RADIUS - CG_HEIGHT);
+            WheelSpec::sprung(center, RADIUS, k < 2, *f, frequency, ratio)
+        })
+        .collect()
+}
+
+/// Every wheel switched to `state` from t = 0.
+pub fn all_wheels_from_start(state: WheelState) -> Vec<WheelSwitch> {
+    (0..4)
+        .map(|wheel| WheelSwitch {
+            wheel,
+            at: Trigger::Time(0.0),
+            state: state.clone(),
+        })
+        .collect()
+}
