@@ -527,6 +527,7 @@ pub fn wheels_of(v: &Vehicle) -> VehicleSpec {
             switches,
             ..DriverInputs::default()
         },
+        coupling: None,
     }
 }
 
@@ -844,6 +845,7 @@ impl Scene {
             restitution: params.restitution,
             friction: params.friction,
             mode: params.restitution_mode,
+            joined: None,
         }
     }
 }

@@ -19,6 +19,7 @@ __all__ = [
     "Impact",
     "InitialOverlapError",
     "InputError",
+    "Joint",
     "MeshError",
     "ParameterError",
     "SceneSpec",
@@ -34,6 +35,7 @@ __all__ = [
     "shapes_overlap",
     "solid_properties",
     "static_loads",
+    "static_loads_coupled",
     "suspension",
 ]
 
@@ -120,6 +122,42 @@ def solid_properties(vertices: ArrayLike, triangles: ArrayLike) -> dict[str, Any
 def static_loads(xy: ArrayLike, weight: float) -> NDArray[np.float64]:
     """Static loads (N) of wheels at body-frame (x, y) positions (m from the CG) carrying
     weight (N) on level ground: each axle its share."""
+
+def static_loads_coupled(
+    xy: Sequence[tuple[float, float]], weight: float, coupling: tuple[float, float]
+) -> tuple[list[float], float]:
+    """Static loads (N) of wheels at body-frame (x, y) positions and of a coupling at
+    ``coupling`` (x, y) (a trailer's hitch coupler or kingpin) carrying weight N together:
+    the wheels' loads and the coupling's."""
+
+@final
+class Joint:
+    """A joint's kind ("spherical", "revolute", "fixed", "fifth_wheel"), limits (angle name,
+    lower rad, upper rad), stiffness N m/rad, damping N m s/rad, friction N m and whether the
+    two bodies still collide; checked by the engine when made."""
+    def __new__(
+        cls,
+        kind: str,
+        *,
+        limits: list[tuple[str, float, float]] = ...,
+        stiffness: float = 0.0,
+        damping: float = 0.0,
+        friction: float = 0.0,
+        collide: bool = False,
+    ) -> Joint: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def collide(self) -> bool: ...
+    @property
+    def resistance(self) -> tuple[float, float, float]:
+        """(stiffness N m/rad, damping N m s/rad, friction N m)."""
+    @property
+    def angle_names(self) -> list[str]:
+        """The kind's angles, in the order of the records' angle columns."""
+    @property
+    def limits(self) -> list[tuple[str, float, float]]: ...
+    def __eq__(self, other: object, /) -> bool: ...
 
 def suspension(
     static_load: float, natural_frequency: float | None = None, damping_ratio: float | None = None
@@ -300,6 +338,7 @@ class SceneSpec:
         brake: list[tuple[str, ArrayLike, float | None] | None] = ...,
         drive: list[ArrayLike | None] = ...,
         switches: list[tuple[int, str, float, str, float]] = ...,
+        coupling: ArrayLike | None = None,
     ) -> None:
         """Give a body wheels: centres (n, 3) m in the body frame at static ride height, radii
         (m), steerable flags, static loads (N), spring rates (N/m), damping (N s/m); a Tyre;
@@ -311,6 +350,14 @@ class SceneSpec:
         (s, m/s^2) table, the wheel's share of the vehicle's brake force) and drive-force
         tables (s, N); wheel-state switches (wheel, "time" | "exchange", when, "free" |
         "locked" | "braked", braked fraction)."""
+    def add_joint(
+        self, joint: Joint, body1: int, body2: int | None, anchor: ArrayLike, axes: ArrayLike
+    ) -> int:
+        """Adds ``joint`` between body1 and body2 (None: the world) made where the bodies stand
+        at t = 0: anchor (world, m), axes (the joint frame, world quaternion w, x, y, z).
+        Returns its index."""
+    @property
+    def n_joints(self) -> int: ...
     def set_contact(self, body1: int, body2: int, params: ContactParams) -> None:
         """Parameters of the pair (body1, body2); every pair of bodies but two obstacles
         collides with the defaults unless set here. The normal points from body1 into body2.

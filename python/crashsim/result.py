@@ -23,6 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import ParameterError, SceneError
+from crashsim.joints import JointEvent, JointRecord
 
 if TYPE_CHECKING:
     from crashsim.vehicles.vehicle import Vehicle
@@ -397,6 +398,7 @@ class Result:
         obstacles: Sequence[str] = (),
         wheel_names: Mapping[str, Sequence[str]] | None = None,
         on_ground: bool = False,
+        joints: Sequence[Any] = (),  # crashsim.joints.Joint (not imported: plain data here)
     ) -> None:
         self.bodies: list[str] = list(names)
         self.obstacles: list[str] = list(obstacles)
@@ -424,6 +426,30 @@ class Result:
             )
             for c in raw["contacts"]
         ]
+        # Joints: the engine's rows are joint after joint, in the order made.
+        self.joints: dict[str, JointRecord] = {}
+        self.joint_events: list[JointEvent] = []
+        for k, joint in enumerate(joints):
+            self.joints[joint.name] = JointRecord(
+                name=joint.name,
+                kind=joint.kind,
+                vehicles=tuple(joint.vehicles),
+                angle_names=joint.angle_names,
+                t=self.t,
+                angles=_frozen(raw["joint_angles"][k]),
+                force=_frozen(raw["joint_force"][k]),
+                torque=_frozen(raw["joint_torque"][k]),
+            )
+        for e in raw.get("joint_events", []):
+            joint = joints[int(e["joint"])]
+            self.joint_events.append(
+                JointEvent(
+                    joint=joint.name,
+                    angle=str(joint.core.limits[int(e["limit"])][0]),
+                    time=float(e["time"]),
+                    rate=float(e["rate"]),
+                )
+            )
         # Wheels: the engine's rows are body after body.
         self._wheels: dict[str, WheelRecord] = {}
         counts = [int(c) for c in raw.get("wheel_counts", [])]

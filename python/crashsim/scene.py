@@ -28,6 +28,7 @@ from crashsim import _core
 from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import InitialOverlapError, ParameterError, SceneError, SimulationError
+from crashsim.joints import Joint, check_new, make_joint
 from crashsim.result import Result
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.stiffness import FACES
@@ -294,6 +295,7 @@ class Scene:
         self._overrides: dict[tuple[str, str], dict[str, Any]] = {}
         self._ground: Ground | None = None
         self.ground = ground
+        self._joints: list[Joint] = []
 
     # -- ground and obstacles ------------------------------------------------------------
 
@@ -496,6 +498,70 @@ class Scene:
         self._placements.append(self._resting(placement) if flat else placement)
         return self
 
+    def join(
+        self,
+        vehicle1: VehicleRef,
+        vehicle2: VehicleRef | None = None,
+        *,
+        at: ArrayLike,
+        kind: str = "spherical",
+        axes: ArrayLike | None = None,
+        limits: Mapping[str, tuple[float, float]] | None = None,
+        stiffness: float = 0.0,
+        damping: float = 0.0,
+        friction: float = 0.0,
+        collide: bool = False,
+        name: str | None = None,
+    ) -> Scene:
+        """Join two vehicles (``vehicle2`` None: ``vehicle1`` to the world) by a joint made
+        where they stand at t = 0 (add them first); returns the scene (calls chain).
+
+        ``at``: the anchor, a world point (m) (a tow ball, a kingpin). ``kind``:
+        "spherical", "revolute", "fixed" or "fifth_wheel" (crashsim.joints). ``axes``: the
+        joint frame's orientation (world, quaternion w, x, y, z, or a 3x3 rotation matrix;
+        default ``vehicle1``'s orientation: x forward, y left, z up), a revolute joint
+        turning about its z axis, a fifth wheel yawing about z and pitching about y.
+        ``limits``: {angle name: (lower, upper)} rad ("angle"; "articulation", "pitch").
+        ``stiffness`` N m/rad, ``damping`` N m s/rad, ``friction`` N m resist the free
+        rotation. ``collide``: the two vehicles' meshes still collide with each other
+        (default no). Needs a ground when the scene runs; the joined vehicles must start
+        with velocities that agree (a trailer moving with its tractor)."""
+        first = self._placement(vehicle1)
+        second = None if vehicle2 is None else self._placement(vehicle2)
+        names = (first.vehicle.name, None if second is None else second.vehicle.name)
+        if names[0] == names[1]:
+            raise SceneError(f"join() needs two different vehicles, got {names[0]!r} twice")
+        q = first.orientation if axes is None else _orientation(None, axes)
+        joint = make_joint(
+            name if name is not None else f"{names[0]}-{names[1] or 'world'}",
+            names,
+            kind=kind,
+            at=at,
+            axes=q,
+            limits=limits,
+            stiffness=stiffness,
+            damping=damping,
+            friction=friction,
+            collide=collide,
+        )
+        check_new(self._joints, joint)
+        self._joints = [*self._joints, joint]
+        return self
+
+    @property
+    def joints(self) -> list[Joint]:
+        """The joints, in the order made."""
+        return list(self._joints)
+
+    def _placement(self, vehicle: VehicleRef) -> _Placement:
+        i = self._index(vehicle)
+        if i >= len(self._placements):
+            raise SceneError(
+                f"{self._bodies()[i].name!r} is a fixed obstacle: join the vehicle to the world "
+                "instead (no second vehicle)"
+            )
+        return self._placements[i]
+
     def inputs(self, vehicle: VehicleRef) -> DriverInputs | None:
         """A vehicle's driver inputs (None without)."""
         i = self._index(vehicle)
@@ -578,11 +644,14 @@ class Scene:
         :meth:`contact` call for the pair, else the one added first)."""
         names = [b.name for b in self._bodies()]
         n = len(self._placements)
+        joined = {frozenset(j.vehicles) for j in self._joints if not j.core.collide}
         out = []
         for i, j in combinations(range(len(names)), 2):
             if i >= n and j >= n:
                 continue  # two obstacles never meet
             a, b = names[i], names[j]
+            if frozenset((a, b)) in joined:
+                continue  # joined vehicles pass through each other
             if (b, a) in self._overrides:
                 a, b = b, a
             out.append((a, b, {**self._defaults, **self._overrides.get((a, b), {})}))
@@ -726,6 +795,15 @@ class Scene:
                     spec.set_vehicle(i, **{**w.spec(p.vehicle.mass), **inputs})
                 except ParameterError as e:  # pragma: no cover - checked when put together
                     raise ParameterError(f"{what}: {e}") from e
+        for joint in self._joints:
+            a, b = joint.vehicles
+            spec.add_joint(
+                joint.core,
+                self._index(a),
+                None if b is None else self._index(b),
+                joint.at,
+                joint.axes,
+            )
         duration_s, dt_s, until_rest, interval, max_bytes = settings
         spec.set_run(
             duration_s,
@@ -858,6 +936,7 @@ class Scene:
                 if p.vehicle.wheels is not None
             },
             on_ground=self._ground is not None,
+            joints=self._joints,
         )
         for imp in result.impacts:
             for note in imp.notes:

@@ -38,6 +38,9 @@ pub struct ImpulseProblem {
     pub friction: Real,
     /// Restitution convention.
     pub mode: RestitutionMode,
+    /// The collision matrix when a body is joined to others (the world builds it with the
+    /// joints' reactions, world/joints.rs); None: the free bodies' from the fields above.
+    pub joined: Option<Matrix>,
 }
 
 /// The solved impulse.
@@ -52,6 +55,9 @@ pub struct ImpulseSolution {
 impl ImpulseProblem {
     /// The collision matrix K (1/kg): an impulse J on body 2 changes u by -K J.
     pub fn collision_matrix(&self) -> Matrix {
+        if let Some(k) = self.joined {
+            return k;
+        }
         let mut k = Matrix::identity() * self.inverse_mass_sum;
         for i in 0..2 {
             let rx = self.lever[i].cross_matrix();
@@ -137,6 +143,7 @@ mod tests {
             restitution: eps,
             friction: mu,
             mode: RestitutionMode::Total,
+            joined: None,
         }
     }
 

@@ -14,6 +14,7 @@ pub mod contact;
 pub mod error;
 pub mod ground;
 pub mod impulse;
+pub mod joint;
 pub mod mass;
 pub mod math;
 pub mod motion;

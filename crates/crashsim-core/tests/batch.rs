@@ -351,6 +351,7 @@ fn skidding_car() -> SceneSpec {
             abs: true,
             anti_roll: Vec::new(),
             inputs,
+            coupling: None,
         },
     )
     .unwrap();

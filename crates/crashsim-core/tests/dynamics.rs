@@ -35,6 +35,7 @@ fn car_spec(tyre: Tyre, inputs: DriverInputs) -> VehicleSpec {
         abs: true,
         anti_roll: Vec::new(),
         inputs,
+        coupling: None,
     }
 }
 

@@ -263,6 +263,7 @@ fn random_eccentric_impacts_conserve_momentum_and_never_gain_energy() {
             restitution: eps,
             friction: mu,
             mode: RestitutionMode::Total,
+            joined: None,
         };
         let Some(sol) = problem.solve() else {
             assert!(u.dot(&n) <= 0.0, "case {case}: approaching but no impulse");
@@ -342,6 +343,7 @@ fn newton_restitution_ends_the_normal_velocity_at_minus_eps() {
             restitution: eps,
             friction: 5.0,
             mode: RestitutionMode::Normal,
+            joined: None,
         };
         let sol = problem.solve().unwrap();
         assert!(!sol.sliding);

@@ -109,6 +109,7 @@ fn world(frequency: Real, ratio: Real, bar: Real, speed: Real, drop: Real, m: Ma
         steering: Default::default(),
         abs: true,
         inputs: inputs(m),
+        coupling: None,
     };
     w.set_vehicle(i, spec).unwrap();
     w.set_ground(Ground::default()).unwrap();
@@ -289,6 +290,7 @@ fn the_stiffest_suspension_stops_like_the_default_in_bounded_work() {
             abs: true,
             anti_roll: Vec::new(),
             inputs: DriverInputs::default(),
+            coupling: None,
         };
         1e-3 * suspension_rate(&spec, &props()) / MAX_SUBSTEP_SUSPENSION
     };

@@ -425,5 +425,6 @@ pub fn vehicle(
             .collect(),
         abs,
         inputs,
+        coupling: None,
     })
 }

@@ -372,7 +372,45 @@ fn run_output_to_dict<'py>(
         contacts.append(e)?;
     }
     d.set_item("contacts", contacts)?;
+    joints_to_dict(py, &d, out)?;
     Ok(d)
+}
+
+/// The joints' records: `joint_angles`, `joint_force`, `joint_torque` (J, k, 3) (rad, N, N m;
+/// the force and torque of body 1 on body 2, world) and `joint_events` (the limits hit).
+fn joints_to_dict(py: Python<'_>, d: &Bound<'_, PyDict>, out: &core::RunOutput) -> PyResult<()> {
+    let (n, k) = (out.joint_count, out.times.len());
+    let field =
+        |f: &dyn Fn(&core::joint::JointSample) -> core::math::Vector| -> PyResult<Array3<f64>> {
+            let mut data = Vec::new();
+            data.try_reserve_exact(n * k * 3).map_err(|_| {
+                pyo3::exceptions::PyMemoryError::new_err(format!(
+                    "no memory for the run's joints ({n} joints x {k} samples): record less often \
+                 (record_interval)"
+                ))
+            })?;
+            for j in 0..n {
+                for s in 0..k {
+                    let v = f(&out.joints_at(s)[j]);
+                    data.extend_from_slice(&[v.x, v.y, v.z]);
+                }
+            }
+            Ok(Array3::from_shape_vec((n, k, 3), data).expect("the shape fits the data"))
+        };
+    d.set_item("joint_angles", field(&|s| s.angles)?.into_pyarray(py))?;
+    d.set_item("joint_force", field(&|s| s.force)?.into_pyarray(py))?;
+    d.set_item("joint_torque", field(&|s| s.torque)?.into_pyarray(py))?;
+    let events = PyList::empty(py);
+    for e in &out.joint_events {
+        let item = PyDict::new(py);
+        item.set_item("joint", e.joint)?;
+        item.set_item("limit", e.limit)?;
+        item.set_item("time", e.time)?;
+        item.set_item("rate", e.rate)?;
+        events.append(item)?;
+    }
+    d.set_item("joint_events", events)?;
+    Ok(())
 }
 
 /// Volume (m^3), centroid (m) and inertia about the centroid (kg m^2 for unit density) of
@@ -550,6 +588,18 @@ fn static_loads<'py>(
     Ok(Array1::from_vec(loads).into_pyarray(py))
 }
 
+/// Static loads (N) of wheels at body-frame (x, y) positions and of a coupling at `coupling`
+/// (x, y) (a trailer's hitch coupler or kingpin) carrying `weight` N together: the wheels'
+/// loads and the coupling's.
+#[pyfunction]
+fn static_loads_coupled(
+    xy: Vec<[f64; 2]>,
+    weight: f64,
+    coupling: [f64; 2],
+) -> PyResult<(Vec<f64>, f64)> {
+    core::vehicle::static_loads_coupled(&xy, weight, coupling).map_err(errors::to_py)
+}
+
 /// (spring rate N/m, damping N s/m) of a wheel with `static_load` N sprung at
 /// `natural_frequency` Hz (None: the engine's 1.3) with `damping_ratio` (None: 0.3).
 #[pyfunction]
@@ -610,6 +660,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<World>()?;
     m.add_class::<spec::SceneSpec>()?;
     m.add_class::<spec::ContactParams>()?;
+    m.add_class::<spec::Joint>()?;
     m.add_class::<records::Impact>()?;
     m.add_class::<ground::Tyre>()?;
     m.add_function(wrap_pyfunction!(batch::run_batch, m)?)?;
@@ -618,6 +669,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(free_motion, m)?)?;
     m.add_function(wrap_pyfunction!(solid_properties, m)?)?;
     m.add_function(wrap_pyfunction!(static_loads, m)?)?;
+    m.add_function(wrap_pyfunction!(static_loads_coupled, m)?)?;
     m.add_function(wrap_pyfunction!(suspension, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics_defaults, m)?)?;
     Ok(())

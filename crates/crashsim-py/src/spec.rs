@@ -9,6 +9,116 @@ use pyo3::types::{PyBytes, PyDict};
 use crate::convert::{self, matrix3, rotation, vector3};
 use crate::{errors, ground, Shape, World};
 
+/// A joint's kind, limits and resistance, checked by the core when made (crashsim's
+/// Scene.join builds one; the bodies and frames are given when it is added to a spec).
+#[pyclass(frozen, eq, module = "crashsim._core")]
+#[derive(Clone, PartialEq)]
+pub struct Joint {
+    pub inner: core::joint::JointSpec,
+}
+
+#[pymethods]
+impl Joint {
+    /// kind "spherical", "revolute", "fixed" or "fifth_wheel"; limits (angle name, lower
+    /// rad, upper rad); stiffness N m/rad, damping N m s/rad, friction N m; collide: the two
+    /// bodies' meshes still collide.
+    #[new]
+    #[pyo3(signature = (kind, *, limits = Vec::new(), stiffness = 0.0, damping = 0.0, friction = 0.0, collide = false))]
+    fn new(
+        kind: &str,
+        limits: Vec<(String, f64, f64)>,
+        stiffness: f64,
+        damping: f64,
+        friction: f64,
+        collide: bool,
+    ) -> PyResult<Joint> {
+        let kind = core::joint::JointKind::from_name(kind).map_err(errors::to_py)?;
+        let names = kind.limit_names();
+        let frame = (
+            core::math::Point::origin(),
+            core::math::Rotation::identity(),
+        );
+        // Bodies 0 and 1 stand in until the joint is added to a scene.
+        let mut joint = core::joint::JointSpec::new(kind, 0, Some(1), frame, frame);
+        for (name, lower, upper) in limits {
+            let angle = names.iter().position(|n| *n == name).ok_or_else(|| {
+                errors::parameter(format!(
+                    "a {} joint has no angle {name:?} to limit{}",
+                    kind.name(),
+                    if names.is_empty() {
+                        String::new()
+                    } else {
+                        format!(": its angles are {}", names.join(", "))
+                    }
+                ))
+            })?;
+            joint.limits.push(core::joint::AngleLimit {
+                angle,
+                lower,
+                upper,
+            });
+        }
+        joint.stiffness = stiffness;
+        joint.damping = damping;
+        joint.friction = friction;
+        joint.collide = collide;
+        joint.validate("the joint").map_err(errors::to_py)?;
+        Ok(Joint { inner: joint })
+    }
+
+    /// The kind's name.
+    #[getter]
+    fn kind(&self) -> &'static str {
+        self.inner.kind.name()
+    }
+
+    /// True when the two bodies' meshes still collide.
+    #[getter]
+    fn collide(&self) -> bool {
+        self.inner.collide
+    }
+
+    /// (stiffness N m/rad, damping N m s/rad, friction N m).
+    #[getter]
+    fn resistance(&self) -> (f64, f64, f64) {
+        (
+            self.inner.stiffness,
+            self.inner.damping,
+            self.inner.friction,
+        )
+    }
+
+    /// The names of the kind's angles, in the order of the records' angle columns.
+    #[getter]
+    fn angle_names(&self) -> Vec<&'static str> {
+        self.inner.kind.limit_names().to_vec()
+    }
+
+    /// (angle name, lower rad, upper rad) per limit.
+    #[getter]
+    fn limits(&self) -> Vec<(&'static str, f64, f64)> {
+        let names = self.inner.kind.limit_names();
+        self.inner
+            .limits
+            .iter()
+            .map(|l| (names[l.angle], l.lower, l.upper))
+            .collect()
+    }
+
+    fn __repr__(&self) -> String {
+        let j = &self.inner;
+        format!(
+            "Joint({:?}, limits={:?}, stiffness={}, damping={}, friction={}, collide={})",
+            j.kind.name(),
+            self.limits(),
+            j.stiffness,
+            j.damping,
+            j.friction,
+            j.collide
+        )
+    }
+}
+
 /// One vehicle pair's contact parameters, checked by the engine when made (contact.rs
 /// documents each: default, unit, range). Immutable.
 #[pyclass(frozen, eq, module = "crashsim._core")]
@@ -252,7 +362,7 @@ impl SceneSpec {
 
     /// Gives a body wheels, a tyre, the steering linkage, anti-roll bars and driver inputs
     /// (see the stub).
-    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steering_ratio = None, ackermann = None, steering_reference = None, anti_roll = Vec::new(), abs = true, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new()))]
+    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steering_ratio = None, ackermann = None, steering_reference = None, anti_roll = Vec::new(), abs = true, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new(), coupling = None))]
     #[allow(clippy::too_many_arguments)]
     fn set_vehicle(
         &mut self,
@@ -273,7 +383,12 @@ impl SceneSpec {
         brake: Vec<Option<ground::BrakeRow<'_>>>,
         drive: Vec<Option<Bound<'_, PyAny>>>,
         switches: Vec<Bound<'_, PyAny>>,
+        coupling: Option<Bound<'_, PyAny>>,
     ) -> PyResult<()> {
+        let coupling = match coupling {
+            Some(c) => Some(core::math::Point::from(vector3(&c, "coupling")?)),
+            None => None,
+        };
         let reference = match steering_reference {
             None | Some("outer") => core::vehicle::SteerReference::Outer,
             Some("centre") | Some("center") => core::vehicle::SteerReference::Centre,
@@ -289,7 +404,7 @@ impl SceneSpec {
             ackermann: ackermann.unwrap_or(core::vehicle::DEFAULT_ACKERMANN),
             reference,
         };
-        let spec = ground::vehicle(
+        let mut spec = ground::vehicle(
             centers,
             radii,
             steerable,
@@ -305,7 +420,33 @@ impl SceneSpec {
             drive,
             switches,
         )?;
+        spec.coupling = coupling;
         self.inner.set_vehicle(body, spec).map_err(errors::to_py)
+    }
+
+    /// Adds `joint` between body1 and body2 (None: the world) made where the bodies stand at
+    /// t = 0: `anchor` (world, m), `axes` (the joint frame's orientation, world, quaternion
+    /// w, x, y, z). Returns its index.
+    fn add_joint(
+        &mut self,
+        joint: &Joint,
+        body1: usize,
+        body2: Option<usize>,
+        anchor: &Bound<'_, PyAny>,
+        axes: &Bound<'_, PyAny>,
+    ) -> PyResult<usize> {
+        let anchor = core::math::Point::from(vector3(anchor, "the joint's anchor")?);
+        let axes = rotation(axes)?;
+        let mut spec = joint.inner.clone();
+        spec.body1 = body1;
+        spec.body2 = body2;
+        self.inner.join(spec, anchor, axes).map_err(errors::to_py)
+    }
+
+    /// Number of joints.
+    #[getter]
+    fn n_joints(&self) -> usize {
+        self.inner.joints.len()
     }
 
     /// Sets the pair's parameters; the normal points from body1 into body2.

@@ -23,6 +23,9 @@ use crate::math::{Point, Real, Rotation, Vector};
 use crate::vehicle::{Braking, VehicleSpec, WheelAction, WheelState, GRAVITY};
 
 mod ground_contact;
+mod mechanism;
+
+pub use mechanism::{advance_mechanism, joint_samples, LimitHit, MechanismSpan};
 
 use ground_contact::GroundNear;
 pub use ground_contact::{BodyContact, BODY_SLIP_SPEED};

@@ -18,6 +18,7 @@ use crate::contact::{CentroidMode, ContactParams, DepthOfPenetration, NormalMode
 use crate::error::{Error, Result};
 use crate::ground::{FrictionZone, Ground, Surface};
 use crate::impulse::RestitutionMode;
+use crate::joint::{AngleLimit, JointKind, JointSpec};
 use crate::math::{Isometry, Matrix, Point, Real, Rotation, Vector};
 use crate::shape::MeshShape;
 use crate::stiffness::{Face, FaceStiffness, Stiffness};
@@ -30,8 +31,9 @@ use crate::world::RunOptions;
 /// The document's format name and version (a reader refuses others).
 const FORMAT: &str = "crashsim-scene-spec";
 /// 2 (2026-11): tyres with the cornering coefficient and the combined-slip law, the steering
-/// linkage, per-wheel steering.
-const VERSION: u32 = 2;
+/// linkage, per-wheel steering. 3: joints, a vehicle's coupling point (version 2 documents,
+/// which have neither, are read too).
+const VERSION: u32 = 3;
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -43,6 +45,26 @@ struct Document {
     contacts: Vec<ContactDoc>,
     ground: Option<GroundDoc>,
     run: RunDoc,
+    #[serde(default)]
+    joints: Vec<JointDoc>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JointDoc {
+    kind: String,
+    body1: usize,
+    body2: Option<usize>,
+    /// Anchor (m) and axes (w, x, y, z) in body 1's frame; the same in body 2's (or the
+    /// world's).
+    frame1: ([Real; 3], [Real; 4]),
+    frame2: ([Real; 3], [Real; 4]),
+    /// (angle index, lower rad, upper rad).
+    limits: Vec<(usize, Real, Real)>,
+    stiffness: Real,
+    damping: Real,
+    friction: Real,
+    collide: bool,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -92,6 +114,8 @@ struct VehicleDoc {
     brake: Vec<Option<Braking>>,
     drive: Vec<Option<Vec<[Real; 2]>>>,
     switches: Vec<SwitchDoc>,
+    #[serde(default)]
+    coupling: Option<[Real; 3]>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -285,6 +309,7 @@ fn vehicle_doc(v: &VehicleSpec) -> VehicleDoc {
                 },
             })
             .collect(),
+        coupling: v.coupling.map(|c| v3(&c.coords)),
     }
 }
 
@@ -391,6 +416,26 @@ fn document(spec: &SceneSpec) -> Document {
             })
             .collect(),
         ground,
+        joints: spec
+            .joints
+            .iter()
+            .map(|j| JointDoc {
+                kind: j.kind.name().into(),
+                body1: j.body1,
+                body2: j.body2,
+                frame1: (v3(&j.frame1.0.coords), quat(&j.frame1.1)),
+                frame2: (v3(&j.frame2.0.coords), quat(&j.frame2.1)),
+                limits: j
+                    .limits
+                    .iter()
+                    .map(|l| (l.angle, l.lower, l.upper))
+                    .collect(),
+                stiffness: j.stiffness,
+                damping: j.damping,
+                friction: j.friction,
+                collide: j.collide,
+            })
+            .collect(),
         run: RunDoc {
             duration: spec.run.duration,
             dt: spec.run.dt,
@@ -480,6 +525,7 @@ fn vehicle(v: VehicleDoc) -> Result<VehicleSpec> {
         anti_roll: v.anti_roll,
         abs: v.abs,
         inputs,
+        coupling: v.coupling.map(point),
     })
 }
 
@@ -513,7 +559,7 @@ fn params(p: ParamsDoc) -> ContactParams {
 }
 
 fn spec(doc: Document) -> Result<SceneSpec> {
-    if doc.format != FORMAT || doc.version != VERSION {
+    if doc.format != FORMAT || !(2..=VERSION).contains(&doc.version) {
         return Err(Error::Parameter(format!(
             "not a scene spec this engine reads: format {:?} version {} (expected {FORMAT:?} \
              version {VERSION})",
@@ -580,6 +626,29 @@ fn spec(doc: Document) -> Result<SceneSpec> {
     }
     for c in doc.contacts {
         out.set_contact(c.body1, c.body2, params(c.params))?;
+    }
+    for j in doc.joints {
+        let mut joint = JointSpec::new(
+            JointKind::from_name(&j.kind)?,
+            j.body1,
+            j.body2,
+            (point(j.frame1.0), rotation(j.frame1.1)?),
+            (point(j.frame2.0), rotation(j.frame2.1)?),
+        );
+        joint.limits = j
+            .limits
+            .iter()
+            .map(|&(angle, lower, upper)| AngleLimit {
+                angle,
+                lower,
+                upper,
+            })
+            .collect();
+        joint.stiffness = j.stiffness;
+        joint.damping = j.damping;
+        joint.friction = j.friction;
+        joint.collide = j.collide;
+        out.add_joint(joint)?;
     }
     if let Some(g) = doc.ground {
         let base = match g.surface {
@@ -654,6 +723,33 @@ mod tests {
         // one mesh shared by both bodies is written once
         assert_eq!(document(&s).meshes.len(), 1);
         assert!(Arc::ptr_eq(&back.bodies[0].shape, &back.bodies[1].shape));
+    }
+
+    #[test]
+    fn every_float_reads_back_bit_for_bit() {
+        // Numbers whose shortest decimal the default JSON parser rounded 1 ulp off (a
+        // generated sedan's vertices: 0.46650655999999996, -1.9575393560865266, ...).
+        let mut s = crate::spec::tests::head_on();
+        let awkward = [
+            0.46650655999999996,
+            -1.9575393560865266,
+            0.22477449709999986,
+            1.6795116774677465,
+            30414.342848110522,
+        ];
+        if let BodyMotion::Moving { state, .. } = &mut s.bodies[0].motion {
+            state.position = Point::new(awkward[0] - 3.0, awkward[1], awkward[2]);
+            state.velocity = Vector::new(awkward[3] * 6.0, awkward[4] * 1e-5, 0.0);
+        }
+        let back = from_json(&to_json(&s)).unwrap();
+        let BodyMotion::Moving { state: a, .. } = &s.bodies[0].motion else {
+            unreachable!()
+        };
+        let BodyMotion::Moving { state: b, .. } = &back.bodies[0].motion else {
+            unreachable!()
+        };
+        assert_eq!(a, b);
+        assert_eq!(to_json(&back), to_json(&s));
     }
 
     #[test]

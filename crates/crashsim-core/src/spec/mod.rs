@@ -19,6 +19,7 @@ use crate::body::{BodyState, MassProperties};
 use crate::contact::{CentroidMode, ContactParams};
 use crate::error::{Error, Result};
 use crate::ground::Ground;
+use crate::joint::JointSpec;
 use crate::math::{Isometry, Real};
 use crate::shape::MeshShape;
 use crate::stiffness::Stiffness;
@@ -111,6 +112,8 @@ pub struct SceneSpec {
     pub contacts: Vec<ContactSpec>,
     /// The ground (None: every body moves torque-free between exchanges).
     pub ground: Option<Ground>,
+    /// Joints between bodies (or a body and the world), in order (docs/joints.md).
+    pub joints: Vec<JointSpec>,
     /// Duration, step and options of a run.
     pub run: RunSpec,
 }
@@ -247,6 +250,76 @@ impl SceneSpec {
         Ok(())
     }
 
+    /// Adds a joint (checked: its numbers and limits, its bodies moving bodies of the scene;
+    /// where its anchor lies, when the world is built); returns its index.
+    pub fn add_joint(&mut self, joint: JointSpec) -> Result<usize> {
+        let name = format!("joint {}", self.joints.len());
+        joint.validate(&name)?;
+        let n = self.bodies.len();
+        for b in std::iter::once(joint.body1).chain(joint.body2) {
+            match self.bodies.get(b) {
+                None => {
+                    return Err(Error::Parameter(format!(
+                        "{name} names body {b}, which does not exist (the scene has {n} bodies)"
+                    )))
+                }
+                Some(body) if body.is_fixed() => {
+                    return Err(Error::Parameter(format!(
+                        "{name} names body {b} ({}), a fixed obstacle: join the body to the \
+                         world instead (a joint with no second body)",
+                        body.name
+                    )))
+                }
+                Some(_) => {}
+            }
+        }
+        self.joints.push(joint);
+        Ok(self.joints.len() - 1)
+    }
+
+    /// Adds a joint of `kind` made where the bodies stand at t = 0: its anchor at the world
+    /// point `anchor` (m) with its axes `axes` (joint frame -> world), each body's frame of
+    /// it computed from the body's initial pose (`body2` None: the world). Limits,
+    /// stiffness, damping, friction and collide as given on `template` (its frames are
+    /// replaced). Returns its index.
+    pub fn join(
+        &mut self,
+        template: JointSpec,
+        anchor: crate::math::Point,
+        axes: crate::math::Rotation,
+    ) -> Result<usize> {
+        let pose = |b: usize| -> Result<Isometry> {
+            match self.bodies.get(b).map(|body| &body.motion) {
+                Some(BodyMotion::Moving { state, .. }) => Ok(Isometry::from_parts(
+                    state.position.coords.into(),
+                    state.orientation,
+                )),
+                Some(BodyMotion::Fixed { .. }) => Err(Error::Parameter(format!(
+                    "body {b} ({}) is a fixed obstacle: join the body to the world instead",
+                    self.bodies[b].name
+                ))),
+                None => Err(Error::Parameter(format!(
+                    "body {b} does not exist (the scene has {} bodies)",
+                    self.bodies.len()
+                ))),
+            }
+        };
+        crate::error::require_finite_vector("the joint's anchor", &anchor.coords)?;
+        let in_body = |pose: Isometry| {
+            (
+                pose.inverse_transform_point(&anchor),
+                pose.rotation.inverse() * axes,
+            )
+        };
+        let mut joint = template;
+        joint.frame1 = in_body(pose(joint.body1)?);
+        joint.frame2 = match joint.body2 {
+            Some(b) => in_body(pose(b)?),
+            None => (anchor, axes),
+        };
+        self.add_joint(joint)
+    }
+
     /// Indices of the moving bodies (the vehicles), in order.
     pub fn moving(&self) -> Vec<usize> {
         (0..self.bodies.len())
@@ -273,6 +346,9 @@ impl SceneSpec {
             {
                 world.set_vehicle(i, v.clone())?;
             }
+        }
+        for j in &self.joints {
+            world.add_joint(j.clone())?;
         }
         for c in &self.contacts {
             world.set_contact(c.body1, c.body2, c.params.clone())?;

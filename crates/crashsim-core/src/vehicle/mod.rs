@@ -18,8 +18,8 @@ pub use tyre::{
     MAGIC_FORMULA_DEFAULTS,
 };
 pub use wheel::{
-    static_loads, AntiRollBar, WheelSpec, DEFAULT_DAMPING_RATIO, DEFAULT_NATURAL_FREQUENCY,
-    GRAVITY, MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,
+    static_loads, static_loads_coupled, AntiRollBar, WheelSpec, DEFAULT_DAMPING_RATIO,
+    DEFAULT_NATURAL_FREQUENCY, GRAVITY, MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,
 };
 
 use crate::error::{Error, Result};
@@ -46,6 +46,10 @@ pub struct VehicleSpec {
     pub abs: bool,
     /// Steering, braking, drive and wheel-state switches over time.
     pub inputs: DriverInputs,
+    /// Where the vehicle rests on another (a trailer's hitch coupler or kingpin, body frame,
+    /// m): that point carries its share of the weight at rest ([`static_loads_coupled`]) and
+    /// the wheels the rest; None for a vehicle on its own wheels.
+    pub coupling: Option<Point>,
 }
 
 impl VehicleSpec {
@@ -53,9 +57,11 @@ impl VehicleSpec {
     /// mass (kg): every wheel inside the box's outline (within 0.1 m), the static loads
     /// carrying the weight (within 1 %).
     pub fn validate(&self, body_box: &Aabb, mass: Real) -> Result<()> {
-        if self.wheels.len() < 3 {
+        let least = if self.coupling.is_some() { 2 } else { 3 };
+        if self.wheels.len() < least {
             return Err(Error::Parameter(format!(
-                "a vehicle on the ground needs at least 3 wheels (got {})",
+                "a vehicle on the ground needs at least 3 wheels, a coupled one (a trailer) 2 \
+                 (got {})",
                 self.wheels.len()
             )));
         }
@@ -73,7 +79,16 @@ impl VehicleSpec {
                 )));
             }
         }
-        let weight = mass * GRAVITY;
+        let mut weight = mass * GRAVITY;
+        if let Some(c) = &self.coupling {
+            crate::error::require_finite_vector("the coupling point", &c.coords)?;
+            let xy: Vec<[Real; 2]> = self
+                .wheels
+                .iter()
+                .map(|w| [w.center.x, w.center.y])
+                .collect();
+            weight -= static_loads_coupled(&xy, weight, [c.x, c.y])?.1;
+        }
         let carried: Real = self.wheels.iter().map(|w| w.static_load).sum();
         if (carried - weight).abs() > 0.01 * weight {
             return Err(Error::Parameter(format!(

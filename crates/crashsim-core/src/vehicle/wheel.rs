@@ -299,6 +299,34 @@ pub fn static_loads(xy: &[[Real; 2]], weight: Real) -> Result<Vec<Real>> {
     Ok(loads)
 }
 
+/// The static loads (N) of wheels at `xy` and of a coupling at `coupling` (a trailer's hitch
+/// coupler or kingpin, body frame, m from the CG) carrying `weight` N together: the
+/// coupling is one more support of [`static_loads`]'s rule (at least three supports, not in
+/// a line). Returns the wheels' loads and the coupling's.
+pub fn static_loads_coupled(
+    xy: &[[Real; 2]],
+    weight: Real,
+    coupling: [Real; 2],
+) -> Result<(Vec<Real>, Real)> {
+    if xy.len() < 2 {
+        return Err(Error::Parameter(format!(
+            "a coupled vehicle (a trailer) needs at least 2 wheels besides its coupling (got {})",
+            xy.len()
+        )));
+    }
+    let mut all = xy.to_vec();
+    all.push(coupling);
+    let mut loads = static_loads(&all, weight).map_err(|e| match e {
+        Error::Parameter(m) => Error::Parameter(format!(
+            "{m} (the coupling is support {}, after the wheels)",
+            xy.len()
+        )),
+        other => other,
+    })?;
+    let at_coupling = loads.pop().expect("one load per support");
+    Ok((loads, at_coupling))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -191,6 +191,13 @@ pub struct RunOutput {
     pub impacts: Vec<Impact>,
     /// First overlaps, separations, closings and skipped exchanges in time order.
     pub contacts: Vec<ContactEvent>,
+    /// Joint limits hit, in time order.
+    pub joint_events: Vec<super::JointEvent>,
+    /// Joints per sample.
+    pub joint_count: usize,
+    /// The joints, sample after sample (each sample's `joint_count` in the order added), at
+    /// the same samples as `states`.
+    pub joints: Vec<crate::joint::JointSample>,
 }
 
 impl RunOutput {
@@ -203,6 +210,11 @@ impl RunOutput {
     pub fn wheels_at(&self, k: usize) -> &[WheelSample] {
         let n: usize = self.wheel_counts.iter().sum();
         &self.wheels[k * n..(k + 1) * n]
+    }
+
+    /// The joints at sample `k`.
+    pub fn joints_at(&self, k: usize) -> &[crate::joint::JointSample] {
+        &self.joints[k * self.joint_count..(k + 1) * self.joint_count]
     }
 
     /// Number of samples.

@@ -285,6 +285,8 @@ impl World {
             restitution: pair.params.restitution,
             friction: pair.params.friction,
             mode: pair.params.restitution_mode,
+            joined: (self.mechanism_of[i1].is_some() || self.mechanism_of[i2].is_some())
+                .then(|| self.point_mobility(i1, &centroid) + self.point_mobility(i2, &centroid)),
         };
         let engaged = Phase::Engaged {
             centroid_in: [
@@ -326,6 +328,8 @@ impl World {
         let j = solution.impulse * share;
         self.bodies[i1].body.apply_impulse(&(-j), &centroid);
         self.bodies[i2].body.apply_impulse(&j, &centroid);
+        self.share_impulse(i1);
+        self.share_impulse(i2);
         for i in [i1, i2] {
             if let Motion::OnGround(g) = &mut self.bodies[i].motion {
                 g.exchanges += 1; // wheel states may switch at an exchange

@@ -17,6 +17,7 @@ mod events;
 mod exchange;
 mod first_contact;
 mod geometry;
+mod joints;
 mod stepper;
 
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -26,6 +27,7 @@ use crate::body::{BodyState, MassProperties, RigidBody};
 use crate::contact::{CentroidMode, ContactParams};
 use crate::error::{Error, Result};
 use crate::ground::Ground;
+use crate::joint::JointSpec;
 use crate::math::{Isometry, Point, Real, Vector};
 use crate::motion::{BodyContact, MotionBound, OnGround};
 use crate::overlap::QueryWorkspace;
@@ -37,6 +39,7 @@ use clearance::Front;
 pub use events::{
     degrees, heading, magnitude, pdof_deg, ContactEvent, ContactEventKind, Impact, RunOutput,
 };
+pub use joints::{JointEvent, ANCHOR_REACH};
 pub use stepper::{
     RunOptions, DEFAULT_MAX_HISTORY_BYTES, DEFAULT_SAMPLES, REST_SPEED, REST_TIME, REST_YAW_RATE,
 };
@@ -161,6 +164,16 @@ pub struct World {
     /// The latest predictions of bodies on the ground (each an integration of its own):
     /// a step asks for the same ones several times (swept box, speed bound, search, advance).
     predictions: Mutex<Vec<Prediction>>,
+    /// The joints, in the order added (joints.rs).
+    joints: Vec<JointSpec>,
+    /// The jointed bodies' mechanisms (built at the first run).
+    mechanisms: Vec<joints::Mechanism>,
+    /// Each body's mechanism, if it is jointed.
+    mechanism_of: Vec<Option<usize>>,
+    /// Each mechanism's limits engaged at the start of the current step.
+    engaged_at_step_start: Vec<Vec<Vec<bool>>>,
+    /// Limits hit since the stepper last took them into the run's output.
+    joint_events: Vec<JointEvent>,
 }
 
 /// A body on the ground as predicted `dt` s after `time` (keys as bits: exact matches only).
@@ -173,6 +186,8 @@ struct Prediction {
     motion: OnGround,
     /// How the motion is bounded over the prediction's span (forward predictions only).
     bound: Option<MotionBound>,
+    /// For a mechanism's member: what the mechanism's span left (shared by its members).
+    mechanism: Option<Arc<joints::MechanismOutcome>>,
 }
 
 /// How many predictions are kept.
@@ -412,6 +427,9 @@ impl World {
                 return Some(p.clone());
             }
         }
+        if let Some(g) = self.mechanism_of.get(i).copied().flatten() {
+            return self.predicted_mechanism(g, i, dt);
+        }
         let wb = &self.bodies[i];
         match &wb.motion {
             Motion::OnGround(g) => {
@@ -459,9 +477,10 @@ impl World {
                     state: body,
                     motion,
                     bound,
+                    mechanism: None,
                 };
                 let mut kept = self.predictions.lock().expect("not poisoned");
-                if kept.len() >= PREDICTIONS_KEPT {
+                if kept.len() >= self.predictions_kept() {
                     kept.remove(0);
                 }
                 kept.push(p.clone());
@@ -538,7 +557,12 @@ impl World {
             .pairs
             .iter_mut()
             .find(|p| (p.body1, p.body2) == (body1, body2) || (p.body1, p.body2) == (body2, body1))
-            .expect("every pair of bodies exists");
+            .ok_or_else(|| {
+                Error::Parameter(format!(
+                    "bodies {body1} and {body2} are joined by a joint and do not collide: give \
+                     the joint collide = true to set their contact"
+                ))
+            })?;
         pair.body1 = body1;
         pair.body2 = body2;
         pair.params = params;

@@ -10,8 +10,9 @@
 use super::{Motion, Phase, World};
 use crate::body::BodyState;
 use crate::error::{require_finite, Error, Result};
+use crate::joint::JointSample;
 use crate::math::Real;
-use crate::motion::WheelSample;
+use crate::motion::{joint_samples, WheelSample};
 
 use super::events::{ContactEvent, ContactEventKind, RunOutput};
 
@@ -83,10 +84,11 @@ impl Default for RunOptions {
 }
 
 /// Bytes one sample takes: its time, every body's state and every wheel's.
-fn sample_bytes(bodies: usize, wheels: usize) -> u64 {
+fn sample_bytes(bodies: usize, wheels: usize, joints: usize) -> u64 {
     (std::mem::size_of::<Real>()
         + bodies * std::mem::size_of::<BodyState>()
-        + wheels * std::mem::size_of::<WheelSample>()) as u64
+        + wheels * std::mem::size_of::<WheelSample>()
+        + joints * std::mem::size_of::<JointSample>()) as u64
 }
 
 /// Human-readable bytes (binary units, as the 1 GiB default).
@@ -130,14 +132,15 @@ impl RunOptions {
         dt: Real,
         bodies: usize,
         wheels: usize,
+        joints: usize,
     ) -> Result<()> {
         // The start, the kept steps, the end; events come on top (a few per contact).
         let samples = (steps / stride + 2) as u64;
-        let need = samples.saturating_mul(sample_bytes(bodies, wheels));
+        let need = samples.saturating_mul(sample_bytes(bodies, wheels, joints));
         if need <= self.max_history_bytes {
             return Ok(());
         }
-        let fits = (self.max_history_bytes / sample_bytes(bodies, wheels))
+        let fits = (self.max_history_bytes / sample_bytes(bodies, wheels, joints))
             .saturating_sub(2)
             .max(1);
         let interval = dt * steps.div_ceil(fits as usize) as Real;
@@ -201,6 +204,7 @@ impl World {
             }
             self.check_initial_overlaps()?;
             self.start_motion()?;
+            self.build_mechanisms()?;
             self.started = true;
         }
         let wheel_counts: Vec<usize> = (0..self.bodies.len())
@@ -208,7 +212,14 @@ impl World {
             .collect();
         let wheels: usize = wheel_counts.iter().sum();
         if options.history {
-            options.check_size(steps, stride, dt, self.bodies.len(), wheels)?;
+            options.check_size(
+                steps,
+                stride,
+                dt,
+                self.bodies.len(),
+                wheels,
+                self.joints.len(),
+            )?;
         }
         let t_start = self.time;
         let t_end = t_start + duration;
@@ -216,6 +227,7 @@ impl World {
             body_count: self.bodies.len(),
             wheel_counts,
             rest: vec![None; self.bodies.len()],
+            joint_count: self.joints.len(),
             record_interval: stride as Real * dt,
             ..RunOutput::default()
         };
@@ -233,6 +245,9 @@ impl World {
         out.wheels
             .try_reserve_exact(samples * wheels)
             .map_err(|_| out_of_memory(self.time))?;
+        out.joints
+            .try_reserve_exact(samples * self.joints.len())
+            .map_err(|_| out_of_memory(self.time))?;
         if options.history {
             self.record(&mut out)?;
         }
@@ -249,6 +264,8 @@ impl World {
                     .iter()
                     .map(|b| (b.body.clone(), b.motion.clone()));
                 self.step_start = Some((self.time, snapshot.collect()));
+                self.engaged_at_step_start =
+                    self.mechanisms.iter().map(|m| m.engaged.clone()).collect();
             }
             let grid = if k >= steps {
                 t_end
@@ -278,6 +295,7 @@ impl World {
             }
             if let Some((offset, pi)) = earliest {
                 self.advance_by(offset)?;
+                out.joint_events.append(&mut self.joint_events);
                 self.count_event(&mut at_instant, pi)?;
                 let (b1, b2) = (self.pairs[pi].body1, self.pairs[pi].body2);
                 out.contacts.push(ContactEvent {
@@ -296,8 +314,13 @@ impl World {
                 continue;
             }
             let t_prev = self.time;
-            let (impacts, contacts) = (out.impacts.len(), out.contacts.len());
+            let (impacts, contacts, joint_events) = (
+                out.impacts.len(),
+                out.contacts.len(),
+                out.joint_events.len(),
+            );
             self.advance_to(target)?;
+            out.joint_events.append(&mut self.joint_events);
             for pi in 0..self.pairs.len() {
                 match self.pairs[pi].phase {
                     Phase::Timer { exchange_at, .. } if exchange_at <= self.time => {
@@ -316,7 +339,9 @@ impl World {
             // At or past the grid point (never past it, but a step that could end beyond it
             // must not stall the count).
             let on_grid = target >= grid;
-            let event = out.impacts.len() > impacts || out.contacts.len() > contacts;
+            let event = out.impacts.len() > impacts
+                || out.contacts.len() > contacts
+                || out.joint_events.len() > joint_events;
             if options.history && (!on_grid || event || k % stride == 0 || k >= steps) {
                 self.record(&mut out)?;
             }
@@ -441,6 +466,7 @@ impl World {
             out.times.pop();
             out.states.truncate(out.states.len() - n);
             out.wheels.truncate(out.wheels.len() - wheels);
+            out.joints.truncate(out.joints.len() - out.joint_count);
         }
         let oom = |_| out_of_memory(self.time);
         out.times.try_reserve(1).map_err(oom)?;
@@ -450,6 +476,30 @@ impl World {
             if let (Motion::OnGround(g), Some(ground)) = (&wb.motion, &self.ground) {
                 out.wheels
                     .extend(g.wheel_samples(&wb.body, ground, self.time)?);
+            }
+        }
+        if !self.joints.is_empty() {
+            out.joints.try_reserve(self.joints.len()).map_err(oom)?;
+            let start = out.joints.len();
+            out.joints
+                .resize(start + self.joints.len(), JointSample::default());
+            let ground = self.ground.as_ref().expect("joints need a ground");
+            for m in &self.mechanisms {
+                let (bodies, motions): (Vec<_>, Vec<_>) = m
+                    .members
+                    .iter()
+                    .map(|&k| {
+                        let wb = &self.bodies[k];
+                        let Motion::OnGround(g) = &wb.motion else {
+                            unreachable!("a mechanism's members move on the ground")
+                        };
+                        (wb.body.clone(), g.as_ref().clone())
+                    })
+                    .unzip();
+                let samples = joint_samples(&bodies, &motions, &m.joints, ground, self.time)?;
+                for (id, sample) in m.ids.iter().zip(samples) {
+                    out.joints[start + id] = sample;
+                }
             }
         }
         out.times.push(self.time);
@@ -468,6 +518,11 @@ impl World {
                     return Err(e);
                 }
                 let p = p.expect("a failed prediction leaves its error");
+                if let (Some(outcome), Some(g)) = (&p.mechanism, self.mechanism_of[i]) {
+                    if self.mechanisms[g].members[0] == i {
+                        self.settle_mechanism(g, &outcome.clone());
+                    }
+                }
                 let wb = &mut self.bodies[i];
                 wb.body = p.state;
                 wb.motion = Motion::OnGround(Box::new(p.motion));

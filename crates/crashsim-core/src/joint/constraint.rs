@@ -1,0 +1,403 @@
+//! The joints' equations in the bodies' coordinates (world frame, SI).
+//!
+//! Every held quantity is a row: a scalar C of the two bodies' poses that the joint keeps at
+//! 0, whose rate is linear in the bodies' velocities, `dC/dt = J nu` (nu = v_a, w_a, v_b, w_b),
+//! and whose second derivative is `J dnu/dt + (J' nu)`, the last term from the velocities
+//! alone. Two shapes of row cover every kind:
+//!
+//! - an anchor coordinate, `C = e.(p_b - p_a)` with p the anchors and e a world axis: J is
+//!   (-e, -(r_a x e)) on body a and (e, r_b x e) on body b (r from the CG to the anchor), and
+//!   `J' nu = e.(w_b x (w_b x r_b) - w_a x (w_a x r_a))`;
+//! - an alignment, `C = u.n` with u an axis fixed in body a and n one fixed in body b (held
+//!   perpendicular): J is (0, u x n) on a and (0, -(u x n)) on b, and
+//!   `J' nu = (w_a x (w_a x u)).n + 2 (w_a x u).(w_b x n) + u.(w_b x (w_b x n))`.
+//!
+//! The reactions lambda (one per row, the force or torque body a puts on body b) make every
+//! row's acceleration vanish: `(J W J^T) lambda = -(J a_free + J' nu)`, W the bodies' inverse
+//! masses and world inverse inertias, a_free their accelerations without the joints. The
+//! matrix is symmetric positive definite when no row repeats another (a tree of joints);
+//! redundant rows (a loop, a body held twice) are solved by least squares.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::{JointKind, JointSpec, FRICTION_SMOOTHING};
+use crate::math::{Matrix, Point, Real, Rotation, Vector};
+
+/// Per body (or per joint): a (force, torque) or (linear, angular) pair, world frame.
+pub(crate) type Pairs = Vec<(Vector, Vector)>;
+
+/// One body of a mechanism as the joints see it at an instant (world frame).
+#[derive(Clone, Debug)]
+pub(crate) struct JointBody {
+    /// CG (m).
+    pub x: Point,
+    /// Orientation, body -> world.
+    pub r: Matrix,
+    /// CG velocity (m/s).
+    pub v: Vector,
+    /// Angular velocity (rad/s).
+    pub w: Vector,
+    /// 1 / mass (1/kg).
+    pub inv_mass: Real,
+    /// World inverse inertia (1/(kg m^2)).
+    pub inv_inertia: Matrix,
+}
+
+/// One held quantity (see the module's notes). Body b is None for the world.
+#[derive(Clone, Debug)]
+pub(crate) struct Row {
+    a: usize,
+    b: Option<usize>,
+    /// (linear, angular) parts of J on body a and body b.
+    ja: [Vector; 2],
+    jb: [Vector; 2],
+    /// The value C (m or 1).
+    c: Real,
+    /// J' nu, the part of C's second derivative from the velocities alone.
+    bias: Real,
+}
+
+/// A joint's frames in the world now: (anchor, axes as columns) on body a and on body b.
+fn frames(joint: &JointSpec, bodies: &[JointBody]) -> ((Point, Matrix), (Point, Matrix)) {
+    let a = &bodies[joint.body1];
+    let (p1, q1) = &joint.frame1;
+    let f1 = (
+        a.x + a.r * p1.coords,
+        a.r * q1.to_rotation_matrix().into_inner(),
+    );
+    let (p2, q2) = &joint.frame2;
+    let f2 = match joint.body2 {
+        Some(b) => {
+            let b = &bodies[b];
+            (
+                b.x + b.r * p2.coords,
+                b.r * q2.to_rotation_matrix().into_inner(),
+            )
+        }
+        None => (*p2, q2.to_rotation_matrix().into_inner()),
+    };
+    (f1, f2)
+}
+
+/// The pairs (axis of F1, axis of F2) a kind holds perpendicular (column indices).
+fn alignments(kind: JointKind) -> &'static [(usize, usize)] {
+    match kind {
+        JointKind::Spherical => &[],
+        JointKind::Revolute => &[(0, 2), (1, 2)],
+        JointKind::Fixed => &[(0, 1), (1, 2), (2, 0)],
+        JointKind::FifthWheel => &[(1, 2)],
+    }
+}
+
+fn velocity(bodies: &[JointBody], b: Option<usize>) -> (Vector, Vector) {
+    b.map_or((Vector::zeros(), Vector::zeros()), |b| {
+        (bodies[b].v, bodies[b].w)
+    })
+}
+
+/// Every row of `joint` at the bodies' state.
+pub(crate) fn rows(joint: &JointSpec, bodies: &[JointBody], out: &mut Vec<Row>) {
+    let ((p1, a1), (p2, a2)) = frames(joint, bodies);
+    let (a, b) = (joint.body1, joint.body2);
+    let r1 = p1 - bodies[a].x;
+    let r2 = b.map_or(Vector::zeros(), |b| p2 - bodies[b].x);
+    let (_, wa) = velocity(bodies, Some(a));
+    let (_, wb) = velocity(bodies, b);
+    let centripetal = wb.cross(&wb.cross(&r2)) - wa.cross(&wa.cross(&r1));
+    for k in 0..3 {
+        let e = Vector::ith(k, 1.0);
+        out.push(Row {
+            a,
+            b,
+            ja: [-e, -r1.cross(&e)],
+            jb: [e, r2.cross(&e)],
+            c: (p2 - p1)[k],
+            bias: e.dot(&centripetal),
+        });
+    }
+    for &(i, j) in alignments(joint.kind) {
+        let (u, n) = (a1.column(i).into_owned(), a2.column(j).into_owned());
+        let g = u.cross(&n);
+        let (du, dn) = (wa.cross(&u), wb.cross(&n));
+        out.push(Row {
+            a,
+            b,
+            ja: [Vector::zeros(), g],
+            jb: [Vector::zeros(), -g],
+            c: u.dot(&n),
+            bias: wa.cross(&du).dot(&n) + 2.0 * du.dot(&dn) + u.dot(&wb.cross(&dn)),
+        });
+    }
+}
+
+/// The kind's angles (rad; see [`super::JointSample::angles`]) and the world axis each
+/// turns about.
+pub(crate) fn angles(joint: &JointSpec, bodies: &[JointBody]) -> (Vector, [Vector; 3]) {
+    let ((_, a1), (_, a2)) = frames(joint, bodies);
+    let col = |m: &Matrix, k: usize| m.column(k).into_owned();
+    let (x1, y1, z1) = (col(&a1, 0), col(&a1, 1), col(&a1, 2));
+    let (x2, z2) = (col(&a2, 0), col(&a2, 2));
+    match joint.kind {
+        JointKind::Revolute => (
+            Vector::new(y1.dot(&x2).atan2(x1.dot(&x2)), 0.0, 0.0),
+            [z1, Vector::zeros(), Vector::zeros()],
+        ),
+        JointKind::FifthWheel => {
+            let across = y1.cross(&z2);
+            (
+                Vector::new(
+                    x2.dot(&y1).atan2(x2.dot(&across)),
+                    x1.dot(&z2).atan2(z1.dot(&z2)),
+                    0.0,
+                ),
+                [z2, y1, Vector::zeros()],
+            )
+        }
+        JointKind::Spherical => {
+            let relative = Rotation::from_matrix(&(a1.transpose() * a2));
+            (
+                relative.scaled_axis(),
+                [a1 * Vector::x(), a1 * Vector::y(), a1 * Vector::z()],
+            )
+        }
+        JointKind::Fixed => (Vector::zeros(), [Vector::zeros(); 3]),
+    }
+}
+
+/// The torque (N m, world) the joint's stiffness, damping and friction put on body b (body a
+/// gets its negative): about the free angles, towards the angles at the start.
+pub(crate) fn applied_torques(joint: &JointSpec, bodies: &[JointBody]) -> Vector {
+    if (joint.stiffness, joint.damping, joint.friction) == (0.0, 0.0, 0.0) {
+        return Vector::zeros();
+    }
+    let (_, wa) = velocity(bodies, Some(joint.body1));
+    let (_, wb) = velocity(bodies, joint.body2);
+    let relative = wb - wa;
+    let resist = |angle: Real, rate: Real| {
+        -(joint.stiffness * angle
+            + joint.damping * rate
+            + joint.friction * rate / (rate.abs() + FRICTION_SMOOTHING))
+    };
+    let (theta, axes) = angles(joint, bodies);
+    match joint.kind {
+        // About the hinge; the fifth wheel's about the kingpin (the plate's friction).
+        JointKind::Revolute | JointKind::FifthWheel => {
+            axes[0] * resist(theta[0], relative.dot(&axes[0]))
+        }
+        JointKind::Spherical => {
+            let angle_world = axes[0] * theta.x + axes[1] * theta.y + axes[2] * theta.z;
+            let speed = relative.norm();
+            -(angle_world * joint.stiffness
+                + relative * joint.damping
+                + relative * (joint.friction / (speed + FRICTION_SMOOTHING)))
+        }
+        JointKind::Fixed => Vector::zeros(),
+    }
+}
+
+/// The rows of the limits `joint` is past now (each with C the angle past its bound) and,
+/// per row, the limit's index and whether the joint moves further out.
+pub(crate) fn limit_rows(
+    joint: &JointSpec,
+    bodies: &[JointBody],
+    out: &mut Vec<Row>,
+) -> Vec<(usize, bool)> {
+    if joint.limits.is_empty() {
+        return Vec::new();
+    }
+    let (theta, axes) = angles(joint, bodies);
+    let (_, wa) = velocity(bodies, Some(joint.body1));
+    let (_, wb) = velocity(bodies, joint.body2);
+    let mut which = Vec::new();
+    for (k, limit) in joint.limits.iter().enumerate() {
+        let (angle, axis) = (theta[limit.angle], axes[limit.angle]);
+        let rate = (wb - wa).dot(&axis);
+        let (past, outward) = if angle > limit.upper {
+            (angle - limit.upper, rate > 0.0)
+        } else if angle < limit.lower {
+            (angle - limit.lower, rate < 0.0)
+        } else {
+            continue;
+        };
+        out.push(Row {
+            a: joint.body1,
+            b: joint.body2,
+            ja: [Vector::zeros(), -axis],
+            jb: [Vector::zeros(), axis],
+            c: past,
+            bias: 0.0,
+        });
+        which.push((k, outward));
+    }
+    which
+}
+
+/// The largest rate (m/s at the anchor, rad/s between axes) at which the joint's held
+/// quantities change now: 0 when the bodies' velocities agree with the joint.
+pub(crate) fn drift_rate(joint: &JointSpec, bodies: &[JointBody]) -> Real {
+    let mut rows = Vec::new();
+    self::rows(joint, bodies, &mut rows);
+    let nu: Vec<_> = bodies.iter().map(|b| (b.v, b.w)).collect();
+    rows.iter()
+        .fold(0.0, |m: Real, r| m.max(apply(r, &nu).abs()))
+}
+
+/// W J^T for one row: the (linear, angular) velocity change of body a and body b per unit
+/// of the row's impulse.
+fn mobility(row: &Row, bodies: &[JointBody]) -> ([Vector; 2], [Vector; 2]) {
+    let a = &bodies[row.a];
+    let da = [row.ja[0] * a.inv_mass, a.inv_inertia * row.ja[1]];
+    let db = match row.b {
+        Some(b) => [
+            row.jb[0] * bodies[b].inv_mass,
+            bodies[b].inv_inertia * row.jb[1],
+        ],
+        None => [Vector::zeros(); 2],
+    };
+    (da, db)
+}
+
+/// `J x` of one row for per-body (linear, angular) values `x`.
+fn apply(row: &Row, x: &[(Vector, Vector)]) -> Real {
+    let mut s = row.ja[0].dot(&x[row.a].0) + row.ja[1].dot(&x[row.a].1);
+    if let Some(b) = row.b {
+        s += row.jb[0].dot(&x[b].0) + row.jb[1].dot(&x[b].1);
+    }
+    s
+}
+
+/// Solves `(J W J^T) lambda = rhs` for the rows.
+fn solve(rows: &[Row], bodies: &[JointBody], rhs: DVector<Real>) -> DVector<Real> {
+    let n = rows.len();
+    let moves: Vec<_> = rows.iter().map(|r| mobility(r, bodies)).collect();
+    let mut a = DMatrix::<Real>::zeros(n, n);
+    for i in 0..n {
+        for j in i..n {
+            let (ri, rj) = (&rows[i], &rows[j]);
+            let (ma, mb) = &moves[j];
+            let mut s = 0.0;
+            // Row i's J on every body row j moves.
+            for (body, m) in [(Some(rj.a), ma), (rj.b, mb)] {
+                let Some(body) = body else { continue };
+                if ri.a == body {
+                    s += ri.ja[0].dot(&m[0]) + ri.ja[1].dot(&m[1]);
+                }
+                if ri.b == Some(body) {
+                    s += ri.jb[0].dot(&m[0]) + ri.jb[1].dot(&m[1]);
+                }
+            }
+            a[(i, j)] = s;
+            a[(j, i)] = s;
+        }
+    }
+    if let Some(chol) = a.clone().cholesky() {
+        return chol.solve(&rhs);
+    }
+    // Redundant rows: the least-squares reactions (the solve cannot fail for an SVD).
+    a.svd(true, true)
+        .solve(&rhs, 1e-12)
+        .unwrap_or_else(|_| DVector::zeros(n))
+}
+
+/// Per body, the sum of `J^T lambda` weighted by `W` (a velocity change per impulse) or not
+/// (a force and torque), for the rows' `lambda`.
+fn spread(
+    rows: &[Row],
+    bodies: &[JointBody],
+    lambda: &DVector<Real>,
+    weighted: bool,
+) -> Vec<(Vector, Vector)> {
+    let mut out = vec![(Vector::zeros(), Vector::zeros()); bodies.len()];
+    for (row, l) in rows.iter().zip(lambda.iter()) {
+        let (da, db) = if weighted {
+            mobility(row, bodies)
+        } else {
+            (row.ja, row.jb)
+        };
+        out[row.a].0 += da[0] * *l;
+        out[row.a].1 += da[1] * *l;
+        if let Some(b) = row.b {
+            out[b].0 += db[0] * *l;
+            out[b].1 += db[1] * *l;
+        }
+    }
+    out
+}
+
+/// The joints' reactions: per body the force and torque (N, N m, world) that keep every
+/// joint's rows from accelerating, given each body's acceleration without them (linear,
+/// angular; m/s^2, rad/s^2). Also each joint's reaction on its body 2 (force, torque about
+/// the anchor's ... as the rows give it: the anchor force, and the alignment torques).
+pub(crate) fn reactions(
+    joints: &[JointSpec],
+    bodies: &[JointBody],
+    free: &[(Vector, Vector)],
+) -> (Pairs, Pairs) {
+    let mut rows = Vec::new();
+    let mut owner = Vec::new();
+    for (k, joint) in joints.iter().enumerate() {
+        let before = rows.len();
+        self::rows(joint, bodies, &mut rows);
+        owner.extend(std::iter::repeat_n(k, rows.len() - before));
+    }
+    let rhs = DVector::from_iterator(rows.len(), rows.iter().map(|r| -(apply(r, free) + r.bias)));
+    let lambda = solve(&rows, bodies, rhs);
+    let per_body = spread(&rows, bodies, &lambda, false);
+    let mut per_joint = vec![(Vector::zeros(), Vector::zeros()); joints.len()];
+    for ((row, l), k) in rows.iter().zip(lambda.iter()).zip(&owner) {
+        per_joint[*k].0 += row.jb[0] * *l;
+        // The torque on body b about its anchor: the alignment rows' (the anchor rows' force
+        // acts at the anchor).
+        if row.jb[0] == Vector::zeros() {
+            per_joint[*k].1 += row.jb[1] * *l;
+        }
+    }
+    (per_body, per_joint)
+}
+
+/// The velocity change per body (linear, angular) that brings every row's rate to zero with
+/// the least kinetic energy change: `-W J^T (J W J^T)^-1 J nu` over the joints' rows and the
+/// extra rows given (the limits being stopped).
+pub(crate) fn project_velocities(
+    joints: &[JointSpec],
+    bodies: &[JointBody],
+    extra: &[Row],
+) -> Vec<(Vector, Vector)> {
+    let mut rows = Vec::new();
+    for joint in joints {
+        self::rows(joint, bodies, &mut rows);
+    }
+    rows.extend_from_slice(extra);
+    if rows.is_empty() {
+        return vec![(Vector::zeros(), Vector::zeros()); bodies.len()];
+    }
+    let nu: Vec<_> = bodies.iter().map(|b| (b.v, b.w)).collect();
+    let rhs = DVector::from_iterator(rows.len(), rows.iter().map(|r| -apply(r, &nu)));
+    let lambda = solve(&rows, bodies, rhs);
+    spread(&rows, bodies, &lambda, true)
+}
+
+/// The position change per body (CG shift m, rotation vector rad) that brings every row's
+/// value to zero, to first order with the least mass-weighted motion (one Newton step of
+/// `-W J^T (J W J^T)^-1 C`), over the joints' rows and the extra rows given.
+pub(crate) fn project_positions(
+    joints: &[JointSpec],
+    bodies: &[JointBody],
+    extra: &[Row],
+) -> (Vec<(Vector, Vector)>, Real) {
+    let mut rows = Vec::new();
+    for joint in joints {
+        self::rows(joint, bodies, &mut rows);
+    }
+    rows.extend_from_slice(extra);
+    let worst = rows.iter().fold(0.0, |m: Real, r| m.max(r.c.abs()));
+    if rows.is_empty() || worst == 0.0 {
+        return (
+            vec![(Vector::zeros(), Vector::zeros()); bodies.len()],
+            worst,
+        );
+    }
+    let rhs = DVector::from_iterator(rows.len(), rows.iter().map(|r| -r.c));
+    let lambda = solve(&rows, bodies, rhs);
+    (spread(&rows, bodies, &lambda, true), worst)
+}

@@ -1,0 +1,340 @@
+//! Bodies on the ground joined by joints (a mechanism: a tractor and its trailers), advanced
+//! together (docs/joints.md).
+//!
+//! Each member keeps its own state and forces ([`OnGround`]: gravity, wheels, tyres, its
+//! contact with the ground); the members share the sub-steps (the finest any member or joint
+//! needs) and every Runge-Kutta evaluation adds the joints' torques (stiffness, damping,
+//! friction) and reactions (joint/constraint.rs). After each sub-step the poses and velocities
+//! are projected back onto the joints, so the joints' drift stays at rounding however long the
+//! run; a limit passed is stopped there by the impulse that zeroes its outward rate (an
+//! inelastic stop, [`LimitHit`]). The same start and span give the same bits, as for a
+//! single body.
+
+use super::{MotionBound, OnGround, Stage, MAX_SUBSTEPS_PER_SECOND, MAX_SUBSTEP_SUSPENSION};
+use crate::body::RigidBody;
+use crate::error::{Error, Result};
+use crate::ground::Ground;
+use crate::joint::{
+    angles, applied_torques, limit_rows, project_positions, project_velocities, reactions,
+    JointBody, JointSample, JointSpec,
+};
+use crate::math::{Point, Real, Rotation, Vector};
+
+/// Newton steps of the position projection after a sub-step (each solves the joints'
+/// linearised rows; two bring a sub-step's drift, O(h^5), to rounding).
+const POSITION_PROJECTIONS: usize = 3;
+
+/// A limit a joint ran into: the inelastic stop's impulse was applied.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LimitHit {
+    /// The joint (the mechanism's index).
+    pub joint: usize,
+    /// The limit (the joint's index).
+    pub limit: usize,
+    /// When (s).
+    pub time: Real,
+    /// The relative angular rate stopped (rad/s).
+    pub rate: Real,
+}
+
+/// What a mechanism's span did besides moving its members.
+#[derive(Clone, Debug, Default)]
+pub struct MechanismSpan {
+    /// Per member, how its motion is bounded over the span.
+    pub bounds: Vec<MotionBound>,
+    /// The limits hit, in order.
+    pub hits: Vec<LimitHit>,
+}
+
+fn joint_body(body: &RigidBody, s: &Stage) -> JointBody {
+    let r = *Rotation::new_normalize(s.q).to_rotation_matrix().matrix();
+    let props = body.props();
+    let inv_inertia = r * props.inverse_inertia() * r.transpose();
+    JointBody {
+        x: Point::from(s.x),
+        r,
+        v: s.v,
+        w: inv_inertia * s.l,
+        inv_mass: 1.0 / props.mass(),
+        inv_inertia,
+    }
+}
+
+/// A bound (1/s) on the fastest mode of a joint's rotational spring and damper, as
+/// [`super::suspension_rate`] bounds the wheels'.
+fn joint_rate(joint: &JointSpec, bodies: &[RigidBody]) -> Real {
+    let inverse = |b: &RigidBody| {
+        b.props()
+            .inverse_inertia()
+            .symmetric_eigenvalues()
+            .iter()
+            .fold(0.0, |a: Real, x| a.max(*x))
+    };
+    let inv = inverse(&bodies[joint.body1]) + joint.body2.map_or(0.0, |b| inverse(&bodies[b]));
+    joint.damping * inv + (joint.stiffness * inv).sqrt()
+}
+
+/// Advances the members (`bodies[k]` moving as `motions[k]`) joined by `joints` (their
+/// body indices are the members' positions) by `dt` s (> 0) from `t0`; `engaged` holds, per
+/// joint and limit, whether the joint rests against it (updated).
+pub fn advance_mechanism(
+    bodies: &mut [RigidBody],
+    motions: &mut [OnGround],
+    joints: &[JointSpec],
+    engaged: &mut [Vec<bool>],
+    ground: &Ground,
+    t0: Real,
+    dt: Real,
+) -> Result<MechanismSpan> {
+    let m = bodies.len();
+    let mut span = MechanismSpan {
+        bounds: vec![MotionBound::default(); m],
+        hits: Vec::new(),
+    };
+    if dt <= 0.0 {
+        return Ok(span);
+    }
+    let mut n = 1;
+    for (body, motion) in bodies.iter().zip(motions.iter()) {
+        n = n.max(motion.substeps(body, dt)?);
+    }
+    let fastest = joints
+        .iter()
+        .map(|j| joint_rate(j, bodies))
+        .fold(0.0, Real::max);
+    let by_joints = (dt * fastest / MAX_SUBSTEP_SUSPENSION).ceil();
+    if by_joints > (dt * MAX_SUBSTEPS_PER_SECOND).max(1.0) {
+        return Err(Error::Simulation(format!(
+            "the joints' stiffness and damping need {by_joints:.0} integration sub-steps for \
+             {dt} s, more than {MAX_SUBSTEPS_PER_SECOND:.0} per simulated second: give them \
+             less stiffness or damping for the bodies' inertia"
+        )));
+    }
+    n = n.max(by_joints as usize);
+    let h = dt / n as Real;
+    for (body, motion) in bodies.iter().zip(motions.iter_mut()) {
+        motion.keep_ground_near(body, ground, dt);
+    }
+    let start: Vec<(Vector, Vector)> = bodies
+        .iter()
+        .map(|b| (b.velocity(), b.angular_velocity()))
+        .collect();
+    let mut track: Vec<[Real; 4]> = start
+        .iter()
+        .map(|(_, w)| [0.0, 0.0, w.norm(), 0.0])
+        .collect(); // dv, dw, |w| max, (unused)
+    let mut steps = vec![(0.0, 0.0); m];
+    let mut prev = start.clone();
+    let mut s: Vec<Stage> = bodies
+        .iter()
+        .zip(motions.iter())
+        .map(|(b, g)| g.stage_of(b))
+        .collect();
+    let rates = |t: Real, s: &[Stage]| -> Result<Vec<Stage>> {
+        Ok(mechanism_rates(bodies, motions, joints, ground, t, s)?.0)
+    };
+    let combine = |s: &[Stage], d: &[Stage], h: Real| -> Vec<Stage> {
+        s.iter().zip(d).map(|(a, b)| a.axpy(h, b)).collect()
+    };
+    for i in 0..n {
+        let t = t0 + i as Real * h;
+        let k1 = rates(t, &s)?;
+        let k2 = rates(t + 0.5 * h, &combine(&s, &k1, 0.5 * h))?;
+        let k3 = rates(t + 0.5 * h, &combine(&s, &k2, 0.5 * h))?;
+        let k4 = rates(t + h, &combine(&s, &k3, h))?;
+        let mut next = combine(&s, &k1, h / 6.0);
+        next = combine(&next, &k2, h / 3.0);
+        next = combine(&next, &k3, h / 3.0);
+        next = combine(&next, &k4, h / 6.0);
+        for (k, st) in next.iter_mut().enumerate() {
+            st.q = *Rotation::new_normalize(st.q).quaternion();
+            motions[k].land(bodies[k].props(), ground, st);
+        }
+        project(bodies, joints, engaged, &mut next, t + h, &mut span.hits);
+        s = next;
+        for (k, st) in s.iter().enumerate() {
+            let finite =
+                st.x.iter()
+                    .chain(st.v.iter())
+                    .chain(st.l.iter())
+                    .all(|c| c.is_finite())
+                    && st.u.iter().flatten().all(|c| c.is_finite());
+            if !finite {
+                return Err(Error::Simulation(format!(
+                    "the motion of jointed body {k} became non-finite at t = {:.6} s: the \
+                     joints, wheels or inputs ask for more than the integration can follow; \
+                     check them",
+                    t + h
+                )));
+            }
+            let w = joint_body(&bodies[k], st).w;
+            let (v0, w0) = start[k];
+            let tr = &mut track[k];
+            tr[0] = tr[0].max((st.v - v0).norm());
+            tr[1] = tr[1].max((w - w0).norm());
+            tr[2] = tr[2].max(w.norm());
+            steps[k].0 = Real::max(steps[k].0, (st.v - prev[k].0).norm());
+            steps[k].1 = Real::max(steps[k].1, (w - prev[k].1).norm());
+            prev[k] = (st.v, w);
+        }
+    }
+    for (k, st) in s.into_iter().enumerate() {
+        let props = bodies[k].props().clone();
+        bodies[k] = RigidBody::from_momentum(
+            props,
+            Point::from(st.x),
+            Rotation::new_normalize(st.q),
+            st.v,
+            st.l,
+        );
+        motions[k].deflections = st.u;
+        span.bounds[k] = MotionBound {
+            velocity_change: track[k][0] + steps[k].0,
+            angular_speed: track[k][2] + steps[k].1,
+            angular_velocity_change: track[k][1] + steps[k].1,
+        };
+    }
+    Ok(span)
+}
+
+/// The rates of the members' stages at time `t` with the joints' torques and reactions, and
+/// what each joint carries (its samples).
+fn mechanism_rates(
+    bodies: &[RigidBody],
+    motions: &[OnGround],
+    joints: &[JointSpec],
+    ground: &Ground,
+    t: Real,
+    s: &[Stage],
+) -> Result<(Vec<Stage>, Vec<JointSample>)> {
+    let m = bodies.len();
+    let mut out = Vec::with_capacity(m);
+    for k in 0..m {
+        out.push(
+            motions[k]
+                .evaluate(bodies[k].props(), ground, t, &s[k])?
+                .rate,
+        );
+    }
+    let jb: Vec<JointBody> = (0..m).map(|k| joint_body(&bodies[k], &s[k])).collect();
+    let mut samples = Vec::with_capacity(joints.len());
+    for joint in joints {
+        let tau = applied_torques(joint, &jb);
+        out[joint.body1].l -= tau;
+        if let Some(b) = joint.body2 {
+            out[b].l += tau;
+        }
+        samples.push(JointSample {
+            angles: angles(joint, &jb).0,
+            force: Vector::zeros(),
+            torque: tau,
+        });
+    }
+    let free: Vec<(Vector, Vector)> = (0..m)
+        .map(|k| {
+            let (w, l) = (jb[k].w, s[k].l);
+            (out[k].v, jb[k].inv_inertia * (out[k].l - w.cross(&l)))
+        })
+        .collect();
+    let (per_body, per_joint) = reactions(joints, &jb, &free);
+    for (k, (f, t)) in per_body.into_iter().enumerate() {
+        out[k].v += f * jb[k].inv_mass;
+        out[k].l += t;
+    }
+    for (sample, (f, t)) in samples.iter_mut().zip(per_joint) {
+        sample.force = f;
+        sample.torque += t;
+    }
+    Ok((out, samples))
+}
+
+/// What each joint of the mechanism carries now (its angles, force and torque), from the
+/// members' forces at time `t`.
+pub fn joint_samples(
+    bodies: &[RigidBody],
+    motions: &[OnGround],
+    joints: &[JointSpec],
+    ground: &Ground,
+    t: Real,
+) -> Result<Vec<JointSample>> {
+    let s: Vec<Stage> = bodies
+        .iter()
+        .zip(motions)
+        .map(|(b, g)| g.stage_of(b))
+        .collect();
+    Ok(mechanism_rates(bodies, motions, joints, ground, t, &s)?.1)
+}
+
+/// Projects the stages back onto the joints (and the limits passed), stops the limits moving
+/// out and records the ones newly hit.
+fn project(
+    bodies: &[RigidBody],
+    joints: &[JointSpec],
+    engaged: &mut [Vec<bool>],
+    s: &mut [Stage],
+    t: Real,
+    hits: &mut Vec<LimitHit>,
+) {
+    let m = s.len();
+    for _ in 0..POSITION_PROJECTIONS {
+        let jb: Vec<JointBody> = (0..m).map(|k| joint_body(&bodies[k], &s[k])).collect();
+        let mut extra = Vec::new();
+        for joint in joints {
+            limit_rows(joint, &jb, &mut extra);
+        }
+        let (shift, worst) = project_positions(joints, &jb, &extra);
+        if worst < 1e-13 {
+            break;
+        }
+        for (st, (dx, dtheta)) in s.iter_mut().zip(shift) {
+            st.x += dx;
+            let turn = Rotation::from_scaled_axis(dtheta);
+            st.q = *(turn * Rotation::new_normalize(st.q)).quaternion();
+        }
+    }
+    // Velocities: the joints' rates to zero, and each limit still past moving further out.
+    let jb: Vec<JointBody> = (0..m).map(|k| joint_body(&bodies[k], &s[k])).collect();
+    let mut extra = Vec::new();
+    let mut stopped = Vec::new();
+    for (j, joint) in joints.iter().enumerate() {
+        let mut rows = Vec::new();
+        let which = limit_rows(joint, &jb, &mut rows);
+        // A limit back inside its range rests against it no more.
+        for (k, flag) in engaged[j].iter_mut().enumerate() {
+            if !which.iter().any(|(past, _)| *past == k) {
+                *flag = false;
+            }
+        }
+        for (row, (k, outward)) in rows.into_iter().zip(which) {
+            if outward {
+                extra.push(row);
+                stopped.push((j, k));
+            }
+        }
+    }
+    let change = project_velocities(joints, &jb, &extra);
+    for (k, (st, (dv, dw))) in s.iter_mut().zip(change).enumerate() {
+        st.v += dv;
+        // L = I_w w: the angular velocity change as momentum.
+        let inertia = jb[k].r * bodies[k].props().inertia() * jb[k].r.transpose();
+        st.l += inertia * dw;
+    }
+    for (j, k) in stopped {
+        if !engaged[j][k] {
+            engaged[j][k] = true;
+            let axis_rate = {
+                let joint = &joints[j];
+                let (_, axes) = angles(joint, &jb);
+                let axis = axes[joint.limits[k].angle];
+                let wb = joint.body2.map_or(Vector::zeros(), |b| jb[b].w);
+                (wb - jb[joint.body1].w).dot(&axis)
+            };
+            hits.push(LimitHit {
+                joint: j,
+                limit: k,
+                time: t,
+                rate: axis_rate,
+            });
+        }
+    }
+}

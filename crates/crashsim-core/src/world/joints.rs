@@ -1,0 +1,395 @@
+//! Jointed bodies in the world: joints are added before the first run, the bodies they join
+//! form mechanisms (the members of a connected set of joints, moved together by
+//! [`advance_mechanism`]), and an exchange with a member sees the whole mechanism through the
+//! joints (docs/joints.md).
+
+use std::sync::Arc;
+
+use super::{Motion, Prediction, World};
+use crate::error::{Error, Result};
+use crate::joint::{drift_rate, project_positions, project_velocities, JointBody, JointSpec};
+use crate::math::{Matrix, Point, Real, Vector};
+use crate::motion::{advance_mechanism, LimitHit, OnGround};
+
+/// How far (m) a joint's anchor may lie outside the box of the nearer of its bodies: a tow
+/// ball stands 0.1-0.3 m behind a bumper, a kingpin sits under a trailer's floor.
+pub const ANCHOR_REACH: Real = 1.0;
+/// How far apart (m, and rad between axes) a joint's two frames may be when a run starts,
+/// and how fast (m/s, rad/s) they may move apart then.
+const START_TOLERANCE: Real = 1e-3;
+
+/// Bodies joined by joints, moved together.
+#[derive(Clone, Debug)]
+pub(super) struct Mechanism {
+    /// The members' world indices, ascending.
+    pub members: Vec<usize>,
+    /// The joints with the members' positions as body indices.
+    pub joints: Vec<JointSpec>,
+    /// Each joint's world index.
+    pub ids: Vec<usize>,
+    /// Per joint and limit: the joint rests against the limit.
+    pub engaged: Vec<Vec<bool>>,
+}
+
+/// A limit a joint ran into during a run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointEvent {
+    /// The joint's index (in the order the joints were added).
+    pub joint: usize,
+    /// Which limit of the joint (its index).
+    pub limit: usize,
+    /// When (s).
+    pub time: Real,
+    /// The relative angular rate the stop took out (rad/s, about the limited angle's axis).
+    pub rate: Real,
+}
+
+/// What a mechanism's predicted span leaves besides its members' states.
+#[derive(Clone, Debug)]
+pub(super) struct MechanismOutcome {
+    pub engaged: Vec<Vec<bool>>,
+    pub hits: Vec<LimitHit>,
+}
+
+impl World {
+    /// Adds a joint (checked: its bodies exist and are not fixed obstacles, its numbers and
+    /// limits, its anchor near one of its bodies). Unless the joint says `collide`, the two
+    /// bodies no longer form a contact pair. Returns its index.
+    pub fn add_joint(&mut self, joint: JointSpec) -> Result<usize> {
+        if self.started {
+            return Err(Error::Parameter(
+                "joints must be added before the first run".into(),
+            ));
+        }
+        let index = self.joints.len();
+        let name = format!("joint {index}");
+        joint.validate(&name)?;
+        let n = self.bodies.len();
+        for b in std::iter::once(joint.body1).chain(joint.body2) {
+            if b >= n {
+                return Err(Error::Parameter(format!(
+                    "{name} names body {b}, which does not exist (the world has {n} bodies)"
+                )));
+            }
+            if self.is_obstacle(b) {
+                return Err(Error::Parameter(format!(
+                    "{name} names body {b}, a fixed obstacle: join the body to the world \
+                     instead (a joint with no second body)"
+                )));
+            }
+        }
+        // The anchor (world, as the joint is made) near at least one of the bodies.
+        let anchor = self.bodies[joint.body1].body.pose() * joint.frame1.0;
+        let outside = |b: usize| {
+            let pose = self.bodies[b].body.pose();
+            let local = pose.inverse_transform_point(&anchor);
+            let aabb = self.bodies[b].shape.aabb();
+            let d = (aabb.mins - local)
+                .sup(&(local - aabb.maxs))
+                .sup(&Vector::zeros());
+            d.norm()
+        };
+        let nearest = std::iter::once(joint.body1)
+            .chain(joint.body2)
+            .map(outside)
+            .fold(Real::INFINITY, Real::min);
+        if nearest > ANCHOR_REACH {
+            return Err(Error::Parameter(format!(
+                "{name}'s anchor at ({:.2}, {:.2}, {:.2}) m lies {nearest:.2} m outside the \
+                 box of every body it joins (at most {ANCHOR_REACH} m): put the hitch or \
+                 kingpin where the bodies meet",
+                anchor.x, anchor.y, anchor.z
+            )));
+        }
+        if let (Some(b), false) = (joint.body2, joint.collide) {
+            let (lo, hi) = (joint.body1.min(b), joint.body1.max(b));
+            self.pairs
+                .retain(|p| (p.body1.min(p.body2), p.body1.max(p.body2)) != (lo, hi));
+        }
+        self.joints.push(joint);
+        Ok(index)
+    }
+
+    /// Number of joints.
+    pub fn joint_count(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// Groups the jointed bodies into mechanisms (at the first run, after the bodies were
+    /// put on the ground).
+    pub(super) fn build_mechanisms(&mut self) -> Result<()> {
+        self.mechanism_of = vec![None; self.bodies.len()];
+        self.mechanisms.clear();
+        if self.joints.is_empty() {
+            return Ok(());
+        }
+        if self.ground.is_none() {
+            return Err(Error::Parameter(
+                "joints need a ground (its gravity and the bodies' motion on it): set one".into(),
+            ));
+        }
+        // Connected sets of bodies, by union of each joint's two bodies.
+        let mut root: Vec<usize> = (0..self.bodies.len()).collect();
+        fn find(root: &mut [usize], mut i: usize) -> usize {
+            while root[i] != i {
+                root[i] = root[root[i]];
+                i = root[i];
+            }
+            i
+        }
+        for j in &self.joints {
+            let a = find(&mut root, j.body1);
+            if let Some(b) = j.body2 {
+                let b = find(&mut root, b);
+                root[a.max(b)] = a.min(b);
+            }
+        }
+        let mut by_root: Vec<Option<usize>> = vec![None; self.bodies.len()];
+        for (id, joint) in self.joints.iter().enumerate() {
+            let r = find(&mut root, joint.body1);
+            let g = match by_root[r] {
+                Some(g) => g,
+                None => {
+                    let members: Vec<usize> = (0..self.bodies.len())
+                        .filter(|&i| find(&mut root.clone(), i) == r)
+                        .collect();
+                    self.mechanisms.push(Mechanism {
+                        members,
+                        joints: Vec::new(),
+                        ids: Vec::new(),
+                        engaged: Vec::new(),
+                    });
+                    by_root[r] = Some(self.mechanisms.len() - 1);
+                    self.mechanisms.len() - 1
+                }
+            };
+            let m = &mut self.mechanisms[g];
+            let local = |i: usize| m.members.iter().position(|&x| x == i).expect("a member");
+            let mut j = joint.clone();
+            j.body1 = local(joint.body1);
+            j.body2 = joint.body2.map(local);
+            m.engaged.push(vec![false; j.limits.len()]);
+            m.joints.push(j);
+            m.ids.push(id);
+        }
+        for (g, m) in self.mechanisms.iter().enumerate() {
+            for &i in &m.members {
+                self.mechanism_of[i] = Some(g);
+            }
+        }
+        // Each joint's frames meet at the start and do not move apart (within START_TOLERANCE);
+        // the velocities are then projected onto the joints (removing the rounding).
+        for g in 0..self.mechanisms.len() {
+            let jb = self.joint_bodies(g);
+            let m = &self.mechanisms[g];
+            for (joint, id) in m.joints.iter().zip(&m.ids) {
+                let (_, apart) = project_positions(std::slice::from_ref(joint), &jb, &[]);
+                if apart > START_TOLERANCE {
+                    return Err(Error::Parameter(format!(
+                        "joint {id}'s frames do not meet at the start ({apart:.4} m or rad \
+                         apart): give each body's frame of the joint at the same world point \
+                         and axes"
+                    )));
+                }
+                let rate = drift_rate(joint, &jb);
+                if rate > START_TOLERANCE {
+                    return Err(Error::Parameter(format!(
+                        "joint {id}'s bodies move apart at the start ({rate:.4} m/s at the \
+                         anchor, or rad/s between its axes): give the joined bodies velocities \
+                         that agree (a trailer moving with its tractor)"
+                    )));
+                }
+            }
+            let first = m.members[0];
+            self.share_impulse(first);
+        }
+        Ok(())
+    }
+
+    /// The prediction of member `i` of mechanism `g` `dt` s from now (or back into the
+    /// current step for dt < 0): the whole mechanism is advanced and every member's
+    /// prediction kept. None (the error kept for the stepper) when the motion fails.
+    pub(super) fn predicted_mechanism(&self, g: usize, i: usize, dt: Real) -> Option<Prediction> {
+        let (time, dt_bits) = (self.time.to_bits(), dt.to_bits());
+        let ground = self.ground.as_ref().expect("a mechanism has a ground");
+        let m = &self.mechanisms[g];
+        let (mut bodies, mut motions, mut engaged, from, span) = if dt >= 0.0 {
+            let (b, o): (Vec<_>, Vec<_>) = m
+                .members
+                .iter()
+                .map(|&k| {
+                    (
+                        self.bodies[k].body.clone(),
+                        on_ground(&self.bodies[k].motion),
+                    )
+                })
+                .unzip();
+            (b, o, m.engaged.clone(), self.time, dt)
+        } else {
+            let (t0, states) = self
+                .step_start
+                .as_ref()
+                .expect("a step is under way when predicting backwards");
+            let (b, o): (Vec<_>, Vec<_>) = m
+                .members
+                .iter()
+                .map(|&k| (states[k].0.clone(), on_ground(&states[k].1)))
+                .unzip();
+            let engaged = self.engaged_at_step_start[g].clone();
+            (b, o, engaged, *t0, (self.time + dt - t0).max(0.0))
+        };
+        let outcome = advance_mechanism(
+            &mut bodies,
+            &mut motions,
+            &m.joints,
+            &mut engaged,
+            ground,
+            from,
+            span,
+        );
+        let outcome = match outcome {
+            Ok(o) => o,
+            Err(e) => {
+                let e = match e {
+                    Error::Simulation(msg) => {
+                        Error::Simulation(format!("bodies {:?} (joined): {msg}", m.members))
+                    }
+                    other => other,
+                };
+                self.deferred.lock().expect("not poisoned").get_or_insert(e);
+                return None;
+            }
+        };
+        let shared = Arc::new(MechanismOutcome {
+            engaged,
+            hits: outcome.hits,
+        });
+        let mut mine = None;
+        let mut kept = self.predictions.lock().expect("not poisoned");
+        for (k, ((state, motion), bound)) in bodies
+            .into_iter()
+            .zip(motions)
+            .zip(outcome.bounds)
+            .enumerate()
+        {
+            let p = Prediction {
+                body: m.members[k],
+                time,
+                dt: dt_bits,
+                state,
+                motion,
+                bound: (dt >= 0.0).then_some(bound),
+                mechanism: Some(shared.clone()),
+            };
+            if m.members[k] == i {
+                mine = Some(p.clone());
+            }
+            if kept.len() >= self.predictions_kept() {
+                kept.remove(0);
+            }
+            kept.push(p);
+        }
+        mine
+    }
+
+    /// Takes a mechanism's outcome into the world after its members moved: the limits it
+    /// rests against and the limits newly hit (as events).
+    pub(super) fn settle_mechanism(&mut self, g: usize, outcome: &MechanismOutcome) {
+        let m = &mut self.mechanisms[g];
+        m.engaged = outcome.engaged.clone();
+        for hit in &outcome.hits {
+            self.joint_events.push(JointEvent {
+                joint: m.ids[hit.joint],
+                limit: hit.limit,
+                time: hit.time,
+                rate: hit.rate,
+            });
+        }
+    }
+
+    /// The velocity change of body `i`'s material point at `p` per unit impulse there (the
+    /// point's mobility, 1/kg): through the joints when the body is a mechanism's member (the
+    /// joints' reactions share the impulse with the other members), else the free body's
+    /// `I/m - [r]x I^-1 [r]x`.
+    pub(super) fn point_mobility(&self, i: usize, p: &Point) -> Matrix {
+        let body = &self.bodies[i].body;
+        let r = p - body.position();
+        let rx = r.cross_matrix();
+        let free =
+            Matrix::identity() / body.props().mass() - rx * body.world_inverse_inertia() * rx;
+        let Some(g) = self.mechanism_of.get(i).copied().flatten() else {
+            return free;
+        };
+        let m = &self.mechanisms[g];
+        let me = m.members.iter().position(|&k| k == i).expect("a member");
+        let mut k = Matrix::zeros();
+        for axis in 0..3 {
+            let e = Vector::ith(axis, 1.0);
+            let mut jb = self.joint_bodies(g);
+            for b in jb.iter_mut() {
+                b.v = Vector::zeros();
+                b.w = Vector::zeros();
+            }
+            jb[me].v = e * jb[me].inv_mass;
+            jb[me].w = jb[me].inv_inertia * r.cross(&e);
+            let change = project_velocities(&m.joints, &jb, &[]);
+            let (dv, dw) = (jb[me].v + change[me].0, jb[me].w + change[me].1);
+            k.set_column(axis, &(dv + dw.cross(&r)));
+        }
+        k
+    }
+
+    /// After an impulse on body `i`: its mechanism's velocities projected back onto the
+    /// joints (the joints' reaction impulses).
+    pub(super) fn share_impulse(&mut self, i: usize) {
+        let Some(g) = self.mechanism_of.get(i).copied().flatten() else {
+            return;
+        };
+        let jb = self.joint_bodies(g);
+        let change = project_velocities(&self.mechanisms[g].joints, &jb, &[]);
+        let members = self.mechanisms[g].members.clone();
+        for (k, (dv, dw)) in members.into_iter().zip(change) {
+            let wb = &mut self.bodies[k];
+            let state = wb.body.state();
+            let mut s = state;
+            s.velocity += dv;
+            s.angular_velocity += dw;
+            wb.body = crate::body::RigidBody::new(wb.body.props().clone(), &s)
+                .expect("a moved state stays finite");
+            self.forget_clearance(k);
+        }
+    }
+
+    /// The members of mechanism `g` as the joints see them now.
+    fn joint_bodies(&self, g: usize) -> Vec<JointBody> {
+        self.mechanisms[g]
+            .members
+            .iter()
+            .map(|&k| {
+                let b = &self.bodies[k].body;
+                let r = *b.orientation().to_rotation_matrix().matrix();
+                JointBody {
+                    x: b.position(),
+                    r,
+                    v: b.velocity(),
+                    w: b.angular_velocity(),
+                    inv_mass: 1.0 / b.props().mass(),
+                    inv_inertia: b.world_inverse_inertia(),
+                }
+            })
+            .collect()
+    }
+
+    /// How many predictions are kept: enough for every member of the largest mechanism
+    /// twice over.
+    pub(super) fn predictions_kept(&self) -> usize {
+        super::PREDICTIONS_KEPT.max(2 * self.bodies.len())
+    }
+}
+
+fn on_ground(motion: &Motion) -> OnGround {
+    match motion {
+        Motion::OnGround(g) => g.as_ref().clone(),
+        _ => unreachable!("a mechanism's members move on the ground"),
+    }
+}

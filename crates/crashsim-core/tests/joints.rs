@@ -1,0 +1,468 @@
+//! Joints (issue 21, docs/joints.md): pendulums against their closed forms and their energy,
+//! a chain of 20 links, the joints' drift, limits as inelastic stops, jointed bodies that
+//! overlap without a contact, and refusals by name. Bodies hang 50 m above a plane they never
+//! reach, so gravity is the only force besides the joints'.
+
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+use crashsim_core::ground::Ground;
+use crashsim_core::joint::{AngleLimit, JointKind, JointSpec};
+use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
+use crashsim_core::vehicle::GRAVITY;
+use crashsim_core::{BodyState, MassProperties, MeshShape, RunOutput, World};
+
+const HEIGHT: Real = 50.0;
+const DT: Real = 1e-3;
+
+fn rod(length: Real, thickness: Real, mass: Real) -> (Arc<MeshShape>, MassProperties) {
+    let shape = MeshShape::cuboid(
+        Vector::zeros(),
+        Vector::new(length, thickness, thickness) * 0.5,
+    );
+    let (l, t) = (length, thickness);
+    let i = Matrix::from_diagonal(&Vector::new(
+        mass / 12.0 * (2.0 * t * t),
+        mass / 12.0 * (l * l + t * t),
+        mass / 12.0 * (l * l + t * t),
+    ));
+    (Arc::new(shape), MassProperties::new(mass, i).unwrap())
+}
+
+fn at(x: Real, z: Real, pitch: Real) -> BodyState {
+    BodyState {
+        position: Point::new(x, 0.0, z),
+        orientation: Rotation::from_axis_angle(&Vector::y_axis(), pitch),
+        velocity: Vector::zeros(),
+        angular_velocity: Vector::zeros(),
+    }
+}
+
+/// The joint frame whose z axis is the world's (and the bodies' at the start) y axis.
+fn hinge_axes() -> Rotation {
+    Rotation::from_axis_angle(&Vector::x_axis(), -PI / 2.0)
+}
+
+/// A chain of `n` rods of `length` m (5 kg, 5 cm thick) along +x from the pivot at
+/// (0, 0, HEIGHT), tilted `pitch` rad about y, each joined to the one before by `kind` at
+/// their ends (the first to the world).
+fn chain(n: usize, length: Real, kind: JointKind, pitch: Real) -> World {
+    let mut w = World::new();
+    w.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+    let dir = Vector::new(pitch.cos(), 0.0, -pitch.sin());
+    for k in 0..n {
+        let (shape, props) = rod(length, 0.05, 5.0);
+        let c = Point::new(0.0, 0.0, HEIGHT) + dir * (length * (k as Real + 0.5));
+        w.add_body(shape, props, &at(c.x, c.z, pitch)).unwrap();
+    }
+    let half = Point::new(-length / 2.0, 0.0, 0.0);
+    let axes = hinge_axes();
+    // Body-frame joint axes: the world's at the start, seen from the tilted rod.
+    let tilt = Rotation::from_axis_angle(&Vector::y_axis(), pitch);
+    let local = tilt.inverse() * axes;
+    w.add_joint(JointSpec::new(
+        kind,
+        0,
+        None,
+        (half, local),
+        (Point::new(0.0, 0.0, HEIGHT), axes),
+    ))
+    .unwrap();
+    for k in 1..n {
+        let end = Point::new(length / 2.0, 0.0, 0.0);
+        w.add_joint(JointSpec::new(
+            kind,
+            k - 1,
+            Some(k),
+            (end, local),
+            (half, local),
+        ))
+        .unwrap();
+    }
+    w
+}
+
+/// Kinetic plus potential energy (J) of every body at sample `k`.
+fn energy(world: &World, out: &RunOutput, props: &[MassProperties], k: usize) -> Real {
+    let _ = world;
+    out.sample(k)
+        .iter()
+        .zip(props)
+        .map(|(s, p)| {
+            let r = s.orientation.to_rotation_matrix().into_inner();
+            let inertia = r * p.inertia() * r.transpose();
+            let w = s.angular_velocity;
+            0.5 * p.mass() * s.velocity.norm_squared()
+                + 0.5 * w.dot(&(inertia * w))
+                + p.mass() * GRAVITY * s.position.z
+        })
+        .sum()
+}
+
+/// Largest distance (m) between joined rods' ends (and the first rod's from the pivot) over
+/// the run, and the largest angle (rad) between hinge axes.
+fn drift(out: &RunOutput, n: usize, length: Real, hinges: bool) -> (Real, Real) {
+    let (mut gap, mut turn): (Real, Real) = (0.0, 0.0);
+    for k in 0..out.len() {
+        let s = out.sample(k);
+        let end = |i: usize, sign: Real| {
+            s[i].position + s[i].orientation * Vector::new(sign * length / 2.0, 0.0, 0.0)
+        };
+        gap = gap.max((end(0, -1.0) - Point::new(0.0, 0.0, HEIGHT)).norm());
+        for i in 1..n {
+            gap = gap.max((end(i, -1.0) - end(i - 1, 1.0)).norm());
+        }
+        if hinges {
+            let y = |i: usize| s[i].orientation * Vector::y();
+            turn = turn.max(y(0).angle(&Vector::y()));
+            for i in 1..n {
+                turn = turn.max(y(i).angle(&y(i - 1)));
+            }
+        }
+    }
+    (gap, turn)
+}
+
+fn props_of(n: usize, length: Real) -> Vec<MassProperties> {
+    (0..n).map(|_| rod(length, 0.05, 5.0).1).collect()
+}
+
+#[test]
+fn a_pendulum_swings_with_the_period_of_its_closed_form() {
+    // A 1 m rod on a hinge at its end, 5 deg from the vertical: T = 2 pi sqrt(I_O / (m g d))
+    // (1 + theta0^2 / 16) to the amplitude's second order.
+    let (l, theta0) = (1.0, 5.0_f64.to_radians());
+    let mut w = chain(1, l, JointKind::Revolute, PI / 2.0 - theta0);
+    let out = w.run(6.0, DT).unwrap();
+    let (_, props) = rod(l, 0.05, 5.0);
+    let i_o = props.inertia()[(1, 1)] + 5.0 * (l / 2.0).powi(2);
+    let expected =
+        2.0 * PI * (i_o / (5.0 * GRAVITY * l / 2.0)).sqrt() * (1.0 + theta0 * theta0 / 16.0);
+    // The rod's angle from the vertical through its upward crossings of zero.
+    let angle: Vec<Real> = (0..out.len())
+        .map(|k| {
+            let x = out.sample(k)[0].position.x;
+            x.atan2(HEIGHT - out.sample(k)[0].position.z)
+        })
+        .collect();
+    let mut crossings = Vec::new();
+    for k in 1..out.len() {
+        if angle[k - 1] < 0.0 && angle[k] >= 0.0 {
+            let f = -angle[k - 1] / (angle[k] - angle[k - 1]);
+            crossings.push(out.times[k - 1] + f * (out.times[k] - out.times[k - 1]));
+        }
+    }
+    assert!(crossings.len() >= 3, "{crossings:?}");
+    let period = (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as Real;
+    assert!(
+        (period / expected - 1.0).abs() < 1e-3,
+        "period {period:.5} s, closed form {expected:.5} s"
+    );
+}
+
+#[test]
+fn a_passive_double_pendulum_keeps_its_energy_and_its_joints() {
+    // Released horizontal: chaotic, fast (about 7 rad/s), 10 s at the default step.
+    let (n, l) = (2, 1.0);
+    let mut w = chain(n, l, JointKind::Revolute, 0.0);
+    let out = w.run(10.0, DT).unwrap();
+    let props = props_of(n, l);
+    let e0 = energy(&w, &out, &props, 0);
+    // The energy scale: what the fall from horizontal gives, m g (l/2 + 3 l/2).
+    let scale = 5.0 * GRAVITY * 2.0 * l;
+    let worst = (0..out.len())
+        .map(|k| (energy(&w, &out, &props, k) - e0).abs())
+        .fold(0.0, Real::max);
+    assert!(
+        worst < 1e-3 * scale,
+        "energy off by {worst:.3e} J of {scale:.1} J"
+    );
+    let (gap, turn) = drift(&out, n, l, true);
+    assert!(
+        gap < 1e-3 && turn < 0.1_f64.to_radians(),
+        "{gap:.3e} m, {turn:.3e} rad"
+    );
+    // And it did swing: the lower rod's end went below the pivot by more than a rod.
+    let lowest = (0..out.len())
+        .map(|k| out.sample(k)[1].position.z)
+        .fold(Real::INFINITY, Real::min);
+    assert!(lowest < HEIGHT - 1.0, "{lowest}");
+}
+
+#[test]
+fn a_chain_of_twenty_links_is_stable_at_the_default_step() {
+    let (n, l) = (20, 0.3);
+    let mut w = chain(n, l, JointKind::Spherical, 0.3);
+    let out = w.run(5.0, DT).unwrap();
+    let props = props_of(n, l);
+    let e0 = energy(&w, &out, &props, 0);
+    let scale: Real = props
+        .iter()
+        .enumerate()
+        .map(|(k, p)| p.mass() * GRAVITY * l * (k as Real + 0.5))
+        .sum();
+    let worst = (0..out.len())
+        .map(|k| (energy(&w, &out, &props, k) - e0).abs())
+        .fold(0.0, Real::max);
+    assert!(
+        worst < 1e-3 * scale,
+        "energy off by {worst:.3e} J of {scale:.1} J"
+    );
+    let (gap, _) = drift(&out, n, l, false);
+    assert!(gap < 1e-3, "{gap:.3e} m");
+}
+
+#[test]
+fn a_limit_stops_the_hinge_there_and_is_reported() {
+    // A rod hanging straight down, kicked to swing; its hinge allows +-20 deg.
+    let mut j = JointSpec::new(
+        JointKind::Revolute,
+        0,
+        None,
+        (
+            Point::new(-0.5, 0.0, 0.0),
+            Rotation::from_axis_angle(&Vector::y_axis(), PI / 2.0).inverse() * hinge_axes(),
+        ),
+        (Point::new(0.0, 0.0, HEIGHT), hinge_axes()),
+    );
+    j.limits = vec![AngleLimit {
+        angle: 0,
+        lower: -20.0_f64.to_radians(),
+        upper: 20.0_f64.to_radians(),
+    }];
+    let mut w2 = World::new();
+    w2.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+    let (shape, props) = rod(1.0, 0.05, 5.0);
+    let mut s = at(0.0, HEIGHT - 0.5, PI / 2.0);
+    // 3 rad/s about the hinge would swing it 56 deg.
+    s.angular_velocity = Vector::new(0.0, 3.0, 0.0);
+    s.velocity = Vector::new(-3.0 * 0.5, 0.0, 0.0);
+    w2.add_body(shape, props, &s).unwrap();
+    w2.add_joint(j).unwrap();
+    let out = w2.run(2.0, DT).unwrap();
+    assert!(!out.joint_events.is_empty(), "no limit hit");
+    let first = &out.joint_events[0];
+    assert_eq!((first.joint, first.limit), (0, 0));
+    // The rate at 20 deg from the energy: sqrt(w0^2 - 2 m g d (1 - cos 20 deg) / I_O).
+    let i_o = 5.0 / 12.0 * (1.0 + 0.05 * 0.05) + 5.0 * 0.25;
+    let expected =
+        (9.0 - 2.0 * 5.0 * GRAVITY * 0.5 * (1.0 - 20.0_f64.to_radians().cos()) / i_o).sqrt();
+    assert!(
+        (first.rate.abs() / expected - 1.0).abs() < 0.01,
+        "{first:?}, expected {expected}"
+    );
+    let widest = (0..out.len())
+        .map(|k| {
+            let p = out.sample(k)[0].position;
+            p.x.atan2(HEIGHT - p.z).abs()
+        })
+        .fold(0.0, Real::max);
+    assert!(
+        widest < 20.0_f64.to_radians() + 1e-3,
+        "swung to {:.3} deg",
+        widest.to_degrees()
+    );
+}
+
+#[test]
+fn jointed_bodies_overlap_without_a_contact_unless_asked() {
+    // Two rods overlapping 10 cm at a hinge: no initial-overlap error, no contact event.
+    let build = |collide: bool| {
+        let mut w = World::new();
+        w.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+        let (shape, props) = rod(1.0, 0.2, 5.0);
+        w.add_body(shape.clone(), props.clone(), &at(0.5, HEIGHT, 0.0))
+            .unwrap();
+        w.add_body(shape, props, &at(1.4, HEIGHT, 0.0)).unwrap();
+        let mut j = JointSpec::new(
+            JointKind::Spherical,
+            0,
+            Some(1),
+            (Point::new(0.45, 0.0, 0.0), Rotation::identity()),
+            (Point::new(-0.45, 0.0, 0.0), Rotation::identity()),
+        );
+        j.collide = collide;
+        w.add_joint(j).unwrap();
+        w.run(0.2, DT)
+    };
+    let out = build(false).unwrap();
+    assert!(out.contacts.is_empty() && out.impacts.is_empty());
+    assert!(matches!(
+        build(true),
+        Err(crashsim_core::Error::InitialOverlap(_))
+    ));
+}
+
+#[test]
+fn bad_joints_are_refused_by_name() {
+    let mut w = World::new();
+    w.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+    let (shape, props) = rod(1.0, 0.2, 5.0);
+    w.add_body(shape.clone(), props, &at(0.0, HEIGHT, 0.0))
+        .unwrap();
+    let pole = w
+        .add_obstacle(shape, &crashsim_core::math::Isometry::identity())
+        .unwrap();
+    let frame = (Point::origin(), Rotation::identity());
+    let err = |j: JointSpec, w: &mut World| w.add_joint(j).unwrap_err().to_string();
+    let itself = JointSpec::new(JointKind::Spherical, 0, Some(0), frame, frame);
+    assert!(err(itself, &mut w).contains("to itself"));
+    let obstacle = JointSpec::new(JointKind::Spherical, 0, Some(pole), frame, frame);
+    assert!(err(obstacle, &mut w).contains("fixed obstacle"));
+    let far = JointSpec::new(
+        JointKind::Spherical,
+        0,
+        None,
+        (Point::new(5.0, 0.0, 0.0), Rotation::identity()),
+        frame,
+    );
+    assert!(err(far, &mut w).contains("outside the box"));
+    let mut limited = JointSpec::new(JointKind::Spherical, 0, None, frame, frame);
+    limited.limits = vec![AngleLimit {
+        angle: 0,
+        lower: -1.0,
+        upper: 1.0,
+    }];
+    assert!(err(limited, &mut w).contains("no angle to limit"));
+    let mut stiff = JointSpec::new(JointKind::Revolute, 0, None, frame, frame);
+    stiff.stiffness = -1.0;
+    assert!(err(stiff, &mut w).contains("stiffness"));
+    // Without a ground a joint has no gravity to work in.
+    let mut space = World::new();
+    let (shape, props) = rod(1.0, 0.2, 5.0);
+    space.add_body(shape, props, &at(0.0, HEIGHT, 0.0)).unwrap();
+    space
+        .add_joint(JointSpec::new(JointKind::Spherical, 0, None, frame, frame))
+        .unwrap();
+    assert!(space
+        .run(0.1, DT)
+        .unwrap_err()
+        .to_string()
+        .contains("ground"));
+}
+
+mod common;
+
+/// A parked car (tests/common's reference car) with a 750 kg centre-axle trailer on its tow
+/// ball: at rest the ball carries the trailer's weight times the CG's lead over the axle per
+/// the drawbar's lever (moments about the axle's contact line), the car's wheels the car's
+/// weight plus that; within 1 % in the pose the run settles to.
+#[test]
+fn a_parked_car_and_trailer_share_the_weight_as_statics_says() {
+    use crashsim_core::vehicle::{static_loads_coupled, VehicleSpec, WheelSpec};
+    let mut w = crashsim_core::SceneSpec::new();
+    w.set_ground(Ground::plane(0.0).unwrap());
+    let car_shape = Arc::new(MeshShape::cuboid(
+        Vector::new(0.0, 0.0, 0.15 + 0.7 - common::CG_HEIGHT),
+        Vector::new(2.3, 0.9, 0.7),
+    ));
+    let still = |x: Real, z: Real| BodyState {
+        position: Point::new(x, 0.0, z),
+        orientation: Rotation::identity(),
+        velocity: Vector::zeros(),
+        angular_velocity: Vector::zeros(),
+    };
+    let car = w
+        .add_body(
+            None,
+            car_shape,
+            common::props(),
+            still(0.0, common::CG_HEIGHT),
+        )
+        .unwrap();
+    w.set_vehicle(
+        car,
+        VehicleSpec {
+            wheels: common::wheels(1.3, 0.3).unwrap(),
+            tyre: Default::default(),
+            steering: Default::default(),
+            abs: true,
+            anti_roll: Vec::new(),
+            inputs: Default::default(),
+            coupling: None,
+        },
+    )
+    .unwrap();
+    // The trailer: 3.0 x 1.8 x 1.2 m box 0.3 m above the road, CG 0.6 m up, its axle 0.3 m
+    // behind the CG, the coupler 2.2 m ahead of the CG at the ball's height.
+    let (mt, cg_t, hitch_x, axle_x, radius) = (750.0, 0.6, 2.2, -0.3, 0.3);
+    let ball = Point::new(-2.6, 0.0, 0.45);
+    let trailer_x = ball.x - hitch_x;
+    let (l, wd, h) = (3.0, 1.8, 1.2);
+    let inertia = Matrix::from_diagonal(&Vector::new(
+        mt / 12.0 * (wd * wd + h * h),
+        mt / 12.0 * (l * l + h * h),
+        mt / 12.0 * (l * l + wd * wd),
+    ));
+    let trailer = w
+        .add_body(
+            Some("trailer".into()),
+            Arc::new(MeshShape::cuboid(
+                Vector::new(0.0, 0.0, 0.3 + h / 2.0 - cg_t),
+                Vector::new(l, wd, h) * 0.5,
+            )),
+            MassProperties::new(mt, inertia).unwrap(),
+            still(trailer_x, cg_t),
+        )
+        .unwrap();
+    let xy = [[axle_x, 0.8], [axle_x, -0.8]];
+    let (loads, _) = static_loads_coupled(&xy, mt * GRAVITY, [hitch_x, 0.0]).unwrap();
+    let wheels = xy
+        .iter()
+        .zip(&loads)
+        .map(|(p, f)| {
+            let c = Point::new(p[0], p[1], radius - cg_t);
+            WheelSpec::sprung(c, radius, false, *f, 1.3, 0.3).unwrap()
+        })
+        .collect();
+    let coupler = Point::new(hitch_x, 0.0, ball.z - cg_t);
+    w.set_vehicle(
+        trailer,
+        VehicleSpec {
+            wheels,
+            tyre: Default::default(),
+            steering: Default::default(),
+            abs: true,
+            anti_roll: Vec::new(),
+            inputs: Default::default(),
+            coupling: Some(coupler),
+        },
+    )
+    .unwrap();
+    let car_ball = Point::new(ball.x, 0.0, ball.z - common::CG_HEIGHT);
+    w.add_joint(JointSpec::new(
+        JointKind::Spherical,
+        car,
+        Some(trailer),
+        (car_ball, Rotation::identity()),
+        (coupler, Rotation::identity()),
+    ))
+    .unwrap();
+    w.run.duration = 5.0;
+    let out = w.run().unwrap();
+    // The scene as a JSON document runs the same bits.
+    let again = crashsim_core::spec::from_json(&crashsim_core::spec::to_json(&w)).unwrap();
+    assert_eq!(again.run().unwrap(), out);
+    let last = out.len() - 1;
+    let s = out.sample(last);
+    let joint = out.joints_at(last)[0];
+    let wheels = out.wheels_at(last);
+    let car_load: Real = wheels[..4].iter().map(|w| w.force.z).sum();
+    let trailer_load: Real = wheels[4..].iter().map(|w| w.force.z).sum();
+    // Moments about the trailer's contact line, horizontal lever arms in the settled pose.
+    let contact_x = 0.5 * (wheels[4].contact.x + wheels[5].contact.x);
+    let ball_now = s[trailer].position + s[trailer].orientation * coupler.coords;
+    let expected = mt * GRAVITY * (s[trailer].position.x - contact_x) / (ball_now.x - contact_x);
+    eprintln!(
+        "ball load {:.2} N (statics {expected:.2} N); car wheels {car_load:.1} N, trailer \
+         wheels {trailer_load:.1} N; horizontal {:.3} N",
+        joint.force.z,
+        joint.force.xy().norm()
+    );
+    assert!((joint.force.z / expected - 1.0).abs() < 0.01);
+    let car_weight = common::MASS * GRAVITY;
+    assert!(((car_load - car_weight) / joint.force.z - 1.0).abs() < 0.01);
+    assert!(((trailer_load + joint.force.z) / (mt * GRAVITY) - 1.0).abs() < 0.01);
+    // Both at rest: nothing rolled.
+    assert!(s[car].velocity.norm() < 1e-3 && s[trailer].velocity.norm() < 1e-3);
+}

@@ -1,0 +1,182 @@
+"""Joints between vehicles, or a vehicle and the world (docs/joints.md).
+
+A joint is made where the vehicles stand at t = 0 (:meth:`crashsim.Scene.join`): its anchor
+``at`` (world point, m) and its axes (the joint frame, world; by default the first vehicle's
+body frame then: x forward, y left, z up). The kinds (the engine's):
+
+- "spherical" (a ball: a hitch ball), every rotation free;
+- "revolute" (a hinge about the joint frame's z axis: a drawbar's pivot), angle "angle";
+- "fixed", the two move as one;
+- "fifth_wheel", a tractor's coupling: the trailer turns about its kingpin (the frame's z) and
+  the plate pitches about its pivot (the frame's y); angles "articulation" and "pitch".
+
+Limits (rad) stop an angle with an inelastic impulse and are reported
+(:attr:`crashsim.Result.joint_events`); ``stiffness`` (N m/rad), ``damping`` (N m s/rad)
+and ``friction`` (N m) resist the free rotation (the fifth wheel's and the hinge's about
+their axis). The two vehicles' meshes do not collide with each other unless ``collide``.
+The kind, limits and resistance are checked by the engine when the joint is made.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any, NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from crashsim import _core
+from crashsim.errors import ParameterError, SceneError
+
+__all__ = ["JOINT_KINDS", "Joint", "JointEvent", "JointRecord"]
+
+JOINT_KINDS = ("spherical", "revolute", "fixed", "fifth_wheel")
+"""The kinds of joint, as :meth:`crashsim.Scene.join` names them."""
+
+Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True, eq=False)
+class Joint:
+    """A joint of a scene: ``vehicles`` (the first, and the second or None for the world),
+    ``at`` (3,) the anchor (world, m, at t = 0), ``axes`` (4,) the joint frame's orientation
+    (world, quaternion w, x, y, z, at t = 0), and the engine's value (``kind``, ``limits``,
+    ``stiffness``, ``damping``, ``friction``, ``collide``)."""
+
+    name: str
+    vehicles: tuple[str, str | None]
+    at: Array
+    axes: Array
+    core: _core.Joint
+
+    @property
+    def kind(self) -> str:
+        return str(self.core.kind)
+
+    @property
+    def angle_names(self) -> tuple[str, ...]:
+        """The kind's angles (the columns of :attr:`JointRecord.angles` they fill)."""
+        return tuple(self.core.angle_names)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "name": self.name,
+            "kind": self.kind,
+            "vehicles": list(self.vehicles),
+            "at": [float(x) for x in self.at],
+            "axes": [float(x) for x in self.axes],
+            "limits": {n: [lo, hi] for n, lo, hi in self.core.limits},
+        }
+
+
+def _vector(value: ArrayLike, size: int, what: str) -> Array:
+    try:
+        a = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError) as err:
+        raise ParameterError(f"{what} must be {size} numbers, got {value!r}") from err
+    if a.shape != (size,) or not np.all(np.isfinite(a)):
+        raise ParameterError(f"{what} must be {size} finite numbers, got {value!r}")
+    a.setflags(write=False)
+    return a
+
+
+def make_joint(
+    name: str,
+    vehicles: tuple[str, str | None],
+    *,
+    kind: str,
+    at: ArrayLike,
+    axes: ArrayLike,
+    limits: Mapping[str, tuple[float, float]] | None,
+    stiffness: float,
+    damping: float,
+    friction: float,
+    collide: bool,
+) -> Joint:
+    """A Joint, its kind, limits and resistance checked by the engine (errors name it)."""
+    if kind not in JOINT_KINDS:
+        raise ParameterError(
+            f"joint {name!r}: kind {kind!r} is unknown; give one of {', '.join(JOINT_KINDS)}"
+        )
+    rows = []
+    for angle, bounds in (limits or {}).items():
+        try:
+            lo, hi = (float(b) for b in bounds)
+        except (TypeError, ValueError) as err:
+            raise ParameterError(
+                f"joint {name!r}: the {angle!r} limit must be (lower, upper) in rad, got {bounds!r}"
+            ) from err
+        rows.append((str(angle), lo, hi))
+    if not isinstance(collide, bool):
+        raise ParameterError(f"joint {name!r}: collide must be True or False, got {collide!r}")
+    try:
+        core = _core.Joint(
+            kind,
+            limits=rows,
+            stiffness=float(stiffness),
+            damping=float(damping),
+            friction=float(friction),
+            collide=collide,
+        )
+    except ParameterError as err:
+        raise ParameterError(f"joint {name!r}: {err}") from err
+    return Joint(
+        name=name,
+        vehicles=vehicles,
+        at=_vector(at, 3, f"joint {name!r}: at"),
+        axes=_vector(axes, 4, f"joint {name!r}: axes (a quaternion w, x, y, z)"),
+        core=core,
+    )
+
+
+def check_new(joints: list[Joint], joint: Joint) -> None:
+    """A SceneError when the scene already has a joint of that name or between the same
+    two vehicles."""
+    for j in joints:
+        if j.name == joint.name:
+            raise SceneError(f"the scene already has a joint named {joint.name!r}")
+        if joint.vehicles[1] is not None and set(j.vehicles) == set(joint.vehicles):
+            raise SceneError(
+                f"{joint.vehicles[0]!r} and {joint.vehicles[1]!r} are already joined by "
+                f"{j.name!r}: one joint per pair"
+            )
+
+
+class JointRecord(NamedTuple):
+    """One joint over a run (world frame, SI): ``name``, ``kind``, ``vehicles``, ``angle_names``;
+    at the sample times ``t`` (k,): ``angles`` (k, 3) the kind's angles (rad, in the order of
+    ``angle_names``; a spherical joint's rotation vector of the second body's frame in the
+    first's), ``force`` (k, 3) the force of the first vehicle on the second through the joint
+    (N; the coupling force), ``torque`` (k, 3) its torque about the anchor (N m)."""
+
+    name: str
+    kind: str
+    vehicles: tuple[str, str | None]
+    angle_names: tuple[str, ...]
+    t: Array
+    angles: Array
+    force: Array
+    torque: Array
+
+    def angle(self, name: str) -> Array:
+        """One angle over time (rad), by name (e.g. "articulation")."""
+        if name not in self.angle_names:
+            raise ParameterError(
+                f"joint {self.name!r} ({self.kind}) has no angle {name!r}: its angles are "
+                f"{list(self.angle_names) or 'none'}"
+            )
+        return self.angles[:, self.angle_names.index(name)]
+
+
+class JointEvent(NamedTuple):
+    """A joint's limit hit: the joint, the limited angle's name, when (s) and the relative
+    angular rate the stop took out (rad/s)."""
+
+    joint: str
+    angle: str
+    time: float
+    rate: float
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"joint": self.joint, "angle": self.angle, "time": self.time, "rate": self.rate}

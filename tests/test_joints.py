@@ -1,0 +1,161 @@
+"""Joints through the Python API (issue 21, docs/joints.md): Scene.join, the joints' records
+and limit events, closed forms (a pendulum's period, a towed car's coupling force), pairs of
+joined vehicles, refusals by name, the spec's JSON and pickle round trips."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import pickle
+
+import crashsim as cs
+import numpy as np
+import pytest
+from crashsim import _core
+from crashsim.errors import ParameterError, SceneError
+
+G = 9.80665
+HIGH = 30.0  # a pendulum's pivot height (m): the ground is far below
+
+
+def _rod(name: str = "rod") -> cs.Vehicle:
+    return cs.Vehicle.box(1.0, 0.05, 0.05, mass=5.0, name=name)
+
+
+def _pendulum(angle: float, **join: object) -> cs.Scene:
+    """A 1 m rod hanging from a hinge about world y at its top end, tilted ``angle`` rad."""
+    scene = cs.Scene(ground=cs.Ground())
+    c = (0.5 * math.sin(angle), 0.0, HIGH - 0.5 * math.cos(angle))
+    # body x along the rod, pointing down the rod from the pivot
+    pitch = math.pi / 2 - angle
+    q = (math.cos(pitch / 2), 0.0, math.sin(pitch / 2), 0.0)
+    scene.add(_rod(), c, orientation=q)
+    # the hinge turns about its z axis: world y
+    axes = (math.cos(-math.pi / 4), math.sin(-math.pi / 4), 0.0, 0.0)
+    scene.join("rod", at=(0.0, 0.0, HIGH), kind="revolute", axes=axes, **join)
+    return scene
+
+
+def test_a_pendulum_swings_with_its_closed_form_period() -> None:
+    theta0 = math.radians(5.0)
+    result = _pendulum(theta0).run(4.0)
+    i_o = 5.0 / 12.0 * (1.0 + 0.05**2) + 5.0 * 0.25
+    expected = 2 * math.pi * math.sqrt(i_o / (5.0 * G * 0.5)) * (1 + theta0**2 / 16)
+    record = result.joints["rod-world"]
+    assert record.kind == "revolute" and record.angle_names == ("angle",)
+    c = result.trajectory("rod").position
+    angle = np.arctan2(c[:, 0], HIGH - c[:, 2])  # from the vertical
+    # The hinge's own angle is the swing from where it was made.
+    assert np.allclose(record.angle("angle"), angle - theta0, atol=1e-6)
+    up = np.flatnonzero((angle[:-1] < 0) & (angle[1:] >= 0))
+    t = result.t
+    crossings = t[up] - angle[up] * (t[up + 1] - t[up]) / (angle[up + 1] - angle[up])
+    period = np.diff(crossings).mean()
+    assert period == pytest.approx(expected, rel=1e-3)
+    # The rod hangs on the hinge: its force on the world (body 2) is its weight, down, plus
+    # its swing's small centripetal pull (within 1 %).
+    assert record.force[:, 2].mean() == pytest.approx(-5.0 * G, rel=1e-2)
+
+
+def test_a_limit_stops_the_swing_and_is_an_event() -> None:
+    limit = math.radians(10.0)
+    result = _pendulum(math.radians(30.0), limits={"angle": (-limit, limit)}).run(1.0)
+    assert result.joint_events, "no limit hit"
+    first = result.joint_events[0]
+    assert first.joint == "rod-world" and first.angle == "angle"
+    angle = result.joints["rod-world"].angle("angle")
+    # Released at 30 deg: stopped at 10 deg, where it stays (an inelastic stop under gravity).
+    assert np.abs(angle).max() <= math.radians(30.0) + 1e-9
+    assert np.abs(angle[result.t > first.time]).max() < limit + 1e-3
+
+
+def _towed(brake: float = 0.3) -> tuple[cs.Scene, float]:
+    car = cs.Vehicle.generate("sedan", name="car")
+    towed = cs.Vehicle.generate("sedan", name="towed")
+    lo, hi = car.mesh.bounds - car.cg
+    scene = cs.Scene(ground=cs.Ground(friction=0.8))
+    scene.add(car, (0, 0), heading=0.0, velocity=(15, 0, 0), inputs=cs.DriverInputs(brake=brake))
+    gap = 0.6
+    scene.add(towed, (lo[0] - gap - hi[0], 0), heading=0.0, velocity=(15, 0, 0))
+    scene.join("car", "towed", at=(lo[0] - gap / 2, 0.0, 0.5), name="bar")
+    return scene, towed.mass
+
+
+def test_a_towed_car_is_braked_through_the_bar_as_newton_says() -> None:
+    # The car brakes, the towed car does not: the bar decelerates it with the pair, F = m a.
+    scene, m_towed = _towed()
+    result = scene.run(2.0)
+    bar = result.joints["bar"]
+    v = result.trajectory("car").velocity[:, 0]
+    t = result.t
+    steady = (t > 0.8) & (t < 1.8)
+    a = np.gradient(v, t)[steady].mean()
+    assert a < -1.0
+    assert bar.force[steady, 0].mean() == pytest.approx(m_towed * a, rel=1e-2)
+    # Both keep together: the anchors meet (the drift stays below 1 mm).
+    assert result.contacts == [] and result.impacts == []
+
+
+def test_joined_vehicles_form_no_pair_unless_they_collide() -> None:
+    scene, _ = _towed()
+    assert all({"car", "towed"} != {a, b} for a, b, _ in scene.pairs())
+    with pytest.raises(SceneError, match="already joined"):
+        scene.join("towed", "car", at=(0, 0, 0.5))
+    other, _ = _towed()
+    other._joints = []
+    other.join("car", "towed", at=(-3.1, 0.0, 0.5), collide=True)
+    assert any({"car", "towed"} == {a, b} for a, b, _ in other.pairs())
+
+
+@pytest.mark.parametrize(
+    ("join", "error", "match"),
+    [
+        ({"kind": "weld"}, ParameterError, "kind 'weld' is unknown"),
+        ({"kind": "revolute", "limits": {"pitch": (-1, 1)}}, ParameterError, 'no angle "pitch"'),
+        ({"kind": "spherical", "limits": {"angle": (-1, 1)}}, ParameterError, "no angle"),
+        ({"stiffness": -5.0}, ParameterError, "stiffness"),
+        ({"kind": "revolute", "limits": {"angle": (0.5, 1)}}, ParameterError, "lower limit"),
+        ({"at": (0, 0)}, ParameterError, "3 finite numbers"),
+    ],
+)
+def test_bad_joints_are_refused_at_the_call_by_name(
+    join: dict[str, object], error: type[Exception], match: str
+) -> None:
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(_rod(), (0, 0, HIGH - 0.5))
+    args = {"at": (0.0, 0.0, HIGH), **join}
+    with pytest.raises(error, match=match):
+        scene.join("rod", **args)  # type: ignore[arg-type]
+
+
+def test_joints_need_a_ground_agreeing_velocities_and_no_obstacle() -> None:
+    scene = cs.Scene()
+    scene.add(_rod(), (0, 0, HIGH - 0.5))
+    scene.join("rod", at=(-0.5, 0.0, HIGH - 0.5))
+    with pytest.raises(ParameterError, match="ground"):
+        scene.run(0.1)
+    moving, _ = _towed()
+    moving._placements[1] = dataclasses.replace(
+        moving._placements[1], velocity=np.array([14.0, 0.0, 0.0])
+    )
+    with pytest.raises(ParameterError, match="move apart at the start"):
+        moving.run(0.1)
+    walled = cs.Scene(ground=cs.Ground())
+    walled.add(_rod(), (0, 0, HIGH - 0.5))
+    walled.add_obstacle(cs.Obstacle.wall(length=2.0, height=1.0, name="wall"), (5.0, 0.0))
+    with pytest.raises(SceneError, match="fixed obstacle"):
+        walled.join("wall", at=(5.0, 0.0, 0.5))
+
+
+def test_a_jointed_spec_round_trips_through_json_and_pickle() -> None:
+    scene, _ = _towed()
+    spec = scene.to_spec(0.3)
+    assert spec.n_joints == 1
+    runs = [
+        spec.run(),
+        _core.SceneSpec.from_json(spec.to_json()).run(),
+        pickle.loads(pickle.dumps(spec)).run(),
+    ]
+    for other in runs[1:]:
+        for key in ("position", "joint_force", "joint_angles"):
+            assert np.array_equal(other[key], runs[0][key])
