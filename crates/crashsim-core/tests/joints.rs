@@ -466,3 +466,95 @@ fn a_parked_car_and_trailer_share_the_weight_as_statics_says() {
     // Both at rest: nothing rolled.
     assert!(s[car].velocity.norm() < 1e-3 && s[trailer].velocity.norm() < 1e-3);
 }
+
+/// A box struck on one of two hinged boxes: the exchange sees the pair through the joint.
+/// Three 1 m cubes fall together 50 m above the ground (gravity moves them alike); A and B
+/// are joined by a ball joint at their shared face's edge, C hits B's side. Newton's
+/// restitution at the centroid holds with the joint's reaction (it would not with B's mass
+/// alone), the momentum of all three is kept, the joint too.
+#[test]
+fn an_exchange_with_a_jointed_body_sees_the_mechanism() {
+    use crashsim_core::{ContactParams, RestitutionMode};
+    let cube = || {
+        let props =
+            MassProperties::new(1000.0, Matrix::from_diagonal(&Vector::repeat(1000.0 / 6.0)))
+                .unwrap();
+        (
+            Arc::new(MeshShape::cuboid(Vector::zeros(), Vector::repeat(0.5))),
+            props,
+        )
+    };
+    let mut w = World::new();
+    w.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+    let place = |x: Real, y: Real, vy: Real| BodyState {
+        position: Point::new(x, y, HEIGHT),
+        orientation: Rotation::identity(),
+        velocity: Vector::new(0.0, vy, 0.0),
+        angular_velocity: Vector::zeros(),
+    };
+    let (s, p) = cube();
+    let a = w
+        .add_body(s.clone(), p.clone(), &place(0.0, 0.0, 0.0))
+        .unwrap();
+    let b = w
+        .add_body(s.clone(), p.clone(), &place(1.05, 0.0, 0.0))
+        .unwrap();
+    let c = w.add_body(s, p, &place(1.3, 1.6, -5.0)).unwrap();
+    w.add_joint(JointSpec::new(
+        JointKind::Spherical,
+        a,
+        Some(b),
+        (Point::new(0.525, 0.0, 0.0), Rotation::identity()),
+        (Point::new(-0.525, 0.0, 0.0), Rotation::identity()),
+    ))
+    .unwrap();
+    let params = ContactParams {
+        restitution: 0.3,
+        restitution_mode: RestitutionMode::Normal,
+        friction: 0.0,
+        depth_of_penetration: crashsim_core::DepthOfPenetration::Fixed(0.0),
+        ..ContactParams::default()
+    };
+    w.set_contact(b, c, params).unwrap();
+    let out = w.run(0.2, DT).unwrap();
+    assert_eq!(out.impacts.len(), 1, "{:?}", out.contacts);
+    let imp = &out.impacts[0];
+    let n = imp.normal;
+    let (before, after) = (
+        imp.relative_velocity_before.dot(&n),
+        imp.relative_velocity_after.dot(&n),
+    );
+    assert!(
+        (after + 0.3 * before).abs() < 1e-9 * before.abs(),
+        "{before} -> {after}"
+    );
+    // Momentum of all three across the exchange instant (the samples either side, less
+    // gravity's impulse between them).
+    let k = out.times.iter().position(|&t| t == imp.time).unwrap();
+    let momentum = |k: usize| -> Vector { out.sample(k).iter().map(|s| s.velocity * 1000.0).sum() };
+    let gravity = Vector::new(
+        0.0,
+        0.0,
+        -3000.0 * GRAVITY * (out.times[k] - out.times[k - 1]),
+    );
+    let change = momentum(k) - momentum(k - 1) - gravity;
+    assert!(change.norm() < 1e-6, "{change:?}");
+    // B was pushed, and A came along through the joint.
+    let (va, vb) = (out.sample(k)[a].velocity, out.sample(k)[b].velocity);
+    assert!(va.y < -0.1 && vb.y < va.y, "A {va:?}, B {vb:?}");
+    // The kinetic energy the exchange took counts A too (it is at most what the pair lost).
+    assert!(imp.energy_dissipated > 0.0);
+    // B's mass as felt at the centroid along n: more through the joint than its own.
+    let sb = &out.sample(k - 1)[b];
+    let own = crashsim_core::stiffness::effective_mass(
+        1000.0,
+        &Matrix::from_diagonal(&Vector::repeat(6.0 / 1000.0)),
+        &(imp.centroid - sb.position),
+        &n,
+    );
+    assert!(
+        imp.effective_mass[0] > 1.05 * own,
+        "{:?} vs {own}",
+        imp.effective_mass
+    );
+}

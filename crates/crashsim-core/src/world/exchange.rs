@@ -324,7 +324,13 @@ impl World {
             return;
         };
         let before = [b1.state(), b2.state()];
-        let energy_before = b1.kinetic_energy() + b2.kinetic_energy();
+        // The kinetic energy of the bodies the exchange moves: the pair and, through joints,
+        // their mechanisms' other members.
+        let moved = self.moved_by(i1, i2);
+        let energy_before: Real = moved
+            .iter()
+            .map(|&k| self.bodies[k].body.kinetic_energy())
+            .sum();
         let j = solution.impulse * share;
         self.bodies[i1].body.apply_impulse(&(-j), &centroid);
         self.bodies[i2].body.apply_impulse(&j, &centroid);
@@ -339,7 +345,10 @@ impl World {
         self.forget_predictions();
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
         let after = [b1.state(), b2.state()];
-        let energy_after = b1.kinetic_energy() + b2.kinetic_energy();
+        let energy_after: Real = moved
+            .iter()
+            .map(|&k| self.bodies[k].body.kinetic_energy())
+            .sum();
         let u_after = b1.point_velocity(&centroid) - b2.point_velocity(&centroid);
         out.impacts.push(Impact {
             body1: i1,

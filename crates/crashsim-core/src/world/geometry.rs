@@ -430,20 +430,21 @@ impl World {
                 }
             }
         };
-        let effective_mass = [
-            effective_mass(
-                b1.props().mass(),
-                &b1.world_inverse_inertia(),
-                &(centroid - b1.position()),
-                &normal,
-            ),
-            effective_mass(
-                b2.props().mass(),
-                &b2.world_inverse_inertia(),
-                &(centroid - b2.position()),
-                &normal,
-            ),
-        ];
+        // A mechanism's member feels the mass the joints bring along (its point's mobility
+        // through them, at the members' current poses).
+        let felt = |i: usize, b: &RigidBody| {
+            if self.mechanism_of.get(i).copied().flatten().is_some() {
+                1.0 / normal.dot(&(self.point_mobility(i, &centroid) * normal))
+            } else {
+                effective_mass(
+                    b.props().mass(),
+                    &b.world_inverse_inertia(),
+                    &(centroid - b.position()),
+                    &normal,
+                )
+            }
+        };
+        let effective_mass = [felt(pair.body1, b1), felt(pair.body2, b2)];
         Some(ContactGeometry {
             region,
             normal,

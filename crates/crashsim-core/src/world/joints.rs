@@ -360,6 +360,23 @@ impl World {
         }
     }
 
+    /// The bodies an exchange between `i1` and `i2` moves: the two (in that order, so a
+    /// pair without joints sums its energies as it always has) and their mechanisms' other
+    /// members.
+    pub(super) fn moved_by(&self, i1: usize, i2: usize) -> Vec<usize> {
+        let mut out = vec![i1, i2];
+        for i in [i1, i2] {
+            if let Some(g) = self.mechanism_of.get(i).copied().flatten() {
+                for &k in &self.mechanisms[g].members {
+                    if !out.contains(&k) {
+                        out.push(k);
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// The members of mechanism `g` as the joints see them now.
     fn joint_bodies(&self, g: usize) -> Vec<JointBody> {
         self.mechanisms[g]
