@@ -528,6 +528,7 @@ pub fn wheels_of(v: &Vehicle) -> VehicleSpec {
             ..DriverInputs::default()
         },
         coupling: None,
+        hitch_load: None,
     }
 }
 

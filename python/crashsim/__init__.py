@@ -33,6 +33,7 @@ from crashsim.errors import (
 from crashsim.io import export, scenefile
 from crashsim.io.export import export_frames, export_glb
 from crashsim.io.viewer import view
+from crashsim.joints import JointEvent, JointRecord
 from crashsim.plots import plot_impact, plot_trajectories
 from crashsim.result import (
     ContactEvent,
@@ -64,6 +65,7 @@ from crashsim.vehicles import generator, meshio, vehicle_data
 from crashsim.vehicles.inputs import Brake, DriverInputs
 from crashsim.vehicles.meshio import MeshQuality, load_mesh, mesh_quality
 from crashsim.vehicles.stiffness import FaceStiffness, Stiffness
+from crashsim.vehicles.trailer import Trailer, tractor
 from crashsim.vehicles.vehicle import Vehicle
 from crashsim.vehicles.vehicle_data import VehicleClass, vehicle_class, vehicle_classes
 from crashsim.vehicles.wheels import Tyre, Wheels
@@ -71,6 +73,8 @@ from crashsim.vehicles.wheels import Tyre, Wheels
 __all__ = [
     "__version__",
     "Vehicle",
+    "Trailer",
+    "tractor",
     "Scene",
     "DepthOfPenetrationWarning",
     "Result",
@@ -80,6 +84,8 @@ __all__ = [
     "RestState",
     "SeparationState",
     "WheelRecord",
+    "JointRecord",
+    "JointEvent",
     "RestNotReachedWarning",
     "Study",
     "sweep",

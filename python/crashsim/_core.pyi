@@ -119,12 +119,18 @@ def solid_properties(vertices: ArrayLike, triangles: ArrayLike) -> dict[str, Any
     """The solid bounded by a closed, outward-wound mesh, unit density (no BVH is built):
     ``volume`` (m^3, signed), ``centroid`` (3,) m, ``inertia`` (3, 3) about the centroid."""
 
-def static_loads(xy: ArrayLike, weight: float) -> NDArray[np.float64]:
+def static_loads(
+    xy: ArrayLike, weight: float, towed: tuple[tuple[float, float], float] | None = None
+) -> NDArray[np.float64]:
     """Static loads (N) of wheels at body-frame (x, y) positions (m from the CG) carrying
-    weight (N) on level ground: each axle its share."""
+    weight (N) on level ground (each axle its share), and with ``towed`` ((x, y), N) the load
+    a trailer puts on the hitch there."""
 
 def static_loads_coupled(
-    xy: Sequence[tuple[float, float]], weight: float, coupling: tuple[float, float]
+    xy: Sequence[tuple[float, float]],
+    weight: float,
+    coupling: tuple[float, float],
+    towed: tuple[tuple[float, float], float] | None = None,
 ) -> tuple[list[float], float]:
     """Static loads (N) of wheels at body-frame (x, y) positions and of a coupling at
     ``coupling`` (x, y) (a trailer's hitch coupler or kingpin) carrying weight N together:
@@ -339,6 +345,7 @@ class SceneSpec:
         drive: list[ArrayLike | None] = ...,
         switches: list[tuple[int, str, float, str, float]] = ...,
         coupling: ArrayLike | None = None,
+        hitch_load: tuple[ArrayLike, float] | None = None,
     ) -> None:
         """Give a body wheels: centres (n, 3) m in the body frame at static ride height, radii
         (m), steerable flags, static loads (N), spring rates (N/m), damping (N s/m); a Tyre;

@@ -16,7 +16,7 @@ import enum
 import math
 import re
 import warnings
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from itertools import combinations
 from typing import Any, Literal, TypeAlias
@@ -30,12 +30,17 @@ from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import InitialOverlapError, ParameterError, SceneError, SimulationError
 from crashsim.joints import Joint, check_new, make_joint
 from crashsim.result import Result
+from crashsim.vehicles.coupling import JOINT_OF
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.stiffness import FACES
 from crashsim.vehicles.vehicle import Vehicle, _as_float, _probe_shape
 from crashsim.vehicles.wheels import Wheels
 
 __all__ = ["DEFAULT_MAX_DURATION", "DepthOfPenetrationWarning", "RestNotReachedWarning", "Scene"]
+
+MAX_TRAILER_RATIO = 10.0
+"""A trailer may weigh at most this many times the vehicle that tows it (a 7 t tractor with a
+40 t semitrailer is 5.7): more is taken for a wrong mass."""
 
 DEFAULT_MAX_DURATION = 60.0
 """Longest run (s) of ``Scene.run(until="rest")`` when no max_duration is given."""
@@ -96,6 +101,18 @@ def _quaternion_from_matrix(r: Array) -> Array:
     return np.asarray(q, dtype=np.float64)
 
 
+def _rotation_matrix(q: ArrayLike) -> Array:
+    """The rotation matrix (body -> world) of a unit quaternion (w, x, y, z)."""
+    w, x, y, z = (float(c) for c in np.asarray(q, dtype=np.float64))
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+
+
 def _orientation(heading: float | None, orientation: ArrayLike | None) -> Any:
     """The quaternion (w, x, y, z) for a heading (rad about world z) or a full orientation
     (quaternion or 3x3 rotation matrix). Quaternion checks are the engine's."""
@@ -153,6 +170,9 @@ class _Placement:
     # tilted to it, which moves its CG a little off (x, y)).
     level: Array | None = None
     anchor: tuple[float, float] | None = None
+    # A vehicle towing a trailer: its hitch (body frame, m) and the trailer's static load on
+    # it (N); its springs are set for the combination.
+    hitch_load: tuple[Array, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -456,8 +476,9 @@ class Scene:
         angular_velocity: ArrayLike = (0.0, 0.0, 0.0),
         orientation: ArrayLike | None = None,
         inputs: DriverInputs | None = None,
+        trailers: Sequence[Vehicle | tuple[Vehicle, DriverInputs | None]] = (),
     ) -> Scene:
-        """Place a vehicle; returns the scene (calls chain).
+        """Place a vehicle (and the trailers it tows); returns the scene (calls chain).
 
         position: the CG in the world (m); in a scene with a ground (set it first), (x, y)
         only (with a heading) puts the CG at its static height above the ground at (x, y):
@@ -468,6 +489,11 @@ class Scene:
         quaternion (w, x, y, z) or a 3x3 rotation matrix (body -> world). velocity (m/s) and
         angular_velocity (rad/s): world frame. inputs: the driver's
         (:class:`crashsim.DriverInputs`; needs wheels; used when the scene has a ground).
+        trailers: the trailers it tows, in order (each a Vehicle with a ``coupler``, or
+        ``(trailer, inputs)`` for its brakes): each is put in line behind the one before, its
+        coupler on that one's ``hitch`` (crashsim.vehicles.coupling; a kingpin on a fifth
+        wheel, a coupler on a ball; their heights within 5 cm), moving with it, and joined to
+        it (a fifth-wheel or a spherical joint named "tower-trailer"; see :meth:`join`).
         """
         if not isinstance(vehicle, Vehicle):
             raise TypeError(f"add() needs a crashsim.Vehicle, got {type(vehicle).__name__}")
@@ -496,7 +522,72 @@ class Scene:
             z_from_ground=flat,
         )
         self._placements.append(self._resting(placement) if flat else placement)
+        tower = self._placements[-1]
+        for item in trailers:
+            trailer, trailer_inputs = item if isinstance(item, tuple) else (item, None)
+            if isinstance(trailer, Vehicle) and trailer.mass > MAX_TRAILER_RATIO * vehicle.mass:
+                raise SceneError(
+                    f"trailer {trailer.name!r} ({trailer.mass:.0f} kg) is more than "
+                    f"{MAX_TRAILER_RATIO:g} times as heavy as {vehicle.name!r} ({vehicle.mass:.0f} "
+                    "kg), which tows it: check both masses (kg)"
+                )
+            tower = self._tow(tower, trailer, trailer_inputs)
         return self
+
+    def _tow(
+        self, tower: _Placement, trailer: Vehicle, inputs: DriverInputs | None
+    ) -> _Placement:
+        """Places ``trailer`` behind ``tower`` with its coupler on the tower's hitch, moving
+        with it, and joins them; returns the trailer's placement."""
+        if not isinstance(trailer, Vehicle):
+            raise TypeError(f"a trailer must be a crashsim.Vehicle, got {type(trailer).__name__}")
+        hitch, coupler = tower.vehicle.hitch, trailer.coupler
+        who = f"{tower.vehicle.name!r} towing {trailer.name!r}"
+        if hitch is None:
+            raise SceneError(f"{who}: {tower.vehicle.name!r} has no hitch (vehicle.with_hitch)")
+        if coupler is None:
+            raise SceneError(f"{who}: {trailer.name!r} has no coupler (build it with Trailer)")
+        if not coupler.mates(hitch):
+            raise SceneError(
+                f"{who}: a {coupler.kind} does not go on a {hitch.kind} (a kingpin goes on a "
+                "fifth wheel, a drawbar's coupler on a ball)"
+            )
+        rot = _rotation_matrix(tower.orientation)
+        at = tower.position + rot @ hitch.point
+        position = at - rot @ coupler.point
+        if self._ground is not None and trailer.wheels is not None:
+            ground = self._ground_height(float(position[0]), float(position[1]), "a trailer")
+            rest = ground + float(trailer.cg[2])  # its CG's height at static ride height
+            if abs(position[2] - rest) > 0.05:
+                raise SceneError(
+                    f"{who}: the coupler stands {position[2] - rest:+.3f} m from its height at "
+                    "rest over the hitch (at most 5 cm): give the trailer's coupler_height the "
+                    f"hitch's height above the road, {at[2] - ground:.3f} m"
+                )
+        omega = np.asarray(tower.angular_velocity, dtype=np.float64)
+        velocity = np.asarray(tower.velocity, dtype=np.float64) + np.cross(
+            omega, position - tower.position
+        )
+        self.add(
+            trailer,
+            position,
+            orientation=tower.orientation,
+            velocity=velocity,
+            angular_velocity=omega,
+            inputs=inputs,
+        )
+        self.join(
+            tower.vehicle.name,
+            trailer.name,
+            at=at,
+            kind=JOINT_OF[coupler.kind],
+            axes=tower.orientation,
+        )
+        if trailer.wheels is not None:
+            k = next(i for i, p in enumerate(self._placements) if p is tower)
+            load = trailer.wheels.coupling_load(trailer.mass)
+            self._placements[k] = dataclasses.replace(tower, hitch_load=(hitch.point, load))
+        return self._placements[-1]
 
     def join(
         self,
@@ -792,7 +883,9 @@ class Scene:
                 inputs = {} if p.inputs is None else p.inputs.to_core(w, f"{what} inputs")
                 try:
                     # the inputs' steering ratio (if given) replaces the wheels'
-                    spec.set_vehicle(i, **{**w.spec(p.vehicle.mass), **inputs})
+                    spec.set_vehicle(
+                        i, **{**w.spec(p.vehicle.mass, hitch_load=p.hitch_load), **inputs}
+                    )
                 except ParameterError as e:  # pragma: no cover - checked when put together
                     raise ParameterError(f"{what}: {e}") from e
         for joint in self._joints:

@@ -352,6 +352,7 @@ fn skidding_car() -> SceneSpec {
             anti_roll: Vec::new(),
             inputs,
             coupling: None,
+            hitch_load: None,
         },
     )
     .unwrap();

@@ -36,6 +36,7 @@ fn car_spec(tyre: Tyre, inputs: DriverInputs) -> VehicleSpec {
         anti_roll: Vec::new(),
         inputs,
         coupling: None,
+        hitch_load: None,
     }
 }
 

@@ -380,6 +380,7 @@ fn a_parked_car_and_trailer_share_the_weight_as_statics_says() {
             anti_roll: Vec::new(),
             inputs: Default::default(),
             coupling: None,
+            hitch_load: None,
         },
     )
     .unwrap();
@@ -406,7 +407,7 @@ fn a_parked_car_and_trailer_share_the_weight_as_statics_says() {
         )
         .unwrap();
     let xy = [[axle_x, 0.8], [axle_x, -0.8]];
-    let (loads, _) = static_loads_coupled(&xy, mt * GRAVITY, [hitch_x, 0.0]).unwrap();
+    let (loads, _) = static_loads_coupled(&xy, mt * GRAVITY, [hitch_x, 0.0], None).unwrap();
     let wheels = xy
         .iter()
         .zip(&loads)
@@ -426,6 +427,7 @@ fn a_parked_car_and_trailer_share_the_weight_as_statics_says() {
             anti_roll: Vec::new(),
             inputs: Default::default(),
             coupling: Some(coupler),
+            hitch_load: None,
         },
     )
     .unwrap();

@@ -110,6 +110,7 @@ fn world(frequency: Real, ratio: Real, bar: Real, speed: Real, drop: Real, m: Ma
         abs: true,
         inputs: inputs(m),
         coupling: None,
+        hitch_load: None,
     };
     w.set_vehicle(i, spec).unwrap();
     w.set_ground(Ground::default()).unwrap();
@@ -291,6 +292,7 @@ fn the_stiffest_suspension_stops_like_the_default_in_bounded_work() {
             anti_roll: Vec::new(),
             inputs: DriverInputs::default(),
             coupling: None,
+            hitch_load: None,
         };
         1e-3 * suspension_rate(&spec, &props()) / MAX_SUBSTEP_SUSPENSION
     };

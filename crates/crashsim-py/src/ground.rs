@@ -426,5 +426,6 @@ pub fn vehicle(
         abs,
         inputs,
         coupling: None,
+        hitch_load: None,
     })
 }

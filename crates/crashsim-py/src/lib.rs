@@ -566,12 +566,15 @@ fn wheels_to_dict(py: Python<'_>, d: &Bound<'_, PyDict>, out: &core::RunOutput) 
 }
 
 /// Static loads (N) of wheels at body-frame (x, y) positions (m from the CG) carrying
-/// `weight` (N) on level ground: each axle its share.
+/// `weight` (N) on level ground (each axle its share), and with `towed` ((x, y), N) the load a
+/// trailer puts on the hitch there.
 #[pyfunction]
+#[pyo3(signature = (xy, weight, towed = None))]
 fn static_loads<'py>(
     py: Python<'py>,
     xy: &Bound<'py, PyAny>,
     weight: f64,
+    towed: Option<([f64; 2], f64)>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let a: numpy::PyArrayLike2<'_, f64, numpy::AllowTypeChange> = xy
         .extract()
@@ -584,20 +587,22 @@ fn static_loads<'py>(
         )));
     }
     let pts: Vec<[f64; 2]> = a.rows().into_iter().map(|r| [r[0], r[1]]).collect();
-    let loads = core::vehicle::static_loads(&pts, weight).map_err(errors::to_py)?;
+    let loads = core::vehicle::static_loads_towing(&pts, weight, towed).map_err(errors::to_py)?;
     Ok(Array1::from_vec(loads).into_pyarray(py))
 }
 
 /// Static loads (N) of wheels at body-frame (x, y) positions and of a coupling at `coupling`
-/// (x, y) (a trailer's hitch coupler or kingpin) carrying `weight` N together: the wheels'
-/// loads and the coupling's.
+/// (x, y) (a trailer's hitch coupler or kingpin) carrying `weight` N together (and `towed`,
+/// ((x, y), N), a trailer it tows in turn): the wheels' loads and the coupling's.
 #[pyfunction]
+#[pyo3(signature = (xy, weight, coupling, towed = None))]
 fn static_loads_coupled(
     xy: Vec<[f64; 2]>,
     weight: f64,
     coupling: [f64; 2],
+    towed: Option<([f64; 2], f64)>,
 ) -> PyResult<(Vec<f64>, f64)> {
-    core::vehicle::static_loads_coupled(&xy, weight, coupling).map_err(errors::to_py)
+    core::vehicle::static_loads_coupled(&xy, weight, coupling, towed).map_err(errors::to_py)
 }
 
 /// (spring rate N/m, damping N s/m) of a wheel with `static_load` N sprung at

@@ -362,7 +362,7 @@ impl SceneSpec {
 
     /// Gives a body wheels, a tyre, the steering linkage, anti-roll bars and driver inputs
     /// (see the stub).
-    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steering_ratio = None, ackermann = None, steering_reference = None, anti_roll = Vec::new(), abs = true, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new(), coupling = None))]
+    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steering_ratio = None, ackermann = None, steering_reference = None, anti_roll = Vec::new(), abs = true, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new(), coupling = None, hitch_load = None))]
     #[allow(clippy::too_many_arguments)]
     fn set_vehicle(
         &mut self,
@@ -384,7 +384,12 @@ impl SceneSpec {
         drive: Vec<Option<Bound<'_, PyAny>>>,
         switches: Vec<Bound<'_, PyAny>>,
         coupling: Option<Bound<'_, PyAny>>,
+        hitch_load: Option<(Bound<'_, PyAny>, f64)>,
     ) -> PyResult<()> {
+        let hitch_load = match hitch_load {
+            Some((p, f)) => Some((core::math::Point::from(vector3(&p, "the hitch")?), f)),
+            None => None,
+        };
         let coupling = match coupling {
             Some(c) => Some(core::math::Point::from(vector3(&c, "coupling")?)),
             None => None,
@@ -421,6 +426,7 @@ impl SceneSpec {
             switches,
         )?;
         spec.coupling = coupling;
+        spec.hitch_load = hitch_load;
         self.inner.set_vehicle(body, spec).map_err(errors::to_py)
     }
 

@@ -37,6 +37,7 @@ from crashsim.errors import MeshError, ParameterError
 from crashsim.names import check_name
 from crashsim.units import POUND
 from crashsim.vehicles import plausibility
+from crashsim.vehicles.coupling import Hitch
 from crashsim.vehicles.generator import PRESETS, BodyParams, body_params, generate_body
 from crashsim.vehicles.meshio import (
     MeshQuality,
@@ -423,6 +424,10 @@ class Vehicle:
         self._shape: _core.Shape | None = None
         self._generator_params: BodyParams | None = None
         self._wheels: Wheels | None = None
+        # Where it tows (a tow ball, a fifth wheel) and where it is towed (a trailer's coupler
+        # or kingpin): crashsim.vehicles.coupling.
+        self._hitch: Hitch | None = None
+        self._coupler: Hitch | None = None
 
     # -- constructors --------------------------------------------------------------------
 
@@ -1017,6 +1022,38 @@ class Vehicle:
         other._wheels = wheels
         return other
 
+    @property
+    def hitch(self) -> Hitch | None:
+        """Where this vehicle tows a trailer (a tow ball or a fifth wheel), if it does."""
+        return self._hitch
+
+    @property
+    def coupler(self) -> Hitch | None:
+        """Where this vehicle (a trailer) rests on its tractor: its coupler or kingpin."""
+        return self._coupler
+
+    def with_hitch(self, at: ArrayLike, kind: str = "ball") -> Vehicle:
+        """The same vehicle with a hitch (a new Vehicle): ``at`` the model-frame point (m)
+        of the tow ball's centre or the fifth wheel's kingpin lock, ``kind`` "ball" or
+        "fifth_wheel" (crashsim.vehicles.coupling). It must lie within 1 m of the body."""
+        hitch = Hitch.at(kind, _point(at, "hitch") - self._cg, towing=True)
+        self._check_reach(hitch, "hitch")
+        other = self._copy(self._name)
+        other._hitch = hitch
+        return other
+
+    def _check_reach(self, hitch: Hitch, what: str) -> None:
+        """A ParameterError when ``hitch`` lies more than 1 m outside the body's box (the
+        engine's joint rule, crashsim-core world/joints.rs ANCHOR_REACH)."""
+        lo, hi = self.body_vertices.min(axis=0), self.body_vertices.max(axis=0)
+        gap = np.maximum(0.0, np.maximum(lo - hitch.point, hitch.point - hi))
+        outside = float(np.linalg.norm(gap))
+        if outside > 1.0:
+            raise ParameterError(
+                f"vehicle {self._name!r}: its {what} lies {outside:.2f} m outside the body's "
+                "box (at most 1 m): give it in the model frame (m), where the mesh is"
+            )
+
     def _copy(self, name: str) -> Vehicle:
         other = Vehicle(
             self._mesh,
@@ -1032,6 +1069,7 @@ class Vehicle:
         other._generator_params = self._generator_params
         other._shape = self.shape
         other._wheels = self._wheels
+        other._hitch, other._coupler = self._hitch, self._coupler
         return other
 
     def renamed(self, name: str) -> Vehicle:

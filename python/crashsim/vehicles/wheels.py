@@ -365,12 +365,15 @@ class Wheels:
         ackermann: float | None = None,
         steering_reference: str | None = None,
         abs: bool = True,
+        coupling: ArrayLike | None = None,
     ) -> Wheels:
         """Any layout of at least 3 wheels: ``centers`` (n, 3) body frame at static ride
         height (m), ``radii`` (one or n, m), ``steerable`` flags, ``names`` (default
         "wheel_0", ...); springs as for the constructor (one number or one per wheel);
         ``anti_roll`` bars as (left wheel, right wheel, roll stiffness N m/rad); the steering
-        linkage and ABS as for the constructor."""
+        linkage and ABS as for the constructor. ``coupling``: a trailer's coupler or kingpin
+        (body frame, m), where it rests on its tractor: that point carries its share of the
+        weight at rest and at least 2 wheels the rest (the engine's static_loads_coupled)."""
         try:
             c = np.asarray(centers, dtype=np.float64)
         except (TypeError, ValueError) as e:
@@ -404,6 +407,14 @@ class Wheels:
         )
         self.wheelbase = self.track = self.cg_to_front_axle = self.cg_height = None
         self.steer = "custom"
+        if coupling is not None:
+            try:
+                point = np.asarray(coupling, dtype=np.float64).reshape(-1)
+            except (TypeError, ValueError) as e:
+                raise ParameterError(f"coupling must be 3 numbers (m), got {coupling!r}") from e
+            if point.shape != (3,) or not np.all(np.isfinite(point)):
+                raise ParameterError(f"coupling must be 3 finite numbers (m), got {coupling!r}")
+            self.coupling = _frozen(point)
         bars = []
         for k, bar in enumerate(anti_roll):
             if not isinstance(bar, tuple | list) or len(bar) != 3:
@@ -442,6 +453,8 @@ class Wheels:
         self._damping = _per_wheel(damping, "damping", "N s/m", n, axles)
         self.tyre: Tyre = Tyre.coerce(tyre)
         self.source = "user"
+        # A trailer's coupler or kingpin (body frame, m): it carries a share of the weight.
+        self.coupling: Array | None = None
         ratio, ackermann, reference, abs_ = linkage
         self.steering_ratio: float | None = (
             None if ratio is None else _number(ratio, "steering_ratio", "1")
@@ -513,21 +526,51 @@ class Wheels:
             )
         return tuple(self._names.index(w) for w in AXLES[axle])
 
-    def static_loads(self, mass: float) -> Array:
+    def static_loads(self, mass: float, hitch_load: tuple[ArrayLike, float] | None = None) -> Array:
         """Each wheel's static load on level ground (N) for a vehicle of ``mass`` kg: the
-        axle shares of the weight (the engine's ``static_loads``)."""
+        axle shares of the weight (the engine's ``static_loads``; with a coupling, what the
+        coupling leaves), plus, with ``hitch_load`` (its hitch, body frame m; N), the shares
+        of the load its trailer puts on its hitch (the same rule for a load at that point)."""
         weight = _number(mass, "mass", "kg") * _defaults()["gravity"]
+        xy = [tuple(p) for p in self._centers[:, :2].tolist()]
+        towed = None
+        if hitch_load is not None:
+            point, force = hitch_load
+            towed = ((float(point[0]), float(point[1])), float(force))
         try:
-            return np.asarray(_core.static_loads(self._centers[:, :2], weight), dtype=np.float64)
+            if self.coupling is not None:
+                coupling = (float(self.coupling[0]), float(self.coupling[1]))
+                loads = _core.static_loads_coupled(xy, weight, coupling, towed)[0]
+            else:
+                loads = _core.static_loads(self._centers[:, :2], weight, towed)
+            return np.asarray(loads, dtype=np.float64)
         except ParameterError as e:
             raise _renamed(e, self._names) from e
 
-    def spec(self, mass: float, *, explicit_rates: bool = True) -> dict[str, Any]:
+    def coupling_load(self, mass: float) -> float:
+        """The static load (N) a trailer of ``mass`` kg puts on its coupling on level ground
+        (0 without a coupling)."""
+        if self.coupling is None:
+            return 0.0
+        weight = _number(mass, "mass", "kg") * _defaults()["gravity"]
+        xy = [tuple(p) for p in self._centers[:, :2].tolist()]
+        coupling = (float(self.coupling[0]), float(self.coupling[1]))
+        return float(_core.static_loads_coupled(xy, weight, coupling)[1])
+
+    def spec(
+        self,
+        mass: float,
+        *,
+        explicit_rates: bool = True,
+        hitch_load: tuple[ArrayLike, float] | None = None,
+    ) -> dict[str, Any]:
         """SceneSpec.set_vehicle keywords (centers, radii, steerable, static_loads, spring_rates,
-        damping, tyre, steering, anti-roll bars, abs) for a vehicle of ``mass`` kg;
-        ``explicit_rates=False`` leaves given rates and the bars out (the springs from the
-        frequency and ratio instead): what the checks without the vehicle's mass take."""
-        loads = self.static_loads(mass)
+        damping, tyre, steering, anti-roll bars, abs, coupling, hitch_load) for a vehicle of
+        ``mass`` kg (towing a trailer that puts ``hitch_load`` on its hitch: the springs are
+        set for the combination); ``explicit_rates=False`` leaves given rates and the bars out
+        (the springs from the frequency and ratio instead): what the checks without the
+        vehicle's mass take."""
+        loads = self.static_loads(mass, hitch_load)
         d = _defaults()
         rates = np.empty(len(self))
         damp = np.empty(len(self))
@@ -555,6 +598,8 @@ class Wheels:
             "steering_reference": self.steering_reference,
             "anti_roll": self.anti_roll_bars(mass, loads, rates) if explicit_rates else [],
             "abs": self.abs,
+            "coupling": self.coupling,
+            "hitch_load": hitch_load,
         }
 
     def describe(self, mass: float) -> dict[str, Any]:
@@ -594,6 +639,11 @@ class Wheels:
             "abs": self.abs,
             "tyre": self.tyre.resolved(),
         }
+        if self.coupling is not None:
+            out["coupling"] = {
+                "point": self.coupling.tolist(),
+                "static_load": self.coupling_load(mass),
+            }
         if self.steer != "custom" and self.track is not None:
             tf, tr = self.track
             bar = {b[0]: float(b[2]) for b in spec["anti_roll"]}

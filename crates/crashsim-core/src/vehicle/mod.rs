@@ -18,8 +18,9 @@ pub use tyre::{
     MAGIC_FORMULA_DEFAULTS,
 };
 pub use wheel::{
-    static_loads, static_loads_coupled, AntiRollBar, WheelSpec, DEFAULT_DAMPING_RATIO,
-    DEFAULT_NATURAL_FREQUENCY, GRAVITY, MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,
+    static_loads, static_loads_coupled, static_loads_towing, AntiRollBar, WheelSpec,
+    DEFAULT_DAMPING_RATIO, DEFAULT_NATURAL_FREQUENCY, GRAVITY, MAX_DAMPING_RATIO,
+    MAX_NATURAL_FREQUENCY,
 };
 
 use crate::error::{Error, Result};
@@ -50,6 +51,10 @@ pub struct VehicleSpec {
     /// m): that point carries its share of the weight at rest ([`static_loads_coupled`]) and
     /// the wheels the rest; None for a vehicle on its own wheels.
     pub coupling: Option<Point>,
+    /// What its own trailer puts on its hitch at rest: the hitch (body frame, m) and the
+    /// static vertical load there (N, >= 0): the wheels carry the vehicle's weight and this
+    /// (their springs set for the combination's static loads). None without a trailer.
+    pub hitch_load: Option<(Point, Real)>,
 }
 
 impl VehicleSpec {
@@ -80,6 +85,22 @@ impl VehicleSpec {
             }
         }
         let mut weight = mass * GRAVITY;
+        let towed = match &self.hitch_load {
+            Some((p, load)) => {
+                crate::error::require_finite_vector("the hitch point", &p.coords)?;
+                crate::error::require_finite("the hitch load", *load)?;
+                if *load < 0.0 {
+                    return Err(Error::parameter(
+                        "the hitch load",
+                        format!("{load} N"),
+                        "it must be >= 0 N (a trailer's weight on its hitch)",
+                    ));
+                }
+                weight += load;
+                Some(([p.x, p.y], *load))
+            }
+            None => None,
+        };
         if let Some(c) = &self.coupling {
             crate::error::require_finite_vector("the coupling point", &c.coords)?;
             let xy: Vec<[Real; 2]> = self
@@ -87,7 +108,7 @@ impl VehicleSpec {
                 .iter()
                 .map(|w| [w.center.x, w.center.y])
                 .collect();
-            weight -= static_loads_coupled(&xy, weight, [c.x, c.y])?.1;
+            weight -= static_loads_coupled(&xy, mass * GRAVITY, [c.x, c.y], towed)?.1;
         }
         let carried: Real = self.wheels.iter().map(|w| w.static_load).sum();
         if (carried - weight).abs() > 0.01 * weight {

@@ -262,12 +262,16 @@ impl AntiRollBar {
     }
 }
 
-/// Static loads (N) of wheels at body-frame positions `xy` (m from the CG) carrying `weight`
-/// (N) on level ground: the least-squares solution of the three equilibrium equations (total
-/// load, moments about x and y), which for two axles gives each axle its share
-/// `weight * (distance of the other axle from the CG) / wheelbase`, split by the lateral
-/// lever. An error when the CG is not over the wheels (a load would be negative).
-pub fn static_loads(xy: &[[Real; 2]], weight: Real) -> Result<Vec<Real>> {
+/// Static loads (N) of supports at body-frame `xy` (m from the CG) carrying `weight` N at the
+/// CG and, with `towed`, a load (N) at a point (a trailer on the vehicle's hitch), on level
+/// ground: the linear distribution `F_i = a + b x_i + c y_i` with the least sum of squares
+/// that balances the forces and both moments (each axle its share; a load behind the rear
+/// axle unloads the front). Every support must carry a positive load.
+pub fn static_loads_towing(
+    xy: &[[Real; 2]],
+    weight: Real,
+    towed: Option<([Real; 2], Real)>,
+) -> Result<Vec<Real>> {
     use nalgebra::{Matrix3, Vector3};
     if xy.len() < 3 {
         return Err(Error::Parameter(format!(
@@ -275,17 +279,22 @@ pub fn static_loads(xy: &[[Real; 2]], weight: Real) -> Result<Vec<Real>> {
             xy.len()
         )));
     }
-    // F_i = a + b x_i + c y_i minimises |F| subject to sum F = W, sum F x = 0, sum F y = 0.
+    // F_i = a + b x_i + c y_i minimises |F| subject to sum F = W + P, sum F x = P px,
+    // sum F y = P py.
     let mut m = Matrix3::zeros();
     for p in xy {
         let row = Vector3::new(1.0, p[0], p[1]);
         m += row * row.transpose();
     }
+    let rhs = match towed {
+        Some((p, load)) => Vector3::new(weight + load, load * p[0], load * p[1]),
+        None => Vector3::new(weight, 0.0, 0.0),
+    };
     let coef = m.try_inverse().ok_or_else(|| {
         Error::Parameter(
             "the wheels are in a line: they cannot carry a vehicle (check their positions)".into(),
         )
-    })? * Vector3::new(weight, 0.0, 0.0);
+    })? * rhs;
     let loads: Vec<Real> = xy
         .iter()
         .map(|p| coef.x + coef.y * p[0] + coef.z * p[1])
@@ -293,20 +302,32 @@ pub fn static_loads(xy: &[[Real; 2]], weight: Real) -> Result<Vec<Real>> {
     if let Some((k, f)) = loads.iter().enumerate().find(|(_, f)| **f <= 0.0) {
         return Err(Error::Parameter(format!(
             "the centre of gravity is not over the wheels: wheel {k} would carry {f:.1} N (check \
-             the wheel positions, which are measured from the CG)"
+             the wheel positions, which are measured from the CG{})",
+            if towed.is_some() {
+                ", and the trailer's load on the hitch"
+            } else {
+                ""
+            }
         )));
     }
     Ok(loads)
 }
 
+/// [`static_loads_towing`] without a towed load: the weight alone.
+pub fn static_loads(xy: &[[Real; 2]], weight: Real) -> Result<Vec<Real>> {
+    static_loads_towing(xy, weight, None)
+}
+
 /// The static loads (N) of wheels at `xy` and of a coupling at `coupling` (a trailer's hitch
-/// coupler or kingpin, body frame, m from the CG) carrying `weight` N together: the
-/// coupling is one more support of [`static_loads`]'s rule (at least three supports, not in
-/// a line). Returns the wheels' loads and the coupling's.
+/// coupler or kingpin, body frame, m from the CG) carrying `weight` N together (and, with
+/// `towed`, the load of a trailer this one tows in turn): the coupling is one more support of
+/// [`static_loads_towing`]'s rule (at least three supports, not in a line). Returns the wheels'
+/// loads and the coupling's.
 pub fn static_loads_coupled(
     xy: &[[Real; 2]],
     weight: Real,
     coupling: [Real; 2],
+    towed: Option<([Real; 2], Real)>,
 ) -> Result<(Vec<Real>, Real)> {
     if xy.len() < 2 {
         return Err(Error::Parameter(format!(
@@ -316,7 +337,7 @@ pub fn static_loads_coupled(
     }
     let mut all = xy.to_vec();
     all.push(coupling);
-    let mut loads = static_loads(&all, weight).map_err(|e| match e {
+    let mut loads = static_loads_towing(&all, weight, towed).map_err(|e| match e {
         Error::Parameter(m) => Error::Parameter(format!(
             "{m} (the coupling is support {}, after the wheels)",
             xy.len()

@@ -1,0 +1,65 @@
+"""Couplings between a towing vehicle and its trailer (docs/joints.md, "Articulated vehicles").
+
+A towing vehicle has a :class:`Hitch` of kind "ball" (a tow ball: a car, a van, a rigid
+truck's drawbar coupling) or "fifth_wheel" (a tractor); a trailer has one of kind "coupler"
+(the drawbar's eye or cup, on a ball: a centre-axle trailer, a caravan, a drawbar trailer)
+or "kingpin" (a semitrailer, on a fifth wheel). A coupler goes on a ball and makes a
+spherical joint; a kingpin goes on a fifth wheel and makes a fifth-wheel joint (yaw free,
+pitch about the plate's pivot, no roll between the units). :meth:`crashsim.Scene.add` with
+``trailers=`` puts each trailer's coupler on the hitch before it and joins them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from crashsim.errors import ParameterError
+
+__all__ = ["HITCH_KINDS", "JOINT_OF", "Hitch"]
+
+Array = NDArray[np.float64]
+
+TOWING = ("ball", "fifth_wheel")
+TOWED = ("coupler", "kingpin")
+HITCH_KINDS = TOWING + TOWED
+"""A towing vehicle's hitch kinds, then a trailer's."""
+
+MATES = {"coupler": "ball", "kingpin": "fifth_wheel"}
+"""Which towing hitch each trailer coupling goes on."""
+
+JOINT_OF = {"coupler": "spherical", "kingpin": "fifth_wheel"}
+"""The joint a trailer's coupling makes with its hitch."""
+
+
+@dataclass(frozen=True)
+class Hitch:
+    """A hitch: ``kind`` (see HITCH_KINDS) and ``point`` (3,), the body-frame point (m from
+    the CG: x forward, y left, z up) where the two units meet: the tow ball's centre, the
+    kingpin's lock in the fifth wheel."""
+
+    kind: str
+    point: Array
+
+    @classmethod
+    def at(cls, kind: str, point: ArrayLike, *, towing: bool) -> Hitch:
+        """A hitch of ``kind`` at the body-frame ``point`` (m); ``towing``: the towing
+        vehicle's (ball, fifth_wheel) rather than a trailer's (coupler, kingpin)."""
+        kinds = TOWING if towing else TOWED
+        if kind not in kinds:
+            whose = "a towing vehicle's hitch" if towing else "a trailer's coupling"
+            raise ParameterError(f"{whose} kind {kind!r} is unknown: give one of {kinds}")
+        p = np.array(point, dtype=np.float64).reshape(-1)
+        if p.shape != (3,) or not np.all(np.isfinite(p)):
+            raise ParameterError(f"the {kind}'s point must be 3 finite numbers (m), got {point!r}")
+        p.setflags(write=False)
+        return cls(kind, p)
+
+    def mates(self, hitch: Hitch) -> bool:
+        """True when this trailer coupling goes on ``hitch``."""
+        return MATES.get(self.kind) == hitch.kind
+
+    def to_dict(self) -> dict[str, object]:
+        return {"kind": self.kind, "point": [float(x) for x in self.point]}

@@ -1,0 +1,276 @@
+"""Trailers and tractors as vehicles with couplings (docs/joints.md, "Articulated vehicles").
+
+:class:`Trailer` builds a trailer's body (a box, with its drawbar for a centre-axle trailer),
+its axles (each a left and a right wheel, unsteered; a tandem or tridem is two or three
+axles, each on its own springs) and its coupling: a semitrailer's kingpin or a drawbar's
+coupler, which carries its share of the weight at rest (:meth:`Wheels.custom`'s
+``coupling``). :func:`tractor` builds a tractor (a cab and a chassis frame, a steered front
+axle, the driven axles, a fifth wheel). Model frame as :meth:`crashsim.Vehicle.box`: x forward
+from the body's middle, y left, z up from the road; lengths in m, masses in kg.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import trimesh
+
+from crashsim.errors import ParameterError
+from crashsim.vehicles.coupling import Hitch
+from crashsim.vehicles.vehicle import Vehicle, _box_inertia, _parallel_axis
+from crashsim.vehicles.wheels import Tyre, Wheels
+
+__all__ = ["TRAILER_KINDS", "Trailer", "tractor"]
+
+TRAILER_KINDS = ("semitrailer", "centre_axle")
+"""A semitrailer rests on a kingpin over a fifth wheel; a centre-axle trailer (a caravan, a
+cargo trailer) on a drawbar's coupler over a tow ball."""
+
+# The drawbar of a centre-axle trailer drawn into its mesh: a bar this wide and high (m).
+DRAWBAR_SECTION = 0.12
+
+
+def _positive(value: Any, name: str) -> float:
+    try:
+        x = float(value)
+    except (TypeError, ValueError) as e:
+        raise ParameterError(f"{name} must be a number (m or kg), got {value!r}") from e
+    if not np.isfinite(x) or x <= 0.0:
+        raise ParameterError(f"{name} = {value!r} is invalid: it must be a finite number > 0")
+    return x
+
+
+def _box(lo: Sequence[float], hi: Sequence[float]) -> trimesh.Trimesh:
+    lo_a, hi_a = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    mesh = trimesh.creation.box(extents=hi_a - lo_a)
+    mesh.apply_translation((lo_a + hi_a) / 2.0)
+    return mesh
+
+
+def _axle_wheels(
+    axles_x: Sequence[float],
+    track: float,
+    radius: float,
+    cg: np.ndarray,
+    steered: Sequence[bool],
+    names: Sequence[str],
+) -> tuple[np.ndarray, list[bool], list[str]]:
+    """Each axle's left and right wheel centres (body frame) at static ride height."""
+    centers, flags, wheel_names = [], [], []
+    for x, steer, name in zip(axles_x, steered, names, strict=True):
+        for side, y in (("left", track / 2.0), ("right", -track / 2.0)):
+            centers.append((x - cg[0], y - cg[1], radius - cg[2]))
+            flags.append(bool(steer))
+            wheel_names.append(f"{name}_{side}")
+    return np.array(centers), flags, wheel_names
+
+
+class Trailer:
+    """Trailers (a namespace of builders; each returns a :class:`crashsim.Vehicle` with
+    wheels and a ``coupler``)."""
+
+    @staticmethod
+    def box(
+        kind: str,
+        *,
+        length: float,
+        width: float,
+        height: float,
+        mass: float,
+        ground_clearance: float,
+        coupler: float,
+        coupler_height: float,
+        axles: Sequence[float],
+        track: float,
+        radius: float,
+        cg_height: float | None = None,
+        cg_from_front: float | None = None,
+        tyre: Tyre | dict[str, Any] | None = None,
+        natural_frequency: float | None = None,
+        damping_ratio: float | None = None,
+        abs: bool = True,
+        name: str = "trailer",
+    ) -> Vehicle:
+        """A box trailer (m, kg): a body ``length`` x ``width`` x ``height`` from
+        ``ground_clearance`` up, of ``mass`` with its CG at ``cg_from_front`` behind the
+        body's front (default the middle) and ``cg_height`` above the road (default the box's
+        middle), a uniform box's inertia about it.
+
+        ``kind`` "semitrailer": the kingpin ``coupler`` m behind the body's front (its
+        setback), at ``coupler_height`` (the fifth wheel's height: the kingpin's lock);
+        "centre_axle": the drawbar's coupler ``coupler`` m ahead of the body's front (the
+        drawbar, drawn into the mesh), at ``coupler_height`` (the tow ball's).
+        ``axles``: each axle's distance behind the body's front (m; two or three close
+        together make a tandem or tridem); ``track`` and tyre ``radius`` (m); springs
+        (``natural_frequency`` Hz, ``damping_ratio``; the engine's defaults otherwise), the
+        ``tyre`` and ABS as for :class:`crashsim.Wheels`.
+        """
+        if kind not in TRAILER_KINDS:
+            raise ParameterError(f"trailer kind {kind!r} is unknown: give one of {TRAILER_KINDS}")
+        dims = [
+            _positive(v, k) for k, v in (("length", length), ("width", width), ("height", height))
+        ]
+        m = _positive(mass, "mass")
+        lo_z = float(ground_clearance)
+        if not np.isfinite(lo_z) or lo_z <= 0.0:
+            raise ParameterError(f"ground_clearance = {ground_clearance!r} must be > 0 m")
+        ln, wd, ht = dims
+        front = ln / 2.0
+        body = _box((-front, -wd / 2, lo_z), (front, wd / 2, lo_z + ht))
+        bar = _positive(coupler, "coupler") if kind == "centre_axle" else float(coupler)
+        hz = _positive(coupler_height, "coupler_height")
+        if kind == "semitrailer":
+            if not 0.0 <= bar < ln:
+                raise ParameterError(
+                    f"coupler = {coupler} m: a semitrailer's kingpin lies behind the body's "
+                    f"front and ahead of its rear (0 to {ln} m)"
+                )
+            point = np.array([front - bar, 0.0, hz])
+            mesh = body
+        else:
+            point = np.array([front + bar, 0.0, hz])
+            half = DRAWBAR_SECTION / 2.0
+            drawbar = _box((front - 0.05, -half, hz - half), (front + bar, half, hz + half))
+            mesh = trimesh.util.concatenate([body, drawbar])
+        axles_x = [front - _positive(a, f"axles[{k}]") for k, a in enumerate(axles)]
+        if not axles_x:
+            raise ParameterError(
+                "a trailer needs at least one axle (axles=[...], m behind the front)"
+            )
+        cg = np.array(
+            [
+                0.0 if cg_from_front is None else front - float(cg_from_front),
+                0.0,
+                lo_z + ht / 2.0 if cg_height is None else float(cg_height),
+            ]
+        )
+        inertia = _parallel_axis(
+            _box_inertia(m, ln, wd, ht), m, cg - np.array([0, 0, lo_z + ht / 2])
+        )
+        vehicle = Vehicle(
+            mesh,
+            m,
+            cg,
+            inertia,
+            name=name,
+            sources={"cg": "user", "inertia": "uniform box"},
+        )
+        r = _positive(radius, "radius")
+        centers, flags, names = _axle_wheels(
+            axles_x,
+            _positive(track, "track"),
+            r,
+            cg,
+            [False] * len(axles_x),
+            [f"axle{k + 1}" for k in range(len(axles_x))],
+        )
+        wheels = Wheels.custom(
+            centers,
+            r,
+            flags,
+            names=names,
+            natural_frequency=natural_frequency,
+            damping_ratio=damping_ratio,
+            tyre=tyre,
+            abs=abs,
+            coupling=point - cg,
+        )
+        vehicle = vehicle.with_wheels(wheels)
+        vehicle._coupler = Hitch.at(
+            "kingpin" if kind == "semitrailer" else "coupler", point - cg, towing=False
+        )
+        return vehicle
+
+
+def tractor(
+    *,
+    mass: float,
+    wheelbase: float,
+    tandem_spread: float,
+    fifth_wheel_ahead: float,
+    fifth_wheel_height: float,
+    cg_to_front_axle: float,
+    cg_height: float,
+    track: float,
+    radius: float,
+    length: float,
+    width: float = 2.5,
+    cab_height: float = 3.0,
+    front_overhang: float = 1.4,
+    driven_axles: int = 2,
+    tyre: Tyre | dict[str, Any] | None = None,
+    natural_frequency: float | None = None,
+    damping_ratio: float | None = None,
+    steering_ratio: float | None = None,
+    steering_reference: str | None = None,
+    abs: bool = True,
+    inertia: Any = None,
+    name: str = "tractor",
+) -> Vehicle:
+    """A tractor (m, kg): a cab (``front_overhang`` + 1.0 m long from the front bumper,
+    ``cab_height`` tall) and a chassis frame back to ``length``; a steered front axle
+    ``front_overhang`` behind the bumper; ``driven_axles`` (1: 4x2, 2: 6x4 tandem) behind it,
+    ``wheelbase`` from the front axle to the rear axles' centre, ``tandem_spread`` apart;
+    the fifth wheel's kingpin lock ``fifth_wheel_ahead`` of the rear axles' centre at
+    ``fifth_wheel_height``; the CG ``cg_to_front_axle`` behind the front axle at ``cg_height``;
+    ``inertia`` (3, 3) kg m^2 about the CG (default the cab and frame as uniform boxes
+    sharing the mass by volume, about the CG)."""
+    m = _positive(mass, "mass")
+    wb = _positive(wheelbase, "wheelbase")
+    ln = _positive(length, "length")
+    overhang = _positive(front_overhang, "front_overhang")
+    if driven_axles not in (1, 2):
+        raise ParameterError(f"driven_axles = {driven_axles!r}: a tractor has 1 (4x2) or 2 (6x4)")
+    front = ln / 2.0
+    x_front_axle = front - overhang
+    x_rear = x_front_axle - wb
+    spread = _positive(tandem_spread, "tandem_spread") if driven_axles == 2 else 0.0
+    rear_axles = [x_rear + spread / 2.0, x_rear - spread / 2.0] if driven_axles == 2 else [x_rear]
+    r = _positive(radius, "radius")
+    cab_len = overhang + 1.0
+    cab = _box(
+        (front - cab_len, -width / 2, 0.45), (front, width / 2, _positive(cab_height, "cab_height"))
+    )
+    frame_top = _positive(fifth_wheel_height, "fifth_wheel_height") - 0.05
+    frame = _box((-front, -0.55, 0.45), (front - cab_len + 0.05, 0.55, frame_top))
+    mesh = trimesh.util.concatenate([cab, frame])
+    cg = np.array(
+        [
+            x_front_axle - _positive(cg_to_front_axle, "cg_to_front_axle"),
+            0.0,
+            _positive(cg_height, "cg_height"),
+        ]
+    )
+    if inertia is None:
+        parts = [(cab, cab.volume), (frame, frame.volume)]
+        total = sum(v for _, v in parts)
+        inertia = np.zeros((3, 3))
+        for part, v in parts:
+            lo, hi = part.bounds
+            mp = m * v / total
+            inertia += _parallel_axis(_box_inertia(mp, *(hi - lo)), mp, cg - (lo + hi) / 2.0)
+    vehicle = Vehicle(
+        mesh, m, cg, inertia, name=name, sources={"cg": "user", "inertia": "uniform boxes"}
+    )
+    axles_x = [x_front_axle, *rear_axles]
+    names = ["steer", *(["drive"] if driven_axles == 1 else ["drive1", "drive2"])]
+    centers, flags, wheel_names = _axle_wheels(
+        axles_x, _positive(track, "track"), r, cg, [True] + [False] * driven_axles, names
+    )
+    wheels = Wheels.custom(
+        centers,
+        r,
+        flags,
+        names=wheel_names,
+        natural_frequency=natural_frequency,
+        damping_ratio=damping_ratio,
+        tyre=tyre,
+        steering_ratio=steering_ratio,
+        steering_reference=steering_reference,
+        abs=abs,
+    )
+    vehicle = vehicle.with_wheels(wheels)
+    kingpin = np.array([x_rear + float(fifth_wheel_ahead), 0.0, float(fifth_wheel_height)])
+    return vehicle.with_hitch(kingpin, "fifth_wheel")

@@ -1,0 +1,200 @@
+"""Articulated vehicles through the API (issue 21, docs/joints.md): a tractor and its
+semitrailer, a car and its centre-axle trailer put together by Scene.add(trailers=...), against
+closed forms (low-speed off-tracking on a constant radius, the static kingpin load), trailer
+brakes, and refusals by name."""
+
+from __future__ import annotations
+
+import math
+
+import crashsim as cs
+import numpy as np
+import pytest
+from crashsim.errors import ParameterError, SceneError
+
+G = 9.80665
+L1, F5, L2 = 3.8, 0.3, 10.0  # tractor wheelbase, fifth-wheel lead, kingpin to trailer axle (m)
+
+
+def _tractor(**kw: object) -> cs.Vehicle:
+    args = dict(
+        mass=7000.0,
+        wheelbase=L1,
+        tandem_spread=1.3,
+        driven_axles=1,
+        fifth_wheel_ahead=F5,
+        fifth_wheel_height=1.2,
+        cg_to_front_axle=1.6,
+        cg_height=1.0,
+        track=2.0,
+        radius=0.5,
+        length=6.0,
+        steering_reference="centre",
+        name="tractor",
+    )
+    args.update(kw)
+    return cs.tractor(**args)  # type: ignore[arg-type]
+
+
+def _semi(**kw: object) -> cs.Vehicle:
+    args = dict(
+        length=13.6,
+        width=2.5,
+        height=2.7,
+        mass=12000.0,
+        ground_clearance=1.25,
+        coupler=1.0,
+        coupler_height=1.2,
+        axles=[1.0 + L2],
+        track=2.0,
+        radius=0.5,
+        cg_height=2.0,
+        name="semi",
+    )
+    args.update(kw)
+    return cs.Trailer.box("semitrailer", **args)  # type: ignore[arg-type]
+
+
+def _circle(points: np.ndarray) -> tuple[float, np.ndarray]:
+    """Least-squares circle through (n, 2) points: radius and centre."""
+    a = np.c_[2 * points, np.ones(len(points))]
+    c = np.linalg.lstsq(a, (points**2).sum(axis=1), rcond=None)[0]
+    return math.sqrt(c[2] + c[0] ** 2 + c[1] ** 2), c[:2]
+
+
+def _path(result: cs.Result, name: str, body_point: np.ndarray) -> np.ndarray:
+    """A body point's world path (k, 3)."""
+    tr = result.trajectory(name)
+    w, x, y, z = tr.orientation.T
+    r = np.stack(
+        [
+            np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
+            np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
+            np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1),
+        ],
+        axis=1,
+    )
+    return tr.position + r @ body_point
+
+
+def test_low_speed_off_tracking_matches_the_kinematic_closed_form() -> None:
+    # Steady low-speed turn (0.5 m/s, so the tyres hardly slip): the tractor's front axle
+    # centre on R1, its rear axle on sqrt(R1^2 - L1^2), the kingpin on sqrt(Rr^2 + F5^2),
+    # the trailer's axle on sqrt(R5^2 - L2^2) (SAE J695's steady-state off-tracking for
+    # single axles). Within 1 % of the off-tracking R1 - Rt.
+    tractor, semi = _tractor(), _semi()
+    delta = math.radians(15.0)
+    scene = cs.Scene(ground=cs.Ground(friction=0.8))
+    steer = cs.DriverInputs(steer=np.array([[0.0, delta], [1.0, delta]]))
+    scene.add(tractor, (0, 0), heading=0.0, velocity=(0.5, 0, 0), inputs=steer, trailers=[semi])
+    result = scene.run(320.0, record_interval=1.0)
+    front = tractor.wheels.centers[:2].mean(axis=0) * [1, 1, 0]
+    axle = semi.wheels.centers.mean(axis=0) * [1, 1, 0]
+    settled = slice(len(result.t) // 2, None)
+    r1, c1 = _circle(_path(result, "tractor", front)[settled, :2])
+    rt, ct = _circle(_path(result, "semi", axle)[settled, :2])
+    r5 = math.sqrt(r1**2 - L1**2 + F5**2)
+    expected = r1 - math.sqrt(r5**2 - L2**2)
+    assert r1 - rt == pytest.approx(expected, rel=1e-2)
+    assert np.linalg.norm(c1 - ct) < 0.02  # one centre of turn
+    assert r1 == pytest.approx(L1 / math.sin(delta), rel=1e-3)
+
+
+def test_a_parked_tractor_carries_the_kingpin_load_statics_gives() -> None:
+    tractor, semi = _tractor(), _semi(axles=[9.9, 11.2, 12.5], mass=20000.0)
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(tractor, (0, 0), heading=0.3, trailers=[semi])
+    result = scene.run(2.0)
+    joint = result.joints["tractor-semi"]
+    assert joint.kind == "fifth_wheel"
+    expected = semi.wheels.coupling_load(semi.mass)  # moments about the tridem's axles
+    assert joint.force[-1, 2] == pytest.approx(expected, rel=1e-2)
+    tractor_wheels = result.wheels("tractor").load[:, -1].sum()
+    assert tractor_wheels == pytest.approx(tractor.mass * G + expected, rel=1e-2)
+    # Its springs are set for the combination: it stands level, the plate unpitched.
+    assert np.abs(joint.angle("pitch")).max() < math.radians(0.1)
+    assert np.abs(result.trajectory("tractor").position[:, 2] - 1.0).max() < 1e-3
+
+
+def test_trailer_brakes_stop_the_combination_sooner() -> None:
+    def stop(trailer_brakes: bool) -> float:
+        tractor, semi = _tractor(), _semi()
+        scene = cs.Scene(ground=cs.Ground(friction=0.8))
+        brake = cs.DriverInputs(brake=0.5)
+        item = (semi, brake) if trailer_brakes else semi
+        scene.add(tractor, (0, 0), heading=0.0, velocity=(15, 0, 0), inputs=brake, trailers=[item])
+        result = scene.run(until="rest", max_duration=30.0)
+        return float(result.rest("tractor").position[0])
+
+    with_brakes, without = stop(True), stop(False)
+    # Braking at half the friction on every wheel: the stop is v^2 / (2 * 0.5 mu g), within
+    # 3 % (the tractor's and trailer's own load shifts); without the trailer's brakes, longer.
+    assert with_brakes == pytest.approx(15.0**2 / (2 * 0.5 * 0.8 * G), rel=3e-2)
+    assert without > 1.5 * with_brakes
+
+
+def test_a_car_tows_a_centre_axle_trailer_on_its_ball() -> None:
+    car = cs.Vehicle.generate("sedan", name="car")
+    lo = (car.mesh.bounds[0] - car.cg)[0]
+    car = car.with_hitch(car.cg + [lo - 0.15, 0.0, 0.45 - car.cg[2]], "ball")
+    trailer = cs.Trailer.box(
+        "centre_axle",
+        length=3.0,
+        width=1.6,
+        height=1.2,
+        mass=750.0,
+        ground_clearance=0.5,
+        coupler=1.2,
+        coupler_height=0.45,
+        axles=[1.7],
+        track=1.4,
+        radius=0.3,
+        cg_height=0.7,
+        cg_from_front=1.5,
+        name="trailer",
+    )
+    nose = trailer.wheels.coupling_load(trailer.mass)
+    assert 0.0 < nose < 0.15 * trailer.mass * G
+    scene = cs.Scene(ground=cs.Ground(friction=0.8))
+    scene.add(car, (0, 0), heading=0.0, velocity=(20, 0, 0), trailers=[trailer])
+    result = scene.run(2.0)
+    joint = result.joints["car-trailer"]
+    assert joint.kind == "spherical"
+    assert joint.force[-1, 2] == pytest.approx(nose, rel=1e-2)
+    assert result.impacts == [] and result.contacts == []
+
+
+def test_bad_combinations_are_refused_by_name() -> None:
+    tractor, semi = _tractor(), _semi()
+    car = cs.Vehicle.generate("sedan", name="car")
+    scene = cs.Scene(ground=cs.Ground())
+    with pytest.raises(SceneError, match="has no hitch"):
+        scene.add(car, (0, 0), trailers=[semi])
+    ball = car.renamed("car2").with_hitch(car.cg + [-2.8, 0, -0.1], "ball")
+    with pytest.raises(SceneError, match="kingpin does not go on a ball"):
+        cs.Scene(ground=cs.Ground()).add(ball, (0, 0), trailers=[semi])
+    with pytest.raises(SceneError, match="more than 10 times as heavy"):
+        cs.Scene(ground=cs.Ground()).add(tractor, (0, 0), trailers=[_semi(mass=80000.0)])
+    with pytest.raises(SceneError, match="coupler stands"):
+        cs.Scene(ground=cs.Ground()).add(tractor, (0, 0), trailers=[_semi(coupler_height=1.4)])
+    with pytest.raises(ParameterError, match="outside the body"):
+        car.with_hitch(car.cg + [-5.0, 0, 0], "ball")
+    with pytest.raises(ParameterError, match="kind 'hook' is unknown"):
+        car.with_hitch(car.cg, "hook")
+    with pytest.raises(ParameterError, match="trailer kind"):
+        cs.Trailer.box("dolly", **{k: v for k, v in _semi_args().items()})
+
+
+def _semi_args() -> dict[str, object]:
+    return dict(
+        length=13.6,
+        width=2.5,
+        height=2.7,
+        mass=12000.0,
+        ground_clearance=1.25,
+        coupler=1.0,
+        coupler_height=1.2,
+        axles=[11.0],
+        track=2.0,
+        radius=0.5,
+    )
