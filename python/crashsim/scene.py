@@ -477,6 +477,7 @@ class Scene:
         orientation: ArrayLike | None = None,
         inputs: DriverInputs | None = None,
         trailers: Sequence[Vehicle | tuple[Vehicle, DriverInputs | None]] = (),
+        coupling: Mapping[str, Any] | None = None,
     ) -> Scene:
         """Place a vehicle (and the trailers it tows); returns the scene (calls chain).
 
@@ -494,6 +495,9 @@ class Scene:
         coupler on that one's ``hitch`` (crashsim.vehicles.coupling; a kingpin on a fifth
         wheel, a coupler on a ball; their heights within 5 cm), moving with it, and joined to
         it (a fifth-wheel or a spherical joint named "tower-trailer"; see :meth:`join`).
+        coupling: :meth:`join`'s keywords for every trailer's joint (``limits``, e.g.
+        {"articulation": (-1.5, 1.5)} rad, ``stiffness``, ``damping``, ``friction``,
+        ``collide``).
         """
         if not isinstance(vehicle, Vehicle):
             raise TypeError(f"add() needs a crashsim.Vehicle, got {type(vehicle).__name__}")
@@ -531,11 +535,15 @@ class Scene:
                     f"{MAX_TRAILER_RATIO:g} times as heavy as {vehicle.name!r} ({vehicle.mass:.0f} "
                     "kg), which tows it: check both masses (kg)"
                 )
-            tower = self._tow(tower, trailer, trailer_inputs)
+            tower = self._tow(tower, trailer, trailer_inputs, dict(coupling or {}))
         return self
 
     def _tow(
-        self, tower: _Placement, trailer: Vehicle, inputs: DriverInputs | None
+        self,
+        tower: _Placement,
+        trailer: Vehicle,
+        inputs: DriverInputs | None,
+        coupling: dict[str, Any],
     ) -> _Placement:
         """Places ``trailer`` behind ``tower`` with its coupler on the tower's hitch, moving
         with it, and joins them; returns the trailer's placement."""
@@ -582,6 +590,7 @@ class Scene:
             at=at,
             kind=JOINT_OF[coupler.kind],
             axes=tower.orientation,
+            **coupling,
         )
         if trailer.wheels is not None:
             k = next(i for i, p in enumerate(self._placements) if p is tower)

@@ -560,3 +560,90 @@ fn an_exchange_with_a_jointed_body_sees_the_mechanism() {
         imp.effective_mass
     );
 }
+
+/// Two members of one mechanism striking each other (a jackknife: the trailer's front against
+/// the cab): the exchange's collision matrix has each feel the other through the joint, so
+/// Newton's restitution at the centroid holds and the momentum of the pair is kept.
+#[test]
+fn jointed_bodies_that_collide_exchange_through_their_joint() {
+    use crashsim_core::{ContactParams, RestitutionMode};
+    let (l, w) = (2.0, 0.4);
+    let props = || {
+        let m = 500.0;
+        MassProperties::new(
+            m,
+            Matrix::from_diagonal(&Vector::new(
+                m / 12.0 * (2.0 * w * w),
+                m / 12.0 * (l * l + w * w),
+                m / 12.0 * (l * l + w * w),
+            )),
+        )
+        .unwrap()
+    };
+    let bar = || {
+        Arc::new(MeshShape::cuboid(
+            Vector::zeros(),
+            Vector::new(l, w, w) * 0.5,
+        ))
+    };
+    let mut world = World::new();
+    world.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+    let a = world
+        .add_body(bar(), props(), &at(0.0, HEIGHT, 0.0))
+        .unwrap();
+    // B along +y from the hinge, turning about it at 2 rad/s towards A.
+    let omega = 2.0;
+    let b_state = BodyState {
+        position: Point::new(1.2, 1.2, HEIGHT),
+        orientation: Rotation::from_axis_angle(&Vector::z_axis(), PI / 2.0),
+        velocity: Vector::new(-1.2 * omega, 0.0, 0.0),
+        angular_velocity: Vector::new(0.0, 0.0, omega),
+    };
+    let b = world.add_body(bar(), props(), &b_state).unwrap();
+    let mut joint = JointSpec::new(
+        JointKind::Revolute,
+        a,
+        Some(b),
+        (Point::new(1.2, 0.0, 0.0), Rotation::identity()),
+        (
+            Point::new(-1.2, 0.0, 0.0),
+            Rotation::from_axis_angle(&Vector::z_axis(), -PI / 2.0),
+        ),
+    );
+    joint.collide = true;
+    world.add_joint(joint).unwrap();
+    let params = ContactParams {
+        restitution: 0.3,
+        restitution_mode: RestitutionMode::Normal,
+        friction: 0.0,
+        depth_of_penetration: crashsim_core::DepthOfPenetration::Fixed(0.0),
+        ..ContactParams::default()
+    };
+    world.set_contact(a, b, params).unwrap();
+    let out = world.run(1.5, DT).unwrap();
+    assert!(!out.impacts.is_empty(), "{:?}", out.contacts);
+    let imp = &out.impacts[0];
+    let n = imp.normal;
+    let (before, after) = (
+        imp.relative_velocity_before.dot(&n),
+        imp.relative_velocity_after.dot(&n),
+    );
+    assert!(before > 0.5, "{before}");
+    assert!(
+        (after + 0.3 * before).abs() < 1e-9 * before,
+        "{before} -> {after}"
+    );
+    let k = out.times.iter().position(|&t| t == imp.time).unwrap();
+    let momentum = |k: usize| -> Vector { out.sample(k).iter().map(|s| s.velocity * 500.0).sum() };
+    let gravity = Vector::new(
+        0.0,
+        0.0,
+        -1000.0 * GRAVITY * (out.times[k] - out.times[k - 1]),
+    );
+    assert!((momentum(k) - momentum(k - 1) - gravity).norm() < 1e-6);
+    // The joint held through it.
+    let s = out.sample(k);
+    let gap = (s[a].position + s[a].orientation * Vector::new(1.2, 0.0, 0.0))
+        - (s[b].position + s[b].orientation * Vector::new(-1.2, 0.0, 0.0));
+    assert!(gap.norm() < 1e-6, "{gap:?}");
+}

@@ -52,8 +52,9 @@ pub struct VehicleSpec {
     /// the wheels the rest; None for a vehicle on its own wheels.
     pub coupling: Option<Point>,
     /// What its own trailer puts on its hitch at rest: the hitch (body frame, m) and the
-    /// static vertical load there (N, >= 0): the wheels carry the vehicle's weight and this
-    /// (their springs set for the combination's static loads). None without a trailer.
+    /// static vertical load there (N, down; negative when a tail-heavy trailer lifts it): the
+    /// wheels carry the vehicle's weight and this (their springs set for the combination's
+    /// static loads). None without a trailer.
     pub hitch_load: Option<(Point, Real)>,
 }
 
@@ -89,13 +90,6 @@ impl VehicleSpec {
             Some((p, load)) => {
                 crate::error::require_finite_vector("the hitch point", &p.coords)?;
                 crate::error::require_finite("the hitch load", *load)?;
-                if *load < 0.0 {
-                    return Err(Error::parameter(
-                        "the hitch load",
-                        format!("{load} N"),
-                        "it must be >= 0 N (a trailer's weight on its hitch)",
-                    ));
-                }
                 weight += load;
                 Some(([p.x, p.y], *load))
             }

@@ -272,6 +272,17 @@ pub fn static_loads_towing(
     weight: Real,
     towed: Option<([Real; 2], Real)>,
 ) -> Result<Vec<Real>> {
+    let loads = distribute(xy, weight, towed)?;
+    check_carried(&loads, towed.is_some())?;
+    Ok(loads)
+}
+
+/// [`static_loads_towing`]'s distribution without the check that every support pushes.
+fn distribute(
+    xy: &[[Real; 2]],
+    weight: Real,
+    towed: Option<([Real; 2], Real)>,
+) -> Result<Vec<Real>> {
     use nalgebra::{Matrix3, Vector3};
     if xy.len() < 3 {
         return Err(Error::Parameter(format!(
@@ -295,22 +306,26 @@ pub fn static_loads_towing(
             "the wheels are in a line: they cannot carry a vehicle (check their positions)".into(),
         )
     })? * rhs;
-    let loads: Vec<Real> = xy
+    Ok(xy
         .iter()
         .map(|p| coef.x + coef.y * p[0] + coef.z * p[1])
-        .collect();
+        .collect())
+}
+
+/// An error when a wheel's static load is not positive (it would lift off).
+fn check_carried(loads: &[Real], towing: bool) -> Result<()> {
     if let Some((k, f)) = loads.iter().enumerate().find(|(_, f)| **f <= 0.0) {
         return Err(Error::Parameter(format!(
             "the centre of gravity is not over the wheels: wheel {k} would carry {f:.1} N (check \
              the wheel positions, which are measured from the CG{})",
-            if towed.is_some() {
+            if towing {
                 ", and the trailer's load on the hitch"
             } else {
                 ""
             }
         )));
     }
-    Ok(loads)
+    Ok(())
 }
 
 /// [`static_loads_towing`] without a towed load: the weight alone.
@@ -321,8 +336,9 @@ pub fn static_loads(xy: &[[Real; 2]], weight: Real) -> Result<Vec<Real>> {
 /// The static loads (N) of wheels at `xy` and of a coupling at `coupling` (a trailer's hitch
 /// coupler or kingpin, body frame, m from the CG) carrying `weight` N together (and, with
 /// `towed`, the load of a trailer this one tows in turn): the coupling is one more support of
-/// [`static_loads_towing`]'s rule (at least three supports, not in a line). Returns the wheels'
-/// loads and the coupling's.
+/// [`static_loads_towing`]'s rule (at least three supports, not in a line), the only one that
+/// may pull (a negative load: a tail-heavy trailer). Returns the wheels' loads and the
+/// coupling's.
 pub fn static_loads_coupled(
     xy: &[[Real; 2]],
     weight: Real,
@@ -337,14 +353,10 @@ pub fn static_loads_coupled(
     }
     let mut all = xy.to_vec();
     all.push(coupling);
-    let mut loads = static_loads_towing(&all, weight, towed).map_err(|e| match e {
-        Error::Parameter(m) => Error::Parameter(format!(
-            "{m} (the coupling is support {}, after the wheels)",
-            xy.len()
-        )),
-        other => other,
-    })?;
+    let mut loads = distribute(&all, weight, towed)?;
+    // The coupling may pull down (a tail-heavy trailer lifts its tow ball); the wheels push.
     let at_coupling = loads.pop().expect("one load per support");
+    check_carried(&loads, towed.is_some())?;
     Ok((loads, at_coupling))
 }
 

@@ -286,7 +286,7 @@ impl World {
             friction: pair.params.friction,
             mode: pair.params.restitution_mode,
             joined: (self.mechanism_of[i1].is_some() || self.mechanism_of[i2].is_some())
-                .then(|| self.point_mobility(i1, &centroid) + self.point_mobility(i2, &centroid)),
+                .then(|| self.pair_mobility(i1, i2, &centroid)),
         };
         let engaged = Phase::Engaged {
             centroid_in: [

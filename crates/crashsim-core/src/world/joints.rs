@@ -339,6 +339,43 @@ impl World {
         k
     }
 
+    /// The collision matrix K (1/kg) of an exchange at `p` between `i1` and `i2` when either is
+    /// jointed: an impulse J on `i2` and -J on `i1` at `p` changes their relative point
+    /// velocity by -K J, the joints' reactions included (two members of one mechanism feel
+    /// each other through it).
+    pub(super) fn pair_mobility(&self, i1: usize, i2: usize, p: &Point) -> Matrix {
+        let (g1, g2) = (self.mechanism_of[i1], self.mechanism_of[i2]);
+        if g1.is_none() || g2.is_none() || g1 != g2 {
+            return self.point_mobility(i1, p) + self.point_mobility(i2, p);
+        }
+        let g = g1.expect("checked");
+        let m = &self.mechanisms[g];
+        let at = |i: usize| m.members.iter().position(|&k| k == i).expect("a member");
+        let (a, b) = (at(i1), at(i2));
+        let (ra, rb) = (
+            p - self.bodies[i1].body.position(),
+            p - self.bodies[i2].body.position(),
+        );
+        let mut k = Matrix::zeros();
+        for axis in 0..3 {
+            let e = Vector::ith(axis, 1.0);
+            let mut jb = self.joint_bodies(g);
+            for body in jb.iter_mut() {
+                body.v = Vector::zeros();
+                body.w = Vector::zeros();
+            }
+            jb[a].v = -e * jb[a].inv_mass;
+            jb[a].w = jb[a].inv_inertia * ra.cross(&(-e));
+            jb[b].v = e * jb[b].inv_mass;
+            jb[b].w = jb[b].inv_inertia * rb.cross(&e);
+            let change = project_velocities(&m.joints, &jb, &[]);
+            let point =
+                |i: usize, r: &Vector| (jb[i].v + change[i].0) + (jb[i].w + change[i].1).cross(r);
+            k.set_column(axis, &(point(b, &rb) - point(a, &ra)));
+        }
+        k
+    }
+
     /// After an impulse on body `i`: its mechanism's velocities projected back onto the
     /// joints (the joints' reaction impulses).
     pub(super) fn share_impulse(&mut self, i: usize) {
