@@ -25,7 +25,7 @@ REPO = Path(__file__).resolve().parents[1]
 
 
 def combination(name: str = "tractor") -> tuple[cs.Vehicle, cs.Vehicle]:
-    """A 6x4 tractor and a laden tridem box-van semitrailer (explicit dimensions: docs/joints.md)."""
+    """A 6x4 tractor and a laden tridem box-van semitrailer (dimensions: docs/joints.md)."""
     tractor = cs.tractor(
         mass=7500.0,
         wheelbase=3.9,
