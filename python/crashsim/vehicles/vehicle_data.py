@@ -43,7 +43,7 @@ __all__ = [
     "vehicle_classes",
 ]
 
-_DATA = ("data", "vehicle_classes.toml")
+_DATA = "vehicle_classes.toml"
 _FIELDS = (
     "mass",
     "length",
@@ -148,13 +148,26 @@ class VehicleClass:
         return out
 
 
-def _figure(raw: Mapping[str, Any], where: str) -> Figure:
+def read_data_table(filename: str) -> dict[str, Any]:
+    """The TOML table ``crashsim/vehicles/data/<filename>``, parsed (no checks)."""
+    path = resources.files("crashsim.vehicles").joinpath("data", filename)
+    return tomllib.loads(path.read_text(encoding="utf-8"))
+
+
+def sources_of(table: Mapping[str, Any]) -> dict[str, str]:
+    """A data table's ``[sources]``: key -> full citation."""
+    return {k: str(v["citation"]) for k, v in table["sources"].items()}
+
+
+def figure_from(raw: Mapping[str, Any], where: str, table: str = "vehicle class table") -> Figure:
+    """One number of a data table as a :class:`Figure`; ``where`` and ``table`` name it in the
+    ParameterError raised when it lacks a value or a source."""
     try:
         value = float(raw["value"])
         sd = raw.get("sd")
         source = str(raw["source"])
     except (KeyError, TypeError, ValueError) as e:
-        raise ParameterError(f"vehicle class table: {where} lacks a value or a source ({e})") from e
+        raise ParameterError(f"{table}: {where} lacks a value or a source ({e})") from e
     return Figure(
         value=value,
         sd=None if sd is None else float(sd),
@@ -166,18 +179,17 @@ def _figure(raw: Mapping[str, Any], where: str) -> Figure:
 
 @cache
 def _load() -> tuple[dict[str, VehicleClass], dict[str, str], dict[str, str]]:
-    path = resources.files("crashsim.vehicles").joinpath(*_DATA)
-    table = tomllib.loads(path.read_text(encoding="utf-8"))
-    sources = {k: str(v["citation"]) for k, v in table["sources"].items()}
+    table = read_data_table(_DATA)
+    sources = sources_of(table)
     aliases = {str(k): str(v) for k, v in table.get("aliases", {}).items()}
     classes: dict[str, VehicleClass] = {}
     for name in table["order"]:
         raw = table["classes"][name]
-        figs = {f: _figure(raw[f], f"{name}.{f}") for f in _FIELDS}
+        figs = {f: figure_from(raw[f], f"{name}.{f}") for f in _FIELDS}
         faces = {
             face: FaceData(
-                A=_figure(raw[face]["A"], f"{name}.{face}.A"),
-                B=_figure(raw[face]["B"], f"{name}.{face}.B"),
+                A=figure_from(raw[face]["A"], f"{name}.{face}.A"),
+                B=figure_from(raw[face]["B"], f"{name}.{face}.B"),
             )
             for face in _FACES
         }
