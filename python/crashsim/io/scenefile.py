@@ -644,7 +644,7 @@ def _wheels(t: _Table, vehicle: Vehicle) -> Vehicle:
     if w.has("damping"):
         given["damping"] = _axle_pair(w, "damping", "damping")
     if w.has("anti_roll"):
-        given["anti_roll"] = w.vector("anti_roll", "roll stiffness", sizes=(2,))
+        given["anti_roll"] = w.vector("anti_roll", "rotational stiffness", sizes=(2,))
     if w.has("roll_gradient"):
         given["roll_gradient"] = w.quantity("roll_gradient", "roll gradient", low="> 0")
     for k in ("anti_roll_front_share", "steering_ratio", "ackermann"):
