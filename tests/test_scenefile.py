@@ -741,6 +741,7 @@ def test_the_format_document_names_every_key_and_unit() -> None:
         *sf.VEHICLE_KEYS,
         *sf.MESH_KEYS,
         *sf.GENERATE_KEYS,
+        *sf.JOINT_KEYS,
     }
     missing = sorted(k for k in keys if f"`{k}`" not in doc)
     assert not missing, f"docs/scene-format.md does not describe {missing}"
