@@ -1,6 +1,7 @@
 """Joints in scene files (issue 21, item 5; docs/scene-format.md "[[joints]]"): the file's
 joints are Scene.join's (the same engine values, the same run bits), every bad input is
-refused naming the file, the joint's table and the key, and the units of a joint's resistance."""
+refused naming the file, the joint's table and the key, the units of a joint's resistance and
+the report's joints (JSON against the schema, the text)."""
 
 from __future__ import annotations
 
@@ -8,8 +9,11 @@ import math
 from pathlib import Path
 
 import crashsim as cs
+import jsonschema
 import numpy as np
 import pytest
+from conftest import REPO
+from crashsim.analysis.report import build_report, report_schema
 from crashsim.cli import main
 from crashsim.io.scenefile import SceneFileError, load_scene, loads_scene, parse_quantity
 
@@ -137,7 +141,7 @@ limits = {{ angle = "(-10, 10) deg" }}
 """
 
 
-def test_a_pendulum_on_the_world_with_axes_as_a_matrix_and_its_limit() -> None:
+def test_a_pendulum_on_the_world_with_axes_as_a_matrix_and_its_limit_in_the_report() -> None:
     case = loads_scene(ROD)
     api = cs.Scene(ground=cs.Ground())
     api.add(
@@ -157,6 +161,26 @@ def test_a_pendulum_on_the_world_with_axes_as_a_matrix_and_its_limit() -> None:
     result = case.scene.run(0.6)
     _same_runs(result, api.run(0.6))
     assert result.joint_events and result.joint_events[0].angle == "angle"
+    # the report: the joint as made, over the run, its limit hit (JSON and text)
+    report = build_report(result)
+    d = report.to_dict()
+    jsonschema.Draft202012Validator(report_schema()).validate(d)
+    (made,) = d["scene"]["joints"]
+    assert made == {**joint.to_dict(), "stiffness": 0.0, "damping": 0.0, "friction": 0.0,
+                    "collide": False}  # fmt: skip
+    assert made["vehicles"] == ["rod", None] and made["limits"] == {"angle": [-10 * DEG, 10 * DEG]}
+    record = result.joints["rod-world"]
+    (run,) = d["joints"]
+    force = np.linalg.norm(record.force, axis=1)
+    assert run["max_force"] == force.max() and run["max_force_time"] == record.t[force.argmax()]
+    assert run["angle_names"] == ["angle"]
+    assert run["angle_min"] == record.angles.min(axis=0).tolist()
+    assert run["angle_max"] == record.angles.max(axis=0).tolist()
+    assert d["joint_events"] == [e.to_dict() for e in result.joint_events]
+    text = report.summary_table()
+    first = result.joint_events[0]
+    assert "  rod-world: revolute, rod - the world; largest force " in text
+    assert f"    limit of angle hit at {first.time:.3f} s (" in text
 
 
 def test_joint_units_and_their_spellings() -> None:
@@ -322,3 +346,13 @@ def test_a_joined_pair_needs_no_stiffness_unless_it_collides() -> None:
                        "restitution = 0.3\n")  # fmt: skip
     assert case.scene.contact_parameters("car", "towed")["restitution"] == 0.3
     assert [p[:2] for p in case.scene.pairs()] == [("car", "towed")]
+
+
+# -- the report ------------------------------------------------------------------------------
+
+
+def test_a_report_without_joints_has_none_of_their_keys() -> None:
+    report = build_report(load_scene(REPO / "examples" / "seed-90deg.toml").simulate())
+    d = report.to_dict()
+    assert "joints" not in d["scene"] and "joints" not in d and "joint_events" not in d
+    assert report.joints == [] and "Joints" not in report.summary_table()
