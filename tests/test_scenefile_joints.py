@@ -1,10 +1,12 @@
 """Joints in scene files (issue 21, item 5; docs/scene-format.md "[[joints]]"): the file's
 joints are Scene.join's (the same engine values, the same run bits), every bad input is
-refused naming the file, the joint's table and the key, the units of a joint's resistance and
-the report's joints (JSON against the schema, the text)."""
+refused naming the file, the joint's table and the key, the units of a joint's resistance,
+the report's joints (JSON against the schema, the text) and examples/towed-car.toml run by
+`crashsim run` and `crashsim check`."""
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -17,6 +19,7 @@ from crashsim.analysis.report import build_report, report_schema
 from crashsim.cli import main
 from crashsim.io.scenefile import SceneFileError, load_scene, loads_scene, parse_quantity
 
+EXAMPLE = REPO / "examples" / "towed-car.toml"
 DEG = math.pi / 180.0  # rad, the parser's factor of "deg"
 LBF_FT = 0.45359237 * 9.80665 * 0.3048  # N m, the parser's factor of "lbf ft"
 
@@ -356,3 +359,32 @@ def test_a_report_without_joints_has_none_of_their_keys() -> None:
     d = report.to_dict()
     assert "joints" not in d["scene"] and "joints" not in d and "joint_events" not in d
     assert report.joints == [] and "Joints" not in report.summary_table()
+
+
+# -- the example -------------------------------------------------------------------------------
+
+
+def test_the_towed_car_example_runs_and_checks(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    case = load_scene(EXAMPLE)
+    (joint,) = case.scene.joints
+    assert (joint.name, joint.kind, joint.vehicles) == ("bar", "spherical", ("car", "towed"))
+    assert case.run.until == "rest"
+    out = tmp_path / "out"
+    assert main(["run", str(EXAMPLE), "--out", str(out), "--html"]) == 0
+    printed = capsys.readouterr().out
+    assert "\nJoints (force and torque of the first vehicle on the second" in printed
+    assert "  bar: spherical, car - towed; largest force " in printed
+    names = {p.name for p in out.iterdir()}
+    assert {"report.json", "time-histories.csv", "trajectories.png", "motion.glb",
+            "case.html"} <= names  # fmt: skip
+    d = json.loads((out / "report.json").read_text(encoding="utf-8"))
+    jsonschema.Draft202012Validator(report_schema()).validate(d)
+    assert d["schema_version"] == 1
+    assert [j["name"] for j in d["scene"]["joints"]] == ["bar"]
+    assert [j["name"] for j in d["joints"]] == ["bar"] and d["joint_events"] == []
+    assert all(r["at_rest"] for r in d["run_out"])  # both at rest within max_duration
+    # the case page from the report alone
+    assert main(["view", str(out / "report.json"), "--out", str(tmp_path / "page.html")]) == 0
+    assert main(["check", str(EXAMPLE), "--duration", "1 s"]) == 0
