@@ -128,6 +128,20 @@ def test_bad_joints_are_refused_at_the_call_by_name(
         scene.join("rod", **args)  # type: ignore[arg-type]
 
 
+def test_join_checks_its_axes_at_the_call() -> None:
+    # a zero quaternion was taken by Scene.join and refused only when the scene was built, as
+    # a vehicle's "orientation", without the joint's name (a scene file could not name it)
+    scene, _ = _towed()
+    scene._joints = []
+    with pytest.raises(ParameterError, match="joint 'bar': axes: orientation must be a "
+                       "finite, non-zero quaternion"):  # fmt: skip
+        scene.join("car", "towed", at=(-3.1, 0.0, 0.5), axes=(0, 0, 0, 0), name="bar")
+    with pytest.raises(ParameterError, match="joint 'car-towed': axes: the orientation matrix "
+                       "is a reflection"):  # fmt: skip
+        scene.join("car", "towed", at=(-3.1, 0.0, 0.5), axes=np.diag([1.0, 1.0, -1.0]))
+    assert scene.joints == []
+
+
 def test_joints_need_a_ground_agreeing_velocities_and_no_obstacle() -> None:
     scene = cs.Scene()
     scene.add(_rod(), (0, 0, HIGH - 0.5))

@@ -74,6 +74,12 @@ EXPECTED = {
     "N m/rad": 1.0,
     "N m/deg": 1.0 / cs.deg(1.0),
     "kN m/rad": 1000.0,
+    "N m s/rad": 1.0,
+    "N m s/deg": 1.0 / cs.deg(1.0),
+    "kN m s/rad": 1000.0,
+    "N m": 1.0,
+    "kN m": 1000.0,
+    "lbf ft": LBF * cs.ft(1.0),
     "1/rad": 1.0,
     "1/deg": 1.0 / cs.deg(1.0),
     "rad/g": 1.0,
@@ -173,6 +179,18 @@ def test_spellings_and_plain_numbers() -> None:
 def test_bad_quantities_are_refused(value: object, dimension: str, match: str) -> None:
     with pytest.raises(cs.ParameterError, match=match):
         parse_quantity(value, dimension)
+
+
+@pytest.mark.parametrize("dimension", sorted(sf.DIMENSIONS))
+def test_every_quantity_says_what_it_expected(dimension: str) -> None:
+    # an anti-roll bar's "3 mph", a cornering coefficient or roll gradient in a wrong unit
+    # raised KeyError (no example written for their quantity): a traceback, not exit 2
+    wrong = "3 mph" if dimension != "speed" else "3 kg"
+    for value in (wrong, True):
+        with pytest.raises(cs.ParameterError, match=f" {dimension} such as "):
+            parse_quantity(value, dimension)
+    with pytest.raises(cs.ParameterError, match='"3" has no unit: write e.g. "'):
+        parse_quantity("3", dimension)
 
 
 # -- examples ------------------------------------------------------------------------------
@@ -723,6 +741,7 @@ def test_the_format_document_names_every_key_and_unit() -> None:
         *sf.VEHICLE_KEYS,
         *sf.MESH_KEYS,
         *sf.GENERATE_KEYS,
+        *sf.JOINT_KEYS,
     }
     missing = sorted(k for k in keys if f"`{k}`" not in doc)
     assert not missing, f"docs/scene-format.md does not describe {missing}"

@@ -631,9 +631,16 @@ class Scene:
         names = (first.vehicle.name, None if second is None else second.vehicle.name)
         if names[0] == names[1]:
             raise SceneError(f"join() needs two different vehicles, got {names[0]!r} twice")
-        q = first.orientation if axes is None else _orientation(None, axes)
+        label = name if name is not None else f"{names[0]}-{names[1] or 'world'}"
+        q = first.orientation
+        if axes is not None:
+            try:  # a matrix made a quaternion, a quaternion checked by the engine, at the call
+                q = _orientation(None, axes)
+                _check_state(np.zeros(3), q, np.zeros(3), np.zeros(3))
+            except ParameterError as e:
+                raise ParameterError(f"joint {label!r}: axes: {e}") from e
         joint = make_joint(
-            name if name is not None else f"{names[0]}-{names[1] or 'world'}",
+            label,
             names,
             kind=kind,
             at=at,

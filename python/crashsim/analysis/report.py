@@ -37,6 +37,7 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim import _core
 from crashsim.analysis import penetration
 from crashsim.analysis.engagements import WHY_SECONDARY, Engagement, engagements
+from crashsim.analysis.joints import JointReport, joint_lines, joint_reports
 from crashsim.analysis.runout import RunOutReport, run_out, run_out_lines
 from crashsim.errors import ParameterError, SceneError
 from crashsim.units import to_kmh, to_mph
@@ -51,6 +52,7 @@ __all__ = [
     "SCHEMA_VERSION",
     "DeformationReport",
     "ImpactReport",
+    "JointReport",
     "ObstacleImpactReport",
     "Report",
     "RunOutReport",
@@ -813,7 +815,13 @@ def build_report(result: Result) -> Report:
         )
     impacts = [_impact_report(result, imp, i) for i, imp in enumerate(result.impacts, start=1)]
     runout = [run_out(result, n) for n in result.vehicles] if result.on_ground else []
-    return Report(result=result, impacts=impacts, engagements=engagements(result), run_out=runout)
+    return Report(
+        result=result,
+        impacts=impacts,
+        engagements=engagements(result),
+        run_out=runout,
+        joints=joint_reports(result),
+    )
 
 
 # -- the text table -------------------------------------------------------------------------
@@ -1051,7 +1059,8 @@ def _impact_lines(imp: ImpactReport, primary: int | None = None) -> list[str]:
 class Report:
     """The report of a run: ``impacts`` (ImpactReport list, in time order), ``result`` (the
     Result it was built from), ``run_out`` (a run on a ground: each vehicle's
-    RunOutReport, from its separation to rest; crashsim.analysis.runout).
+    RunOutReport, from its separation to rest; crashsim.analysis.runout), ``joints`` (a
+    scene with joints: each JointReport, crashsim.analysis.joints).
     ``summary_table()`` / ``str(report)``: the text table; ``to_dict()`` / ``to_json()`` /
     ``write_json(path)``: the versioned JSON report."""
 
@@ -1061,6 +1070,7 @@ class Report:
         impacts: list[ImpactReport],
         engagements: list[Engagement] | None = None,
         run_out: list[RunOutReport] | None = None,
+        joints: list[JointReport] | None = None,
     ) -> None:
         self.result = result
         self.impacts = list(impacts)
@@ -1068,6 +1078,8 @@ class Report:
         self.engagements = list(engagements) if engagements is not None else []
         #: each vehicle's run-out to rest (runs on a ground; empty otherwise)
         self.run_out = list(run_out) if run_out is not None else []
+        #: each joint over the run (a scene with joints; empty otherwise)
+        self.joints = list(joints) if joints is not None else []
 
     def vehicle_run_out(self, name: str) -> RunOutReport:
         """The run-out of a named vehicle (SceneError when the run had no ground)."""
@@ -1121,6 +1133,9 @@ class Report:
             lines.append("")
             lines += run_out_lines(self.run_out, _table, obstacles=bool(self.result.obstacles))
             lines += _vehicle_data_lines(self.result)
+        if self.joints:
+            lines.append("")
+            lines += joint_lines(self.joints)
         return "\n".join(lines)
 
     def __str__(self) -> str:
@@ -1133,13 +1148,16 @@ class Report:
         """The JSON report as plain Python (dicts, lists, str, bool, int, float, None);
         ``include_meshes`` adds every vehicle's vertices and faces (model frame)."""
         r = self.result
+        scene = _scene_record(r, include_meshes)
+        if self.joints:  # optional: a scene with joints (schema version stays 1)
+            scene["joints"] = [j.definition() for j in self.joints]
         return {
             "schema": SCHEMA_NAME,
             "schema_version": SCHEMA_VERSION,
             "crashsim_version": str(_core.__version__),
             "units": dict(UNITS),
             "conventions": dict(CONVENTIONS),
-            "scene": _scene_record(r, include_meshes),
+            "scene": scene,
             "run": {
                 "start_time": float(r.t[0]),
                 "duration": None if r.duration is None else float(r.duration),
@@ -1154,6 +1172,15 @@ class Report:
             "engagements": [_engagement_record(e) for e in self.engagements],
             # optional: a run on a ground (schema version stays 1)
             **({"run_out": [r.to_dict() for r in self.run_out]} if self.run_out else {}),
+            # optional: a scene with joints (schema version stays 1)
+            **(
+                {
+                    "joints": [j.to_dict() for j in self.joints],
+                    "joint_events": [e.to_dict() for e in r.joint_events],
+                }
+                if self.joints
+                else {}
+            ),
         }
 
     def to_json(self, include_meshes: bool = False, indent: int | None = 2) -> str:

@@ -43,6 +43,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from crashsim import _core
 from crashsim.environment.ground import FrictionZone, Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import CrashsimError, ParameterError
@@ -191,6 +192,7 @@ TOP_KEYS = (
     "output",
     "ground",
     "obstacles",
+    "joints",
     "study",
     "fit",
     "evidence",
@@ -278,6 +280,24 @@ STATE_KEYS = ("wheel", "state", "time", "exchange", "fraction")
 _BOX_KEYS = ("length", "width", "height", "ground_clearance")
 MESH_KEYS = ("file", "units", "up", "forward", "ground", "center", "solid")
 GENERATE_KEYS = ("preset", "length", "width", "height", "wheelbase", *SHAPE_PARAMETERS)
+JOINT_KEYS = (
+    "vehicles",
+    "kind",
+    "at",
+    "axes",
+    "limits",
+    "stiffness",
+    "damping",
+    "friction",
+    "collide",
+    "name",
+)
+# a joint's resistance to its free rotation: key, quantity
+_JOINT_RESISTANCE = (
+    ("stiffness", "rotational stiffness"),
+    ("damping", "rotational damping"),
+    ("friction", "torque"),
+)
 _MOMENTS = ("Ixx", "Iyy", "Izz")
 _STIFFNESS_FACES = ("front", "rear", "left", "right", "side")
 
@@ -644,7 +664,7 @@ def _wheels(t: _Table, vehicle: Vehicle) -> Vehicle:
     if w.has("damping"):
         given["damping"] = _axle_pair(w, "damping", "damping")
     if w.has("anti_roll"):
-        given["anti_roll"] = w.vector("anti_roll", "roll stiffness", sizes=(2,))
+        given["anti_roll"] = w.vector("anti_roll", "rotational stiffness", sizes=(2,))
     if w.has("roll_gradient"):
         given["roll_gradient"] = w.quantity("roll_gradient", "roll gradient", low="> 0")
     for k in ("anti_roll_front_share", "steering_ratio", "ackermann"):
@@ -896,6 +916,74 @@ def _obstacle(t: _Table, scene: Scene, base: Path) -> None:
     _wrap(t, None, lambda: scene.add_obstacle(obstacle, position, heading=heading))
 
 
+def _joint(t: _Table, scene: Scene, obstacles: list[str]) -> None:
+    """A [[joints]] table: Scene.join with its values in SI. The engine's checks of the kind,
+    each limit and each resistance are asked one key at a time, so their messages name the
+    key; the rest (the axes, a joint of the same name or pair) name the table."""
+    names = [v.name for v in scene.vehicles]
+    pair = t.raw("vehicles")
+    if not (
+        isinstance(pair, list) and len(pair) in (1, 2) and all(isinstance(p, str) for p in pair)
+    ):
+        t.fail(
+            "vehicles",
+            'expected one or two vehicle names, e.g. ["car", "trailer"] (one: joined to the '
+            f"world), got {_show(pair)}",
+        )
+    for i, n in enumerate(pair):
+        if n in obstacles:
+            t.fail(
+                f"vehicles[{i}]",
+                f'"{n}" is a fixed obstacle, which cannot be joined: give the vehicle alone to '
+                "join it to the world",
+            )
+        if n not in names:
+            t.fail(f"vehicles[{i}]", f'no vehicle named "{n}" (the vehicles: {", ".join(names)})')
+    if len(pair) == 2 and pair[0] == pair[1]:
+        t.fail("vehicles", "a joint needs two different vehicles (or one: joined to the world)")
+    if scene.ground is None:
+        t.fail(None, "a joint needs a ground: add a [ground] table")
+    kind = t.string("kind", "spherical")
+    at = t.vector("at", "length")
+    axes = None
+    if t.has("axes"):  # as a vehicle's orientation: a quaternion or a rotation matrix
+        value = t.raw("axes")
+        if isinstance(value, list) and value and isinstance(value[0], list):
+            axes = t.matrix("axes", None)
+        else:
+            axes = t.vector("axes", None, sizes=(4,))
+    t.taken.add("axes")
+    limits = t.table("limits", None)  # angle name = [lower, upper]
+    bounds = {} if limits is None else {a: limits.vector(a, "angle", (2,)) for a in limits.data}
+    resistance = {k: t.quantity(k, dim, 0.0) for k, dim in _JOINT_RESISTANCE}
+    collide = t.boolean("collide", False)
+    name = t.string("name", None)
+    if name is not None:
+        _wrap(t, "name", lambda: check_name(name, "a joint"))
+    t.finish()
+    _wrap(t, "kind", lambda: _core.Joint(kind))
+    for a, (lo, hi) in bounds.items():
+        assert limits is not None
+        _wrap(limits, a, lambda a=a, lo=lo, hi=hi: _core.Joint(kind, limits=[(a, lo, hi)]))
+    for k, v in resistance.items():
+        _wrap(t, k, lambda k=k, v=v: _core.Joint(kind, **{k: v}))
+    _wrap(
+        t,
+        None,
+        lambda: scene.join(
+            pair[0],
+            pair[1] if len(pair) == 2 else None,
+            at=at,
+            kind=kind,
+            axes=axes,
+            limits={a: (lo, hi) for a, (lo, hi) in bounds.items()},
+            collide=collide,
+            name=name,
+            **resistance,
+        ),
+    )
+
+
 def _contact_values(t: _Table, names: list[str]) -> dict[str, Any]:
     """The contact keys given in table t, as Scene keywords (SI)."""
     out: dict[str, Any] = {}
@@ -960,6 +1048,13 @@ def _pair(t: _Table, scene: Scene, names: list[str], seen: set[frozenset[str]]) 
     if frozenset(pair) in seen:
         t.fail("vehicles", f"the pair {pair[0]}, {pair[1]} is given twice: merge the entries")
     seen.add(frozenset(pair))
+    joints = [j.name for j in scene.joints if set(j.vehicles) == set(pair)]
+    if joints and frozenset(pair) not in {frozenset(p[:2]) for p in scene.pairs()}:
+        t.fail(
+            "vehicles",
+            f'{pair[0]} and {pair[1]} are joined by "{joints[0]}", so their meshes never meet: '
+            "give the joint collide = true for these parameters to apply, or drop this entry",
+        )
     values = _contact_values(t, names)
     t.finish()
     for k, v in values.items():  # one key at a time, so a bad value is named
@@ -1014,9 +1109,12 @@ def _check_stiffness_needs(top: _Table, scene: Scene) -> None:
         if isinstance(defaults[k], str) and defaults[k] == v
     ]
     vehicles = scene.vehicles
+    pairs = {frozenset(p[:2]) for p in scene.pairs()}
     for k in needs:
         for i, a in enumerate(vehicles):
             for b in vehicles[i + 1 :]:
+                if frozenset((a.name, b.name)) not in pairs:
+                    continue  # joined: their meshes never meet
                 if scene.contact_parameters(a, b)[k] != defaults[k]:
                     continue  # the pair overrides it
                 for v in (a, b):
@@ -1097,6 +1195,9 @@ def loads_scene(
         v.finish()
     for o in obstacle_tables:
         _obstacle(o, scene, base)
+    obstacles = [o.name for o in scene.obstacles]
+    for j in top.tables("joints", JOINT_KEYS):
+        _joint(j, scene, obstacles)
     seen: set[frozenset[str]] = set()
     for p in top.tables("pairs", ("vehicles", *CONTACT_KEYS)):
         _pair(p, scene, names, seen)

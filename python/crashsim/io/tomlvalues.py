@@ -83,7 +83,9 @@ DIMENSIONS: dict[str, str] = {
     "acceleration": "m/s^2",
     "frequency": "Hz",
     "damping": "N s/m",
-    "roll stiffness": "N m/rad",  # an anti-roll bar's (moment per roll angle)
+    "rotational stiffness": "N m/rad",  # moment per angle: an anti-roll bar's, a joint's
+    "rotational damping": "N m s/rad",  # moment per angular rate: a joint's
+    "torque": "N m",  # a moment: a joint's dry friction
     "per angle": "1/rad",  # a tyre's cornering coefficient (cornering stiffness per load)
     "roll gradient": "rad/g",  # roll per g of lateral acceleration
 }
@@ -146,10 +148,18 @@ UNITS: dict[str, Unit] = {
     # damping (a suspension's damper)
     "N s/m": Unit("damping", 1.0),
     "kN s/m": Unit("damping", 1000.0),
-    # roll stiffness (an anti-roll bar's)
-    "N m/rad": Unit("roll stiffness", 1.0),
-    "N m/deg": Unit("roll stiffness", 180.0 / math.pi),
-    "kN m/rad": Unit("roll stiffness", 1000.0),
+    # rotational stiffness (an anti-roll bar's, a joint's)
+    "N m/rad": Unit("rotational stiffness", 1.0),
+    "N m/deg": Unit("rotational stiffness", 180.0 / math.pi),
+    "kN m/rad": Unit("rotational stiffness", 1000.0),
+    # rotational damping (a joint's)
+    "N m s/rad": Unit("rotational damping", 1.0),
+    "N m s/deg": Unit("rotational damping", 180.0 / math.pi),
+    "kN m s/rad": Unit("rotational damping", 1000.0),
+    # torque (a joint's friction; lbf ft: pound-force foot)
+    "N m": Unit("torque", 1.0),
+    "kN m": Unit("torque", 1000.0),
+    "lbf ft": Unit("torque", POUND_FORCE * FOOT),
     # per angle (a tyre's cornering coefficient: cornering stiffness per unit load)
     "1/rad": Unit("per angle", 1.0),
     "1/deg": Unit("per angle", 180.0 / math.pi),
@@ -171,6 +181,11 @@ _ALIASES: dict[str, str] = {
     "Ns/m": "N s/m",
     "Nm/deg": "N m/deg",
     "Nm/rad": "N m/rad",
+    "Nms/rad": "N m s/rad",
+    "Nms/deg": "N m s/deg",
+    "Nm": "N m",
+    "kNm": "kN m",
+    "ft lbf": "lbf ft",
     "/deg": "1/deg",
     "/rad": "1/rad",
     "kNs/m": "kN s/m",
@@ -232,6 +247,11 @@ def _example(dimension: str) -> str:
         "acceleration": '"7 m/s^2"',
         "frequency": '"1.3 Hz"',
         "damping": '"2000 N s/m"',
+        "rotational stiffness": '"600 N m/deg"',
+        "rotational damping": '"50 N m s/rad"',
+        "torque": '"20 N m"',
+        "per angle": '"0.1 1/deg"',
+        "roll gradient": '"6 deg/g"',
     }[dimension]
 
 
