@@ -358,11 +358,17 @@ class SceneSpec:
         tables (s, N); wheel-state switches (wheel, "time" | "exchange", when, "free" |
         "locked" | "braked", braked fraction)."""
     def add_joint(
-        self, joint: Joint, body1: int, body2: int | None, anchor: ArrayLike, axes: ArrayLike
+        self,
+        joint: Joint,
+        body1: int,
+        body2: int | None,
+        anchor: ArrayLike,
+        axes: ArrayLike,
+        name: str | None = None,
     ) -> int:
         """Adds ``joint`` between body1 and body2 (None: the world) made where the bodies stand
-        at t = 0: anchor (world, m), axes (the joint frame, world quaternion w, x, y, z).
-        Returns its index."""
+        at t = 0: anchor (world, m), axes (the joint frame, world quaternion w, x, y, z); name
+        for the engine's messages. Returns its index."""
     @property
     def n_joints(self) -> int: ...
     def set_contact(self, body1: int, body2: int, params: ContactParams) -> None:

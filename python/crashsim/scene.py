@@ -912,6 +912,7 @@ class Scene:
                 None if b is None else self._index(b),
                 joint.at,
                 joint.axes,
+                name=joint.name,
             )
         duration_s, dt_s, until_rest, interval, max_bytes = settings
         spec.set_run(

@@ -432,7 +432,8 @@ impl SceneSpec {
 
     /// Adds `joint` between body1 and body2 (None: the world) made where the bodies stand at
     /// t = 0: `anchor` (world, m), `axes` (the joint frame's orientation, world, quaternion
-    /// w, x, y, z). Returns its index.
+    /// w, x, y, z); `name` for the engine's messages. Returns its index.
+    #[pyo3(signature = (joint, body1, body2, anchor, axes, name = None))]
     fn add_joint(
         &mut self,
         joint: &Joint,
@@ -440,10 +441,12 @@ impl SceneSpec {
         body2: Option<usize>,
         anchor: &Bound<'_, PyAny>,
         axes: &Bound<'_, PyAny>,
+        name: Option<String>,
     ) -> PyResult<usize> {
         let anchor = core::math::Point::from(vector3(anchor, "the joint's anchor")?);
         let axes = rotation(axes)?;
         let mut spec = joint.inner.clone();
+        spec.name = name.unwrap_or_default();
         spec.body1 = body1;
         spec.body2 = body2;
         self.inner.join(spec, anchor, axes).map_err(errors::to_py)

@@ -109,6 +109,8 @@ pub struct AngleLimit {
 /// A joint between body 1 and body 2 (or the world).
 #[derive(Clone, Debug, PartialEq)]
 pub struct JointSpec {
+    /// Its name in messages (empty: "joint k" by its index).
+    pub name: String,
     /// What the joint holds.
     pub kind: JointKind,
     /// Body 1's index in the world.
@@ -147,6 +149,7 @@ impl JointSpec {
         frame2: (Point, Rotation),
     ) -> JointSpec {
         JointSpec {
+            name: String::new(),
             kind,
             body1,
             body2,
@@ -157,6 +160,15 @@ impl JointSpec {
             damping: 0.0,
             friction: 0.0,
             collide: false,
+        }
+    }
+
+    /// How messages name it: its name, or "joint `index`" without one.
+    pub fn label(&self, index: usize) -> String {
+        if self.name.is_empty() {
+            format!("joint {index}")
+        } else {
+            format!("joint {:?}", self.name)
         }
     }
 

@@ -52,6 +52,8 @@ struct Document {
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct JointDoc {
+    #[serde(default)]
+    name: String,
     kind: String,
     body1: usize,
     body2: Option<usize>,
@@ -423,6 +425,7 @@ fn document(spec: &SceneSpec) -> Document {
             .joints
             .iter()
             .map(|j| JointDoc {
+                name: j.name.clone(),
                 kind: j.kind.name().into(),
                 body1: j.body1,
                 body2: j.body2,
@@ -652,6 +655,7 @@ fn spec(doc: Document) -> Result<SceneSpec> {
         joint.damping = j.damping;
         joint.friction = j.friction;
         joint.collide = j.collide;
+        joint.name = j.name;
         out.add_joint(joint)?;
     }
     if let Some(g) = doc.ground {

@@ -253,7 +253,7 @@ impl SceneSpec {
     /// Adds a joint (checked: its numbers and limits, its bodies moving bodies of the scene;
     /// where its anchor lies, when the world is built); returns its index.
     pub fn add_joint(&mut self, joint: JointSpec) -> Result<usize> {
-        let name = format!("joint {}", self.joints.len());
+        let name = joint.label(self.joints.len());
         joint.validate(&name)?;
         let n = self.bodies.len();
         for b in std::iter::once(joint.body1).chain(joint.body2) {

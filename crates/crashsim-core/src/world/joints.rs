@@ -62,7 +62,7 @@ impl World {
             ));
         }
         let index = self.joints.len();
-        let name = format!("joint {index}");
+        let name = joint.label(index);
         joint.validate(&name)?;
         let n = self.bodies.len();
         for b in std::iter::once(joint.body1).chain(joint.body2) {
@@ -183,10 +183,11 @@ impl World {
             let jb = self.joint_bodies(g);
             let m = &self.mechanisms[g];
             for (joint, id) in m.joints.iter().zip(&m.ids) {
+                let label = joint.label(*id);
                 let (_, apart) = project_positions(std::slice::from_ref(joint), &jb, &[]);
                 if apart > START_TOLERANCE {
                     return Err(Error::Parameter(format!(
-                        "joint {id}'s frames do not meet at the start ({apart:.4} m or rad \
+                        "{label}'s frames do not meet at the start ({apart:.4} m or rad \
                          apart): give each body's frame of the joint at the same world point \
                          and axes"
                     )));
@@ -194,7 +195,7 @@ impl World {
                 let rate = drift_rate(joint, &jb);
                 if rate > START_TOLERANCE {
                     return Err(Error::Parameter(format!(
-                        "joint {id}'s bodies move apart at the start ({rate:.4} m/s at the \
+                        "{label}'s bodies move apart at the start ({rate:.4} m/s at the \
                          anchor, or rad/s between its axes): give the joined bodies velocities \
                          that agree (a trailer moving with its tractor)"
                     )));
