@@ -198,3 +198,30 @@ def _semi_args() -> dict[str, object]:
         track=2.0,
         radius=0.5,
     )
+
+
+def test_the_presets_come_from_the_combination_classes_and_stand_level() -> None:
+    from crashsim.vehicles.combination_data import combination_class
+
+    tractor = cs.Vehicle.generate("tractor")
+    data = combination_class("tractor_6x4")
+    assert tractor.mass == data["mass"].value
+    assert tractor.inertia[2, 2] == pytest.approx(data["yaw_inertia"].value)
+    assert tractor.hitch is not None and tractor.hitch.kind == "fifth_wheel"
+    van = cs.Trailer.generate("box_van")
+    van_data = combination_class("box_van")
+    assert van.mass == van_data["mass_laden"].value
+    assert cs.Trailer.generate("box_van", laden=False).mass == van_data["mass"].value
+    # The caravan's axle is placed for the class's nose-load share (6 %).
+    caravan = cs.Trailer.generate("caravan")
+    share = caravan.wheels.coupling_load(caravan.mass) / (caravan.mass * G)
+    assert share == pytest.approx(combination_class("caravan")["nose_load_share"].value)
+    # The laden combination stands level with its kingpin load as statics gives it.
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(tractor, (0, 0), heading=0.0, trailers=[van])
+    result = scene.run(1.0)
+    joint = result.joints["tractor-box_van"]
+    assert joint.force[-1, 2] == pytest.approx(van.wheels.coupling_load(van.mass), rel=1e-2)
+    assert np.abs(joint.angle("pitch")).max() < math.radians(0.1)
+    with pytest.raises(ParameterError, match="has no builder"):
+        cs.Trailer.generate("tanker")

@@ -42,6 +42,16 @@ def _positive(value: Any, name: str) -> float:
     return x
 
 
+def _with_yaw_inertia(inertia: np.ndarray, yaw: float) -> None:
+    """Gives an inertia tensor (about the CG, body axes, kg m^2) the yaw inertia ``yaw`` by
+    changing its mass's spread along x: Izz = sum m (x^2 + y^2) and Iyy = sum m (x^2 + z^2)
+    both change by the same amount (a measured yaw inertia with a uniform body's roll and
+    pitch otherwise breaks the triangle inequality for a long trailer)."""
+    change = yaw - inertia[2, 2]
+    inertia[2, 2] += change
+    inertia[1, 1] += change
+
+
 def _box(lo: Sequence[float], hi: Sequence[float]) -> trimesh.Trimesh:
     lo_a, hi_a = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
     mesh = trimesh.creation.box(extents=hi_a - lo_a)
@@ -67,9 +77,95 @@ def _axle_wheels(
     return np.array(centers), flags, wheel_names
 
 
+# Not sourced (combination_classes.toml has none): a caravan's drawbar from the body's front
+# to the coupler (m), its tyre radius (m, a 185/70 R13's) and track (m, its width less 0.35):
+# assumptions of the caravan preset.
+CARAVAN_DRAWBAR = 1.2
+CARAVAN_TYRE_RADIUS = 0.29
+CARAVAN_TRACK_INSET = 0.35
+# A caravan's body stands this far above the road (m; not sourced): its floor over the axle.
+CARAVAN_CLEARANCE = 0.35
+
+
 class Trailer:
     """Trailers (a namespace of builders; each returns a :class:`crashsim.Vehicle` with
     wheels and a ``coupler``)."""
+
+    @staticmethod
+    def generate(
+        preset: str,
+        *,
+        laden: bool = True,
+        coupler_height: float | None = None,
+        name: str | None = None,
+        **overrides: Any,
+    ) -> Vehicle:
+        """A trailer from a combination class (docs/vehicle-data.md), as :meth:`box` builds
+        it; keywords of :meth:`box` replace the class's numbers.
+
+        - "box_van": a tridem semitrailer, laden (``laden=True``: the class's laden mass,
+          CG height and yaw inertia) or empty (its empty mass; the CG at the box's middle,
+          its height and the inertia the uniform box's: not sourced); the kingpin at its
+          setback, the tridem's centre the kingpin-to-axle-group distance behind it, the
+          axles the group's spread apart; the box from ``coupler_height`` (default 1.1 m,
+          the class's fifth-wheel height: the kingpin at the floor) to the class's height.
+        - "caravan": a single-axle caravan, ``laden`` its maximum mass else its mass in
+          running order, the CG at the body's middle; the axle placed so the coupler carries
+          the class's nose-load share (6 %); the drawbar (1.2 m), tyres and track are
+          assumptions (CARAVAN_*), the coupler at the class's coupling height.
+        """
+        from crashsim.vehicles.combination_data import combination_class
+
+        cls = combination_class(preset)
+        value = {q: cls[q].value for q in cls.quantities}
+        if preset == "box_van":
+            hz = coupler_height if coupler_height is not None else 1.1
+            group = value["kingpin_setback"] + value["kingpin_to_axle_group"]
+            spread = value["axle_group_spread"] / 2.0
+            args: dict[str, Any] = dict(
+                length=value["length"],
+                width=value["width"],
+                height=value["height"] - hz,
+                mass=value["mass_laden"] if laden else value["mass"],
+                ground_clearance=hz,
+                coupler=value["kingpin_setback"],
+                coupler_height=hz,
+                axles=[group - spread, group, group + spread],
+                track=value["track"],
+                radius=value["tyre_radius"],
+            )
+            if laden:
+                args["cg_height"] = value["cg_height_laden"]
+                args["yaw_inertia"] = value["yaw_inertia_laden"]
+            kind = "semitrailer"
+        elif preset == "caravan":
+            length = value["length"]
+            share = value["nose_load_share"]
+            # The axle behind the CG (the body's middle) so that the coupler, DRAWBAR ahead of
+            # the body, carries `share` of the weight: x_axle = -share x_coupler / (1 - share).
+            coupler_x = length / 2.0 + CARAVAN_DRAWBAR
+            axle_x = -share * coupler_x / (1.0 - share)
+            args = dict(
+                length=length,
+                width=value["width"],
+                height=value["height"] - CARAVAN_CLEARANCE,
+                mass=value["mass_max"] if laden else value["mass"],
+                ground_clearance=CARAVAN_CLEARANCE,
+                coupler=CARAVAN_DRAWBAR,
+                coupler_height=coupler_height or value["coupling_height"],
+                axles=[length / 2.0 - axle_x],
+                track=value["width"] - CARAVAN_TRACK_INSET,
+                radius=CARAVAN_TYRE_RADIUS,
+            )
+            kind = "centre_axle"
+        else:
+            raise ParameterError(
+                f"trailer preset {preset!r} has no builder: the presets are 'box_van' and "
+                "'caravan' (the other combination classes lack the dimensions a body needs; "
+                "build them with Trailer.box)"
+            )
+        args.update(overrides)
+        return Trailer.box(kind, name=name or preset, **args)
 
     @staticmethod
     def box(
@@ -91,6 +187,7 @@ class Trailer:
         natural_frequency: float | None = None,
         damping_ratio: float | None = None,
         abs: bool = True,
+        yaw_inertia: float | None = None,
         name: str = "trailer",
     ) -> Vehicle:
         """A box trailer (m, kg): a body ``length`` x ``width`` x ``height`` from
@@ -149,6 +246,8 @@ class Trailer:
         inertia = _parallel_axis(
             _box_inertia(m, ln, wd, ht), m, cg - np.array([0, 0, lo_z + ht / 2])
         )
+        if yaw_inertia is not None:
+            _with_yaw_inertia(inertia, _positive(yaw_inertia, "yaw_inertia"))
         vehicle = Vehicle(
             mesh,
             m,
@@ -184,21 +283,54 @@ class Trailer:
         return vehicle
 
 
+# Not sourced (combination_classes.toml has no overhang): a cab-over tractor's front axle this
+# far behind its bumper (m), an assumption of the tractor builder.
+FRONT_OVERHANG = 1.4
+
+
+def _from_class(preset: str, fields: dict[str, str]) -> dict[str, Any]:
+    """The builder's keywords a combination class gives (keyword -> the class's quantity)."""
+    from crashsim.vehicles.combination_data import combination_class
+
+    cls = combination_class(preset)
+    return {k: cls[q].value for k, q in fields.items() if q in cls}
+
+
+# The tractor builder's keywords a combination class gives: keyword -> the class's quantity.
+TRACTOR_FIELDS = {
+    "mass": "mass",
+    "wheelbase": "wheelbase",
+    "tandem_spread": "tandem_spread",
+    "fifth_wheel_ahead": "fifth_wheel_offset",
+    "fifth_wheel_height": "fifth_wheel_height",
+    "cg_to_front_axle": "cg_to_front_axle",
+    "cg_height": "cg_height",
+    "length": "length",
+    "width": "width",
+    "cab_height": "height",
+    "track": "track_front",
+    "radius_front": "tyre_radius_front",
+    "radius_rear": "tyre_radius_rear",
+    "yaw_inertia": "yaw_inertia",
+}
+
+
 def tractor(
+    preset: str | None = None,
     *,
-    mass: float,
-    wheelbase: float,
-    tandem_spread: float,
-    fifth_wheel_ahead: float,
-    fifth_wheel_height: float,
-    cg_to_front_axle: float,
-    cg_height: float,
-    track: float,
-    radius: float,
-    length: float,
+    mass: float | None = None,
+    wheelbase: float | None = None,
+    tandem_spread: float | None = None,
+    fifth_wheel_ahead: float | None = None,
+    fifth_wheel_height: float | None = None,
+    cg_to_front_axle: float | None = None,
+    cg_height: float | None = None,
+    track: float | None = None,
+    radius: float | tuple[float, float] | None = None,
+    length: float | None = None,
     width: float = 2.5,
     cab_height: float = 3.0,
-    front_overhang: float = 1.4,
+    front_overhang: float = FRONT_OVERHANG,
     driven_axles: int = 2,
     tyre: Tyre | dict[str, Any] | None = None,
     natural_frequency: float | None = None,
@@ -207,7 +339,7 @@ def tractor(
     steering_reference: str | None = None,
     abs: bool = True,
     inertia: Any = None,
-    name: str = "tractor",
+    name: str | None = None,
 ) -> Vehicle:
     """A tractor (m, kg): a cab (``front_overhang`` + 1.0 m long from the front bumper,
     ``cab_height`` tall) and a chassis frame back to ``length``; a steered front axle
@@ -215,8 +347,47 @@ def tractor(
     ``wheelbase`` from the front axle to the rear axles' centre, ``tandem_spread`` apart;
     the fifth wheel's kingpin lock ``fifth_wheel_ahead`` of the rear axles' centre at
     ``fifth_wheel_height``; the CG ``cg_to_front_axle`` behind the front axle at ``cg_height``;
-    ``inertia`` (3, 3) kg m^2 about the CG (default the cab and frame as uniform boxes
-    sharing the mass by volume, about the CG)."""
+    tyre ``radius`` (one, or front and rear); ``inertia`` (3, 3) kg m^2 about the CG (default
+    the cab and frame as uniform boxes sharing the mass by volume, about the CG).
+
+    ``preset="tractor_6x4"``: every number the combination class gives
+    (docs/vehicle-data.md: mass, length, width, height as the cab's, wheelbase, tandem spread,
+    fifth-wheel lead and height, CG, yaw inertia, tracks, tyre radii); keywords given replace
+    them; the front overhang (not sourced) is FRONT_OVERHANG."""
+    given: dict[str, Any] = {
+        "mass": mass,
+        "wheelbase": wheelbase,
+        "tandem_spread": tandem_spread,
+        "fifth_wheel_ahead": fifth_wheel_ahead,
+        "fifth_wheel_height": fifth_wheel_height,
+        "cg_to_front_axle": cg_to_front_axle,
+        "cg_height": cg_height,
+        "track": track,
+        "radius": radius,
+        "length": length,
+    }
+    yaw_inertia = None
+    if preset is not None:
+        data = _from_class(preset, TRACTOR_FIELDS)
+        if "radius_front" in data:
+            data["radius"] = (data["radius_front"], data.get("radius_rear", data["radius_front"]))
+        given = {k: data.get(k) if v is None else v for k, v in given.items()}
+        width = data.get("width", width)
+        cab_height = data.get("cab_height", cab_height)
+        yaw_inertia = data.get("yaw_inertia") if inertia is None else None
+    missing = [k for k, v in given.items() if v is None]
+    if missing:
+        raise ParameterError(
+            f"tractor: give {', '.join(missing)} (m, kg), or a preset "
+            "(crashsim.vehicles.combination_data)"
+        )
+    mass, wheelbase, tandem_spread, fifth_wheel_ahead, fifth_wheel_height = (
+        given[k]
+        for k in ("mass", "wheelbase", "tandem_spread", "fifth_wheel_ahead", "fifth_wheel_height")
+    )
+    cg_to_front_axle, cg_height, track, radius, length = (
+        given[k] for k in ("cg_to_front_axle", "cg_height", "track", "radius", "length")
+    )
     m = _positive(mass, "mass")
     wb = _positive(wheelbase, "wheelbase")
     ln = _positive(length, "length")
@@ -228,7 +399,8 @@ def tractor(
     x_rear = x_front_axle - wb
     spread = _positive(tandem_spread, "tandem_spread") if driven_axles == 2 else 0.0
     rear_axles = [x_rear + spread / 2.0, x_rear - spread / 2.0] if driven_axles == 2 else [x_rear]
-    r = _positive(radius, "radius")
+    r_front, r_rear = radius if isinstance(radius, tuple | list) else (radius, radius)
+    r_front, r_rear = _positive(r_front, "radius"), _positive(r_rear, "radius")
     cab_len = overhang + 1.0
     cab = _box(
         (front - cab_len, -width / 2, 0.45), (front, width / 2, _positive(cab_height, "cab_height"))
@@ -251,17 +423,20 @@ def tractor(
             lo, hi = part.bounds
             mp = m * v / total
             inertia += _parallel_axis(_box_inertia(mp, *(hi - lo)), mp, cg - (lo + hi) / 2.0)
-    vehicle = Vehicle(
-        mesh, m, cg, inertia, name=name, sources={"cg": "user", "inertia": "uniform boxes"}
-    )
+        if yaw_inertia is not None:
+            _with_yaw_inertia(inertia, float(yaw_inertia))
+    sources = {"cg": "user", "inertia": "uniform boxes"}
+    vehicle = Vehicle(mesh, m, cg, inertia, name=name or preset or "tractor", sources=sources)
     axles_x = [x_front_axle, *rear_axles]
     names = ["steer", *(["drive"] if driven_axles == 1 else ["drive1", "drive2"])]
     centers, flags, wheel_names = _axle_wheels(
-        axles_x, _positive(track, "track"), r, cg, [True] + [False] * driven_axles, names
+        axles_x, _positive(track, "track"), r_front, cg, [True] + [False] * driven_axles, names
     )
+    radii = np.array([r_front] * 2 + [r_rear] * (2 * driven_axles))
+    centers[2:, 2] += r_rear - r_front  # each axle's centre at its own tyre's radius
     wheels = Wheels.custom(
         centers,
-        r,
+        radii,
         flags,
         names=wheel_names,
         natural_frequency=natural_frequency,

@@ -720,7 +720,15 @@ class Vehicle:
         them; ``generator_params`` keeps the
         BodyParams. Raises ParameterError for an unknown preset (listing the presets), a bad
         number, or dimensions that give no valid body (the generator's message).
+
+        ``"tractor"`` (or "tractor_6x4") is a tractor with its fifth wheel from the combination
+        class (:func:`crashsim.tractor`, ``preset="tractor_6x4"``; ``mass`` and ``length`` pass
+        through); trailers come from :meth:`crashsim.Trailer.generate`.
         """
+        if preset in ("tractor", "tractor_6x4"):
+            from crashsim.vehicles.trailer import tractor
+
+            return tractor("tractor_6x4", mass=mass, length=length, name=name or "tractor")
         vc, key = _preset_class(preset)
         table = f"class table ({key})"
         if mass is None and weight_lb is None:
