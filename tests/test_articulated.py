@@ -225,3 +225,29 @@ def test_the_presets_come_from_the_combination_classes_and_stand_level() -> None
     assert np.abs(joint.angle("pitch")).max() < math.radians(0.1)
     with pytest.raises(ParameterError, match="has no builder"):
         cs.Trailer.generate("tanker")
+
+
+def test_a_study_varies_a_combination_as_one() -> None:
+    # The tractor's speed and heading: the trailer moves with it (its joint's frames meet,
+    # the bodies agree), in a batch as in Scene.with_, bit for bit; varying both units'
+    # state is refused.
+    from crashsim.batch import run_batch
+    from crashsim.studies.paths import overrides
+
+    tractor, semi = _tractor(), _semi()
+    scene = cs.Scene(ground=cs.Ground(friction=0.8))
+    scene.add(tractor, (0, 0), heading=0.0, velocity=(15, 0, 0), trailers=[semi])
+    values = {"tractor.speed": [10.0, 20.0], "tractor.heading": [0.0, 0.5]}
+    arrays = overrides(scene, values)
+    batch = run_batch(scene, arrays, duration=1.0, dt=1e-3)
+    assert batch.errors == []
+    one = scene.with_({"tractor.speed": 20.0, "tractor.heading": 0.5}).run(1.0)
+    semi_v, tractor_v = one.trajectory("semi").velocity, one.trajectory("tractor").velocity
+    assert np.linalg.norm(semi_v[0] - tractor_v[0]) < 1e-12
+    assert semi_v[0] == pytest.approx(20.0 * np.array([math.cos(0.5), math.sin(0.5), 0.0]))
+    x_key = next(k for k in batch.columns if k.startswith("semi") and "x" in k.split(".")[-1])
+    assert batch.columns[x_key][1] == one.trajectory("semi").position[-1][0]
+    from crashsim.errors import StudyError
+
+    with pytest.raises(StudyError, match="joined"):
+        overrides(scene, {"tractor.speed": [10.0], "semi.speed": [10.0]})

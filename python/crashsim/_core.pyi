@@ -362,13 +362,13 @@ class SceneSpec:
         joint: Joint,
         body1: int,
         body2: int | None,
-        anchor: ArrayLike,
-        axes: ArrayLike,
+        frame1: tuple[ArrayLike, ArrayLike],
+        frame2: tuple[ArrayLike, ArrayLike],
         name: str | None = None,
     ) -> int:
-        """Adds ``joint`` between body1 and body2 (None: the world) made where the bodies stand
-        at t = 0: anchor (world, m), axes (the joint frame, world quaternion w, x, y, z); name
-        for the engine's messages. Returns its index."""
+        """Adds ``joint`` between body1 and body2 (None: the world): frame1 (anchor m, axes
+        quaternion w, x, y, z) in body1's frame, frame2 in body2's (or the world's), the same
+        frame when the run starts; name for the engine's messages. Returns its index."""
     @property
     def n_joints(self) -> int: ...
     def set_contact(self, body1: int, body2: int, params: ContactParams) -> None:

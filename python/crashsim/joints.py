@@ -40,14 +40,18 @@ Array = NDArray[np.float64]
 @dataclass(frozen=True, eq=False)
 class Joint:
     """A joint of a scene: ``vehicles`` (the first, and the second or None for the world),
-    ``at`` (3,) the anchor (world, m, at t = 0), ``axes`` (4,) the joint frame's orientation
-    (world, quaternion w, x, y, z, at t = 0), and the engine's value (``kind``, ``limits``,
-    ``stiffness``, ``damping``, ``friction``, ``collide``)."""
+    ``at`` (3,) the anchor (world, m, as made), ``axes`` (4,) the joint frame's orientation
+    (world, quaternion w, x, y, z, as made), ``frames`` the same frame in each vehicle's body
+    frame (anchor m, axes quaternion; the second in the world's for a joint to the world):
+    what the engine gets, so a study that moves a combination as one keeps the joint where it
+    was made on each body; and the engine's value (``kind``, ``limits``, ``stiffness``,
+    ``damping``, ``friction``, ``collide``)."""
 
     name: str
     vehicles: tuple[str, str | None]
     at: Array
     axes: Array
+    frames: tuple[tuple[Array, Array], tuple[Array, Array]]
     core: _core.Joint
 
     @property
@@ -88,6 +92,7 @@ def make_joint(
     kind: str,
     at: ArrayLike,
     axes: ArrayLike,
+    poses: tuple[tuple[Array, Array], tuple[Array, Array] | None],
     limits: Mapping[str, tuple[float, float]] | None,
     stiffness: float,
     damping: float,
@@ -121,13 +126,48 @@ def make_joint(
         )
     except ParameterError as err:
         raise ParameterError(f"joint {name!r}: {err}") from err
+    anchor = _vector(at, 3, f"joint {name!r}: at")
+    q = _vector(axes, 4, f"joint {name!r}: axes (a quaternion w, x, y, z)")
+    first, second = poses
+    world = (anchor, q)
     return Joint(
         name=name,
         vehicles=vehicles,
-        at=_vector(at, 3, f"joint {name!r}: at"),
-        axes=_vector(axes, 4, f"joint {name!r}: axes (a quaternion w, x, y, z)"),
+        at=anchor,
+        axes=q,
+        frames=(_in_body(world, *first), world if second is None else _in_body(world, *second)),
         core=core,
     )
+
+
+def _in_body(
+    frame: tuple[Array, Array], position: Array, orientation: Array
+) -> tuple[Array, Array]:
+    """A world frame (anchor, axes quaternion) in the frame of a body at ``position`` with
+    ``orientation`` (quaternion w, x, y, z, body -> world)."""
+    anchor, axes = frame
+    w, x, y, z = (float(c) for c in orientation)
+    rot = np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+    local = rot.T @ (anchor - np.asarray(position, dtype=np.float64))
+    aw, ax, ay, az = (float(c) for c in axes)
+    # conj(orientation) * axes
+    q = np.array(
+        [
+            w * aw + x * ax + y * ay + z * az,
+            w * ax - x * aw - y * az + z * ay,
+            w * ay + x * az - y * aw - z * ax,
+            w * az - x * ay + y * ax - z * aw,
+        ]
+    )
+    local.setflags(write=False)
+    q.setflags(write=False)
+    return local, q
 
 
 def check_new(joints: list[Joint], joint: Joint) -> None:

@@ -645,6 +645,10 @@ class Scene:
             kind=kind,
             at=at,
             axes=q,
+            poses=(
+                (first.position, first.orientation),
+                None if second is None else (second.position, second.orientation),
+            ),
             limits=limits,
             stiffness=stiffness,
             damping=damping,
@@ -910,8 +914,8 @@ class Scene:
                 joint.core,
                 self._index(a),
                 None if b is None else self._index(b),
-                joint.at,
-                joint.axes,
+                joint.frames[0],
+                joint.frames[1],
                 name=joint.name,
             )
         duration_s, dt_s, until_rest, interval, max_bytes = settings

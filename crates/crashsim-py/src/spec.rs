@@ -430,26 +430,32 @@ impl SceneSpec {
         self.inner.set_vehicle(body, spec).map_err(errors::to_py)
     }
 
-    /// Adds `joint` between body1 and body2 (None: the world) made where the bodies stand at
-    /// t = 0: `anchor` (world, m), `axes` (the joint frame's orientation, world, quaternion
-    /// w, x, y, z); `name` for the engine's messages. Returns its index.
-    #[pyo3(signature = (joint, body1, body2, anchor, axes, name = None))]
+    /// Adds `joint` between body1 and body2 (None: the world): `frame1` (anchor m, axes
+    /// quaternion w, x, y, z) in body1's frame and `frame2` in body2's (or the world's), the
+    /// same frame when the run starts; `name` for the engine's messages. Returns its index.
+    #[pyo3(signature = (joint, body1, body2, frame1, frame2, name = None))]
     fn add_joint(
         &mut self,
         joint: &Joint,
         body1: usize,
         body2: Option<usize>,
-        anchor: &Bound<'_, PyAny>,
-        axes: &Bound<'_, PyAny>,
+        frame1: (Bound<'_, PyAny>, Bound<'_, PyAny>),
+        frame2: (Bound<'_, PyAny>, Bound<'_, PyAny>),
         name: Option<String>,
     ) -> PyResult<usize> {
-        let anchor = core::math::Point::from(vector3(anchor, "the joint's anchor")?);
-        let axes = rotation(axes)?;
+        let frame = |(p, q): &(Bound<'_, PyAny>, Bound<'_, PyAny>)| -> PyResult<_> {
+            Ok((
+                core::math::Point::from(vector3(p, "the joint's anchor")?),
+                rotation(q)?,
+            ))
+        };
         let mut spec = joint.inner.clone();
         spec.name = name.unwrap_or_default();
         spec.body1 = body1;
         spec.body2 = body2;
-        self.inner.join(spec, anchor, axes).map_err(errors::to_py)
+        spec.frame1 = frame(&frame1)?;
+        spec.frame2 = frame(&frame2)?;
+        self.inner.add_joint(spec).map_err(errors::to_py)
     }
 
     /// Number of joints.

@@ -361,6 +361,7 @@ def overrides(
             out["velocity"][:, j, 1] = ps["velocity_y"]
         if "yaw_rate" in ps:
             out["angular_velocity"][:, j, 2] = ps["yaw_rate"]
+    _move_combinations(scene, by_vehicle, base, out, count)
     pairs = scene.pairs()
     for p in paths:
         if p.kind not in ("pairs", "pair"):
@@ -380,6 +381,95 @@ def overrides(
             key = _GROUND_KEYS[p.parameter]
             out[key] = arrays[p.name].copy()
     return out
+
+
+def _combinations(scene: Scene) -> list[list[int]]:
+    """The vehicles joined to each other (Scene.join with two vehicles: a tractor and its
+    trailers), as lists of placement indices, each in the order added."""
+    names = [p.vehicle.name for p in scene._placements]
+    group = list(range(len(names)))
+
+    def root(i: int) -> int:
+        while group[i] != i:
+            i = group[i]
+        return i
+
+    for joint in scene._joints:
+        a, b = joint.vehicles
+        if b is not None:
+            ra, rb = root(names.index(a)), root(names.index(b))
+            group[max(ra, rb)] = min(ra, rb)
+    out: dict[int, list[int]] = {}
+    for i in range(len(names)):
+        out.setdefault(root(i), []).append(i)
+    return [members for members in out.values() if len(members) > 1]
+
+
+def _move_combinations(
+    scene: Scene,
+    by_vehicle: Mapping[str, list[ParameterPath]],
+    base: Mapping[str, Array],
+    out: dict[str, Array],
+    count: int,
+) -> None:
+    """A combination moves as one: the state a path gives one of its units (position,
+    heading, speed, direction, velocity, yaw rate) is given to the others as the same rigid
+    motion (their places and headings turned and moved with it, their velocities those of
+    its points), so the joints' frames still meet and their bodies move together. A
+    StudyError when paths set the state of two units of one combination."""
+    names = [p.vehicle.name for p in scene._placements]
+    state = {"position_x", "position_y", "heading", "speed", "direction"}
+    state |= {"velocity_x", "velocity_y", "yaw_rate"}
+    for members in _combinations(scene):
+        leads = [j for j in members if {p.parameter for p in by_vehicle[names[j]]} & state]
+        if not leads:
+            continue
+        if len(leads) > 1:
+            raise StudyError(
+                f"vehicles {[names[j] for j in leads]} are joined (one combination): vary the "
+                "state of one of them, the others follow",
+                key=by_vehicle[names[leads[1]]][0].name,
+            )
+        j = leads[0]
+        if "orientation" in out and "position" not in out:  # a turned lead moves the others
+            out["position"] = np.repeat(base["position"][None], count, axis=0).astype(np.float64)
+        p0, q0 = base["position"][j], base["orientation"][j]
+        for k in members:
+            if k == j:
+                continue
+            for i in range(count):
+                pj = out["position"][i, j] if "position" in out else p0
+                qj = out["orientation"][i, j] if "orientation" in out else q0
+                turn = _qmul(qj, np.array([q0[0], -q0[1], -q0[2], -q0[3]]))  # qj q0^-1
+                rot = _rotation(turn)
+                pk = pj + rot @ (base["position"][k] - p0)
+                if "position" in out:
+                    out["position"][i, k] = pk
+                if "orientation" in out:
+                    out["orientation"][i, k] = _qmul(turn, base["orientation"][k])
+                if "velocity" in out or "angular_velocity" in out:
+                    vj = out["velocity"][i, j] if "velocity" in out else base["velocity"][j]
+                    wj = (
+                        out["angular_velocity"][i, j]
+                        if "angular_velocity" in out
+                        else base["angular_velocity"][j]
+                    )
+                    if "velocity" in out:
+                        out["velocity"][i, k] = vj + np.cross(wj, pk - pj)
+                    if "angular_velocity" in out:
+                        out["angular_velocity"][i, k] = wj
+
+
+def _rotation(q: Array) -> Array:
+    """The rotation matrix of a unit quaternion (w, x, y, z)."""
+    w, x, y, z = (float(c) for c in q)
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+    )
 
 
 def _pair_value(value: Any) -> float:
