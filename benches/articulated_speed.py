@@ -22,7 +22,10 @@ scaling on 2 cores.
    is the median over the repeats, a ratio the ratio of the medians, its range the
    per-repeat ratios. Garbage collection is off while timing. Before timing, each scene is
    run once and checked: no contact and no impact in any of them.
-2. **Batch** (`crashsim.batch.run_batch`, no history): the towed pair and the free pair over
+2. **Kinds**: the towed pair with each kind of joint at the bar (spherical, revolute about
+   the vertical, fifth wheel, fixed) against the free pair, runs as in 1: a spherical
+   joint's angles (a rotation vector) against the others' (atan2), and 3 to 6 rows.
+3. **Batch** (`crashsim.batch.run_batch`, no history): the towed pair and the free pair over
    n variants of the ground's tyre friction (0.5-1.0, drawn with a seed: an override that
    keeps the joint's frames where they are; a position or velocity override moving one
    jointed body alone is refused by the engine, variant by variant), each 2 s at 1 ms, on 1
@@ -64,9 +67,10 @@ HIGH = 50.0  # m, the chain's pivot above the ground
 TILT = 0.3  # rad below the horizontal at the start
 
 
-def train(units: int, joined: bool) -> cs.Scene:
+def train(units: int, joined: bool, kind: str = "spherical") -> cs.Scene:
     """``units`` generated sedans at SPEED, the first braking: nose to tail, each towing the
-    next on a spherical joint halfway across the GAP (``joined``), or side by side APART m."""
+    next on a joint of ``kind`` halfway across the GAP (``joined``; its axes the car's), or
+    side by side APART m."""
     cars = [cs.Vehicle.generate("sedan", name=n) for n in ("car", "towed", "towed2")[:units]]
     lo, hi = cars[0].mesh.bounds - cars[0].cg
     pitch = lo[0] - GAP - hi[0]  # m, from one CG to the next (< 0: behind)
@@ -78,7 +82,7 @@ def train(units: int, joined: bool) -> cs.Scene:
     if joined:
         for k in range(1, units):
             x = (k - 1) * pitch + lo[0] - GAP / 2
-            scene.join(cars[k - 1], cars[k], at=(x, 0.0, 0.5), name=f"bar{k}")
+            scene.join(cars[k - 1], cars[k], at=(x, 0.0, 0.5), kind=kind, name=f"bar{k}")
     return scene
 
 
@@ -156,6 +160,40 @@ def runs(repeats: int, duration: float, with_chain: bool) -> list[str]:
     return lines
 
 
+def kinds(repeats: int, duration: float) -> list[str]:
+    """The towed pair with each kind of joint (the hitch's axes the car's: a revolute one
+    turns about the vertical), against the free pair, interleaved: what the kind's rows and
+    angles cost (a spherical joint's angles are a rotation vector, the others' atan2)."""
+    scenes = {"free": train(2, False)}
+    for kind in ("spherical", "revolute", "fifth_wheel", "fixed"):
+        scenes[kind] = train(2, True, kind)
+    for name, scene in scenes.items():
+        r = scene.run(duration, DT)
+        assert not r.contacts and not r.impacts, (name, r.contacts[:2], r.impacts[:2])
+    times: dict[str, list[float]] = {name: [] for name in scenes}
+    gc.collect()
+    gc.disable()
+    try:
+        for rep in range(repeats):
+            for name in list(scenes)[:: 1 if rep % 2 == 0 else -1]:
+                t0 = time.perf_counter()
+                scenes[name].run(duration, DT)
+                times[name].append(time.perf_counter() - t0)
+    finally:
+        gc.enable()
+    lines = [
+        f"the towed pair by the joint's kind, runs as above, median of {repeats}; ratio = "
+        "joined / free [per-repeat range]:",
+    ]
+    for name, ts in times.items():
+        r, lo, hi = ratio_of(ts, times["free"])
+        lines.append(
+            f"  {name:12s} {statistics.median(ts) / duration * 1e3:8.2f} ms per s  "
+            f"{r:5.2f} [{lo:.2f}, {hi:.2f}]"
+        )
+    return lines
+
+
 def batches(n: int, repeats: int, duration: float) -> list[str]:
     rng = np.random.default_rng(0)
     overrides = {"ground.tyre_friction": rng.uniform(0.5, 1.0, n)}
@@ -206,7 +244,7 @@ def main() -> int:
     ap.add_argument("--quick", action="store_true", help="a smoke run: 0.5 s runs, few repeats")
     ap.add_argument("--repeats", type=int, help="runs' repeats (default 15, --quick 3)")
     ap.add_argument("--n", type=int, help="variants per batch (default 32, --quick 4)")
-    ap.add_argument("--only", default="runs,batch", help="runs, batch")
+    ap.add_argument("--only", default="runs,kinds,batch", help="runs, kinds, batch")
     ap.add_argument("--no-chain", action="store_true", help="leave the 20-link chain out")
     a = ap.parse_args()
     duration = 0.5 if a.quick else DURATION
@@ -217,6 +255,7 @@ def main() -> int:
     print(f"load average at start: {os.getloadavg()[0]:.2f}")
     parts = {
         "runs": lambda: runs(repeats, duration, not a.no_chain),
+        "kinds": lambda: kinds(repeats, duration),
         "batch": lambda: batches(n, 1 if a.quick else 7, duration),
     }
     for name in a.only.split(","):
