@@ -4,7 +4,7 @@ process, and the batch's scaling on 2 threads with a joint. The goal: an articul
 costs at most 2x the same number of free vehicles per simulated second; the batch keeps its
 scaling on 2 cores.
 
-    python3 benches/articulated_speed.py            # 15 repeats, batches of 32: about 1 min
+    python3 benches/articulated_speed.py            # 15 repeats, batches of 32: 40-55 s
     python3 benches/articulated_speed.py --quick    # a smoke run: a few seconds
     python3 benches/articulated_speed.py --only runs --repeats 31
 
@@ -34,7 +34,7 @@ scaling on 2 cores.
 
 The machine is shared: compare the ratios (both sides of one see the same load), not the
 absolute times; the load average is printed at the start and the end.
-Results: benches/README.md ("Joints against free vehicles").
+Results: benches/README.md ("Jointed vehicles against free ones").
 """
 
 from __future__ import annotations
