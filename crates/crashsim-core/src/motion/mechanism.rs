@@ -131,7 +131,7 @@ pub fn advance_mechanism(
         .map(|(b, g)| g.stage_of(b))
         .collect();
     let rates = |t: Real, s: &[Stage]| -> Result<Vec<Stage>> {
-        Ok(mechanism_rates(bodies, motions, joints, ground, t, s)?.0)
+        Ok(mechanism_rates(bodies, motions, joints, ground, t, s, false)?.0)
     };
     let combine = |s: &[Stage], d: &[Stage], h: Real| -> Vec<Stage> {
         s.iter().zip(d).map(|(a, b)| a.axpy(h, b)).collect()
@@ -198,7 +198,8 @@ pub fn advance_mechanism(
 }
 
 /// The rates of the members' stages at time `t` with the joints' torques and reactions, and
-/// what each joint carries (its samples).
+/// with `samples`, what each joint carries (its angles, force and torque: the record's, not
+/// needed by the integration).
 fn mechanism_rates(
     bodies: &[RigidBody],
     motions: &[OnGround],
@@ -206,6 +207,7 @@ fn mechanism_rates(
     ground: &Ground,
     t: Real,
     s: &[Stage],
+    samples: bool,
 ) -> Result<(Vec<Stage>, Vec<JointSample>)> {
     let m = bodies.len();
     let mut out = Vec::with_capacity(m);
@@ -217,18 +219,20 @@ fn mechanism_rates(
         );
     }
     let jb: Vec<JointBody> = (0..m).map(|k| joint_body(&bodies[k], &s[k])).collect();
-    let mut samples = Vec::with_capacity(joints.len());
+    let mut out_samples = Vec::with_capacity(if samples { joints.len() } else { 0 });
     for joint in joints {
         let tau = applied_torques(joint, &jb);
         out[joint.body1].l -= tau;
         if let Some(b) = joint.body2 {
             out[b].l += tau;
         }
-        samples.push(JointSample {
-            angles: angles(joint, &jb).0,
-            force: Vector::zeros(),
-            torque: tau,
-        });
+        if samples {
+            out_samples.push(JointSample {
+                angles: angles(joint, &jb).0,
+                force: Vector::zeros(),
+                torque: tau,
+            });
+        }
     }
     let free: Vec<(Vector, Vector)> = (0..m)
         .map(|k| {
@@ -241,11 +245,11 @@ fn mechanism_rates(
         out[k].v += f * jb[k].inv_mass;
         out[k].l += t;
     }
-    for (sample, (f, t)) in samples.iter_mut().zip(per_joint) {
+    for (sample, (f, t)) in out_samples.iter_mut().zip(per_joint) {
         sample.force = f;
         sample.torque += t;
     }
-    Ok((out, samples))
+    Ok((out, out_samples))
 }
 
 /// What each joint of the mechanism carries now (its angles, force and torque), from the
@@ -262,7 +266,7 @@ pub fn joint_samples(
         .zip(motions)
         .map(|(b, g)| g.stage_of(b))
         .collect();
-    Ok(mechanism_rates(bodies, motions, joints, ground, t, &s)?.1)
+    Ok(mechanism_rates(bodies, motions, joints, ground, t, &s, true)?.1)
 }
 
 /// Projects the stages back onto the joints (and the limits passed), stops the limits moving
