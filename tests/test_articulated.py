@@ -251,3 +251,38 @@ def test_a_study_varies_a_combination_as_one() -> None:
 
     with pytest.raises(StudyError, match="joined"):
         overrides(scene, {"tractor.speed": [10.0], "semi.speed": [10.0]})
+
+
+def test_a_tridem_shares_its_load_equally_while_braking() -> None:
+    # A load-equalising tridem (the default): the three axles carry equal loads at rest and
+    # while the combination brakes; on their own springs the front axle takes more under
+    # braking (load moves forward); the stop is the same (every wheel braked at 0.5 mu Fz).
+    axle_loads, stops = {}, {}
+    for sharing in (True, False):
+        tractor = cs.tractor("tractor_6x4", load_sharing=sharing)
+        van = cs.Trailer.generate("box_van", load_sharing=sharing)
+        assert bool(van.wheels.load_groups) is sharing
+        static = van.wheels.static_loads(van.mass).reshape(-1, 2).sum(axis=1)
+        if sharing:
+            assert np.ptp(static) < 1e-6 * static.mean()
+        scene = cs.Scene(ground=cs.Ground(friction=0.8))
+        brake = cs.DriverInputs(brake=0.5)
+        scene.add(tractor, (0, 0), heading=0.0, velocity=(20, 0, 0), inputs=brake,
+                  trailers=[(van, brake)])  # fmt: skip
+        result = scene.run(1.5)
+        axle_loads[sharing] = result.wheels("box_van").load[:, -1].reshape(-1, 2).sum(axis=1)
+        stops[sharing] = result.trajectory("tractor_6x4").velocity[-1, 0]
+        # The trailer's wheels and its kingpin carry its weight (steady braking: within 1 %).
+        kingpin = result.joints["tractor_6x4-box_van"].force[-1, 2]
+        assert axle_loads[sharing].sum() + kingpin == pytest.approx(van.mass * G, rel=1e-2)
+    shared, own = axle_loads[True], axle_loads[False]
+    assert np.ptp(shared) < 1e-6 * shared.mean()
+    assert own[0] > 1.5 * own[2]
+    assert stops[True] == pytest.approx(stops[False], abs=1e-3)
+    with pytest.raises(ParameterError, match="two load groups"):
+        cs.Wheels.custom(
+            [[1, 0.8, -0.3], [1, -0.8, -0.3], [-1, 0.8, -0.3], [-1, -0.8, -0.3]],
+            0.3,
+            [True, True, False, False],
+            load_groups=[[0, 2], [2, 3]],
+        )

@@ -529,6 +529,7 @@ pub fn wheels_of(v: &Vehicle) -> VehicleSpec {
         },
         coupling: None,
         hitch_load: None,
+        load_groups: Vec::new(),
     }
 }
 

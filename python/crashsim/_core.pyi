@@ -37,6 +37,7 @@ __all__ = [
     "static_loads",
     "static_loads_coupled",
     "suspension",
+    "wheel_loads",
 ]
 
 class CrashsimError(Exception):
@@ -135,6 +136,17 @@ def static_loads_coupled(
     """Static loads (N) of wheels at body-frame (x, y) positions and of a coupling at
     ``coupling`` (x, y) (a trailer's hitch coupler or kingpin) carrying weight N together:
     the wheels' loads and the coupling's."""
+
+def wheel_loads(
+    xy: Sequence[tuple[float, float]],
+    weight: float,
+    groups: list[list[int]] = ...,
+    coupling: tuple[float, float] | None = None,
+    towed: tuple[tuple[float, float], float] | None = None,
+) -> tuple[list[float], float]:
+    """Static loads (N) of wheels at body-frame (x, y) positions carrying weight N at rest,
+    with groups of wheels sharing their load (index lists), a trailer's coupling (x, y) and a
+    towed load ((x, y), N) on its hitch: each wheel's load and the coupling's."""
 
 @final
 class Joint:
@@ -346,6 +358,7 @@ class SceneSpec:
         switches: list[tuple[int, str, float, str, float]] = ...,
         coupling: ArrayLike | None = None,
         hitch_load: tuple[ArrayLike, float] | None = None,
+        load_groups: list[list[int]] = ...,
     ) -> None:
         """Give a body wheels: centres (n, 3) m in the body frame at static ride height, radii
         (m), steerable flags, static loads (N), spring rates (N/m), damping (N s/m); a Tyre;

@@ -353,6 +353,7 @@ fn skidding_car() -> SceneSpec {
             inputs,
             coupling: None,
             hitch_load: None,
+            load_groups: Vec::new(),
         },
     )
     .unwrap();

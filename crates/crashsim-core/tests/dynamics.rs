@@ -37,6 +37,7 @@ fn car_spec(tyre: Tyre, inputs: DriverInputs) -> VehicleSpec {
         inputs,
         coupling: None,
         hitch_load: None,
+        load_groups: Vec::new(),
     }
 }
 

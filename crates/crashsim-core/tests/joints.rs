@@ -381,6 +381,7 @@ fn a_parked_car_and_trailer_share_the_weight_as_statics_says() {
             inputs: Default::default(),
             coupling: None,
             hitch_load: None,
+            load_groups: Vec::new(),
         },
     )
     .unwrap();
@@ -428,6 +429,7 @@ fn a_parked_car_and_trailer_share_the_weight_as_statics_says() {
             inputs: Default::default(),
             coupling: Some(coupler),
             hitch_load: None,
+            load_groups: Vec::new(),
         },
     )
     .unwrap();

@@ -111,6 +111,7 @@ fn world(frequency: Real, ratio: Real, bar: Real, speed: Real, drop: Real, m: Ma
         inputs: inputs(m),
         coupling: None,
         hitch_load: None,
+        load_groups: Vec::new(),
     };
     w.set_vehicle(i, spec).unwrap();
     w.set_ground(Ground::default()).unwrap();
@@ -293,6 +294,7 @@ fn the_stiffest_suspension_stops_like_the_default_in_bounded_work() {
             inputs: DriverInputs::default(),
             coupling: None,
             hitch_load: None,
+            load_groups: Vec::new(),
         };
         1e-3 * suspension_rate(&spec, &props()) / MAX_SUBSTEP_SUSPENSION
     };

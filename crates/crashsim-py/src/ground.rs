@@ -427,5 +427,6 @@ pub fn vehicle(
         inputs,
         coupling: None,
         hitch_load: None,
+        load_groups: Vec::new(),
     })
 }

@@ -605,6 +605,21 @@ fn static_loads_coupled(
     core::vehicle::static_loads_coupled(&xy, weight, coupling, towed).map_err(errors::to_py)
 }
 
+/// Static loads (N) of wheels at body-frame (x, y) positions carrying `weight` N at rest
+/// with `groups` of wheels sharing their load (index lists), a trailer's `coupling` (x, y)
+/// and a `towed` load ((x, y), N) on its hitch: each wheel's load and the coupling's.
+#[pyfunction]
+#[pyo3(signature = (xy, weight, groups = Vec::new(), coupling = None, towed = None))]
+fn wheel_loads(
+    xy: Vec<[f64; 2]>,
+    weight: f64,
+    groups: Vec<Vec<usize>>,
+    coupling: Option<[f64; 2]>,
+    towed: Option<([f64; 2], f64)>,
+) -> PyResult<(Vec<f64>, f64)> {
+    core::vehicle::wheel_loads(&xy, &groups, weight, coupling, towed).map_err(errors::to_py)
+}
+
 /// (spring rate N/m, damping N s/m) of a wheel with `static_load` N sprung at
 /// `natural_frequency` Hz (None: the engine's 1.3) with `damping_ratio` (None: 0.3).
 #[pyfunction]
@@ -675,6 +690,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solid_properties, m)?)?;
     m.add_function(wrap_pyfunction!(static_loads, m)?)?;
     m.add_function(wrap_pyfunction!(static_loads_coupled, m)?)?;
+    m.add_function(wrap_pyfunction!(wheel_loads, m)?)?;
     m.add_function(wrap_pyfunction!(suspension, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics_defaults, m)?)?;
     Ok(())

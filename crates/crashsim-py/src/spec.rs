@@ -362,7 +362,7 @@ impl SceneSpec {
 
     /// Gives a body wheels, a tyre, the steering linkage, anti-roll bars and driver inputs
     /// (see the stub).
-    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steering_ratio = None, ackermann = None, steering_reference = None, anti_roll = Vec::new(), abs = true, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new(), coupling = None, hitch_load = None))]
+    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steering_ratio = None, ackermann = None, steering_reference = None, anti_roll = Vec::new(), abs = true, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new(), coupling = None, hitch_load = None, load_groups = Vec::new()))]
     #[allow(clippy::too_many_arguments)]
     fn set_vehicle(
         &mut self,
@@ -385,6 +385,7 @@ impl SceneSpec {
         switches: Vec<Bound<'_, PyAny>>,
         coupling: Option<Bound<'_, PyAny>>,
         hitch_load: Option<(Bound<'_, PyAny>, f64)>,
+        load_groups: Vec<Vec<usize>>,
     ) -> PyResult<()> {
         let hitch_load = match hitch_load {
             Some((p, f)) => Some((core::math::Point::from(vector3(&p, "the hitch")?), f)),
@@ -427,6 +428,7 @@ impl SceneSpec {
         )?;
         spec.coupling = coupling;
         spec.hitch_load = hitch_load;
+        spec.load_groups = load_groups;
         self.inner.set_vehicle(body, spec).map_err(errors::to_py)
     }
 

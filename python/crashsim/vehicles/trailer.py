@@ -59,6 +59,27 @@ def _box(lo: Sequence[float], hi: Sequence[float]) -> trimesh.Trimesh:
     return mesh
 
 
+# Axles closer than this (m) form a group (a tandem or tridem, 1.3-1.4 m apart) whose wheels
+# share their load through a load-equalising suspension, one set per side.
+GROUP_SPACING = 2.0
+
+
+def _load_groups(axles_x: Sequence[float], names: Sequence[str]) -> list[list[str]]:
+    """Each side's wheels of every run of axles closer than GROUP_SPACING."""
+    runs: list[list[int]] = []
+    for k in range(len(axles_x)):
+        if runs and abs(axles_x[runs[-1][-1]] - axles_x[k]) < GROUP_SPACING:
+            runs[-1].append(k)
+        else:
+            runs.append([k])
+    return [
+        [f"{names[k]}_{side}" for k in run]
+        for run in runs
+        if len(run) > 1
+        for side in ("left", "right")
+    ]
+
+
 def _axle_wheels(
     axles_x: Sequence[float],
     track: float,
@@ -188,6 +209,7 @@ class Trailer:
         damping_ratio: float | None = None,
         abs: bool = True,
         yaw_inertia: float | None = None,
+        load_sharing: bool = True,
         name: str = "trailer",
     ) -> Vehicle:
         """A box trailer (m, kg): a body ``length`` x ``width`` x ``height`` from
@@ -202,7 +224,9 @@ class Trailer:
         ``axles``: each axle's distance behind the body's front (m; two or three close
         together make a tandem or tridem); ``track`` and tyre ``radius`` (m); springs
         (``natural_frequency`` Hz, ``damping_ratio``; the engine's defaults otherwise), the
-        ``tyre`` and ABS as for :class:`crashsim.Wheels`.
+        ``tyre`` and ABS as for :class:`crashsim.Wheels`. ``load_sharing``: axles closer
+        than GROUP_SPACING (a tandem, a tridem) share their load through a load-equalising
+        suspension (default; False: each axle on its own springs).
         """
         if kind not in TRAILER_KINDS:
             raise ParameterError(f"trailer kind {kind!r} is unknown: give one of {TRAILER_KINDS}")
@@ -257,13 +281,14 @@ class Trailer:
             sources={"cg": "user", "inertia": "uniform box"},
         )
         r = _positive(radius, "radius")
+        axle_names = [f"axle{k + 1}" for k in range(len(axles_x))]
         centers, flags, names = _axle_wheels(
             axles_x,
             _positive(track, "track"),
             r,
             cg,
             [False] * len(axles_x),
-            [f"axle{k + 1}" for k in range(len(axles_x))],
+            axle_names,
         )
         wheels = Wheels.custom(
             centers,
@@ -275,6 +300,7 @@ class Trailer:
             tyre=tyre,
             abs=abs,
             coupling=point - cg,
+            load_groups=_load_groups(axles_x, axle_names) if load_sharing else (),
         )
         vehicle = vehicle.with_wheels(wheels)
         vehicle._coupler = Hitch.at(
@@ -339,6 +365,7 @@ def tractor(
     steering_reference: str | None = None,
     abs: bool = True,
     inertia: Any = None,
+    load_sharing: bool = True,
     name: str | None = None,
 ) -> Vehicle:
     """A tractor (m, kg): a cab (``front_overhang`` + 1.0 m long from the front bumper,
@@ -348,7 +375,8 @@ def tractor(
     the fifth wheel's kingpin lock ``fifth_wheel_ahead`` of the rear axles' centre at
     ``fifth_wheel_height``; the CG ``cg_to_front_axle`` behind the front axle at ``cg_height``;
     tyre ``radius`` (one, or front and rear); ``inertia`` (3, 3) kg m^2 about the CG (default
-    the cab and frame as uniform boxes sharing the mass by volume, about the CG).
+    the cab and frame as uniform boxes sharing the mass by volume, about the CG); a 6x4's
+    tandem shares its load (``load_sharing``, as :meth:`Trailer.box`).
 
     ``preset="tractor_6x4"``: every number the combination class gives
     (docs/vehicle-data.md: mass, length, width, height as the cab's, wheelbase, tandem spread,
@@ -445,6 +473,7 @@ def tractor(
         steering_ratio=steering_ratio,
         steering_reference=steering_reference,
         abs=abs,
+        load_groups=_load_groups(axles_x[1:], names[1:]) if load_sharing else (),
     )
     vehicle = vehicle.with_wheels(wheels)
     kingpin = np.array([x_rear + float(fifth_wheel_ahead), 0.0, float(fifth_wheel_height)])

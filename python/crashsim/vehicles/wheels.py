@@ -366,6 +366,7 @@ class Wheels:
         steering_reference: str | None = None,
         abs: bool = True,
         coupling: ArrayLike | None = None,
+        load_groups: Sequence[Sequence[str | int]] = (),
     ) -> Wheels:
         """Any layout of at least 3 wheels: ``centers`` (n, 3) body frame at static ride
         height (m), ``radii`` (one or n, m), ``steerable`` flags, ``names`` (default
@@ -373,7 +374,12 @@ class Wheels:
         ``anti_roll`` bars as (left wheel, right wheel, roll stiffness N m/rad); the steering
         linkage and ABS as for the constructor. ``coupling``: a trailer's coupler or kingpin
         (body frame, m), where it rests on its tractor: that point carries its share of the
-        weight at rest and at least 2 wheels the rest (the engine's static_loads_coupled)."""
+        weight at rest and at least 2 wheels the rest (the engine's static_loads_coupled).
+        ``load_groups``: sets of wheels (names or indices) that share their load equally, a
+        tandem's or tridem's load-equalising suspension (each side's wheels one set): their
+        springs act on the set's mean travel, each wheel on the ground carries an equal share
+        (the engine's VehicleSpec.load_groups); at rest each set is one support of the static
+        loads' rule, at its wheels' mean position, its load split equally."""
         try:
             c = np.asarray(centers, dtype=np.float64)
         except (TypeError, ValueError) as e:
@@ -407,6 +413,9 @@ class Wheels:
         )
         self.wheelbase = self.track = self.cg_to_front_axle = self.cg_height = None
         self.steer = "custom"
+        self.load_groups = tuple(
+            tuple(self.index(w) for w in group) for group in load_groups
+        )
         if coupling is not None:
             try:
                 point = np.asarray(coupling, dtype=np.float64).reshape(-1)
@@ -455,6 +464,8 @@ class Wheels:
         self.source = "user"
         # A trailer's coupler or kingpin (body frame, m): it carries a share of the weight.
         self.coupling: Array | None = None
+        # Sets of wheel indices sharing their load equally (load-equalising tandems).
+        self.load_groups: tuple[tuple[int, ...], ...] = ()
         ratio, ackermann, reference, abs_ = linkage
         self.steering_ratio: float | None = (
             None if ratio is None else _number(ratio, "steering_ratio", "1")
@@ -528,34 +539,35 @@ class Wheels:
 
     def static_loads(self, mass: float, hitch_load: tuple[ArrayLike, float] | None = None) -> Array:
         """Each wheel's static load on level ground (N) for a vehicle of ``mass`` kg: the
-        axle shares of the weight (the engine's ``static_loads``; with a coupling, what the
-        coupling leaves), plus, with ``hitch_load`` (its hitch, body frame m; N), the shares
-        of the load its trailer puts on its hitch (the same rule for a load at that point)."""
+        axle shares of the weight (the engine's ``wheel_loads``: a load group one support
+        shared equally; with a coupling, what the coupling leaves), plus, with ``hitch_load``
+        (its hitch, body frame m; N), the shares of the load its trailer puts on its hitch."""
+        return self._loads(mass, hitch_load)[0]
+
+    def _loads(
+        self, mass: float, hitch_load: tuple[ArrayLike, float] | None = None
+    ) -> tuple[Array, float]:
+        """The engine's static loads (wheel_loads): each wheel's and the coupling's (N)."""
         weight = _number(mass, "mass", "kg") * _defaults()["gravity"]
         xy = [tuple(p) for p in self._centers[:, :2].tolist()]
         towed = None
         if hitch_load is not None:
             point, force = hitch_load
             towed = ((float(point[0]), float(point[1])), float(force))
+        coupling = None
+        if self.coupling is not None:
+            coupling = (float(self.coupling[0]), float(self.coupling[1]))
+        groups = [list(g) for g in self.load_groups]
         try:
-            if self.coupling is not None:
-                coupling = (float(self.coupling[0]), float(self.coupling[1]))
-                loads = _core.static_loads_coupled(xy, weight, coupling, towed)[0]
-            else:
-                loads = _core.static_loads(self._centers[:, :2], weight, towed)
-            return np.asarray(loads, dtype=np.float64)
+            loads, share = _core.wheel_loads(xy, weight, groups, coupling, towed)
         except ParameterError as e:
             raise _renamed(e, self._names) from e
+        return np.asarray(loads, dtype=np.float64), float(share)
 
     def coupling_load(self, mass: float) -> float:
         """The static load (N) a trailer of ``mass`` kg puts on its coupling on level ground
         (0 without a coupling)."""
-        if self.coupling is None:
-            return 0.0
-        weight = _number(mass, "mass", "kg") * _defaults()["gravity"]
-        xy = [tuple(p) for p in self._centers[:, :2].tolist()]
-        coupling = (float(self.coupling[0]), float(self.coupling[1]))
-        return float(_core.static_loads_coupled(xy, weight, coupling)[1])
+        return self._loads(mass)[1]
 
     def spec(
         self,
@@ -600,6 +612,7 @@ class Wheels:
             "abs": self.abs,
             "coupling": self.coupling,
             "hitch_load": hitch_load,
+            "load_groups": [list(g) for g in self.load_groups],
         }
 
     def describe(self, mass: float) -> dict[str, Any]:

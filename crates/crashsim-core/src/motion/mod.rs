@@ -156,6 +156,58 @@ pub fn suspension_rate(spec: &VehicleSpec, props: &MassProperties) -> Real {
     damping + stiffness.sqrt()
 }
 
+/// The normal loads (N) of the wheels in load groups ([`VehicleSpec::load_groups`]), None
+/// for the others (empty without groups): each group's springs and dampers act on its
+/// wheels' mean travel and travel rate (a walking beam's pivot) and the group's load is
+/// shared equally by its wheels on the ground. `below[k]` is wheel k's centre, the ground
+/// below it and its height above it (m); `v`, `w`, `x` the body's velocity, angular velocity
+/// and CG.
+fn shared_loads(
+    spec: &VehicleSpec,
+    below: &[(Point, crate::ground::GroundPoint, Real)],
+    v: &Vector,
+    w: &Vector,
+    x: &Point,
+    bar_load: &[Real],
+) -> Vec<Option<Real>> {
+    if spec.load_groups.is_empty() {
+        return Vec::new();
+    }
+    let mut out = vec![None; spec.wheels.len()];
+    for set in &spec.load_groups {
+        let n = set.len() as Real;
+        let (mut travel, mut rate) = (0.0, 0.0);
+        for &k in set {
+            let (c, g, h) = &below[k];
+            travel += (spec.wheels[k].radius - h) / n;
+            rate += -(v + w.cross(&(c - x))).dot(&g.normal) / n;
+        }
+        let total: Real = set
+            .iter()
+            .map(|&k| spec.wheels[k].normal_load(travel, rate, bar_load[k]))
+            .sum();
+        // On the ground: the wheel's own spring would push (a wheel lifted past its spring's
+        // travel carries nothing, the others the group's load).
+        let touching: Vec<usize> = set
+            .iter()
+            .copied()
+            .filter(|&k| {
+                let (c, g, h) = &below[k];
+                let own = -(v + w.cross(&(c - x))).dot(&g.normal);
+                spec.wheels[k].normal_load(spec.wheels[k].radius - h, own, bar_load[k]) > 0.0
+            })
+            .collect();
+        for &k in set {
+            out[k] = Some(if touching.contains(&k) {
+                total / touching.len() as Real
+            } else {
+                0.0
+            });
+        }
+    }
+    out
+}
+
 impl OnGround {
     /// A body on the ground with its wheels (if any) at rest (no tread deflection).
     pub fn new(vehicle: Option<Arc<VehicleSpec>>, contact: Arc<BodyContact>) -> OnGround {
@@ -264,12 +316,16 @@ impl OnGround {
                 bar_load[bar.left] += f;
                 bar_load[bar.right] -= f;
             }
+            let shared = shared_loads(spec, &below, &s.v, &w, &x, &bar_load);
             for (k, wheel) in spec.wheels.iter().enumerate() {
                 let (c, g, h) = below[k];
                 let n = g.normal;
                 let contact = c - n * h;
                 let vc = s.v + w.cross(&(c - x));
-                let fz = wheel.normal_load(wheel.radius - h, -vc.dot(&n), bar_load[k]);
+                let fz = match shared.get(k).copied().flatten() {
+                    Some(fz) => fz,
+                    None => wheel.normal_load(wheel.radius - h, -vc.dot(&n), bar_load[k]),
+                };
                 let steer = spec.wheel_steer(k, t, &steering);
                 let heading = if steer != 0.0 {
                     let (sin, cos) = steer.sin_cos();

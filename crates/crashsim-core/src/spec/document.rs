@@ -31,7 +31,7 @@ use crate::world::RunOptions;
 /// The document's format name and version (a reader refuses others).
 const FORMAT: &str = "crashsim-scene-spec";
 /// 2 (2026-11): tyres with the cornering coefficient and the combined-slip law, the steering
-/// linkage, per-wheel steering. 3: joints, a vehicle's coupling point and hitch load (version 2 documents,
+/// linkage, per-wheel steering. 3: joints, a vehicle's coupling point, hitch load and load groups (version 2 documents,
 /// which have neither, are read too).
 const VERSION: u32 = 3;
 
@@ -120,6 +120,8 @@ struct VehicleDoc {
     coupling: Option<[Real; 3]>,
     #[serde(default)]
     hitch_load: Option<([Real; 3], Real)>,
+    #[serde(default)]
+    load_groups: Vec<Vec<usize>>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -315,6 +317,7 @@ fn vehicle_doc(v: &VehicleSpec) -> VehicleDoc {
             .collect(),
         coupling: v.coupling.map(|c| v3(&c.coords)),
         hitch_load: v.hitch_load.map(|(p, f)| (v3(&p.coords), f)),
+        load_groups: v.load_groups.clone(),
     }
 }
 
@@ -533,6 +536,7 @@ fn vehicle(v: VehicleDoc) -> Result<VehicleSpec> {
         inputs,
         coupling: v.coupling.map(point),
         hitch_load: v.hitch_load.map(|(p, f)| (point(p), f)),
+        load_groups: v.load_groups,
     })
 }
 

@@ -18,9 +18,9 @@ pub use tyre::{
     MAGIC_FORMULA_DEFAULTS,
 };
 pub use wheel::{
-    static_loads, static_loads_coupled, static_loads_towing, AntiRollBar, WheelSpec,
-    DEFAULT_DAMPING_RATIO, DEFAULT_NATURAL_FREQUENCY, GRAVITY, MAX_DAMPING_RATIO,
-    MAX_NATURAL_FREQUENCY,
+    check_load_groups, static_loads, static_loads_coupled, static_loads_towing, wheel_loads,
+    AntiRollBar, WheelSpec, DEFAULT_DAMPING_RATIO, DEFAULT_NATURAL_FREQUENCY, GRAVITY,
+    MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,
 };
 
 use crate::error::{Error, Result};
@@ -56,6 +56,12 @@ pub struct VehicleSpec {
     /// wheels carry the vehicle's weight and this (their springs set for the combination's
     /// static loads). None without a trailer.
     pub hitch_load: Option<(Point, Real)>,
+    /// Wheels that share their load equally (a tandem's or tridem's load-equalising
+    /// suspension, a walking beam or a linked leaf set: each side's wheels of the group one
+    /// set, wheel indices): their springs act on the set's mean travel and each wheel on the
+    /// ground carries an equal share, so braking or pitch moves no load between the axles of
+    /// the group. Empty: every wheel on its own spring.
+    pub load_groups: Vec<Vec<usize>>,
 }
 
 impl VehicleSpec {
@@ -85,6 +91,7 @@ impl VehicleSpec {
                 )));
             }
         }
+        self.checked_groups()?;
         let mut weight = mass * GRAVITY;
         let towed = match &self.hitch_load {
             Some((p, load)) => {
@@ -102,7 +109,8 @@ impl VehicleSpec {
                 .iter()
                 .map(|w| [w.center.x, w.center.y])
                 .collect();
-            weight -= static_loads_coupled(&xy, mass * GRAVITY, [c.x, c.y], towed)?.1;
+            let groups = self.checked_groups()?;
+            weight -= wheel_loads(&xy, groups, mass * GRAVITY, Some([c.x, c.y]), towed)?.1;
         }
         let carried: Real = self.wheels.iter().map(|w| w.static_load).sum();
         if (carried - weight).abs() > 0.01 * weight {
@@ -131,6 +139,12 @@ impl VehicleSpec {
             self.steering.validate_input(steer, &self.wheels)?;
         }
         Ok(())
+    }
+
+    /// The load groups, checked ([`check_load_groups`]).
+    fn checked_groups(&self) -> Result<&[Vec<usize>]> {
+        check_load_groups(&self.load_groups, self.wheels.len())?;
+        Ok(&self.load_groups)
     }
 
     /// The linkage's geometry and the reference's road-wheel angle at time `t` (rad; None

@@ -360,9 +360,107 @@ pub fn static_loads_coupled(
     Ok((loads, at_coupling))
 }
 
+/// Checks load groups of `n` wheels: 2 or more wheels each, existing, every wheel in one group
+/// at most.
+pub fn check_load_groups(groups: &[Vec<usize>], n: usize) -> Result<()> {
+    for (g, set) in groups.iter().enumerate() {
+        if set.len() < 2 {
+            return Err(Error::Parameter(format!(
+                "load group {g} has {} wheel(s): a group shares the load of 2 or more",
+                set.len()
+            )));
+        }
+        for &k in set {
+            if k >= n {
+                return Err(Error::Parameter(format!(
+                    "load group {g} names wheel {k}, but the vehicle has {n} wheels"
+                )));
+            }
+            let elsewhere = groups[..g].iter().any(|o| o.contains(&k));
+            if elsewhere || set.iter().filter(|&&j| j == k).count() > 1 {
+                return Err(Error::Parameter(format!(
+                    "wheel {k} is in two load groups: a wheel shares its load in one group"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The static loads (N) of wheels at `xy` (body frame, m from the CG) carrying `weight` N
+/// at rest, with everything a vehicle may have: `groups` of wheels sharing their load
+/// equally (each one support at its wheels' mean position, its load split equally), a
+/// `coupling` (a trailer's, which may pull) and a `towed` load on its hitch. Returns each
+/// wheel's load and the coupling's (0 without one).
+pub fn wheel_loads(
+    xy: &[[Real; 2]],
+    groups: &[Vec<usize>],
+    weight: Real,
+    coupling: Option<[Real; 2]>,
+    towed: Option<([Real; 2], Real)>,
+) -> Result<(Vec<Real>, Real)> {
+    check_load_groups(groups, xy.len())?;
+    let mut supports: Vec<Vec<usize>> = groups.to_vec();
+    for k in 0..xy.len() {
+        if !groups.iter().any(|g| g.contains(&k)) {
+            supports.push(vec![k]);
+        }
+    }
+    let at: Vec<[Real; 2]> = supports
+        .iter()
+        .map(|s| {
+            let n = s.len() as Real;
+            let sum = s
+                .iter()
+                .fold([0.0, 0.0], |a, &k| [a[0] + xy[k][0], a[1] + xy[k][1]]);
+            [sum[0] / n, sum[1] / n]
+        })
+        .collect();
+    let (loads, share) = match coupling {
+        Some(c) => static_loads_coupled(&at, weight, c, towed)?,
+        None => (static_loads_towing(&at, weight, towed)?, 0.0),
+    };
+    let mut out = vec![0.0; xy.len()];
+    for (s, load) in supports.iter().zip(loads) {
+        for &k in s {
+            out[k] = load / s.len() as Real;
+        }
+    }
+    Ok((out, share))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_load_group_is_one_support_shared_equally() {
+        // A tridem trailer on a kingpin: the group's three axles carry equal loads, the
+        // kingpin its moment share about the group's middle; without groups the same bits as
+        // static_loads_coupled.
+        let xy = [
+            [-3.0, 1.0],
+            [-3.0, -1.0],
+            [-4.3, 1.0],
+            [-4.3, -1.0],
+            [-5.6, 1.0],
+            [-5.6, -1.0],
+        ];
+        let w = 2.4e5;
+        let groups = vec![vec![0, 2, 4], vec![1, 3, 5]];
+        let (loads, kingpin) = wheel_loads(&xy, &groups, w, Some([4.0, 0.0]), None).unwrap();
+        assert!(loads.iter().all(|f| (f - loads[0]).abs() < 1e-9 * w));
+        // moments about the group's middle (x = -4.3): kingpin (4.0 + 4.3) = W (0 + 4.3)
+        assert!((kingpin - w * 4.3 / 8.3).abs() < 1e-9 * w);
+        assert!((loads.iter().sum::<Real>() + kingpin - w).abs() < 1e-9 * w);
+        let plain = wheel_loads(&xy, &[], w, Some([4.0, 0.0]), None).unwrap();
+        assert_eq!(
+            plain,
+            static_loads_coupled(&xy, w, [4.0, 0.0], None).unwrap()
+        );
+        assert!(wheel_loads(&xy, &[vec![0, 2], vec![2, 4]], w, None, None).is_err());
+        assert!(wheel_loads(&xy, &[vec![0]], w, None, None).is_err());
+    }
 
     #[test]
     fn static_loads_are_the_axle_shares() {
