@@ -286,3 +286,31 @@ def test_a_tridem_shares_its_load_equally_while_braking() -> None:
             [True, True, False, False],
             load_groups=[[0, 2], [2, 3]],
         )
+
+
+def test_a_fit_finds_the_tractors_speed_from_both_units_rest() -> None:
+    # Both units braked at 0.6 of the friction to rest from 18 m/s: the fit of the tractor's
+    # speed (the trailer moving with it) from the two rest positions finds 18 m/s.
+    from crashsim.studies.evidence import RestPosition
+
+    def scene(speed: float) -> cs.Scene:
+        s = cs.Scene(ground=cs.Ground(friction=0.7))
+        brake = cs.DriverInputs(brake=0.6)
+        s.add(_tractor(), (0, 0), heading=0.0, velocity=(speed, 0, 0), inputs=brake,
+              trailers=[(_semi(), brake)])  # fmt: skip
+        return s
+
+    truth = scene(18.0).run(until="rest", max_duration=20.0, dt=2e-3)
+    evidence = [
+        RestPosition(name, *truth.rest(name).position[:2], 0.2) for name in ("tractor", "semi")
+    ]
+    fit = cs.fit(
+        scene(15.0),
+        {"tractor.speed": (10.0, 25.0)},
+        evidence,
+        start={"tractor.speed": 14.0},
+        dt=2e-3,
+        until="rest",
+        max_duration=20.0,
+    )
+    assert fit.values["tractor.speed"] == pytest.approx(18.0, abs=1e-6)
