@@ -19,7 +19,12 @@ import trimesh
 
 from crashsim.errors import ParameterError
 from crashsim.vehicles.coupling import Hitch
-from crashsim.vehicles.vehicle import Vehicle, _box_inertia, _parallel_axis
+from crashsim.vehicles.vehicle import (
+    COMBINATION_PRESETS,
+    Vehicle,
+    _box_inertia,
+    _parallel_axis,
+)
 from crashsim.vehicles.wheels import Tyre, Wheels
 
 __all__ = ["TRAILER_KINDS", "Trailer", "tractor"]
@@ -478,3 +483,13 @@ def tractor(
     vehicle = vehicle.with_wheels(wheels)
     kingpin = np.array([x_rear + float(fifth_wheel_ahead), 0.0, float(fifth_wheel_height)])
     return vehicle.with_hitch(kingpin, "fifth_wheel")
+
+
+def _generated_tractor(
+    *, mass: float | None, length: float | None, name: str | None
+) -> Vehicle:
+    """Vehicle.generate("tractor"): the tractor_6x4 class's tractor."""
+    return tractor("tractor_6x4", mass=mass, length=length, name=name or "tractor")
+
+
+COMBINATION_PRESETS.update(tractor=_generated_tractor, tractor_6x4=_generated_tractor)

@@ -24,7 +24,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -370,6 +370,11 @@ def _solid(
         )
     props = _winding_solid(mesh, what)
     return props, WINDING_SOLID, f"{WINDING_SOLID} {props[0]:.4g} m^3 (grid integration)"
+
+
+COMBINATION_PRESETS: dict[str, Callable[..., Vehicle]] = {}
+"""Presets of Vehicle.generate built elsewhere ("tractor": crashsim.vehicles.trailer registers
+its builder when imported, so this module does not import that one, which imports it)."""
 
 
 class Vehicle:
@@ -725,10 +730,8 @@ class Vehicle:
         class (:func:`crashsim.tractor`, ``preset="tractor_6x4"``; ``mass`` and ``length`` pass
         through); trailers come from :meth:`crashsim.Trailer.generate`.
         """
-        if preset in ("tractor", "tractor_6x4"):
-            from crashsim.vehicles.trailer import tractor
-
-            return tractor("tractor_6x4", mass=mass, length=length, name=name or "tractor")
+        if preset in COMBINATION_PRESETS:
+            return COMBINATION_PRESETS[preset](mass=mass, length=length, name=name)
         vc, key = _preset_class(preset)
         table = f"class table ({key})"
         if mass is None and weight_lb is None:
