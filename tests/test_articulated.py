@@ -314,3 +314,59 @@ def test_a_fit_finds_the_tractors_speed_from_both_units_rest() -> None:
         max_duration=20.0,
     )
     assert fit.values["tractor.speed"] == pytest.approx(18.0, abs=1e-6)
+
+
+def _drawbar_train(body_mass: float = 2000.0) -> tuple[cs.Vehicle, cs.Vehicle, cs.Vehicle]:
+    van = cs.Vehicle.generate("van", name="van")
+    rear = (van.mesh.bounds[0] - van.cg)[0]
+    van = van.with_hitch(van.cg + [rear - 0.2, 0.0, 0.6 - van.cg[2]], "ball")
+    dolly, body = cs.Trailer.drawbar(
+        length=7.0,
+        width=2.4,
+        height=2.2,
+        mass=body_mass,
+        ground_clearance=1.0,
+        turntable=1.2,
+        rear_axles=[6.0],
+        drawbar=2.5,
+        eye_height=0.6,
+        track=1.9,
+        radius=0.45,
+        dolly_mass=600.0,
+        name="trailer",
+    )
+    return van, dolly, body
+
+
+def test_a_drawbar_trailer_off_tracks_and_carries_as_the_closed_forms_say() -> None:
+    # The dolly (drawbar 2.5 m) turns on its eye; the body (turntable 4.8 m ahead of its
+    # axle) on the dolly's turntable over the dolly's axle: at 0.5 m/s the dolly's axle runs
+    # on sqrt(Rh^2 - 2.5^2) and the body's on sqrt(Rd^2 - 4.8^2), Rh the ball's radius
+    # (within 1 % of the off-tracking); parked, the turntable carries the body's weight times
+    # the CG's lead over its axle per the turntable's (statics, 1 %).
+    van, dolly, body = _drawbar_train()
+    scene = cs.Scene(ground=cs.Ground(friction=0.8))
+    delta = math.radians(12.0)
+    steer = cs.DriverInputs(steer=np.array([[0.0, delta], [1.0, delta]]))
+    scene.add(van, (0, 0), heading=0.0, velocity=(0.5, 0, 0), inputs=steer,
+              trailers=[dolly, body])  # fmt: skip
+    result = scene.run(200.0, record_interval=1.0)
+    settled = slice(len(result.t) // 2, None)
+    rh, _ = _circle(_path(result, "van", van.hitch.point)[settled, :2])
+    axle = dolly.wheels.centers.mean(axis=0) * [1, 1, 0]
+    rd, _ = _circle(_path(result, "trailer_dolly", axle)[settled, :2])
+    rear = body.wheels.centers.mean(axis=0) * [1, 1, 0]
+    rb, _ = _circle(_path(result, "trailer", rear)[settled, :2])
+    drawbar = float(dolly.coupler.point[0] - dolly.wheels.centers[0, 0])
+    span = float(body.coupler.point[0] - body.wheels.centers[0, 0])
+    rd_closed = math.sqrt(rh**2 - drawbar**2)
+    rb_closed = math.sqrt(rd_closed**2 - span**2)
+    assert rh - rb == pytest.approx(rh - rb_closed, rel=1e-2)
+    assert rd == pytest.approx(rd_closed, abs=0.01 * (rh - rb_closed))
+    parked = cs.Scene(ground=cs.Ground())
+    van, dolly, body = _drawbar_train()
+    parked.add(van, (0, 0), heading=0.0, trailers=[dolly, body])
+    loads = parked.run(1.0).joints["trailer_dolly-trailer"].force[-1, 2]
+    # moments about the body's axle (body frame: the axle at x < 0, the CG at 0)
+    statics = body.mass * G * -body.wheels.centers[0, 0] / span
+    assert loads == pytest.approx(statics, rel=1e-2)

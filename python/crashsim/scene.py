@@ -316,6 +316,8 @@ class Scene:
         self._ground: Ground | None = None
         self.ground = ground
         self._joints: list[Joint] = []
+        # Each trailer's name -> the vehicle towing it (Scene.add's trailers).
+        self._towed_by: dict[str, str] = {}
 
     # -- ground and obstacles ------------------------------------------------------------
 
@@ -592,11 +594,25 @@ class Scene:
             axes=tower.orientation,
             **coupling,
         )
-        if trailer.wheels is not None:
-            k = next(i for i, p in enumerate(self._placements) if p is tower)
-            load = trailer.wheels.coupling_load(trailer.mass)
-            self._placements[k] = dataclasses.replace(tower, hitch_load=(hitch.point, load))
+        self._towed_by = {**self._towed_by, trailer.name: tower.vehicle.name}
+        self._carry_hitch_loads(trailer.name)
         return self._placements[-1]
+
+    def _carry_hitch_loads(self, trailer: str) -> None:
+        """Sets the hitch load of the vehicle towing ``trailer`` (its springs are set for the
+        combination), and so on up the chain: a trailer towing another puts more on its own
+        tower (a dolly under a drawbar trailer's body, a B-double's first trailer)."""
+        names = [p.vehicle.name for p in self._placements]
+        while trailer in self._towed_by:
+            tower = self._towed_by[trailer]
+            t, w = names.index(trailer), names.index(tower)
+            towed, below = self._placements[t], self._placements[w]
+            hitch = below.vehicle.hitch
+            if towed.vehicle.wheels is None or hitch is None:
+                return
+            load = towed.vehicle.wheels.coupling_load(towed.vehicle.mass, towed.hitch_load)
+            self._placements[w] = dataclasses.replace(below, hitch_load=(hitch.point, load))
+            trailer = tower
 
     def join(
         self,

@@ -1,12 +1,15 @@
 """Couplings between a towing vehicle and its trailer (docs/joints.md, "Articulated vehicles").
 
 A towing vehicle has a :class:`Hitch` of kind "ball" (a tow ball: a car, a van, a rigid
-truck's drawbar coupling) or "fifth_wheel" (a tractor); a trailer has one of kind "coupler"
-(the drawbar's eye or cup, on a ball: a centre-axle trailer, a caravan, a drawbar trailer)
-or "kingpin" (a semitrailer, on a fifth wheel). A coupler goes on a ball and makes a
-spherical joint; a kingpin goes on a fifth wheel and makes a fifth-wheel joint (yaw free,
-pitch about the plate's pivot, no roll between the units). :meth:`crashsim.Scene.add` with
-``trailers=`` puts each trailer's coupler on the hitch before it and joins them.
+truck's drawbar coupling), "fifth_wheel" (a tractor) or "turntable" (a drawbar trailer's
+dolly, under the trailer's front); a trailer has one of kind "coupler" (the drawbar's eye or
+cup, on a ball: a centre-axle trailer, a caravan, a dolly), "kingpin" (a semitrailer, on a
+fifth wheel) or "ring" (a drawbar trailer's body, on its dolly's turntable). A coupler goes on
+a ball and makes a spherical joint; a kingpin goes on a fifth wheel and makes a fifth-wheel
+joint (yaw free, pitch about the plate's pivot, no roll between the units); a ring goes on a
+turntable and makes a revolute joint about the vertical (the dolly steers the body's front).
+:meth:`crashsim.Scene.add` with ``trailers=`` puts each trailer's coupler on the hitch before
+it and joins them.
 """
 
 from __future__ import annotations
@@ -22,15 +25,15 @@ __all__ = ["HITCH_KINDS", "JOINT_OF", "Hitch"]
 
 Array = NDArray[np.float64]
 
-TOWING = ("ball", "fifth_wheel")
-TOWED = ("coupler", "kingpin")
+TOWING = ("ball", "fifth_wheel", "turntable")
+TOWED = ("coupler", "kingpin", "ring")
 HITCH_KINDS = TOWING + TOWED
 """A towing vehicle's hitch kinds, then a trailer's."""
 
-MATES = {"coupler": "ball", "kingpin": "fifth_wheel"}
+MATES = {"coupler": "ball", "kingpin": "fifth_wheel", "ring": "turntable"}
 """Which towing hitch each trailer coupling goes on."""
 
-JOINT_OF = {"coupler": "spherical", "kingpin": "fifth_wheel"}
+JOINT_OF = {"coupler": "spherical", "kingpin": "fifth_wheel", "ring": "revolute"}
 """The joint a trailer's coupling makes with its hitch."""
 
 

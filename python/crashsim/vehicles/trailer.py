@@ -29,9 +29,10 @@ from crashsim.vehicles.wheels import Tyre, Wheels
 
 __all__ = ["TRAILER_KINDS", "Trailer", "tractor"]
 
-TRAILER_KINDS = ("semitrailer", "centre_axle")
+TRAILER_KINDS = ("semitrailer", "centre_axle", "drawbar_body")
 """A semitrailer rests on a kingpin over a fifth wheel; a centre-axle trailer (a caravan, a
-cargo trailer) on a drawbar's coupler over a tow ball."""
+cargo trailer, a dolly) on a drawbar's coupler over a tow ball; a drawbar trailer's body on a
+ring over its dolly's turntable (:meth:`Trailer.drawbar`)."""
 
 # The drawbar of a centre-axle trailer drawn into its mesh: a bar this wide and high (m).
 DRAWBAR_SECTION = 0.12
@@ -194,6 +195,73 @@ class Trailer:
         return Trailer.box(kind, name=name or preset, **args)
 
     @staticmethod
+    def drawbar(
+        *,
+        length: float,
+        width: float,
+        height: float,
+        mass: float,
+        ground_clearance: float,
+        turntable: float,
+        rear_axles: Sequence[float],
+        drawbar: float,
+        eye_height: float,
+        track: float,
+        radius: float,
+        dolly_mass: float,
+        cg_height: float | None = None,
+        cg_from_front: float | None = None,
+        tyre: Tyre | dict[str, Any] | None = None,
+        name: str = "trailer",
+    ) -> tuple[Vehicle, Vehicle]:
+        """A drawbar (full) trailer as two units (m, kg): its dolly (a 0.6 m frame on one
+        axle, of ``dolly_mass``, its drawbar's eye ``drawbar`` m ahead of the axle at
+        ``eye_height``, a turntable over the axle at the body's floor) and its body (a box as
+        :meth:`box`, the turntable's ring ``turntable`` m behind its front, its
+        ``rear_axles`` behind the front). ``Scene.add(truck, trailers=[dolly, body])`` puts
+        the eye on the truck's ball (a spherical joint) and the body on the turntable (a
+        revolute joint about the vertical: the dolly steers the body's front). Returns
+        (dolly, body), named ``name + "_dolly"`` and ``name``."""
+        body = Trailer.box(
+            "drawbar_body",
+            length=length,
+            width=width,
+            height=height,
+            mass=mass,
+            ground_clearance=ground_clearance,
+            coupler=turntable,
+            coupler_height=ground_clearance,
+            axles=rear_axles,
+            track=track,
+            radius=radius,
+            cg_height=cg_height,
+            cg_from_front=cg_from_front,
+            tyre=tyre,
+            name=name,
+        )
+        frame = 0.6
+        top = _positive(ground_clearance, "ground_clearance")
+        dolly = Trailer.box(
+            "centre_axle",
+            length=frame,
+            width=_positive(width, "width") * 0.8,
+            height=0.2,
+            mass=dolly_mass,
+            ground_clearance=top - 0.25,
+            coupler=_positive(drawbar, "drawbar") - frame / 2.0,
+            coupler_height=eye_height,
+            axles=[frame / 2.0],
+            track=track,
+            radius=radius,
+            cg_height=top - 0.15,
+            tyre=tyre,
+            name=f"{name}_dolly",
+        )
+        # the turntable over the axle, at the body's floor (model frame: the frame's middle)
+        dolly = dolly.with_hitch(dolly.cg + [0.0, 0.0, top - float(dolly.cg[2])], "turntable")
+        return dolly, body
+
+    @staticmethod
     def box(
         kind: str,
         *,
@@ -224,6 +292,8 @@ class Trailer:
 
         ``kind`` "semitrailer": the kingpin ``coupler`` m behind the body's front (its
         setback), at ``coupler_height`` (the fifth wheel's height: the kingpin's lock);
+        "drawbar_body": the ring of the dolly's turntable ``coupler`` m behind the front, at
+        ``coupler_height``;
         "centre_axle": the drawbar's coupler ``coupler`` m ahead of the body's front (the
         drawbar, drawn into the mesh), at ``coupler_height`` (the tow ball's).
         ``axles``: each axle's distance behind the body's front (m; two or three close
@@ -247,7 +317,7 @@ class Trailer:
         body = _box((-front, -wd / 2, lo_z), (front, wd / 2, lo_z + ht))
         bar = _positive(coupler, "coupler") if kind == "centre_axle" else float(coupler)
         hz = _positive(coupler_height, "coupler_height")
-        if kind == "semitrailer":
+        if kind in ("semitrailer", "drawbar_body"):
             if not 0.0 <= bar < ln:
                 raise ParameterError(
                     f"coupler = {coupler} m: a semitrailer's kingpin lies behind the body's "
@@ -309,7 +379,9 @@ class Trailer:
         )
         vehicle = vehicle.with_wheels(wheels)
         vehicle._coupler = Hitch.at(
-            "kingpin" if kind == "semitrailer" else "coupler", point - cg, towing=False
+            {"semitrailer": "kingpin", "centre_axle": "coupler", "drawbar_body": "ring"}[kind],
+            point - cg,
+            towing=False,
         )
         return vehicle
 

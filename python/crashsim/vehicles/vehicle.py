@@ -1045,8 +1045,9 @@ class Vehicle:
 
     def with_hitch(self, at: ArrayLike, kind: str = "ball") -> Vehicle:
         """The same vehicle with a hitch (a new Vehicle): ``at`` the model-frame point (m)
-        of the tow ball's centre or the fifth wheel's kingpin lock, ``kind`` "ball" or
-        "fifth_wheel" (crashsim.vehicles.coupling). It must lie within 1 m of the body."""
+        of the tow ball's centre, the fifth wheel's kingpin lock or a dolly's turntable,
+        ``kind`` "ball", "fifth_wheel" or "turntable" (crashsim.vehicles.coupling). It must
+        lie within 1 m of the body."""
         hitch = Hitch.at(kind, _point(at, "hitch") - self._cg, towing=True)
         self._check_reach(hitch, "hitch")
         other = self._copy(self._name)

@@ -564,10 +564,13 @@ class Wheels:
             raise _renamed(e, self._names) from e
         return np.asarray(loads, dtype=np.float64), float(share)
 
-    def coupling_load(self, mass: float) -> float:
+    def coupling_load(
+        self, mass: float, hitch_load: tuple[ArrayLike, float] | None = None
+    ) -> float:
         """The static load (N) a trailer of ``mass`` kg puts on its coupling on level ground
-        (0 without a coupling)."""
-        return self._loads(mass)[1]
+        (0 without a coupling), with ``hitch_load`` what the trailer it tows in turn puts on
+        its own hitch (a dolly under a drawbar trailer's body, a B-double's first trailer)."""
+        return self._loads(mass, hitch_load)[1]
 
     def spec(
         self,
