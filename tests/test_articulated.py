@@ -370,3 +370,32 @@ def test_a_drawbar_trailer_off_tracks_and_carries_as_the_closed_forms_say() -> N
     # moments about the body's axle (body frame: the axle at x < 0, the CG at 0)
     statics = body.mass * G * -body.wheels.centers[0, 0] / span
     assert loads == pytest.approx(statics, rel=1e-2)
+
+
+def test_the_report_names_a_jackknife_and_a_trailer_swing() -> None:
+    # scripts/articulated_pictures.py's cases: the tractor's drive axles locked on a wet curve
+    # fold the combination (a jackknife); rolling freely it does not; a tail-heavy caravan
+    # swings at 100 km/h.
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "scripts" / "articulated_pictures.py"
+    spec = importlib.util.spec_from_file_location("articulated_pictures", path)
+    assert spec is not None and spec.loader is not None
+    pictures = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(pictures)
+    from crashsim.analysis.joints import JACKKNIFE_ANGLE
+    from crashsim.analysis.report import build_report
+
+    locked = build_report(pictures.curve_scene(1.0).run(4.0, record_interval=0.01))
+    kinds = [e.kind for e in locked.articulation]
+    assert "jackknife" in kinds
+    first = next(e for e in locked.articulation if e.kind == "jackknife")
+    assert abs(first.angle) > JACKKNIFE_ANGLE and first.speed > 5.0 and 1.0 < first.time < 4.0
+    assert "jackknife of 'semitrailer'" in locked.summary_table()
+    assert "articulation_events" in locked.to_dict()
+    free = build_report(pictures.curve_scene(None).run(4.0, record_interval=0.01))
+    assert free.articulation == []
+    scene, _ = pictures.sway_scene(3.1)
+    swing = build_report(scene.run(6.0, record_interval=0.01))
+    assert [e.kind for e in swing.articulation][:1] == ["trailer_swing"]

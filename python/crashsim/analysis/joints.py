@@ -15,7 +15,28 @@ if TYPE_CHECKING:
     from crashsim.joints import Joint, JointEvent, JointRecord
     from crashsim.result import Result
 
-__all__ = ["JointReport", "joint_lines", "joint_reports"]
+__all__ = [
+    "EVENT_SPEED",
+    "JACKKNIFE_ANGLE",
+    "SWING_SLIP",
+    "ArticulationEvent",
+    "JointReport",
+    "articulation_events",
+    "articulation_lines",
+    "joint_lines",
+    "joint_reports",
+]
+
+# crashsim's rules for a combination's articulation events (not from a standard; the
+# thresholds say what they are). Below this speed of the towing vehicle (m/s, 18 km/h) a
+# large articulation is a manoeuvre (a yard, a tight corner), not an event.
+EVENT_SPEED = 5.0
+# A jackknife: the units folded past this articulation (rad, 45 deg; a steady road curve's is
+# a few degrees, the wheelbase over the radius).
+JACKKNIFE_ANGLE = math.radians(45.0)
+# A trailer swing: the trailer sliding sideways, its heading this far (rad, 10 deg) from its
+# course (its CG's velocity): its tyres past their grip, the tower's still holding.
+SWING_SLIP = math.radians(10.0)
 
 
 @dataclass(frozen=True)
@@ -66,6 +87,75 @@ class JointReport:
             "max_torque": self.max_torque,
             "max_torque_time": self.max_torque_time,
         }
+
+
+@dataclass(frozen=True)
+class ArticulationEvent:
+    """A combination's articulation event (crashsim's rules: EVENT_SPEED, JACKKNIFE_ANGLE,
+    SWING_SLIP): ``kind`` "jackknife" (the units folded past JACKKNIFE_ANGLE) or
+    "trailer_swing" (the trailer's heading SWING_SLIP from its course), the ``joint`` and its
+    ``trailer``, the first ``time`` (s) it held with the tower faster than EVENT_SPEED, the
+    articulation then (rad, the trailer's yaw relative to the tower's, + left) and the
+    tower's ``speed`` (m/s)."""
+
+    kind: str
+    joint: str
+    trailer: str
+    time: float
+    angle: float
+    speed: float
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "kind": self.kind,
+            "joint": self.joint,
+            "trailer": self.trailer,
+            "time": self.time,
+            "angle": self.angle,
+            "speed": self.speed,
+        }
+
+
+def _heading(q: np.ndarray) -> np.ndarray:
+    """The yaw (rad) of the body x axis of quaternions (k, 4) (w, x, y, z)."""
+    w, x, y, z = q.T
+    return np.arctan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def articulation_events(result: Result) -> list[ArticulationEvent]:
+    """Every jackknife and trailer swing of the result's combinations (joints between two
+    vehicles), in time order: the first instant each rule holds per joint."""
+    scene = result.scene
+    if scene is None:
+        return []
+    out = []
+    for joint in scene.joints:
+        tower, trailer = joint.vehicles
+        if trailer is None or joint.kind == "fixed":
+            continue
+        a, b = result.trajectory(tower), result.trajectory(trailer)
+        speed = np.linalg.norm(a.velocity[:, :2], axis=1)
+        articulation = np.angle(np.exp(1j * (_heading(b.orientation) - _heading(a.orientation))))
+        course = np.arctan2(b.velocity[:, 1], b.velocity[:, 0])
+        slip = np.abs(np.angle(np.exp(1j * (_heading(b.orientation) - course))))
+        moving = (speed > EVENT_SPEED) & (np.linalg.norm(b.velocity[:, :2], axis=1) > 1.0)
+        for kind, hit in (
+            ("jackknife", moving & (np.abs(articulation) > JACKKNIFE_ANGLE)),
+            ("trailer_swing", moving & (slip > SWING_SLIP)),
+        ):
+            if hit.any():
+                k = int(np.argmax(hit))
+                out.append(
+                    ArticulationEvent(
+                        kind=kind,
+                        joint=joint.name,
+                        trailer=trailer,
+                        time=float(result.t[k]),
+                        angle=float(articulation[k]),
+                        speed=float(speed[k]),
+                    )
+                )
+    return sorted(out, key=lambda e: e.time)
 
 
 def _report(joint: Joint, record: JointRecord, events: list[JointEvent]) -> JointReport:
@@ -127,3 +217,13 @@ def joint_lines(reports: list[JointReport]) -> list[str]:
                 f"    limit of {e.angle} hit at {e.time:.3f} s ({_deg(e.rate)} deg/s taken out)"
             )
     return lines
+
+
+def articulation_lines(events: list[ArticulationEvent]) -> list[str]:
+    """The articulation events' lines of the text report."""
+    words = {"jackknife": "jackknife", "trailer_swing": "trailer swing"}
+    return [
+        f"  {words[e.kind]} of {e.trailer!r} ({e.joint}) at {e.time:.3f} s: articulation "
+        f"{_deg(e.angle)} deg at {e.speed:.1f} m/s"
+        for e in events
+    ]

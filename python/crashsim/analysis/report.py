@@ -37,7 +37,14 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim import _core
 from crashsim.analysis import penetration
 from crashsim.analysis.engagements import WHY_SECONDARY, Engagement, engagements
-from crashsim.analysis.joints import JointReport, joint_lines, joint_reports
+from crashsim.analysis.joints import (
+    ArticulationEvent,
+    JointReport,
+    articulation_events,
+    articulation_lines,
+    joint_lines,
+    joint_reports,
+)
 from crashsim.analysis.runout import RunOutReport, run_out, run_out_lines
 from crashsim.errors import ParameterError, SceneError
 from crashsim.units import to_kmh, to_mph
@@ -821,6 +828,7 @@ def build_report(result: Result) -> Report:
         engagements=engagements(result),
         run_out=runout,
         joints=joint_reports(result),
+        articulation=articulation_events(result),
     )
 
 
@@ -1071,6 +1079,7 @@ class Report:
         engagements: list[Engagement] | None = None,
         run_out: list[RunOutReport] | None = None,
         joints: list[JointReport] | None = None,
+        articulation: list[ArticulationEvent] | None = None,
     ) -> None:
         self.result = result
         self.impacts = list(impacts)
@@ -1080,6 +1089,8 @@ class Report:
         self.run_out = list(run_out) if run_out is not None else []
         #: each joint over the run (a scene with joints; empty otherwise)
         self.joints = list(joints) if joints is not None else []
+        #: the combinations' jackknifes and trailer swings (crashsim.analysis.joints' rules)
+        self.articulation = list(articulation) if articulation is not None else []
 
     def vehicle_run_out(self, name: str) -> RunOutReport:
         """The run-out of a named vehicle (SceneError when the run had no ground)."""
@@ -1136,6 +1147,9 @@ class Report:
         if self.joints:
             lines.append("")
             lines += joint_lines(self.joints)
+            if self.articulation:
+                lines.append("Jackknifes and trailer swings (crashsim's rules, docs/joints.md):")
+                lines += articulation_lines(self.articulation)
         return "\n".join(lines)
 
     def __str__(self) -> str:
@@ -1177,6 +1191,7 @@ class Report:
                 {
                     "joints": [j.to_dict() for j in self.joints],
                     "joint_events": [e.to_dict() for e in r.joint_events],
+                    "articulation_events": [e.to_dict() for e in self.articulation],
                 }
                 if self.joints
                 else {}
