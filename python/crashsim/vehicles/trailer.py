@@ -22,11 +22,18 @@ from crashsim.vehicles.coupling import Hitch
 from crashsim.vehicles.vehicle import Vehicle, _box_inertia, _parallel_axis
 from crashsim.vehicles.wheels import Tyre, Wheels
 
-__all__ = ["TRAILER_KINDS", "Trailer", "tractor"]
+__all__ = ["TRACTOR_PRESETS", "TRAILER_KINDS", "TRAILER_PRESETS", "Trailer", "tractor"]
 
 TRAILER_KINDS = ("semitrailer", "centre_axle")
 """A semitrailer rests on a kingpin over a fifth wheel; a centre-axle trailer (a caravan, a
 cargo trailer) on a drawbar's coupler over a tow ball."""
+
+TRAILER_PRESETS = ("box_van", "caravan")
+"""The combination classes :meth:`Trailer.generate` builds (the others lack a body's
+dimensions)."""
+
+TRACTOR_PRESETS = {"tractor": "tractor_6x4", "tractor_6x4": "tractor_6x4"}
+""":meth:`crashsim.Vehicle.generate`'s tractor presets and the combination class each is."""
 
 # The drawbar of a centre-axle trailer drawn into its mesh: a bar this wide and high (m).
 DRAWBAR_SECTION = 0.12
@@ -181,9 +188,9 @@ class Trailer:
             kind = "centre_axle"
         else:
             raise ParameterError(
-                f"trailer preset {preset!r} has no builder: the presets are 'box_van' and "
-                "'caravan' (the other combination classes lack the dimensions a body needs; "
-                "build them with Trailer.box)"
+                f"trailer preset {preset!r} has no builder: the presets are "
+                f"{' and '.join(repr(p) for p in TRAILER_PRESETS)} (the other combination "
+                "classes lack the dimensions a body needs; build them with Trailer.box)"
             )
         args.update(overrides)
         return Trailer.box(kind, name=name or preset, **args)

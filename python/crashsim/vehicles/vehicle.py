@@ -725,10 +725,11 @@ class Vehicle:
         class (:func:`crashsim.tractor`, ``preset="tractor_6x4"``; ``mass`` and ``length`` pass
         through); trailers come from :meth:`crashsim.Trailer.generate`.
         """
-        if preset in ("tractor", "tractor_6x4"):
-            from crashsim.vehicles.trailer import tractor
+        from crashsim.vehicles.trailer import TRACTOR_PRESETS, tractor
 
-            return tractor("tractor_6x4", mass=mass, length=length, name=name or "tractor")
+        if preset in TRACTOR_PRESETS:
+            name = name or "tractor"
+            return tractor(TRACTOR_PRESETS[preset], mass=mass, length=length, name=name)
         vc, key = _preset_class(preset)
         table = f"class table ({key})"
         if mass is None and weight_lb is None:
