@@ -1,18 +1,23 @@
 """Tractors and trailers in scene files (issue 21, item 5; docs/scene-format.md, "Tractors,
 trailers and hitches"): a file's combinations are the Scene that Scene.add(..., trailers=...,
 coupling=...) builds from the same builders (the engine's value and the run the same bits),
-every bad input is refused naming the file, the table and the key."""
+every bad input is refused naming the file, the table and the key, and
+examples/tractor-semitrailer-jackknife.toml runs through `crashsim run`."""
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
 import crashsim as cs
 import numpy as np
 import pytest
+from conftest import REPO
+from crashsim.cli import main
 from crashsim.io.scenefile import SceneFileError, load_scene, loads_scene
 
+EXAMPLE = REPO / "examples" / "tractor-semitrailer-jackknife.toml"
 DEG = math.pi / 180.0  # rad, the parser's factor of "deg"
 LB = 0.45359237  # kg, the parser's factor of "lb"
 
@@ -389,3 +394,39 @@ def test_bad_combinations_are_refused_naming_the_file_table_and_key(
     assert e.file == str(path) and e.key == key, message
     assert message.startswith(f"{path}: {key}: "), message
     assert words in message, message
+
+
+# -- the example -------------------------------------------------------------------------------
+
+
+def test_the_jackknife_example_is_the_presets_on_the_curve_and_runs(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    case = load_scene(EXAMPLE)
+    # the same scene through the API: the presets, the curve's 49 points (every 0.025 rad of
+    # a 250 m radius, as the file gives them to 1 mm), the tandem locked at 1 s
+    tractor = cs.Vehicle.generate("tractor")
+    arc = 0.025 * np.arange(49)
+    path = np.round(np.c_[250.0 * np.sin(arc), 250.0 * (1.0 - np.cos(arc))], 3)
+    locks = [(f"drive{k}_{side}", "locked", 1.0) for k in (1, 2) for side in ("left", "right")]
+    api = cs.Scene(ground=cs.Ground(friction=0.35))
+    api.add(tractor, (0, 0), heading=0.0, velocity=(80 / 3.6, 0, 0),
+            inputs=cs.DriverInputs(path=path, wheel_states=locks),
+            trailers=[cs.Trailer.generate("box_van", name="semitrailer")],
+            coupling={"collide": True})  # fmt: skip
+    assert case.scene.to_spec(8.0).to_json() == api.to_spec(8.0).to_json()
+    assert (case.run.duration, case.run.dt, case.scene.ground.friction) == (8.0, 1e-3, 0.35)
+    # 3 s of it through the command: the trailer's front strikes the cab (a jackknife)
+    out = tmp_path / "out"
+    assert main(["run", str(EXAMPLE), "--out", str(out), "--duration", "3 s"]) == 0
+    assert "  tractor-semitrailer: fifth_wheel, tractor - semitrailer; largest force " in (
+        capsys.readouterr().out
+    )
+    assert {"report.json", "time-histories.csv", "trajectories.png", "motion.glb"} <= {
+        p.name for p in out.iterdir()
+    }
+    d = json.loads((out / "report.json").read_text(encoding="utf-8"))
+    assert d["impacts"] and all(i["vehicles"] == ["tractor", "semitrailer"] for i in d["impacts"])
+    (joint,) = d["joints"]
+    articulation = joint["angle_min"][joint["angle_names"].index("articulation")]
+    assert articulation < -20 * DEG  # the tractor turned against the trailer
