@@ -532,7 +532,8 @@ ERRORS = [
         "an unknown preset",
         GOOD.replace(BOX, 'generate = { preset = "tank", length = "4 m" }', 1),
         "vehicles[0].generate.preset",
-        '"tank" is not one of "sedan", "suv", "pickup", "van" or "bus"',
+        '"tank" is not one of "sedan", "suv", "pickup", "van", "bus", "tractor" or '
+        '"tractor_6x4"',
     ),
     (
         "a missing mesh file",
@@ -742,6 +743,10 @@ def test_the_format_document_names_every_key_and_unit() -> None:
         *sf.MESH_KEYS,
         *sf.GENERATE_KEYS,
         *sf.JOINT_KEYS,
+        *sf.TRACTOR_KEYS,
+        *sf.TRAILER_KEYS,
+        *sf.HITCH_KEYS,
+        *sf.COUPLING_KEYS,
     }
     missing = sorted(k for k in keys if f"`{k}`" not in doc)
     assert not missing, f"docs/scene-format.md does not describe {missing}"

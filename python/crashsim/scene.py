@@ -30,7 +30,7 @@ from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import InitialOverlapError, ParameterError, SceneError, SimulationError
 from crashsim.joints import Joint, check_new, make_joint
 from crashsim.result import Result
-from crashsim.vehicles.coupling import JOINT_OF
+from crashsim.vehicles.coupling import JOINT_OF, check_coupling
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.stiffness import FACES
 from crashsim.vehicles.vehicle import Vehicle, _as_float, _probe_shape
@@ -552,16 +552,9 @@ class Scene:
         if not isinstance(trailer, Vehicle):
             raise TypeError(f"a trailer must be a crashsim.Vehicle, got {type(trailer).__name__}")
         hitch, coupler = tower.vehicle.hitch, trailer.coupler
+        check_coupling(tower.vehicle.name, hitch, trailer.name, coupler)
+        assert hitch is not None and coupler is not None
         who = f"{tower.vehicle.name!r} towing {trailer.name!r}"
-        if hitch is None:
-            raise SceneError(f"{who}: {tower.vehicle.name!r} has no hitch (vehicle.with_hitch)")
-        if coupler is None:
-            raise SceneError(f"{who}: {trailer.name!r} has no coupler (build it with Trailer)")
-        if not coupler.mates(hitch):
-            raise SceneError(
-                f"{who}: a {coupler.kind} does not go on a {hitch.kind} (a kingpin goes on a "
-                "fifth wheel, a drawbar's coupler on a ball)"
-            )
         rot = _rotation_matrix(tower.orientation)
         at = tower.position + rot @ hitch.point
         position = at - rot @ coupler.point

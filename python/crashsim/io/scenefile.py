@@ -58,18 +58,29 @@ from crashsim.io.tomlvalues import (
     Unit,
     _check_low,
     _Invalid,
+    _or,
     _quantity,
     _show,
+    _split_vector,
     _Table,
     parse_quantity,
 )
 from crashsim.names import check_name
 from crashsim.result import Result
 from crashsim.scene import DEFAULT_MAX_DURATION, Scene
+from crashsim.units import POUND
+from crashsim.vehicles.coupling import JOINT_OF, TOWING, check_coupling
 from crashsim.vehicles.generator import PRESETS, SHAPE_PARAMETERS
 from crashsim.vehicles.inputs import Brake, DriverInputs
 from crashsim.vehicles.meshio import axes_rotation, unit_scale
 from crashsim.vehicles.stiffness import FACES
+from crashsim.vehicles.trailer import (
+    TRACTOR_PRESETS,
+    TRAILER_KINDS,
+    TRAILER_PRESETS,
+    Trailer,
+    tractor,
+)
 from crashsim.vehicles.tyre import TYRE_MODELS, TYRE_PARAMETERS, Tyre
 from crashsim.vehicles.vehicle import SOLIDS, Vehicle
 from crashsim.vehicles.vehicle_data import vehicle_class
@@ -179,7 +190,7 @@ class SceneFile:
 
 # -- the scene ---------------------------------------------------------------------------------
 
-_GEOMETRY = ("box", "mesh", "generate")
+_GEOMETRY = ("box", "mesh", "generate", "trailer")
 # The keys of every table (docs/scene-format.md describes each one).
 TOP_KEYS = (
     "format_version",
@@ -229,6 +240,20 @@ VEHICLE_KEYS = (
     "wheels",
     "tyre",
     "inputs",
+    "hitch",
+    "towed_by",
+    "coupling",
+)
+# a vehicle's state at t = 0: a towed vehicle takes its tower's
+_STATE_KEYS = (
+    "position",
+    "heading",
+    "orientation",
+    "velocity",
+    "speed",
+    "direction",
+    "angular_velocity",
+    "yaw_rate",
 )
 GROUND_KEYS = ("height", "terrain", "friction", "body_friction", "zones")
 TERRAIN_KEYS = ("file", "units", "up", "forward")
@@ -280,6 +305,65 @@ STATE_KEYS = ("wheel", "state", "time", "exchange", "fraction")
 _BOX_KEYS = ("length", "width", "height", "ground_clearance")
 MESH_KEYS = ("file", "units", "up", "forward", "ground", "center", "solid")
 GENERATE_KEYS = ("preset", "length", "width", "height", "wheelbase", *SHAPE_PARAMETERS)
+# generate = { preset = "tractor", ... }: crashsim.tractor's keywords
+TRACTOR_KEYS = (
+    "preset",
+    "length",
+    "width",
+    "cab_height",
+    "front_overhang",
+    "wheelbase",
+    "tandem_spread",
+    "driven_axles",
+    "fifth_wheel_ahead",
+    "fifth_wheel_height",
+    "cg_to_front_axle",
+    "cg_height",
+    "track",
+    "radius",
+    "natural_frequency",
+    "damping_ratio",
+    "steering_ratio",
+    "steering_reference",
+    "abs",
+    "load_sharing",
+)
+# trailer = { preset = "box_van", ... } or { kind = "semitrailer", ... }: Trailer.box's keywords
+TRAILER_KEYS = (
+    "preset",
+    "laden",
+    "kind",
+    "length",
+    "width",
+    "height",
+    "ground_clearance",
+    "coupler",
+    "coupler_height",
+    "axles",
+    "track",
+    "radius",
+    "cg_from_front",
+    "cg_height",
+    "yaw_inertia",
+    "natural_frequency",
+    "damping_ratio",
+    "abs",
+    "load_sharing",
+)
+# Trailer.box's keywords without a default: required with a kind (a preset gives them all)
+_TRAILER_REQUIRED = (
+    "length",
+    "width",
+    "height",
+    "ground_clearance",
+    "coupler",
+    "coupler_height",
+    "axles",
+    "track",
+    "radius",
+)
+HITCH_KEYS = ("at", "kind")
+COUPLING_KEYS = ("limits", "stiffness", "damping", "friction", "collide")
 JOINT_KEYS = (
     "vehicles",
     "kind",
@@ -314,13 +398,16 @@ def _wrap(t: _Table, k: str | None, action: Callable[[], Any]) -> Any:
         raise t.error(k, str(e)) from e
 
 
-def _mass(t: _Table) -> dict[str, float]:
-    """Vehicle keywords for the mass: mass (kg) or weight_lb (lb, kept as written)."""
+def _mass(t: _Table, required: bool = True) -> dict[str, float]:
+    """Vehicle keywords for the mass: mass (kg) or weight_lb (lb, kept as written); none when
+    it is not ``required`` and not given."""
     given = [k for k in ("mass", "weight") if t.has(k)]
     if len(given) == 2:
         t.fail("weight", "give mass or weight, not both")
     if not given:
         t.taken.update(("mass", "weight"))
+        if not required:
+            return {}
         t.fail(
             "mass",
             'this key is required and missing: give e.g. mass = "1450 kg" or weight = "3200 lb"',
@@ -393,18 +480,37 @@ def _reject(t: _Table, keys: tuple[str, ...], why: str) -> None:
 
 
 def _vehicle(t: _Table, base: Path) -> Vehicle:
-    return _wheels(t, _body(t, base))
-
-
-def _body(t: _Table, base: Path) -> Vehicle:
+    """The vehicle of a [[vehicles]] table: its body, wheels and tyre, and its hitch."""
     name = t.string("name")
     _wrap(t, "name", lambda: check_name(name, "a vehicle"))
     given = [g for g in _GEOMETRY if t.has(g)]
     t.taken.update(_GEOMETRY)
     if len(given) != 1:
         what = "none" if not given else " and ".join(given)
-        t.fail(None, f"give exactly one of box, mesh or generate for the shape (got {what})")
+        t.fail(
+            None, f"give exactly one of box, mesh, generate or trailer for the shape (got {what})"
+        )
     geometry = given[0]
+    generate: tuple[_Table, str] | None = None
+    if geometry == "generate":  # a body's preset, or a tractor's: its name read first
+        value = t.raw("generate")
+        preset = value.get("preset") if isinstance(value, dict) else value
+        is_tractor = isinstance(preset, str) and preset in TRACTOR_PRESETS
+        keys = TRACTOR_KEYS if is_tractor else GENERATE_KEYS
+        generate = _preset_table(t, "generate", keys, PRESETS + tuple(TRACTOR_PRESETS))
+    if geometry == "trailer":
+        vehicle = _trailer(t, name)
+    elif generate is not None and generate[1] in TRACTOR_PRESETS:
+        vehicle = _tractor(t, name, *generate)
+    else:
+        vehicle = _wheels(t, _body(t, base, name, geometry, generate))
+    return _hitch(t, vehicle)
+
+
+def _body(
+    t: _Table, base: Path, name: str, geometry: str, generate: tuple[_Table, str] | None
+) -> Vehicle:
+    """A box, mesh or generated body (its generate table and preset read)."""
     mass = _mass(t)
     stiffness = _stiffness(t)
     if geometry == "box":
@@ -460,10 +566,8 @@ def _body(t: _Table, base: Path) -> Vehicle:
         "a generated body takes its CG and inertia from the generator (the wheelbase goes "
         "in the generate table); for other values use a mesh",
     )
-    g = t.table("generate", GENERATE_KEYS)
-    if g is None:
-        t.fail("generate", 'expected a table { preset = "sedan", length = ..., ... }')
-    preset = g.string("preset", choices=PRESETS)
+    assert generate is not None
+    g, preset = generate
     dims = {}
     for k in GENERATE_KEYS[1:]:
         if g.has(k):
@@ -476,6 +580,191 @@ def _body(t: _Table, base: Path) -> Vehicle:
         "generate",
         lambda: Vehicle.generate(preset, name=name, stiffness=stiffness, **mass, **dims),
     )
+
+
+def _preset_table(
+    t: _Table, k: str, keys: tuple[str, ...], presets: tuple[str, ...]
+) -> tuple[_Table, str]:
+    """Key k as a preset's name ("tractor") or a table { preset = "tractor", ... } of keys:
+    the table (empty for a name) and the preset."""
+    value = t.raw(k)
+    if isinstance(value, str):
+        return _Table({}, t.key(k), t.file, keys), t.string(k, choices=presets)
+    if not isinstance(value, dict):
+        t.fail(
+            k,
+            f'expected a preset\'s name such as "{presets[0]}" or a table {{ preset = '
+            f'"{presets[0]}", ... }}, got {_show(value)}',
+        )
+    g = t.table(k, keys)
+    assert g is not None
+    return g, g.string("preset", choices=presets)
+
+
+def _unit_mass(t: _Table, required: bool) -> dict[str, float]:
+    """A tractor's or trailer's mass keyword (kg), none when not given (its class's)."""
+    given = _mass(t, required)
+    if "weight_lb" in given:
+        return {"mass": given["weight_lb"] * POUND}
+    return given
+
+
+def _reject_unit_keys(t: _Table, what: str, table: str) -> None:
+    """The keys a tractor or a trailer (``what``) takes from its builder, refused."""
+    _reject(
+        t,
+        ("cg", "cg_height", "inertia", "wheelbase"),
+        f"a {what}'s CG, inertia and axles come from its builder: give them in its {table} "
+        "table (docs/scene-format.md)",
+    )
+    _reject(
+        t,
+        ("wheels",),
+        f"a {what}'s wheels come from its builder: give their track, radius and springs in "
+        f"its {table} table (its tyre in [vehicles.tyre])",
+    )
+    _reject(t, ("stiffness",), f"a {what} has no crush stiffness in scene files yet")
+
+
+def _tractor(t: _Table, name: str, g: _Table, preset: str) -> Vehicle:
+    """generate = { preset = "tractor", ... } (g, read with TRACTOR_KEYS): crashsim.tractor
+    with the combination class's numbers, the table's replacing them; mass (or weight) the
+    vehicle's, default the class's."""
+    _reject_unit_keys(t, "tractor", "generate")
+    mass = _unit_mass(t, required=False)
+    tyre = _tyre(t)
+    args: dict[str, Any] = {}
+    for k in (
+        "length",
+        "width",
+        "cab_height",
+        "front_overhang",
+        "wheelbase",
+        "tandem_spread",
+        "fifth_wheel_height",
+        "cg_to_front_axle",
+        "cg_height",
+        "track",
+    ):
+        if g.has(k):
+            args[k] = g.quantity(k, "length", low="> 0")
+    if g.has("fifth_wheel_ahead"):  # ahead of the rear axles' centre (< 0: behind it)
+        args["fifth_wheel_ahead"] = g.quantity("fifth_wheel_ahead", "length")
+    if g.has("radius"):  # one, or [front, rear]
+        if isinstance(g.raw("radius"), list):
+            front, rear = g.vector("radius", "length", sizes=(2,))
+            for i, r in enumerate((front, rear)):
+                if not r > 0.0:
+                    g.fail(f"radius[{i}]", f"{_show(g.raw('radius')[i])} must be positive")
+            args["radius"] = (float(front), float(rear))
+        else:
+            args["radius"] = g.quantity("radius", "length", low="> 0")
+    if g.has("driven_axles"):
+        n = g.raw("driven_axles")
+        if isinstance(n, bool) or n not in (1, 2):
+            g.fail("driven_axles", f"expected 1 (a 4x2) or 2 (a 6x4), got {_show(n)}")
+        args["driven_axles"] = n
+    if g.has("natural_frequency"):
+        args["natural_frequency"] = g.quantity("natural_frequency", "frequency", low="> 0")
+    for k in ("damping_ratio", "steering_ratio"):
+        if g.has(k):
+            args[k] = g.number(k)
+    if g.has("steering_reference"):
+        args["steering_reference"] = g.string("steering_reference", choices=("outer", "centre"))
+    for k in ("abs", "load_sharing"):
+        if g.has(k):
+            args[k] = g.boolean(k, True)
+    g.finish()
+    return _wrap(
+        t,
+        "generate",
+        lambda: tractor(TRACTOR_PRESETS[preset], name=name, tyre=tyre, **mass, **args),
+    )
+
+
+def _trailer(t: _Table, name: str) -> Vehicle:
+    """trailer = "box_van", { preset = "box_van", laden = ..., ... } (Trailer.generate, the
+    table's keys replacing the class's numbers) or { kind = "semitrailer", ... } (Trailer.box,
+    every dimension given); mass (or weight) the vehicle's (with a preset default the
+    class's)."""
+    _reject_unit_keys(t, "trailer", "trailer")
+    kind: str | None = None
+    preset: str | None = None
+    if isinstance(t.raw("trailer"), dict):
+        tt = t.table("trailer", TRAILER_KEYS)  # its unknown keys first
+        assert tt is not None
+        if tt.has("kind") and tt.has("preset"):
+            tt.fail("kind", "give preset (a class's trailer) or kind (every dimension), not both")
+        if tt.has("kind"):
+            kind = tt.string("kind", choices=TRAILER_KINDS)
+            _reject(tt, ("laden",), "laden is for a preset: give this trailer's mass")
+        elif tt.has("preset"):
+            preset = tt.string("preset", choices=TRAILER_PRESETS)
+        else:
+            tt.fail(
+                None,
+                f"give preset (a class's trailer: {_or(TRAILER_PRESETS)}) or kind "
+                f"({_or(TRAILER_KINDS)}: every dimension given)",
+            )
+    else:
+        tt, preset = _preset_table(t, "trailer", TRAILER_KEYS, TRAILER_PRESETS)
+    mass = _unit_mass(t, required=kind is not None)
+    tyre = _tyre(t)
+    args: dict[str, Any] = {}
+    for k in TRAILER_KEYS[3:]:
+        if not tt.has(k) and (preset is not None or k not in _TRAILER_REQUIRED):
+            continue
+        if k == "axles":
+            value = tt.raw("axles")
+            n = len(value) if isinstance(value, list) else 0
+            if isinstance(value, str):
+                n = len(_split_vector(value) or ())
+            if n == 0:
+                tt.fail(
+                    "axles",
+                    "expected a list of each axle's distance behind the body's front "
+                    f'(lengths), e.g. ["10 m", "11.3 m", "12.6 m"], got {_show(value)}',
+                )
+            axles = tt.vector("axles", "length", sizes=(n,))
+            for i, a in enumerate(axles):
+                if not a > 0.0:
+                    tt.fail(f"axles[{i}]", f"{a:g} m must be positive (behind the front)")
+            args[k] = [float(a) for a in axles]
+        elif k in ("coupler", "cg_from_front"):  # m behind (kingpin) or ahead of the front
+            args[k] = tt.quantity(k, "length", low=">= 0")
+        elif k == "yaw_inertia":
+            args[k] = tt.quantity(k, "moment of inertia", low="> 0")
+        elif k == "natural_frequency":
+            args[k] = tt.quantity(k, "frequency", low="> 0")
+        elif k == "damping_ratio":
+            args[k] = tt.number(k)
+        elif k in ("abs", "load_sharing"):
+            args[k] = tt.boolean(k, True)
+        else:
+            args[k] = tt.quantity(k, "length", low="> 0")
+    if preset is not None:
+        laden = tt.boolean("laden", True)
+        tt.finish()
+        return _wrap(
+            t,
+            "trailer",
+            lambda: Trailer.generate(preset, laden=laden, name=name, tyre=tyre, **mass, **args),
+        )
+    tt.finish()
+    assert kind is not None
+    return _wrap(t, "trailer", lambda: Trailer.box(kind, name=name, tyre=tyre, **mass, **args))
+
+
+def _hitch(t: _Table, vehicle: Vehicle) -> Vehicle:
+    """hitch = { at = [x, y, z] (the model frame, lengths), kind = "ball" }: the vehicle with
+    that hitch (Vehicle.with_hitch; on a tractor it replaces the fifth wheel)."""
+    h = t.table("hitch", HITCH_KEYS)
+    if h is None:
+        return vehicle
+    at = h.vector("at", "length")
+    kind = h.string("kind", "ball", choices=TOWING)
+    h.finish()
+    return _wrap(h, "at", lambda: vehicle.with_hitch(at, kind))
 
 
 def _mesh_options(t: _Table, base: Path) -> tuple[dict[str, Any], Path]:
@@ -538,8 +827,9 @@ def _check_mesh_options(options: dict[str, Any]) -> None:
         raise ParameterError(f"solid = {solid!r} is unknown: use one of {', '.join(SOLIDS)}")
 
 
-def _place(t: _Table, scene: Scene, vehicle: Vehicle) -> None:
-    """The initial state: position of the CG, heading or orientation, velocity, spin."""
+def _state(t: _Table, scene: Scene, vehicle: Vehicle) -> dict[str, Any]:
+    """Scene.add's keywords of the state at t = 0: position of the CG, heading or orientation,
+    velocity, spin, and the driver's inputs."""
     heading = orientation = None
     if t.has("heading") and t.has("orientation"):
         t.fail("orientation", "give heading or orientation, not both")
@@ -587,19 +877,130 @@ def _place(t: _Table, scene: Scene, vehicle: Vehicle) -> None:
     else:
         omega = np.array([0.0, 0.0, t.quantity("yaw_rate", "angular velocity", 0.0)])
     inputs = _inputs(t)
-    _wrap(
-        t,
-        None,
-        lambda: scene.add(
-            vehicle,
-            position=position,
-            heading=heading,
-            orientation=orientation,
-            velocity=velocity,
-            angular_velocity=omega,
-            inputs=inputs,
-        ),
-    )
+    return {
+        "position": position,
+        "heading": heading,
+        "orientation": orientation,
+        "velocity": velocity,
+        "angular_velocity": omega,
+        "inputs": inputs,
+    }
+
+
+def _towing(tables: list[_Table], names: list[str], obstacles: list[str]) -> dict[int, int]:
+    """Each towed vehicle's tower, as indices of ``tables`` (the [[vehicles]] tables, whose
+    vehicles are ``names``), from their ``towed_by``: a name that is no vehicle, a second
+    trailer on one hitch and a cycle are refused at the key."""
+    tower: dict[int, int] = {}
+    for i, t in enumerate(tables):
+        by = t.string("towed_by", None)
+        if by is None:
+            continue
+        if by in obstacles:
+            t.fail("towed_by", f'"{by}" is a fixed obstacle, which tows nothing')
+        if by not in names:
+            t.fail("towed_by", f'no vehicle named "{by}" (the vehicles: {", ".join(names)})')
+        j = names.index(by)
+        if j == i:
+            t.fail("towed_by", "a vehicle cannot tow itself")
+        if j in tower.values():
+            first = names[next(k for k, v in tower.items() if v == j)]
+            t.fail(
+                "towed_by",
+                f'"{by}" already tows "{first}" (one trailer on a hitch): hang this one behind '
+                f'it, towed_by = "{first}"',
+            )
+        tower[i] = j
+    for i in tower:  # each chain ends at a vehicle nobody tows
+        chain = [i]
+        while chain[-1] in tower and tower[chain[-1]] not in chain:
+            chain.append(tower[chain[-1]])
+        if chain[-1] in tower and tower[chain[-1]] == i:
+            loop = " towed by ".join(f'"{names[k]}"' for k in [*chain, i])
+            tables[i].fail(
+                "towed_by",
+                f"the vehicles tow each other in a ring ({loop}): a chain of trailers starts "
+                "at a vehicle that is not towed",
+            )
+    return tower
+
+
+def _coupling(t: _Table, kind: str) -> dict[str, Any]:
+    """A towed vehicle's [vehicles.coupling] (its joint with its tower, of ``kind``): Scene.add's
+    coupling keywords (SI), each value checked by the engine at its key."""
+    c = t.table("coupling", COUPLING_KEYS)
+    c = _Table({}, t.key("coupling"), t.file) if c is None else c
+    options = _joint_options(c)
+    c.finish()
+    _check_joint_options(c, kind, options)
+    return options
+
+
+def _place_all(
+    tables: list[_Table], vehicles: list[Vehicle], tower: dict[int, int], scene: Scene
+) -> None:
+    """Every vehicle in the scene, in the file's order, each towed one right behind the one
+    towing it: a chain (a vehicle nobody tows and its trailers, each towing the next) is one
+    Scene.add(..., trailers=[...], coupling=...)."""
+    if tower and scene.ground is None:
+        tables[min(tower)].fail("towed_by", "towing needs a ground: add a [ground] table")
+    trailer_of = {j: i for i, j in tower.items()}
+    for head in range(len(tables)):
+        if head in tower:
+            continue
+        chain = [head]
+        while chain[-1] in trailer_of:
+            chain.append(trailer_of[chain[-1]])
+        _place_chain([tables[k] for k in chain], [vehicles[k] for k in chain], scene)
+        for k in chain:
+            tables[k].finish()
+
+
+def _place_chain(tables: list[_Table], vehicles: list[Vehicle], scene: Scene) -> None:
+    """A vehicle (tables[0]) and the trailers it tows, each towing the next."""
+    t, vehicle = tables[0], vehicles[0]
+    if vehicle.coupler is not None:
+        t.taken.add("towed_by")
+        t.fail(
+            "towed_by",
+            'a trailer rests on the vehicle towing it: give its name, towed_by = "<the tractor '
+            'or car>"',
+        )
+    if t.has("coupling"):
+        t.fail("coupling", "this is a towed vehicle's joint (with towed_by): give it the trailer")
+    state = _state(t, scene, vehicle)
+    trailers: list[tuple[Vehicle, DriverInputs | None]] = []
+    coupling: dict[str, Any] | None = None
+    for tt, towing, towed in zip(tables[1:], vehicles, vehicles[1:], strict=False):
+        _reject(
+            tt,
+            _STATE_KEYS,
+            f'a towed vehicle starts where "{towing.name}" (towed_by) puts it, moving with it: '
+            "drop this key",
+        )
+        _wrap(
+            tt,
+            "towed_by",
+            lambda a=towing, b=towed: check_coupling(a.name, a.hitch, b.name, b.coupler),
+        )
+        assert towed.coupler is not None
+        options = _coupling(tt, JOINT_OF[towed.coupler.kind])
+        if coupling is not None and options != coupling:
+            tt.fail(
+                "coupling",
+                "the trailers of one chain share their coupling (Scene.add's coupling applies "
+                f'to every joint of the chain): give the same as "{trailers[0][0].name}"',
+            )
+        coupling = options
+        inputs = _inputs(tt)
+        if inputs is not None:  # checked here, to name the trailer's table
+            _wrap(
+                tt,
+                None,
+                lambda i=inputs, v=towed: i.to_core(v.wheels, f"vehicle {v.name!r} inputs"),
+            )
+        trailers.append((towed, inputs))
+    _wrap(t, None, lambda: scene.add(vehicle, **state, trailers=trailers, coupling=coupling))
 
 
 # -- wheels, tyre and driver inputs ----------------------------------------------------------
@@ -615,31 +1016,36 @@ def _axle_pair(t: _Table, k: str, dimension: str | None) -> Any:
     return t.quantity(k, dimension, low="> 0")
 
 
+def _tyre(t: _Table) -> Tyre | None:
+    """The [vehicles.tyre] table, or None."""
+    ty = t.table("tyre", TYRE_KEYS)
+    if ty is None:
+        return None
+    values: dict[str, Any] = {"model": ty.string("model", "linear", choices=TYRE_MODELS)}
+    if ty.has("saturation_angle"):
+        values["saturation_angle"] = ty.quantity("saturation_angle", "angle", low="> 0")
+    if ty.has("cornering"):
+        values["cornering"] = ty.quantity("cornering", "per angle", low="> 0")
+    ty.taken.add("cornering")
+    for k in ("b", "c", "e", "rolling_resistance", "load_sensitivity"):
+        if ty.has(k):
+            values[k] = ty.number(k)
+        ty.taken.add(k)
+    if ty.has("combined"):
+        values["combined"] = ty.string("combined", choices=("braking_priority", "circle"))
+    if ty.has("relaxation_length"):
+        values["relaxation_length"] = ty.quantity("relaxation_length", "length", low="> 0")
+    ty.taken.add("relaxation_length")
+    ty.finish()
+    return _wrap(ty, None, lambda: Tyre(**values))
+
+
 def _wheels(t: _Table, vehicle: Vehicle) -> Vehicle:
     """The vehicle with its [vehicles.wheels] and [vehicles.tyre] tables applied."""
     w = t.table("wheels", WHEEL_KEYS)
-    ty = t.table("tyre", TYRE_KEYS)
-    if w is None and ty is None:
+    tyre = _tyre(t)
+    if w is None and tyre is None:
         return vehicle
-    tyre = None
-    if ty is not None:
-        values: dict[str, Any] = {"model": ty.string("model", "linear", choices=TYRE_MODELS)}
-        if ty.has("saturation_angle"):
-            values["saturation_angle"] = ty.quantity("saturation_angle", "angle", low="> 0")
-        if ty.has("cornering"):
-            values["cornering"] = ty.quantity("cornering", "per angle", low="> 0")
-        ty.taken.add("cornering")
-        for k in ("b", "c", "e", "rolling_resistance", "load_sensitivity"):
-            if ty.has(k):
-                values[k] = ty.number(k)
-            ty.taken.add(k)
-        if ty.has("combined"):
-            values["combined"] = ty.string("combined", choices=("braking_priority", "circle"))
-        if ty.has("relaxation_length"):
-            values["relaxation_length"] = ty.quantity("relaxation_length", "length", low="> 0")
-        ty.taken.add("relaxation_length")
-        ty.finish()
-        tyre = _wrap(ty, None, lambda: Tyre(**values))
     if w is None:
         if vehicle.wheels is None:
             t.fail("tyre", "a tyre needs wheels: add a [vehicles.wheels] table")
@@ -953,20 +1359,13 @@ def _joint(t: _Table, scene: Scene, obstacles: list[str]) -> None:
         else:
             axes = t.vector("axes", None, sizes=(4,))
     t.taken.add("axes")
-    limits = t.table("limits", None)  # angle name = [lower, upper]
-    bounds = {} if limits is None else {a: limits.vector(a, "angle", (2,)) for a in limits.data}
-    resistance = {k: t.quantity(k, dim, 0.0) for k, dim in _JOINT_RESISTANCE}
-    collide = t.boolean("collide", False)
+    options = _joint_options(t)
     name = t.string("name", None)
     if name is not None:
         _wrap(t, "name", lambda: check_name(name, "a joint"))
     t.finish()
     _wrap(t, "kind", lambda: _core.Joint(kind))
-    for a, (lo, hi) in bounds.items():
-        assert limits is not None
-        _wrap(limits, a, lambda a=a, lo=lo, hi=hi: _core.Joint(kind, limits=[(a, lo, hi)]))
-    for k, v in resistance.items():
-        _wrap(t, k, lambda k=k, v=v: _core.Joint(kind, **{k: v}))
+    _check_joint_options(t, kind, options)
     _wrap(
         t,
         None,
@@ -976,12 +1375,31 @@ def _joint(t: _Table, scene: Scene, obstacles: list[str]) -> None:
             at=at,
             kind=kind,
             axes=axes,
-            limits={a: (lo, hi) for a, (lo, hi) in bounds.items()},
-            collide=collide,
             name=name,
-            **resistance,
+            **options,
         ),
     )
+
+
+def _joint_options(t: _Table) -> dict[str, Any]:
+    """A joint's limits, resistance and collide in table t ([[joints]], a trailer's coupling)
+    as Scene.join's keywords (SI)."""
+    limits = t.table("limits", None)  # angle name = [lower, upper]
+    bounds = {} if limits is None else {a: limits.vector(a, "angle", (2,)) for a in limits.data}
+    return {
+        "limits": {a: (float(lo), float(hi)) for a, (lo, hi) in bounds.items()},
+        **{k: t.quantity(k, dim, 0.0) for k, dim in _JOINT_RESISTANCE},
+        "collide": t.boolean("collide", False),
+    }
+
+
+def _check_joint_options(t: _Table, kind: str, options: dict[str, Any]) -> None:
+    """The engine's checks of each limit and resistance for a joint of ``kind``, one key at a
+    time, so a refusal names its key."""
+    for a, (lo, hi) in options["limits"].items():
+        _wrap(t, f"limits.{a}", lambda a=a, lo=lo, hi=hi: _core.Joint(kind, limits=[(a, lo, hi)]))
+    for k, _ in _JOINT_RESISTANCE:
+        _wrap(t, k, lambda k=k: _core.Joint(kind, **{k: options[k]}))
 
 
 def _contact_values(t: _Table, names: list[str]) -> dict[str, Any]:
@@ -1187,12 +1605,11 @@ def loads_scene(
                 "unique",
             )
         names.append(name)
+    towers = _towing(vehicle_tables, names[: len(vehicle_tables)], names[len(vehicle_tables) :])
     scene = _defaults(top.table("contact", CONTACT_KEYS), names)
     scene.ground = _ground(top.table("ground", GROUND_KEYS), base)
-    for v in vehicle_tables:
-        vehicle = _vehicle(v, base)
-        _place(v, scene, vehicle)
-        v.finish()
+    vehicles = [_vehicle(v, base) for v in vehicle_tables]
+    _place_all(vehicle_tables, vehicles, towers, scene)
     for o in obstacle_tables:
         _obstacle(o, scene, base)
     obstacles = [o.name for o in scene.obstacles]

@@ -19,13 +19,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from crashsim.errors import ParameterError
+from crashsim.errors import ParameterError, SceneError
 
-__all__ = ["HITCH_KINDS", "JOINT_OF", "Hitch"]
+__all__ = ["HITCH_KINDS", "JOINT_OF", "Hitch", "check_coupling"]
 
 Array = NDArray[np.float64]
 
 TOWING = ("ball", "fifth_wheel", "turntable")
+"""A towing vehicle's hitch kinds."""
 TOWED = ("coupler", "kingpin", "ring")
 HITCH_KINDS = TOWING + TOWED
 """A towing vehicle's hitch kinds, then a trailer's."""
@@ -66,3 +67,18 @@ class Hitch:
 
     def to_dict(self) -> dict[str, object]:
         return {"kind": self.kind, "point": [float(x) for x in self.point]}
+
+
+def check_coupling(tower: str, hitch: Hitch | None, trailer: str, coupler: Hitch | None) -> None:
+    """SceneError unless vehicle ``trailer``'s ``coupler`` goes on vehicle ``tower``'s
+    ``hitch`` (a kingpin on a fifth wheel, a drawbar's coupler on a ball)."""
+    who = f"{tower!r} towing {trailer!r}"
+    if hitch is None:
+        raise SceneError(f"{who}: {tower!r} has no hitch (vehicle.with_hitch)")
+    if coupler is None:
+        raise SceneError(f"{who}: {trailer!r} has no coupler (build it with Trailer)")
+    if not coupler.mates(hitch):
+        raise SceneError(
+            f"{who}: a {coupler.kind} does not go on a {hitch.kind} (a kingpin goes on a "
+            "fifth wheel, a drawbar's coupler on a ball)"
+        )

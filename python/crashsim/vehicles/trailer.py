@@ -27,12 +27,19 @@ from crashsim.vehicles.vehicle import (
 )
 from crashsim.vehicles.wheels import Tyre, Wheels
 
-__all__ = ["TRAILER_KINDS", "Trailer", "tractor"]
+__all__ = ["TRACTOR_PRESETS", "TRAILER_KINDS", "TRAILER_PRESETS", "Trailer", "tractor"]
 
 TRAILER_KINDS = ("semitrailer", "centre_axle", "drawbar_body")
 """A semitrailer rests on a kingpin over a fifth wheel; a centre-axle trailer (a caravan, a
 cargo trailer, a dolly) on a drawbar's coupler over a tow ball; a drawbar trailer's body on a
 ring over its dolly's turntable (:meth:`Trailer.drawbar`)."""
+
+TRAILER_PRESETS = ("box_van", "caravan")
+"""The combination classes :meth:`Trailer.generate` builds (the others lack a body's
+dimensions)."""
+
+TRACTOR_PRESETS = {"tractor": "tractor_6x4", "tractor_6x4": "tractor_6x4"}
+""":meth:`crashsim.Vehicle.generate`'s tractor presets and the combination class each is."""
 
 # The drawbar of a centre-axle trailer drawn into its mesh: a bar this wide and high (m).
 DRAWBAR_SECTION = 0.12
@@ -187,9 +194,9 @@ class Trailer:
             kind = "centre_axle"
         else:
             raise ParameterError(
-                f"trailer preset {preset!r} has no builder: the presets are 'box_van' and "
-                "'caravan' (the other combination classes lack the dimensions a body needs; "
-                "build them with Trailer.box)"
+                f"trailer preset {preset!r} has no builder: the presets are "
+                f"{' and '.join(repr(p) for p in TRAILER_PRESETS)} (the other combination "
+                "classes lack the dimensions a body needs; build them with Trailer.box)"
             )
         args.update(overrides)
         return Trailer.box(kind, name=name or preset, **args)
@@ -557,11 +564,13 @@ def tractor(
     return vehicle.with_hitch(kingpin, "fifth_wheel")
 
 
-def _generated_tractor(
-    *, mass: float | None, length: float | None, name: str | None
-) -> Vehicle:
-    """Vehicle.generate("tractor"): the tractor_6x4 class's tractor."""
-    return tractor("tractor_6x4", mass=mass, length=length, name=name or "tractor")
+def _generated(preset: str) -> Any:
+    """Vehicle.generate(preset) for a tractor preset: the class's tractor."""
+
+    def build(*, mass: float | None, length: float | None, name: str | None) -> Vehicle:
+        return tractor(TRACTOR_PRESETS[preset], mass=mass, length=length, name=name or "tractor")
+
+    return build
 
 
-COMBINATION_PRESETS.update(tractor=_generated_tractor, tractor_6x4=_generated_tractor)
+COMBINATION_PRESETS.update({preset: _generated(preset) for preset in TRACTOR_PRESETS})

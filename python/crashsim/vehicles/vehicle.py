@@ -731,6 +731,26 @@ class Vehicle:
         through); trailers come from :meth:`crashsim.Trailer.generate`.
         """
         if preset in COMBINATION_PRESETS:
+            others = {
+                "weight_lb": weight_lb,
+                "width": width,
+                "height": height,
+                "wheelbase": wheelbase,
+                "cg": cg,
+                "inertia": inertia,
+                "stiffness": stiffness,
+                "track": track,
+                "tyre": tyre,
+                **shape,
+            }
+            given = [k for k, v in others.items() if v is not None] + (
+                ["resolution"] if resolution != 1.0 else []
+            )
+            if given:
+                raise ParameterError(
+                    f"Vehicle.generate({preset!r}) takes mass, length and name; give "
+                    f"{', '.join(given)} to crashsim.tractor({preset!r}, ...) instead"
+                )
             return COMBINATION_PRESETS[preset](mass=mass, length=length, name=name)
         vc, key = _preset_class(preset)
         table = f"class table ({key})"
