@@ -304,13 +304,13 @@ ERRORS = [
      'generate = "tractor_4x2"'), "vehicles[0].generate", '"tractor_4x2" is not one of "sedan"'),
     ("a trailer neither preset nor kind", PAIR.replace(BOX_VAN, 'trailer = { length = "13 m" }'),
      "vehicles[1].trailer",
-     'give preset (a class\'s trailer: "box_van" or "caravan") or kind ("semitrailer" or '
-     '"centre_axle": every dimension given)'),
+     'give preset (a class\'s trailer: "box_van" or "caravan") or kind ("semitrailer", '
+     '"centre_axle" or "drawbar_body": every dimension given)'),
     ("a trailer both preset and kind", PAIR.replace(BOX_VAN,
      'trailer = { preset = "box_van", kind = "semitrailer" }'), "vehicles[1].trailer.kind",
      "give preset (a class's trailer) or kind (every dimension), not both"),
     ("an unknown trailer kind", _explicit('"semitrailer"', '"dolly"'), "vehicles[1].trailer.kind",
-     '"dolly" is not one of "semitrailer" or "centre_axle"'),
+     '"dolly" is not one of "semitrailer", "centre_axle" or "drawbar_body"'),
     ("an explicit trailer without its mass", PAIR.replace(BOX_VAN, EXPLICIT), "vehicles[1].mass",
      "this key is required and missing"),
     ("an explicit trailer without its axles", _explicit('axles = ["6 m"], '),
@@ -350,9 +350,11 @@ ERRORS = [
     ("cg_height on a trailer", PAIR + 'cg_height = "2 m"\n', "vehicles[1].cg_height",
      "a trailer's CG, inertia and axles come from its builder: give them in its trailer table"),
     ("a hitch of an unknown kind", HEAD + CAR + BALL.replace('"] }', '"], kind = "hook" }')
-     + CARAVAN, "vehicles[0].hitch.kind", '"hook" is not one of "ball" or "fifth_wheel"'),
+     + CARAVAN, "vehicles[0].hitch.kind",
+     '"hook" is not one of "ball", "fifth_wheel" or "turntable"'),
     ("a trailer's kind of hitch", HEAD + CAR + BALL.replace('"] }', '"], kind = "kingpin" }')
-     + CARAVAN, "vehicles[0].hitch.kind", '"kingpin" is not one of "ball" or "fifth_wheel"'),
+     + CARAVAN, "vehicles[0].hitch.kind",
+     '"kingpin" is not one of "ball", "fifth_wheel" or "turntable"'),
     ("a hitch far off the body", HEAD + CAR + 'hitch = { at = ["-5 m", 0, "0.42 m"] }\n'
      + CARAVAN, "vehicles[0].hitch.at",
      "vehicle 'car': its hitch lies 2.55 m outside the body's box (at most 1 m)"),
