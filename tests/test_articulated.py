@@ -399,3 +399,24 @@ def test_the_report_names_a_jackknife_and_a_trailer_swing() -> None:
     scene, _ = pictures.sway_scene(3.1)
     swing = build_report(scene.run(6.0, record_interval=0.01))
     assert [e.kind for e in swing.articulation][:1] == ["trailer_swing"]
+
+
+def test_a_jointed_batch_gives_the_same_bits_on_one_and_two_threads() -> None:
+    from crashsim.batch import run_batch
+    from crashsim.studies.paths import overrides
+
+    scene = cs.Scene(ground=cs.Ground(friction=0.8))
+    brake = cs.DriverInputs(brake=0.4, steer=np.array([[0.0, 0.0], [0.5, 0.05]]))
+    scene.add(_tractor(), (0, 0), heading=0.0, velocity=(15, 0, 0), inputs=brake,
+              trailers=[_semi()])  # fmt: skip
+    arrays = overrides(scene, {"tractor.speed": [12.0, 14.0, 16.0, 18.0]})
+    one = run_batch(scene, arrays, duration=1.0, dt=1e-3, threads=1)
+    two = run_batch(scene, arrays, duration=1.0, dt=1e-3, threads=2)
+    assert one.errors == [] and two.errors == []
+    for key, column in one.columns.items():
+        assert np.array_equal(column, two.columns[key], equal_nan=True), key
+
+
+def test_generate_refuses_what_a_tractor_preset_cannot_take() -> None:
+    with pytest.raises(ParameterError, match="give width to crashsim.tractor"):
+        cs.Vehicle.generate("tractor", width=2.4)
