@@ -170,9 +170,6 @@ class _Placement:
     # tilted to it, which moves its CG a little off (x, y)).
     level: Array | None = None
     anchor: tuple[float, float] | None = None
-    # A vehicle towing a trailer: its hitch (body frame, m) and the trailer's static load on
-    # it (N); its springs are set for the combination.
-    hitch_load: tuple[Array, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -316,8 +313,6 @@ class Scene:
         self._ground: Ground | None = None
         self.ground = ground
         self._joints: list[Joint] = []
-        # Each trailer's name -> the vehicle towing it (Scene.add's trailers).
-        self._towed_by: dict[str, str] = {}
 
     # -- ground and obstacles ------------------------------------------------------------
 
@@ -587,25 +582,7 @@ class Scene:
             axes=tower.orientation,
             **coupling,
         )
-        self._towed_by = {**self._towed_by, trailer.name: tower.vehicle.name}
-        self._carry_hitch_loads(trailer.name)
         return self._placements[-1]
-
-    def _carry_hitch_loads(self, trailer: str) -> None:
-        """Sets the hitch load of the vehicle towing ``trailer`` (its springs are set for the
-        combination), and so on up the chain: a trailer towing another puts more on its own
-        tower (a dolly under a drawbar trailer's body, a B-double's first trailer)."""
-        names = [p.vehicle.name for p in self._placements]
-        while trailer in self._towed_by:
-            tower = self._towed_by[trailer]
-            t, w = names.index(trailer), names.index(tower)
-            towed, below = self._placements[t], self._placements[w]
-            hitch = below.vehicle.hitch
-            if towed.vehicle.wheels is None or hitch is None:
-                return
-            load = towed.vehicle.wheels.coupling_load(towed.vehicle.mass, towed.hitch_load)
-            self._placements[w] = dataclasses.replace(below, hitch_load=(hitch.point, load))
-            trailer = tower
 
     def join(
         self,
@@ -912,9 +889,7 @@ class Scene:
                 inputs = {} if p.inputs is None else p.inputs.to_core(w, f"{what} inputs")
                 try:
                     # the inputs' steering ratio (if given) replaces the wheels'
-                    spec.set_vehicle(
-                        i, **{**w.spec(p.vehicle.mass, hitch_load=p.hitch_load), **inputs}
-                    )
+                    spec.set_vehicle(i, **{**w.spec(p.vehicle.mass), **inputs})
                 except ParameterError as e:  # pragma: no cover - checked when put together
                     raise ParameterError(f"{what}: {e}") from e
         for joint in self._joints:

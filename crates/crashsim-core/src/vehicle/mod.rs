@@ -51,10 +51,11 @@ pub struct VehicleSpec {
     /// m): that point carries its share of the weight at rest ([`static_loads_coupled`]) and
     /// the wheels the rest; None for a vehicle on its own wheels.
     pub coupling: Option<Point>,
-    /// What its own trailer puts on its hitch at rest: the hitch (body frame, m) and the
-    /// static vertical load there (N, down; negative when a tail-heavy trailer lifts it): the
-    /// wheels carry the vehicle's weight and this (their springs set for the combination's
-    /// static loads). None without a trailer.
+    /// What its own trailer puts on its hitch at rest: the hitch (body frame, m; x and y
+    /// used) and the static vertical load there (N, down; negative when a tail-heavy trailer
+    /// lifts it): the wheels carry the vehicle's weight and this. The world sets it (and the
+    /// wheels' static loads) from its joints when a run starts (world/joints.rs); a spec may
+    /// leave it None.
     pub hitch_load: Option<(Point, Real)>,
     /// Wheels that share their load equally (a tandem's or tridem's load-equalising
     /// suspension, a walking beam or a linked leaf set: each side's wheels of the group one

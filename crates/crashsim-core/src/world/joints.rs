@@ -10,6 +10,7 @@ use crate::error::{Error, Result};
 use crate::joint::{drift_rate, project_positions, project_velocities, JointBody, JointSpec};
 use crate::math::{Matrix, Point, Real, Vector};
 use crate::motion::{advance_mechanism, LimitHit, OnGround};
+use crate::vehicle::{wheel_loads, GRAVITY};
 
 /// How far (m) a joint's anchor may lie outside the box of the nearer of its bodies: a tow
 /// ball stands 0.1-0.3 m behind a bumper, a kingpin sits under a trailer's floor.
@@ -113,6 +114,91 @@ impl World {
     /// Number of joints.
     pub fn joint_count(&self) -> usize {
         self.joints.len()
+    }
+
+    /// Sets the static loads of every vehicle in a towing chain for the combination (before
+    /// the bodies are put on the ground): a trailer (a vehicle with a coupling) joined as body
+    /// 2 to a vehicle rests its coupling's share of its weight on the joint's anchor in that
+    /// vehicle, whose wheels then carry its own weight and that share ([`wheel_loads`]: load
+    /// groups, its own coupling, the towed load), from the chain's end forwards, so a dolly
+    /// carries its drawbar trailer's body and passes the rest on. The springs keep their
+    /// rates; their preloads are these loads, so a parked combination stands level whatever
+    /// the trailer's load (a study's mass override included). Vehicles in no towing chain
+    /// keep the loads they were given.
+    pub(super) fn carry_coupling_loads(&mut self) -> Result<()> {
+        // (tower, trailer, the anchor in the tower's frame)
+        let mut tows = Vec::new();
+        for joint in &self.joints {
+            let Some(t) = joint.body2 else { continue };
+            let coupled = self.bodies[t]
+                .vehicle
+                .as_ref()
+                .is_some_and(|v| v.coupling.is_some());
+            if coupled && self.bodies[joint.body1].vehicle.is_some() {
+                tows.push((joint.body1, t, joint.frame1.0));
+            }
+        }
+        if tows.is_empty() {
+            return Ok(());
+        }
+        for (k, &(w, _, _)) in tows.iter().enumerate() {
+            if tows[..k].iter().any(|&(o, _, _)| o == w) {
+                return Err(Error::Parameter(format!(
+                    "body {w} tows two trailers: a vehicle has one hitch (give the second \
+                     trailer to the first)"
+                )));
+            }
+        }
+        // From the chain's end: a vehicle's load is known once its own trailer's is.
+        let mut share: Vec<Option<Real>> = vec![None; self.bodies.len()];
+        let mut done = vec![false; self.bodies.len()];
+        for _ in 0..=tows.len() {
+            for &(w, t, anchor) in &tows {
+                if done[t] || tows.iter().any(|&(o, tt, _)| o == t && !done[tt]) {
+                    continue;
+                }
+                // The trailer's loads with what its own trailer puts on it.
+                let towed_t = tows
+                    .iter()
+                    .find(|&&(o, _, _)| o == t)
+                    .map(|&(_, tt, a)| ([a.x, a.y], share[tt].expect("its trailer first")));
+                share[t] = Some(self.set_static_loads(t, towed_t)?);
+                done[t] = true;
+                if !tows.iter().any(|&(_, tt, _)| tt == w) {
+                    // the chain's head: its wheels carry the first trailer's share
+                    let head = Some(([anchor.x, anchor.y], share[t].expect("just set")));
+                    self.set_static_loads(w, head)?;
+                    done[w] = true;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Sets body `i`'s wheels' static loads for its weight, its coupling and `towed` (the
+    /// point in its frame and the load of its own trailer), and its hitch load; returns the
+    /// load on its coupling (0 without one).
+    fn set_static_loads(&mut self, i: usize, towed: Option<([Real; 2], Real)>) -> Result<Real> {
+        let wb = &mut self.bodies[i];
+        let mass = wb.body.props().mass();
+        let spec = wb.vehicle.as_mut().expect("a vehicle in a towing chain");
+        let spec = Arc::make_mut(spec);
+        let xy: Vec<[Real; 2]> = spec
+            .wheels
+            .iter()
+            .map(|w| [w.center.x, w.center.y])
+            .collect();
+        let coupling = spec.coupling.map(|c| [c.x, c.y]);
+        let (loads, share) = wheel_loads(&xy, &spec.load_groups, mass * GRAVITY, coupling, towed)
+            .map_err(|e| match e {
+            Error::Parameter(m) => Error::Parameter(format!("body {i}, towing: {m}")),
+            other => other,
+        })?;
+        for (w, f) in spec.wheels.iter_mut().zip(loads) {
+            w.static_load = f;
+        }
+        spec.hitch_load = towed.map(|(p, f)| (Point::new(p[0], p[1], 0.0), f));
+        Ok(share)
     }
 
     /// Groups the jointed bodies into mechanisms (at the first run, after the bodies were

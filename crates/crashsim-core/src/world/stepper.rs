@@ -203,6 +203,9 @@ impl World {
                 self.check_stiffness(p.body1, p.body2, &p.params)?;
             }
             self.check_initial_overlaps()?;
+            if self.ground.is_some() {
+                self.carry_coupling_loads()?;
+            }
             self.start_motion()?;
             self.build_mechanisms()?;
             self.started = true;
