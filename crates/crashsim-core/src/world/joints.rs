@@ -121,10 +121,10 @@ impl World {
     /// 2 to a vehicle rests its coupling's share of its weight on the joint's anchor in that
     /// vehicle, whose wheels then carry its own weight and that share ([`wheel_loads`]: load
     /// groups, its own coupling, the towed load), from the chain's end forwards, so a dolly
-    /// carries its drawbar trailer's body and passes the rest on. The springs keep their
-    /// rates; their preloads are these loads, so a parked combination stands level whatever
-    /// the trailer's load (a study's mass override included). Vehicles in no towing chain
-    /// keep the loads they were given.
+    /// carries its drawbar trailer's body and passes the rest on. The springs' preloads are
+    /// these loads, so a parked combination stands level whatever
+    /// the trailer's load (a study's mass override included); each spring keeps its natural
+    /// frequency and damping ratio. Vehicles in no towing chain keep what they were given.
     pub(super) fn carry_coupling_loads(&mut self) -> Result<()> {
         // (tower, trailer, the anchor in the tower's frame)
         let mut tows = Vec::new();
@@ -194,7 +194,13 @@ impl World {
             Error::Parameter(m) => Error::Parameter(format!("body {i}, towing: {m}")),
             other => other,
         })?;
+        // Each spring keeps its natural frequency and damping ratio with its new load (rate
+        // and damping in proportion, as a batch's mass override scales them): a tractor's
+        // rear springs are a laden tractor's, not its own weight's.
         for (w, f) in spec.wheels.iter_mut().zip(loads) {
+            let ratio = f / w.static_load;
+            w.spring_rate *= ratio;
+            w.damping *= ratio;
             w.static_load = f;
         }
         spec.hitch_load = towed.map(|(p, f)| (Point::new(p[0], p[1], 0.0), f));
