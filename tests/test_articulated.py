@@ -443,3 +443,36 @@ def test_a_study_over_the_trailers_load_keeps_the_tractor_level() -> None:
         # the CG 4.2 m ahead of the axle, the kingpin 10 m ahead of it
         assert kingpin == pytest.approx(mass * G * 4.2 / 10.0, rel=1e-3)
         assert batch.columns["tractor.final_x"][k] == result.trajectory("tractor").position[-1, 0]
+
+
+def test_a_trailer_from_its_own_mesh_couples_and_carries_as_statics_says() -> None:
+    # A tanker's barrel (a closed cylinder mesh, 12 m, 2.2 m across, 1.3 m above the road)
+    # made a semitrailer: its kingpin 1.5 m behind its front end at the fifth wheel's height,
+    # a tridem 9.0-11.6 m behind its front end.
+    import trimesh
+
+    barrel = trimesh.creation.cylinder(radius=1.1, height=12.0, sections=48)
+    barrel.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 2, [0, 1, 0]))
+    barrel.apply_translation([0.0, 0.0, 1.3 + 1.1])
+    mass = 30000.0
+    body = cs.Vehicle(barrel, mass, [0.0, 0.0, 2.4], np.diag([1.8e4, 3.8e5, 3.8e5]), name="tank")
+    front = 6.0
+    tank = cs.Trailer.from_vehicle(
+        body,
+        "semitrailer",
+        coupler_at=[front - 1.5, 0.0, 1.2],
+        axles=[front - 9.0, front - 10.3, front - 11.6],
+        track=2.0,
+        radius=0.5,
+    )
+    assert tank.coupler is not None and tank.coupler.kind == "kingpin"
+    assert len(tank.wheels.load_groups) == 2  # the tridem's two sides
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(_tractor(), (0, 0), heading=0.0, trailers=[tank])
+    kingpin = scene.run(1.0).joints["tractor-tank"].force[-1, 2]
+    # moments about the tridem's middle (10.3 m behind the front; the CG 6.0 m behind it)
+    assert kingpin == pytest.approx(mass * G * (10.3 - 6.0) / (10.3 - 1.5), rel=1e-2)
+    with pytest.raises(ParameterError, match="outside the body"):
+        cs.Trailer.from_vehicle(
+            body, "semitrailer", coupler_at=[9.0, 0, 1.2], axles=[-3.0], track=2.0, radius=0.5
+        )

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 import trimesh
+from numpy.typing import ArrayLike
 
 from crashsim.errors import ParameterError
 from crashsim.vehicles.coupling import Hitch
@@ -202,6 +203,71 @@ class Trailer:
         return Trailer.box(kind, name=name or preset, **args)
 
     @staticmethod
+    def from_vehicle(
+        vehicle: Vehicle,
+        kind: str,
+        *,
+        coupler_at: ArrayLike,
+        axles: Sequence[float],
+        track: float,
+        radius: float,
+        tyre: Tyre | dict[str, Any] | None = None,
+        natural_frequency: float | None = None,
+        damping_ratio: float | None = None,
+        abs: bool = True,
+        load_sharing: bool = True,
+    ) -> Vehicle:
+        """Any vehicle made a trailer (a new Vehicle): its own mesh, mass, CG and inertia
+        (:meth:`crashsim.Vehicle.from_mesh`, standing on the model frame's ground z = 0),
+        ``kind`` as :meth:`box`'s, its coupling ``coupler_at`` (a model-frame point, m: the
+        kingpin's lock, the drawbar's eye or the turntable's ring; within 1 m of the body),
+        its ``axles`` (each axle's model-frame x, m), ``track`` and tyre ``radius`` (m), the
+        wheels unsteered on the model frame's centre line, their springs, tyre and ABS, and
+        tandems and tridems sharing their load (``load_sharing``). The coupling carries its
+        share of the weight at rest (:meth:`Wheels.custom`'s ``coupling``)."""
+        if kind not in TRAILER_KINDS:
+            raise ParameterError(f"trailer kind {kind!r} is unknown: give one of {TRAILER_KINDS}")
+        xs = [float(x) for x in axles]
+        if not xs or not all(np.isfinite(xs)):
+            raise ParameterError(
+                f"a trailer needs at least one axle: axles must be model-frame x positions "
+                f"(m), got {axles!r}"
+            )
+        try:
+            point = np.asarray(coupler_at, dtype=np.float64).reshape(3)
+        except (TypeError, ValueError) as e:
+            raise ParameterError(
+                f"coupler_at must be a model-frame point (m), got {coupler_at!r}"
+            ) from e
+        cg = np.asarray(vehicle.cg, dtype=np.float64)
+        r = _positive(radius, "radius")
+        axle_names = [f"axle{k + 1}" for k in range(len(xs))]
+        centers, flags, names = _axle_wheels(
+            xs, _positive(track, "track"), r, cg, [False] * len(xs), axle_names
+        )
+        wheels = Wheels.custom(
+            centers,
+            r,
+            flags,
+            names=names,
+            natural_frequency=natural_frequency,
+            damping_ratio=damping_ratio,
+            tyre=tyre,
+            abs=abs,
+            coupling=point - cg,
+            load_groups=_load_groups(xs, axle_names) if load_sharing else (),
+        )
+        coupler = Hitch.at(
+            {"semitrailer": "kingpin", "centre_axle": "coupler", "drawbar_body": "ring"}[kind],
+            point - cg,
+            towing=False,
+        )
+        vehicle._check_reach(coupler, "coupler")
+        trailer = vehicle.with_wheels(wheels)
+        trailer._coupler = coupler
+        return trailer
+
+    @staticmethod
     def drawbar(
         *,
         length: float,
@@ -362,33 +428,18 @@ class Trailer:
             name=name,
             sources={"cg": "user", "inertia": "uniform box"},
         )
-        r = _positive(radius, "radius")
-        axle_names = [f"axle{k + 1}" for k in range(len(axles_x))]
-        centers, flags, names = _axle_wheels(
-            axles_x,
-            _positive(track, "track"),
-            r,
-            cg,
-            [False] * len(axles_x),
-            axle_names,
-        )
-        wheels = Wheels.custom(
-            centers,
-            r,
-            flags,
-            names=names,
+        vehicle = Trailer.from_vehicle(
+            vehicle,
+            kind,
+            coupler_at=point,
+            axles=axles_x,
+            track=track,
+            radius=radius,
+            tyre=tyre,
             natural_frequency=natural_frequency,
             damping_ratio=damping_ratio,
-            tyre=tyre,
             abs=abs,
-            coupling=point - cg,
-            load_groups=_load_groups(axles_x, axle_names) if load_sharing else (),
-        )
-        vehicle = vehicle.with_wheels(wheels)
-        vehicle._coupler = Hitch.at(
-            {"semitrailer": "kingpin", "centre_axle": "coupler", "drawbar_body": "ring"}[kind],
-            point - cg,
-            towing=False,
+            load_sharing=load_sharing,
         )
         return vehicle
 
