@@ -35,7 +35,6 @@ __all__ = [
     "shapes_overlap",
     "solid_properties",
     "static_loads",
-    "static_loads_coupled",
     "suspension",
     "wheel_loads",
 ]
@@ -126,16 +125,6 @@ def static_loads(
     """Static loads (N) of wheels at body-frame (x, y) positions (m from the CG) carrying
     weight (N) on level ground (each axle its share), and with ``towed`` ((x, y), N) the load
     a trailer puts on the hitch there."""
-
-def static_loads_coupled(
-    xy: Sequence[tuple[float, float]],
-    weight: float,
-    coupling: tuple[float, float],
-    towed: tuple[tuple[float, float], float] | None = None,
-) -> tuple[list[float], float]:
-    """Static loads (N) of wheels at body-frame (x, y) positions and of a coupling at
-    ``coupling`` (x, y) (a trailer's hitch coupler or kingpin) carrying weight N together:
-    the wheels' loads and the coupling's."""
 
 def wheel_loads(
     xy: Sequence[tuple[float, float]],

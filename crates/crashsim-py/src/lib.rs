@@ -591,20 +591,6 @@ fn static_loads<'py>(
     Ok(Array1::from_vec(loads).into_pyarray(py))
 }
 
-/// Static loads (N) of wheels at body-frame (x, y) positions and of a coupling at `coupling`
-/// (x, y) (a trailer's hitch coupler or kingpin) carrying `weight` N together (and `towed`,
-/// ((x, y), N), a trailer it tows in turn): the wheels' loads and the coupling's.
-#[pyfunction]
-#[pyo3(signature = (xy, weight, coupling, towed = None))]
-fn static_loads_coupled(
-    xy: Vec<[f64; 2]>,
-    weight: f64,
-    coupling: [f64; 2],
-    towed: Option<([f64; 2], f64)>,
-) -> PyResult<(Vec<f64>, f64)> {
-    core::vehicle::static_loads_coupled(&xy, weight, coupling, towed).map_err(errors::to_py)
-}
-
 /// Static loads (N) of wheels at body-frame (x, y) positions carrying `weight` N at rest
 /// with `groups` of wheels sharing their load (index lists), a trailer's `coupling` (x, y)
 /// and a `towed` load ((x, y), N) on its hitch: each wheel's load and the coupling's.
@@ -689,7 +675,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(free_motion, m)?)?;
     m.add_function(wrap_pyfunction!(solid_properties, m)?)?;
     m.add_function(wrap_pyfunction!(static_loads, m)?)?;
-    m.add_function(wrap_pyfunction!(static_loads_coupled, m)?)?;
     m.add_function(wrap_pyfunction!(wheel_loads, m)?)?;
     m.add_function(wrap_pyfunction!(suspension, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics_defaults, m)?)?;

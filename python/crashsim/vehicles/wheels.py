@@ -374,7 +374,7 @@ class Wheels:
         ``anti_roll`` bars as (left wheel, right wheel, roll stiffness N m/rad); the steering
         linkage and ABS as for the constructor. ``coupling``: a trailer's coupler or kingpin
         (body frame, m), where it rests on its tractor: that point carries its share of the
-        weight at rest and at least 2 wheels the rest (the engine's static_loads_coupled).
+        weight at rest and at least 2 wheels the rest (the engine's wheel_loads).
         ``load_groups``: sets of wheels (names or indices) that share their load equally, a
         tandem's or tridem's load-equalising suspension (each side's wheels one set): their
         springs act on the set's mean travel, each wheel on the ground carries an equal share

@@ -277,49 +277,6 @@ impl SceneSpec {
         Ok(self.joints.len() - 1)
     }
 
-    /// Adds a joint of `kind` made where the bodies stand at t = 0: its anchor at the world
-    /// point `anchor` (m) with its axes `axes` (joint frame -> world), each body's frame of
-    /// it computed from the body's initial pose (`body2` None: the world). Limits,
-    /// stiffness, damping, friction and collide as given on `template` (its frames are
-    /// replaced). Returns its index.
-    pub fn join(
-        &mut self,
-        template: JointSpec,
-        anchor: crate::math::Point,
-        axes: crate::math::Rotation,
-    ) -> Result<usize> {
-        let pose = |b: usize| -> Result<Isometry> {
-            match self.bodies.get(b).map(|body| &body.motion) {
-                Some(BodyMotion::Moving { state, .. }) => Ok(Isometry::from_parts(
-                    state.position.coords.into(),
-                    state.orientation,
-                )),
-                Some(BodyMotion::Fixed { .. }) => Err(Error::Parameter(format!(
-                    "body {b} ({}) is a fixed obstacle: join the body to the world instead",
-                    self.bodies[b].name
-                ))),
-                None => Err(Error::Parameter(format!(
-                    "body {b} does not exist (the scene has {} bodies)",
-                    self.bodies.len()
-                ))),
-            }
-        };
-        crate::error::require_finite_vector("the joint's anchor", &anchor.coords)?;
-        let in_body = |pose: Isometry| {
-            (
-                pose.inverse_transform_point(&anchor),
-                pose.rotation.inverse() * axes,
-            )
-        };
-        let mut joint = template;
-        joint.frame1 = in_body(pose(joint.body1)?);
-        joint.frame2 = match joint.body2 {
-            Some(b) => in_body(pose(b)?),
-            None => (anchor, axes),
-        };
-        self.add_joint(joint)
-    }
-
     /// Indices of the moving bodies (the vehicles), in order.
     pub fn moving(&self) -> Vec<usize> {
         (0..self.bodies.len())
