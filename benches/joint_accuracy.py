@@ -16,6 +16,7 @@ import time
 
 import crashsim as cs
 import numpy as np
+from crashsim.result import rotation_matrix
 
 G = 9.80665
 HIGH = 30.0
@@ -45,16 +46,7 @@ def energy(result: cs.Result, n: int) -> np.ndarray:
     for k in range(n):
         tr = result.trajectory(f"rod{k}")
         v = result.scene.vehicles[k]
-        w, x, y, z = tr.orientation.T
-        # world inertia: R I R^T, from each sample's rotation
-        r = np.stack(
-            [
-                np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
-                np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
-                np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1),
-            ],
-            axis=1,
-        )
+        r = rotation_matrix(tr.orientation)  # (k, 3, 3)
         inertia = r @ v.inertia @ np.transpose(r, (0, 2, 1))
         om = tr.angular_velocity
         rot = 0.5 * np.einsum("ki,kij,kj->k", om, inertia, om)
@@ -92,8 +84,7 @@ def main() -> None:
         ends = []
         for k in range(n):
             tr = result.trajectory(f"rod{k}")
-            w, x, y, z = tr.orientation.T
-            ax = np.stack([1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)], -1)
+            ax = rotation_matrix(tr.orientation)[:, :, 0]  # the body x axis, world
             ends.append((tr.position - ax * length / 2, tr.position + ax * length / 2))
         gap = float(np.linalg.norm(ends[0][0] - [0, 0, HIGH], axis=1).max())
         for k in range(1, n):

@@ -11,6 +11,7 @@ import crashsim as cs
 import numpy as np
 import pytest
 from crashsim.errors import ParameterError, SceneError
+from crashsim.result import rotation_matrix
 
 G = 9.80665
 L1, F5, L2 = 3.8, 0.3, 10.0  # tractor wheelbase, fifth-wheel lead, kingpin to trailer axle (m)
@@ -65,15 +66,7 @@ def _circle(points: np.ndarray) -> tuple[float, np.ndarray]:
 def _path(result: cs.Result, name: str, body_point: np.ndarray) -> np.ndarray:
     """A body point's world path (k, 3)."""
     tr = result.trajectory(name)
-    w, x, y, z = tr.orientation.T
-    r = np.stack(
-        [
-            np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
-            np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
-            np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1),
-        ],
-        axis=1,
-    )
+    r = rotation_matrix(tr.orientation)  # (k, 3, 3)
     return tr.position + r @ body_point
 
 

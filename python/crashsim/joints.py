@@ -92,7 +92,7 @@ def make_joint(
     kind: str,
     at: ArrayLike,
     axes: ArrayLike,
-    poses: tuple[tuple[Array, Array], tuple[Array, Array] | None],
+    frames: tuple[tuple[ArrayLike, ArrayLike], tuple[ArrayLike, ArrayLike]],
     limits: Mapping[str, tuple[float, float]] | None,
     stiffness: float,
     damping: float,
@@ -126,48 +126,23 @@ def make_joint(
         )
     except ParameterError as err:
         raise ParameterError(f"joint {name!r}: {err}") from err
-    anchor = _vector(at, 3, f"joint {name!r}: at")
-    q = _vector(axes, 4, f"joint {name!r}: axes (a quaternion w, x, y, z)")
-    first, second = poses
-    world = (anchor, q)
+    anchor, q = checked_frame(name, at, axes)
+    in_bodies = tuple(
+        (_vector(p, 3, f"joint {name!r}: anchor"), _vector(r, 4, f"joint {name!r}: axes"))
+        for p, r in frames
+    )
     return Joint(
-        name=name,
-        vehicles=vehicles,
-        at=anchor,
-        axes=q,
-        frames=(_in_body(world, *first), world if second is None else _in_body(world, *second)),
-        core=core,
+        name=name, vehicles=vehicles, at=anchor, axes=q, frames=in_bodies, core=core
     )
 
 
-def _in_body(
-    frame: tuple[Array, Array], position: Array, orientation: Array
-) -> tuple[Array, Array]:
-    """A world frame (anchor, axes quaternion) in the frame of a body at ``position`` with
-    ``orientation`` (quaternion w, x, y, z, body -> world)."""
-    anchor, axes = frame
-    w, x, y, z = (float(c) for c in orientation)
-    rot = np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-        ]
+def checked_frame(name: str, at: ArrayLike, axes: ArrayLike) -> tuple[Array, Array]:
+    """A joint's anchor (3 finite numbers, m) and axes (a quaternion), ParameterError naming
+    the joint otherwise."""
+    return (
+        _vector(at, 3, f"joint {name!r}: at"),
+        _vector(axes, 4, f"joint {name!r}: axes (a quaternion w, x, y, z)"),
     )
-    local = rot.T @ (anchor - np.asarray(position, dtype=np.float64))
-    aw, ax, ay, az = (float(c) for c in axes)
-    # conj(orientation) * axes
-    q = np.array(
-        [
-            w * aw + x * ax + y * ay + z * az,
-            w * ax - x * aw - y * az + z * ay,
-            w * ay + x * az - y * aw - z * ax,
-            w * az - x * ay + y * ax - z * aw,
-        ]
-    )
-    local.setflags(write=False)
-    q.setflags(write=False)
-    return local, q
 
 
 def check_new(joints: list[Joint], joint: Joint) -> None:

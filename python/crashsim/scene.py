@@ -28,8 +28,8 @@ from crashsim import _core
 from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import InitialOverlapError, ParameterError, SceneError, SimulationError
-from crashsim.joints import Joint, check_new, make_joint
-from crashsim.result import Result
+from crashsim.joints import Joint, check_new, checked_frame, make_joint
+from crashsim.result import Result, rotation_matrix
 from crashsim.vehicles.coupling import JOINT_OF, check_coupling
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.stiffness import FACES
@@ -101,16 +101,13 @@ def _quaternion_from_matrix(r: Array) -> Array:
     return np.asarray(q, dtype=np.float64)
 
 
-def _rotation_matrix(q: ArrayLike) -> Array:
-    """The rotation matrix (body -> world) of a unit quaternion (w, x, y, z)."""
-    w, x, y, z = (float(c) for c in np.asarray(q, dtype=np.float64))
-    return np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-        ]
-    )
+def _in_body(frame: tuple[Array, Array], placement: _Placement) -> tuple[Array, Array]:
+    """A world frame (anchor, m; axes, quaternion w, x, y, z) in the body frame of a placed
+    vehicle: what a joint keeps of it."""
+    anchor, axes = frame
+    rot = rotation_matrix(placement.orientation)
+    local = _quaternion_from_matrix(rot.T @ rotation_matrix(axes))
+    return rot.T @ (anchor - placement.position), local
 
 
 def _orientation(heading: float | None, orientation: ArrayLike | None) -> Any:
@@ -363,8 +360,6 @@ class Scene:
                 level=level,
                 anchor=(x, y),
             )
-        from crashsim.result import rotation_matrix
-
         yaw = rotation_matrix(level)
         feet = np.array([x, y]) + wheels.contact_points()[:, :2] @ yaw[:2, :2].T
         heights = []
@@ -550,7 +545,7 @@ class Scene:
         check_coupling(tower.vehicle.name, hitch, trailer.name, coupler)
         assert hitch is not None and coupler is not None
         who = f"{tower.vehicle.name!r} towing {trailer.name!r}"
-        rot = _rotation_matrix(tower.orientation)
+        rot = rotation_matrix(tower.orientation)
         at = tower.position + rot @ hitch.point
         position = at - rot @ coupler.point
         if self._ground is not None and trailer.wheels is not None:
@@ -625,15 +620,17 @@ class Scene:
                 _check_state(np.zeros(3), q, np.zeros(3), np.zeros(3))
             except ParameterError as e:
                 raise ParameterError(f"joint {label!r}: axes: {e}") from e
+        anchor, axes_q = checked_frame(label, at, q)
+        world = (anchor, axes_q)
         joint = make_joint(
             label,
             names,
             kind=kind,
-            at=at,
-            axes=q,
-            poses=(
-                (first.position, first.orientation),
-                None if second is None else (second.position, second.orientation),
+            at=anchor,
+            axes=axes_q,
+            frames=(
+                _in_body(world, first),
+                world if second is None else _in_body(world, second),
             ),
             limits=limits,
             stiffness=stiffness,
@@ -963,8 +960,6 @@ class Scene:
         ground = self._ground
         if ground is None or ground.terrain is None:
             return
-        from crashsim.result import rotation_matrix
-
         r = rotation_matrix(p.orientation)
         points = p.position + wheels.contact_points() @ r.T
         for k in ground.holes(points):

@@ -54,6 +54,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim.errors import StudyError
+from crashsim.result import rotation_matrix
 
 if TYPE_CHECKING:
     from crashsim.scene import Scene
@@ -441,7 +442,7 @@ def _move_combinations(
                 pj = out["position"][i, j] if "position" in out else p0
                 qj = out["orientation"][i, j] if "orientation" in out else q0
                 turn = _qmul(qj, np.array([q0[0], -q0[1], -q0[2], -q0[3]]))  # qj q0^-1
-                rot = _rotation(turn)
+                rot = rotation_matrix(turn)
                 pk = pj + rot @ (base["position"][k] - p0)
                 if "position" in out:
                     out["position"][i, k] = pk
@@ -458,18 +459,6 @@ def _move_combinations(
                         out["velocity"][i, k] = vj + np.cross(wj, pk - pj)
                     if "angular_velocity" in out:
                         out["angular_velocity"][i, k] = wj
-
-
-def _rotation(q: Array) -> Array:
-    """The rotation matrix of a unit quaternion (w, x, y, z)."""
-    w, x, y, z = (float(c) for c in q)
-    return np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-        ]
-    )
 
 
 def _pair_value(value: Any) -> float:
