@@ -236,15 +236,16 @@ impl World {
                 root[a.max(b)] = a.min(b);
             }
         }
+        // Every body's set, once (each a root: its set's smallest index).
+        let set: Vec<usize> = (0..self.bodies.len()).map(|i| find(&mut root, i)).collect();
         let mut by_root: Vec<Option<usize>> = vec![None; self.bodies.len()];
         for (id, joint) in self.joints.iter().enumerate() {
-            let r = find(&mut root, joint.body1);
+            let r = set[joint.body1];
             let g = match by_root[r] {
                 Some(g) => g,
                 None => {
-                    let members: Vec<usize> = (0..self.bodies.len())
-                        .filter(|&i| find(&mut root.clone(), i) == r)
-                        .collect();
+                    let members: Vec<usize> =
+                        (0..self.bodies.len()).filter(|&i| set[i] == r).collect();
                     self.mechanisms.push(Mechanism {
                         members,
                         joints: Vec::new(),
