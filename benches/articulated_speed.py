@@ -24,7 +24,7 @@ scaling on 2 cores.
    run once and checked: no contact and no impact in any of them.
 2. **Kinds**: the towed pair with each kind of joint at the bar (spherical, revolute about
    the vertical, fifth wheel, fixed) against the free pair, runs as in 1: a spherical
-   joint's angles (a rotation vector) against the others' (atan2), and 3 to 6 rows.
+   joint's angles (a swing and a twist) against the others' (atan2), and 3 to 6 rows.
 3. **Batch** (`crashsim.batch.run_batch`, no history): the towed pair and the free pair over
    n variants of the ground's tyre friction (0.5-1.0, drawn with a seed: an override that
    keeps the joint's frames where they are; a position or velocity override moving one
@@ -163,7 +163,7 @@ def runs(repeats: int, duration: float, with_chain: bool) -> list[str]:
 def kinds(repeats: int, duration: float) -> list[str]:
     """The towed pair with each kind of joint (the hitch's axes the car's: a revolute one
     turns about the vertical), against the free pair, interleaved: what the kind's rows and
-    angles cost (a spherical joint's angles are a rotation vector, the others' atan2)."""
+    angles cost (a spherical joint's angles are a swing and a twist, the others' atan2)."""
     scenes = {"free": train(2, False)}
     for kind in ("spherical", "revolute", "fifth_wheel", "fixed"):
         scenes[kind] = train(2, True, kind)

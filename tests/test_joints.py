@@ -69,6 +69,27 @@ def test_a_limit_stops_the_swing_and_is_an_event() -> None:
     assert np.abs(angle[result.t > first.time]).max() < limit + 1e-3
 
 
+def test_a_ball_joints_cone_stops_the_swing_and_records_swing_and_twist() -> None:
+    # Released at 40 deg from the vertical on a ball joint whose cone (20 deg) is centred on
+    # where it was made: gravity swings it 20 deg towards the vertical, where the cone stops it.
+    cone = math.radians(20.0)
+    scene = _pendulum(math.radians(40.0))
+    scene._joints = []
+    scene.join("rod", at=(0.0, 0.0, HIGH), kind="spherical", limits={"swing": (0.0, cone)})
+    result = scene.run(1.0)
+    record = result.joints["rod-world"]
+    assert record.kind == "spherical" and record.angle_names == ("swing", "twist")
+    first = result.joint_events[0]
+    assert (first.joint, first.angle) == ("rod-world", "swing") and first.rate > 0.0
+    swing = record.angle("swing")
+    # The swing is the rod's turn from where it was made (a planar swing: no twist).
+    c = result.trajectory("rod").position
+    turned = math.radians(40.0) - np.arctan2(c[:, 0], HIGH - c[:, 2])
+    assert np.allclose(swing, np.abs(turned), atol=1e-6)
+    assert swing.max() < cone + 1e-3 and swing.max() > cone - 1e-3
+    assert np.abs(record.angle("twist")).max() < 1e-9
+
+
 def _towed(brake: float = 0.3) -> tuple[cs.Scene, float]:
     car = cs.Vehicle.generate("sedan", name="car")
     towed = cs.Vehicle.generate("sedan", name="towed")
@@ -113,6 +134,7 @@ def test_joined_vehicles_form_no_pair_unless_they_collide() -> None:
         ({"kind": "weld"}, ParameterError, "kind 'weld' is unknown"),
         ({"kind": "revolute", "limits": {"pitch": (-1, 1)}}, ParameterError, 'no angle "pitch"'),
         ({"kind": "spherical", "limits": {"angle": (-1, 1)}}, ParameterError, "no angle"),
+        ({"kind": "spherical", "limits": {"swing": (-0.1, 1)}}, ParameterError, "never negative"),
         ({"stiffness": -5.0}, ParameterError, "stiffness"),
         ({"kind": "revolute", "limits": {"angle": (0.5, 1)}}, ParameterError, "lower limit"),
         ({"at": (0, 0)}, ParameterError, "3 finite numbers"),

@@ -161,9 +161,10 @@ def check_new(joints: list[Joint], joint: Joint) -> None:
 class JointRecord(NamedTuple):
     """One joint over a run (world frame, SI): ``name``, ``kind``, ``vehicles``, ``angle_names``;
     at the sample times ``t`` (k,): ``angles`` (k, 3) the kind's angles (rad, in the order of
-    ``angle_names``; a spherical joint's rotation vector of the second body's frame in the
-    first's), ``force`` (k, 3) the force of the first vehicle on the second through the joint
-    (N; the coupling force), ``torque`` (k, 3) its torque about the anchor (N m)."""
+    ``angle_names``: revolute ``angle``, fifth wheel ``articulation`` and ``pitch``, spherical
+    ``swing`` and ``twist``; the rest 0), ``force`` (k, 3) the force of the first vehicle on
+    the second through the joint (N; the coupling force), ``torque`` (k, 3) its torque about
+    the anchor (N m)."""
 
     name: str
     kind: str

@@ -264,6 +264,132 @@ fn a_limit_stops_the_hinge_there_and_is_reported() {
     );
 }
 
+/// A 1 m rod hanging from the world on a ball joint at its top, tilted `tilt` rad towards +x
+/// and turning at `w` (rad/s, world) about the pivot: the joint's z along the rod in the rod
+/// (F1) and straight down in the world (F2), so the swing starts at `tilt`.
+fn hanging_on_a_ball(limits: Vec<AngleLimit>, tilt: Real, w: Vector) -> (World, MassProperties) {
+    let mut world = World::new();
+    world.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+    let (shape, props) = rod(1.0, 0.05, 5.0);
+    let along = Vector::new(tilt.sin(), 0.0, -tilt.cos()) * 0.5;
+    let mut s = at(along.x, HEIGHT + along.z, PI / 2.0 - tilt);
+    s.angular_velocity = w;
+    // The pivot at rest: v = w x (CG - pivot).
+    s.velocity = w.cross(&along);
+    world.add_body(shape, props.clone(), &s).unwrap();
+    let down = Rotation::from_axis_angle(&Vector::y_axis(), PI);
+    let mut j = JointSpec::new(
+        JointKind::Spherical,
+        0,
+        None,
+        (
+            Point::new(-0.5, 0.0, 0.0),
+            Rotation::from_axis_angle(&Vector::y_axis(), PI / 2.0),
+        ),
+        (Point::new(0.0, 0.0, HEIGHT), down),
+    );
+    j.limits = limits;
+    world.add_joint(j).unwrap();
+    (world, props)
+}
+
+#[test]
+fn a_ball_joints_cone_holds_the_swing_and_keeps_the_spin_about_its_axis() {
+    // Tilted 10 deg, swinging out at 3 rad/s and turning about the vertical at 4 rad/s, the rod
+    // would swing out past 60 deg; the cone allows 30 deg. Each stop is an inelastic impulse
+    // about the swing axis (across the vertical), so the energy only falls and the angular
+    // momentum about the vertical through the pivot (which neither gravity nor the pivot's
+    // force changes) is kept but for the stop's lateness: a limit is found at the end of the
+    // step that passed it, and putting the rod back on the cone moves its CG without its
+    // velocity, an error of order (rate x step): measured 0.22 % at 1 ms, 0.008 % at 0.1 ms.
+    let cone = 30.0_f64.to_radians();
+    let limit = AngleLimit {
+        angle: 0,
+        lower: 0.0,
+        upper: cone,
+    };
+    let pivot = Point::new(0.0, 0.0, HEIGHT);
+    for (dt, kept) in [(DT, 3e-3), (DT / 10.0, 3e-4)] {
+        let (mut world, props) = hanging_on_a_ball(
+            vec![limit],
+            10.0_f64.to_radians(),
+            Vector::new(0.0, -3.0, 4.0),
+        );
+        let out = world.run(1.5, dt).unwrap();
+        let first = out.joint_events.first().expect("no limit hit");
+        assert_eq!((first.joint, first.limit), (0, 0));
+        assert!(first.rate > 0.0, "{first:?}");
+        let vertical_momentum = |k: usize| {
+            let s = &out.sample(k)[0];
+            let r = s.orientation.to_rotation_matrix().into_inner();
+            let l = r * props.inertia() * r.transpose() * s.angular_velocity
+                + (s.position - pivot).cross(&(s.velocity * props.mass()));
+            l.z
+        };
+        let energy0 = energy(&world, &out, std::slice::from_ref(&props), 0);
+        let (mut widest, mut l_err, mut gained): (Real, Real, Real) = (0.0, 0.0, 0.0);
+        for k in 0..out.len() {
+            let s = &out.sample(k)[0];
+            let axis = s.orientation * Vector::x();
+            widest = widest.max(axis.angle(&-Vector::z()));
+            l_err = l_err.max((vertical_momentum(k) - vertical_momentum(0)).abs());
+            gained = gained.max(energy(&world, &out, std::slice::from_ref(&props), k) - energy0);
+        }
+        assert!(
+            (widest - cone).abs() < 1e-3,
+            "swung to {:.3} deg",
+            widest.to_degrees()
+        );
+        let l0 = vertical_momentum(0).abs();
+        assert!(
+            l0 > 0.1 && l_err < kept * l0,
+            "dt {dt}: L_z {l0} drifted {l_err}"
+        );
+        assert!(
+            gained < 1e-4 * energy0.abs(),
+            "dt {dt}: energy rose by {gained} J"
+        );
+    }
+}
+
+#[test]
+fn a_ball_joints_twist_limit_stops_the_spin_there() {
+    // Spun at 2 rad/s about its own long axis (the joints' z), the rod twists until its limit
+    // at 45 deg stops it: the rate there is still the 2 rad/s (nothing acts about the axis),
+    // the stop is inelastic (no spin left), and the twist never passes 45 deg.
+    let limit = AngleLimit {
+        angle: 1,
+        lower: -45.0_f64.to_radians(),
+        upper: 45.0_f64.to_radians(),
+    };
+    let (mut world, _) = hanging_on_a_ball(vec![limit], 0.0, Vector::new(0.0, 0.0, -2.0));
+    let out = world.run(1.0, DT).unwrap();
+    let first = out.joint_events.first().expect("no limit hit");
+    assert_eq!((first.joint, first.limit), (0, 0));
+    assert!((first.rate.abs() / 2.0 - 1.0).abs() < 0.01, "{first:?}");
+    assert!(
+        (first.time - 45.0_f64.to_radians() / 2.0).abs() < 2.0 * DT,
+        "{first:?}"
+    );
+    let twist = |k: usize| {
+        let y = out.sample(k)[0].orientation * Vector::y();
+        y.x.atan2(y.y)
+    };
+    let most = (0..out.len()).map(|k| twist(k).abs()).fold(0.0, Real::max);
+    assert!(
+        most < 45.0_f64.to_radians() + 1e-3,
+        "twisted to {:.3} deg",
+        most.to_degrees()
+    );
+    let last = &out.sample(out.len() - 1)[0];
+    assert!(
+        last.angular_velocity.norm() < 1e-3,
+        "{:?}",
+        last.angular_velocity
+    );
+    assert!((twist(out.len() - 1).abs() - 45.0_f64.to_radians()).abs() < 1e-3);
+}
+
 #[test]
 fn jointed_bodies_overlap_without_a_contact_unless_asked() {
     // Two rods overlapping 10 cm at a hinge: no initial-overlap error, no contact event.
@@ -323,7 +449,14 @@ fn bad_joints_are_refused_by_name() {
         lower: -1.0,
         upper: 1.0,
     }];
-    assert!(err(limited, &mut w).contains("no angle to limit"));
+    assert!(err(limited, &mut w).contains("never negative"));
+    let mut hinge_twist = JointSpec::new(JointKind::Fixed, 0, None, frame, frame);
+    hinge_twist.limits = vec![AngleLimit {
+        angle: 0,
+        lower: -1.0,
+        upper: 1.0,
+    }];
+    assert!(err(hinge_twist, &mut w).contains("no angle to limit"));
     let mut stiff = JointSpec::new(JointKind::Revolute, 0, None, frame, frame);
     stiff.stiffness = -1.0;
     assert!(err(stiff, &mut w).contains("stiffness"));

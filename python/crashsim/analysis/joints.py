@@ -43,8 +43,7 @@ SWING_SLIP = math.radians(10.0)
 class JointReport:
     """One joint over a run. ``joint``: the scene's (name, vehicles, kind, anchor, axes,
     limits, resistance). ``angle_min`` and ``angle_max`` (3,) rad: the record's angle columns'
-    extremes (the kind's angles in the order of ``angle_names``, the rest 0; a spherical
-    joint's columns are the rotation vector of the second body's frame in the first's).
+    extremes (the kind's angles in the order of ``angle_names``, the rest 0).
     ``max_force`` (N) and ``max_torque`` (N m): the largest magnitudes of the force and the
     torque of the first vehicle on the second through the joint at the samples, at
     ``max_force_time`` and ``max_torque_time`` (s). ``events``: its limit hits."""
@@ -203,15 +202,7 @@ def joint_lines(reports: list[JointReport]) -> list[str]:
                 f"{n} {_deg(r.angle_min[k])} to {_deg(r.angle_max[k])} deg"
                 for k, n in enumerate(r.angle_names)
             )
-        else:
-            ranges = (
-                "rotation vector (x, y, z) from ("
-                + ", ".join(_deg(x) for x in r.angle_min)
-                + ") to ("
-                + ", ".join(_deg(x) for x in r.angle_max)
-                + ") deg"
-            )
-        lines.append(f"    {ranges}")
+            lines.append(f"    {ranges}")
         for e in r.events:
             lines.append(
                 f"    limit of {e.angle} hit at {e.time:.3f} s ({_deg(e.rate)} deg/s taken out)"

@@ -8,7 +8,7 @@
 //!
 //! | kind | held (3 + rows) | free | angles (rad) |
 //! |---|---|---|---|
-//! | [`JointKind::Spherical`] | the anchors meet | every rotation | the rotation vector of F2 in F1 |
+//! | [`JointKind::Spherical`] | the anchors meet | every rotation | swing and twist (below) |
 //! | [`JointKind::Revolute`] | anchors; F2's z along F1's z | about z (the hinge axis) | about z |
 //! | [`JointKind::Fixed`] | anchors; every axis | none | none |
 //! | [`JointKind::FifthWheel`] | anchors; F2's z (the kingpin) across F1's y (the pivot) | yaw about the kingpin, pitch about the pivot | articulation (yaw) and pitch |
@@ -19,12 +19,15 @@
 //! quantities do not accelerate apart (constraint.rs), and after every sub-step the positions
 //! and velocities are projected back onto the joints (drift stays at rounding). Limits act as
 //! contacts: a joint driven past a limit gets the impulse that stops its rate there
-//! (inelastic), reported as an event.
+//! (inelastic), reported as an event. A ball joint's limits are a cone and a twist (a
+//! shoulder's or a hip's): the swing, the angle between F1's z and F2's z (a cone of half-angle
+//! `upper` about F1's z), and the twist, F2's turn about its own z once the swing is taken out
+//! (the swing-twist split of the relative rotation, the swing about an axis across F1's z).
 
 mod constraint;
 
 pub(crate) use constraint::{
-    angles, applied_torques, drift_rate, limit_rows, project_positions, project_velocities,
+    applied_torques, drift_rate, limit_angles, limit_rows, project_positions, project_velocities,
     reactions, JointBody,
 };
 
@@ -90,12 +93,14 @@ impl JointKind {
         match self {
             JointKind::Revolute => &["angle"],
             JointKind::FifthWheel => &["articulation", "pitch"],
-            JointKind::Spherical | JointKind::Fixed => &[],
+            JointKind::Spherical => &["swing", "twist"],
+            JointKind::Fixed => &[],
         }
     }
 }
 
-/// A limit on one of a joint's angles (rad): the angle stays in `[lower, upper]`.
+/// A limit on one of a joint's angles (rad): the angle stays in `[lower, upper]`. A ball
+/// joint's swing is never negative: its limit is `[0, cone half-angle]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AngleLimit {
     /// Which angle: an index into [`JointKind::limit_names`].
@@ -215,8 +220,7 @@ impl JointSpec {
         for (k, limit) in self.limits.iter().enumerate() {
             let Some(angle) = names.get(limit.angle) else {
                 return Err(Error::Parameter(format!(
-                    "{name} is {}: it has {} (limits on a spherical joint come with the \
-                     pedestrian model's cone and twist limits)",
+                    "{name} is {}: it has {}",
                     self.kind.name(),
                     if names.is_empty() {
                         "no angle to limit".to_string()
@@ -238,6 +242,14 @@ impl JointSpec {
                     limit.upper.to_degrees()
                 )));
             }
+            if self.kind == JointKind::Spherical && *angle == "swing" && limit.lower != 0.0 {
+                return Err(Error::Parameter(format!(
+                    "{name}'s swing limit has the lower bound {:.2} deg: a swing (the angle \
+                     between the frames' z axes) is never negative; give [0, the cone's \
+                     half-angle]",
+                    limit.lower.to_degrees()
+                )));
+            }
             if self.limits[..k].iter().any(|l| l.angle == limit.angle) {
                 return Err(Error::Parameter(format!(
                     "{name} has two limits on its {angle}: give one"
@@ -252,7 +264,7 @@ impl JointSpec {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct JointSample {
     /// The kind's angles (rad): revolute [angle, 0, 0]; fifth wheel [articulation, pitch,
-    /// 0]; spherical the rotation vector of F2 in F1; fixed zeros.
+    /// 0]; spherical [swing, twist, 0] (module notes); fixed zeros.
     pub angles: Vector,
     /// The force of body 1 on body 2 through the joint (N, world), constraint reaction only.
     pub force: Vector,

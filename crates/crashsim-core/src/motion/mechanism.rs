@@ -15,7 +15,7 @@ use crate::body::RigidBody;
 use crate::error::{Error, Result};
 use crate::ground::Ground;
 use crate::joint::{
-    angles, applied_torques, limit_rows, project_positions, project_velocities, reactions,
+    applied_torques, limit_angles, limit_rows, project_positions, project_velocities, reactions,
     JointBody, JointSample, JointSpec,
 };
 use crate::math::{Point, Real, Rotation, Vector};
@@ -228,7 +228,7 @@ fn mechanism_rates(
         }
         if samples {
             out_samples.push(JointSample {
-                angles: angles(joint, &jb).0,
+                angles: limit_angles(joint, &jb).0,
                 force: Vector::zeros(),
                 torque: tau,
             });
@@ -328,7 +328,7 @@ fn project(
             engaged[j][k] = true;
             let axis_rate = {
                 let joint = &joints[j];
-                let (_, axes) = angles(joint, &jb);
+                let (_, axes) = limit_angles(joint, &jb);
                 let axis = axes[joint.limits[k].angle];
                 let wb = joint.body2.map_or(Vector::zeros(), |b| jb[b].w);
                 (wb - jb[joint.body1].w).dot(&axis)
