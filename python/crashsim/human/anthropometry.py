@@ -109,7 +109,10 @@ class Segment:
         return _add(self.origin, self.cg)
 
 
-def _add(p: tuple[float, float, float], q: tuple[float, float, float]) -> tuple[float, float, float]:
+Point = tuple[float, float, float]
+
+
+def _add(p: Point, q: Point) -> Point:
     return (p[0] + q[0], p[1] + q[1], p[2] + q[2])
 
 
