@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from conftest import REPO
 from crashsim.cli import main
+from crashsim.errors import SceneError
 from crashsim.io.scenefile import SceneFileError, load_scene, loads_scene
 
 EXAMPLE = REPO / "examples" / "tractor-semitrailer-jackknife.toml"
@@ -372,14 +373,38 @@ ERRORS = [
      "the joint's stiffness = -5 N m/rad is invalid: it must lie in [0, 1e9] N m/rad"),
     ("a misspelt coupling key", PAIR + "coupling = { colide = true }\n",
      "vehicles[1].coupling.colide", 'did you mean "collide"'),
-    ("a chain's couplings that differ", PAIR + FIFTH_WHEEL + "coupling = { damping = 10 }\n"
-     + SEMI2, "vehicles[2].coupling", "the trailers of one chain share their coupling "
-     "(Scene.add's coupling applies to every joint of the chain): give the same as \"semi\""),
     ("a towed vehicle's input on a wheel it lacks", PAIR + "[[vehicles.inputs.wheel_states]]\n"
      'wheel = "FL"\nstate = "locked"\ntime = "1 s"\n', "vehicles[1]", "vehicle 'semi' inputs"),
     ("a trailer heavier than 10 towers (Scene.add's)", PAIR + 'mass = "120 t"\n', "vehicles[0]",
      "trailer 'semi' (120000 kg) is more than 10 times as heavy as 'tractor' (9875 kg)"),
 ]  # fmt: skip
+
+
+def test_each_joint_of_a_chain_takes_its_own_coupling() -> None:
+    # A B-double: the first semitrailer's kingpin damped 10 N m s/rad, the second's 20 with an
+    # articulation limit; the file's chain is Scene.add with one coupling per trailer.
+    text = (
+        PAIR + FIFTH_WHEEL + "coupling = { damping = 10 }\n" + SEMI2
+        + 'coupling = { damping = 20, limits = { articulation = ["-60 deg", "60 deg"] } }\n'
+    )  # fmt: skip
+    case = loads_scene(text)
+    first, second = case.scene.joints
+    assert first.core.resistance == (0.0, 10.0, 0.0) and first.core.limits == []
+    assert second.core.resistance == (0.0, 20.0, 0.0)
+    assert second.core.limits == [("articulation", -math.radians(60), math.radians(60))]
+    tractor, semi, semi2 = case.scene.vehicles
+    api = cs.Scene(ground=cs.Ground())
+    couplings = [
+        {"damping": 10.0},
+        {"damping": 20.0, "limits": {"articulation": (-math.radians(60), math.radians(60))}},
+    ]
+    api.add(tractor, (0, 0), heading=0.0, velocity=(20.0, 0, 0), trailers=[semi, semi2],
+            coupling=couplings)  # fmt: skip
+    assert case.scene.to_spec(0.5).to_json() == api.to_spec(0.5).to_json()
+    with pytest.raises(SceneError, match="coupling has 1 entries for 2 trailer"):
+        cs.Scene(ground=cs.Ground()).add(
+            tractor, (0, 0), trailers=[semi, semi2], coupling=[{"damping": 1.0}]
+        )
 
 
 @pytest.mark.parametrize("what, text, key, words", ERRORS, ids=[e[0] for e in ERRORS])

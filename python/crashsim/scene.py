@@ -245,6 +245,32 @@ def _check_stiffness(
             )
 
 
+
+def _per_trailer(
+    coupling: Mapping[str, Any] | Sequence[Mapping[str, Any] | None] | None, n: int
+) -> list[Mapping[str, Any] | None]:
+    """Scene.add's ``coupling`` as one entry per trailer: one mapping for every joint, or a
+    sequence with one (or None) per trailer."""
+    if coupling is None or isinstance(coupling, Mapping):
+        return [coupling] * n
+    if isinstance(coupling, str) or not isinstance(coupling, Sequence):
+        raise SceneError(
+            "coupling must be join's keywords (a dict) for every trailer, or a list of them "
+            f"(or None) one per trailer, got {coupling!r}"
+        )
+    entries = list(coupling)
+    if len(entries) != n:
+        raise SceneError(
+            f"coupling has {len(entries)} entries for {n} trailer(s): give one per trailer "
+            "(None for the defaults), or one dict for all"
+        )
+    for k, entry in enumerate(entries):
+        if entry is not None and not isinstance(entry, Mapping):
+            raise SceneError(
+                f"coupling[{k}] must be join's keywords (a dict) or None, got {entry!r}"
+            )
+    return entries
+
 class Scene:
     """Vehicles with initial states, and the contact parameters of every pair.
 
@@ -469,7 +495,7 @@ class Scene:
         orientation: ArrayLike | None = None,
         inputs: DriverInputs | None = None,
         trailers: Sequence[Vehicle | tuple[Vehicle, DriverInputs | None]] = (),
-        coupling: Mapping[str, Any] | None = None,
+        coupling: Mapping[str, Any] | Sequence[Mapping[str, Any] | None] | None = None,
     ) -> Scene:
         """Place a vehicle (and the trailers it tows); returns the scene (calls chain).
 
@@ -489,7 +515,7 @@ class Scene:
         it (a fifth-wheel or a spherical joint named "tower-trailer"; see :meth:`join`).
         coupling: :meth:`join`'s keywords for every trailer's joint (``limits``, e.g.
         {"articulation": (-1.5, 1.5)} rad, ``stiffness``, ``damping``, ``friction``,
-        ``collide``).
+        ``collide``), or a sequence of them, one per trailer in order (None: the defaults).
         """
         if not isinstance(vehicle, Vehicle):
             raise TypeError(f"add() needs a crashsim.Vehicle, got {type(vehicle).__name__}")
@@ -517,9 +543,10 @@ class Scene:
             inputs=inputs,
             z_from_ground=flat,
         )
+        couplings = _per_trailer(coupling, len(trailers))
         self._placements.append(self._resting(placement) if flat else placement)
         tower = self._placements[-1]
-        for item in trailers:
+        for item, options in zip(trailers, couplings, strict=True):
             trailer, trailer_inputs = item if isinstance(item, tuple) else (item, None)
             if isinstance(trailer, Vehicle) and trailer.mass > MAX_TRAILER_RATIO * vehicle.mass:
                 raise SceneError(
@@ -527,7 +554,7 @@ class Scene:
                     f"{MAX_TRAILER_RATIO:g} times as heavy as {vehicle.name!r} ({vehicle.mass:.0f} "
                     "kg), which tows it: check both masses (kg)"
                 )
-            tower = self._tow(tower, trailer, trailer_inputs, dict(coupling or {}))
+            tower = self._tow(tower, trailer, trailer_inputs, dict(options or {}))
         return self
 
     def _tow(

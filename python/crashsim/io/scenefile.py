@@ -941,7 +941,7 @@ def _place_all(
 ) -> None:
     """Every vehicle in the scene, in the file's order, each towed one right behind the one
     towing it: a chain (a vehicle nobody tows and its trailers, each towing the next) is one
-    Scene.add(..., trailers=[...], coupling=...)."""
+    Scene.add(..., trailers=[...], coupling=[one per trailer])."""
     if tower and scene.ground is None:
         tables[min(tower)].fail("towed_by", "towing needs a ground: add a [ground] table")
     trailer_of = {j: i for i, j in tower.items()}
@@ -970,7 +970,7 @@ def _place_chain(tables: list[_Table], vehicles: list[Vehicle], scene: Scene) ->
         t.fail("coupling", "this is a towed vehicle's joint (with towed_by): give it the trailer")
     state = _state(t, scene, vehicle)
     trailers: list[tuple[Vehicle, DriverInputs | None]] = []
-    coupling: dict[str, Any] | None = None
+    couplings: list[dict[str, Any]] = []
     for tt, towing, towed in zip(tables[1:], vehicles, vehicles[1:], strict=False):
         _reject(
             tt,
@@ -984,14 +984,7 @@ def _place_chain(tables: list[_Table], vehicles: list[Vehicle], scene: Scene) ->
             lambda a=towing, b=towed: check_coupling(a.name, a.hitch, b.name, b.coupler),
         )
         assert towed.coupler is not None
-        options = _coupling(tt, JOINT_OF[towed.coupler.kind])
-        if coupling is not None and options != coupling:
-            tt.fail(
-                "coupling",
-                "the trailers of one chain share their coupling (Scene.add's coupling applies "
-                f'to every joint of the chain): give the same as "{trailers[0][0].name}"',
-            )
-        coupling = options
+        couplings.append(_coupling(tt, JOINT_OF[towed.coupler.kind]))
         inputs = _inputs(tt)
         if inputs is not None:  # checked here, to name the trailer's table
             _wrap(
@@ -1000,7 +993,7 @@ def _place_chain(tables: list[_Table], vehicles: list[Vehicle], scene: Scene) ->
                 lambda i=inputs, v=towed: i.to_core(v.wheels, f"vehicle {v.name!r} inputs"),
             )
         trailers.append((towed, inputs))
-    _wrap(t, None, lambda: scene.add(vehicle, **state, trailers=trailers, coupling=coupling))
+    _wrap(t, None, lambda: scene.add(vehicle, **state, trailers=trailers, coupling=couplings))
 
 
 # -- wheels, tyre and driver inputs ----------------------------------------------------------
