@@ -1,8 +1,8 @@
 """Tests of the built-in combination-class table (crashsim.vehicles.combination_data).
 
 Unit factors are written here from their exact definitions, independently of the module:
-1 in = 0.0254 m, 1 ft = 0.3048 m, 1 lb = 0.45359237 kg, 1 t = 1000 kg. Every bound below names the rule it comes from
-(the source keys are those of docs/vehicle-data.md, "Combination classes").
+1 in = 0.0254 m, 1 ft = 0.3048 m, 1 lb = 0.45359237 kg, 1 t = 1000 kg. Every bound below names
+the rule it comes from (the source keys are those of docs/vehicle-data.md, "Combination classes").
 """
 
 from __future__ import annotations
