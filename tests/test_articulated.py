@@ -217,7 +217,7 @@ def test_the_presets_come_from_the_combination_classes_and_stand_level() -> None
     assert joint.force[-1, 2] == pytest.approx(van.wheels.coupling_load(van.mass), rel=1e-2)
     assert np.abs(joint.angle("pitch")).max() < math.radians(0.1)
     with pytest.raises(ParameterError, match="has no builder"):
-        cs.Trailer.generate("tanker")
+        cs.Trailer.generate("drawbar_trailer")
 
 
 def test_a_study_varies_a_combination_as_one() -> None:

@@ -1,8 +1,8 @@
 """Tests of the built-in combination-class table (crashsim.vehicles.combination_data).
 
 Unit factors are written here from their exact definitions, independently of the module:
-1 in = 0.0254 m, 1 ft = 0.3048 m, 1 t = 1000 kg. Every bound below names the rule it comes from
-(the source keys are those of docs/vehicle-data.md, "Combination classes").
+1 in = 0.0254 m, 1 ft = 0.3048 m, 1 lb = 0.45359237 kg, 1 t = 1000 kg. Every bound below names
+the rule it comes from (the source keys are those of docs/vehicle-data.md, "Combination classes").
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from crashsim.errors import ParameterError
 
 IN = 0.0254
 FT = 0.3048
+LB = 0.45359237
 FACTOR = {
     "m": 1.0,
     "kg": 1.0,
@@ -26,6 +27,7 @@ FACTOR = {
     "mm": 0.001,
     "in": IN,
     "ft": FT,
+    "lb": LB,
     "%": 0.01,
 }
 REL = 1e-12  # conversions and rules are exact products: only round-off may differ
@@ -139,7 +141,7 @@ def test_every_number_finite_positive_with_finite_positive_sd():
         if fig.sd is not None:
             assert math.isfinite(fig.sd) and 0.0 < fig.sd < fig.value, (name, key)
         n += 1
-    assert n == 15 + 7 + 12 + 3 + 2 + 10 + 6 + 2
+    assert n == 15 + 11 + 12 + 10 + 6 + 10 + 6 + 2
 
 
 def test_every_source_is_a_key_or_a_derivation_every_ref_a_key_every_key_used():
@@ -179,7 +181,7 @@ def test_si_values_reproduce_the_published_values():
             assert fig.value == pytest.approx((lo + hi) / 2, rel=REL), (name, key)
             assert fig.sd == pytest.approx((hi - lo) / math.sqrt(12.0), rel=REL), (name, key)
         checked += 1
-    assert checked == 49  # every figure but the 8 derived by a rule below
+    assert checked == 60  # every figure but the 12 derived by a rule alone
 
 
 def test_derived_figures_follow_their_stated_rules():
@@ -201,12 +203,19 @@ def test_derived_figures_follow_their_stated_rules():
             expect = rim_in * IN / 2 + width_mm / 1000 * aspect / 100
         elif "hitch_length" in r:
             expect = _v(name, "length") - r["hitch_length"]
+        elif "axle_loads" in r:  # the rear axle's share of the axle loads, times the wheelbase
+            front, rear = r["axle_loads"]
+            expect = _v(name, "wheelbase") * rear / (front + rear)
+        elif "payload_lb" in r:
+            expect = _v(name, "mass") + r["payload_lb"] * LB
+        elif "gross_lb" in r:  # the gross less the tractor class's mass
+            expect = r["gross_lb"] * LB - _v("tractor_6x4", "mass")
         else:
             continue
         assert fig.derived, (name, key)
         assert fig.value == pytest.approx(expect, rel=REL), (name, key)
         rules += 1
-    assert rules == 8
+    assert rules == 12
     # the published numbers behind them, written out (ghandriz2020, openpbs_registry)
     tractor = raw["tractor_6x4"]
     assert tractor["cg_to_front_axle"]["fraction"] == pytest.approx(1.4992 / 4.085, rel=REL)
@@ -214,6 +223,11 @@ def test_derived_figures_follow_their_stated_rules():
     assert _v("tractor_6x4", "wheelbase") == pytest.approx(3.685, rel=REL)
     assert _v("tractor_6x4", "tyre_radius_front") == pytest.approx(0.536, rel=REL)
     assert _v("box_van", "kingpin_setback") == pytest.approx(1.6, rel=REL)
+    # cm1995's 7.5 t + 10.5 t, hdt_flatbeds_2011's 48,000 lb payload, the 80,000 lb gross
+    assert raw["rigid_truck"]["cg_to_front_axle_laden"]["axle_loads"] == [7.5, 10.5]
+    assert _v("rigid_truck", "cg_to_front_axle_laden") == pytest.approx(6.1 * 10.5 / 18.0)
+    assert _v("flatbed", "mass_laden") == pytest.approx((10250.0 + 48000.0) * LB, rel=REL)
+    assert _v("tanker", "mass_laden") == pytest.approx(80000.0 * LB - 9875.0, rel=REL)
 
 
 # --- physical and regulatory bounds ------------------------------------------------------------
@@ -263,6 +277,12 @@ def test_rigid_truck_within_its_limits_and_its_axles_within_its_length():
     assert r["mass_max"].value <= EU_TWO_AXLE_MASS  # two axles
     parts = r["front_overhang"].value + r["wheelbase"].value + r["rear_overhang"].value
     assert parts == pytest.approx(r["length"].value, abs=3 * 0.05)  # three figures to 0.1 m
+    # laden to 18 t: the centre of mass between the axles, the rear axle within cm1995's
+    # UK limit of 10.5 t and under 96/53/EC's 11.5 t driving axle
+    cg = r["cg_to_front_axle_laden"].value
+    assert 0.0 < cg < r["wheelbase"].value
+    rear_t = r["mass_max"].value * cg / r["wheelbase"].value / 1000.0
+    assert rear_t == pytest.approx(10.5, rel=1e-12)
 
 
 def test_eu_box_van_within_the_kingpin_rules_of_96_53():
@@ -280,10 +300,23 @@ def test_eu_box_van_within_the_kingpin_rules_of_96_53():
 
 def test_north_american_semitrailers_within_the_wb67_envelope():
     f = cd.combination_class("flatbed")
-    assert f["length"].bounds(math.sqrt(3.0))[1] == pytest.approx(US_SEMITRAILER_LENGTH, rel=REL)
+    assert f["length"].value == pytest.approx(US_SEMITRAILER_LENGTH, rel=REL)
     assert f["width"].value <= US_WIDTH and f["deck_height"].value < US_HEIGHT
+    # the spread axles behind the kingpin, ahead of the rear end
+    group_end = f["kingpin_to_axle_group"].value + f["axle_group_spread"].value / 2
+    assert group_end < f["length"].value - f["kingpin_setback"].value
+    # each spread axle a single axle (more than 96 in apart, truckingtruth_kingpin's tandem
+    # bound): laden and coupled, the two carry the trailer's share, under 2 x 20,000 lb
+    assert f["axle_group_spread"].value > 96 * IN
+    assert f["mass"].value < f["mass_laden"].value
     tanker = cd.combination_class("tanker")
     assert tanker["width"].value <= US_WIDTH
+    assert tanker["length"].value <= US_SEMITRAILER_LENGTH
+    # the laden tanker and flatbed with the tractor class: at the 80,000 lb gross
+    gross = 80000.0 * LB
+    tractor = _v("tractor_6x4", "mass")
+    assert tractor + tanker["mass_laden"].value == pytest.approx(gross, rel=REL)
+    assert tractor + f["mass_laden"].value == pytest.approx(gross, rel=1e-3)
 
 
 def test_light_trailers_nose_loads_and_coupling_heights():

@@ -532,8 +532,8 @@ ERRORS = [
         "an unknown preset",
         GOOD.replace(BOX, 'generate = { preset = "tank", length = "4 m" }', 1),
         "vehicles[0].generate.preset",
-        '"tank" is not one of "sedan", "suv", "pickup", "van", "bus", "tractor" or '
-        '"tractor_6x4"',
+        '"tank" is not one of "sedan", "suv", "pickup", "van", "bus", "tractor", '
+        '"tractor_6x4" or "rigid_truck"',
     ),
     (
         "a missing mesh file",

@@ -207,6 +207,42 @@ towed_by = "car"
     assert empty.scene.vehicles[1].mass == cs.Trailer.generate("box_van", laden=False).mass
 
 
+def test_the_truck_presets_by_name_are_the_apis() -> None:
+    # a tractor drawing the tanker and the flatbed's empty deck; the rigid truck (its class's
+    # 18 t) with a centre-axle trailer on its ball
+    text = """format_version = 1
+[ground]
+[[vehicles]]
+name = "tractor"
+generate = "tractor"
+position = [0, 0]
+[[vehicles]]
+name = "tanker"
+trailer = "tanker"
+towed_by = "tractor"
+[[vehicles]]
+name = "tractor2"
+generate = "tractor"
+position = [0, "30 m"]
+[[vehicles]]
+name = "flatbed"
+trailer = { preset = "flatbed", laden = false }
+towed_by = "tractor2"
+[[vehicles]]
+name = "truck"
+generate = { preset = "rigid_truck", length = "9 m" }
+position = [0, "60 m"]
+"""
+    case = loads_scene(text)
+    api = cs.Scene(ground=cs.Ground())
+    api.add(cs.Vehicle.generate("tractor"), (0, 0), heading=0.0,
+            trailers=[cs.Trailer.generate("tanker")])  # fmt: skip
+    api.add(cs.Vehicle.generate("tractor", name="tractor2"), (0, 30.0), heading=0.0,
+            trailers=[cs.Trailer.generate("flatbed", laden=False)])  # fmt: skip
+    api.add(cs.Vehicle.generate("rigid_truck", length=9.0, name="truck"), (0, 60.0), heading=0.0)
+    assert case.scene.to_spec(1.0).to_json() == api.to_spec(1.0).to_json()
+
+
 # -- refusals ----------------------------------------------------------------------------------
 
 HEAD = "format_version = 1\n[ground]\n"
@@ -294,19 +330,19 @@ ERRORS = [
      'a trailer rests on the vehicle towing it: give its name, towed_by = "<the tractor or car>"'),
     ("towing without a ground", PAIR.replace("[ground]\n", ""), "vehicles[1].towed_by",
      "towing needs a ground: add a [ground] table"),
-    ("an unknown trailer preset", PAIR.replace('"box_van"', '"flatbed"'), "vehicles[1].trailer",
-     '"flatbed" is not one of "box_van" or "caravan"'),
+    ("an unknown trailer preset", PAIR.replace('"box_van"', '"lowboy"'), "vehicles[1].trailer",
+     '"lowboy" is not one of "box_van", "flatbed", "tanker" or "caravan"'),
     ("an unknown trailer preset in a table", PAIR.replace(BOX_VAN,
-     'trailer = { preset = "tanker" }'), "vehicles[1].trailer.preset",
-     '"tanker" is not one of "box_van" or "caravan"'),
+     'trailer = { preset = "drawbar_trailer" }'), "vehicles[1].trailer.preset",
+     '"drawbar_trailer" is not one of "box_van", "flatbed", "tanker" or "caravan"'),
     ("a trailer that is a number", PAIR.replace(BOX_VAN, "trailer = 5"), "vehicles[1].trailer",
      'expected a preset\'s name such as "box_van" or a table { preset = "box_van", ... }, got 5'),
     ("an unknown tractor preset", PAIR.replace('generate = "tractor"',
      'generate = "tractor_4x2"'), "vehicles[0].generate", '"tractor_4x2" is not one of "sedan"'),
     ("a trailer neither preset nor kind", PAIR.replace(BOX_VAN, 'trailer = { length = "13 m" }'),
      "vehicles[1].trailer",
-     'give preset (a class\'s trailer: "box_van" or "caravan") or kind ("semitrailer", '
-     '"centre_axle" or "drawbar_body": every dimension given)'),
+     'give preset (a class\'s trailer: "box_van", "flatbed", "tanker" or "caravan") or kind '
+     '("semitrailer", "centre_axle" or "drawbar_body": every dimension given)'),
     ("a trailer both preset and kind", PAIR.replace(BOX_VAN,
      'trailer = { preset = "box_van", kind = "semitrailer" }'), "vehicles[1].trailer.kind",
      "give preset (a class's trailer) or kind (every dimension), not both"),

@@ -75,10 +75,12 @@ from crashsim.vehicles.inputs import Brake, DriverInputs
 from crashsim.vehicles.meshio import axes_rotation, unit_scale
 from crashsim.vehicles.stiffness import FACES
 from crashsim.vehicles.trailer import (
+    RIGID_PRESETS,
     TRACTOR_PRESETS,
     TRAILER_KINDS,
     TRAILER_PRESETS,
     Trailer,
+    rigid_truck,
     tractor,
 )
 from crashsim.vehicles.tyre import TYRE_MODELS, TYRE_PARAMETERS, Tyre
@@ -305,6 +307,8 @@ STATE_KEYS = ("wheel", "state", "time", "exchange", "fraction")
 _BOX_KEYS = ("length", "width", "height", "ground_clearance")
 MESH_KEYS = ("file", "units", "up", "forward", "ground", "center", "solid")
 GENERATE_KEYS = ("preset", "length", "width", "height", "wheelbase", *SHAPE_PARAMETERS)
+# generate = { preset = "rigid_truck", ... }: crashsim.rigid_truck's keywords a scene may give
+RIGID_KEYS = ("preset", "length")
 # generate = { preset = "tractor", ... }: crashsim.tractor's keywords
 TRACTOR_KEYS = (
     "preset",
@@ -496,12 +500,16 @@ def _vehicle(t: _Table, base: Path) -> Vehicle:
         value = t.raw("generate")
         preset = value.get("preset") if isinstance(value, dict) else value
         is_tractor = isinstance(preset, str) and preset in TRACTOR_PRESETS
-        keys = TRACTOR_KEYS if is_tractor else GENERATE_KEYS
-        generate = _preset_table(t, "generate", keys, PRESETS + tuple(TRACTOR_PRESETS))
+        is_rigid = isinstance(preset, str) and preset in RIGID_PRESETS
+        keys = TRACTOR_KEYS if is_tractor else RIGID_KEYS if is_rigid else GENERATE_KEYS
+        presets = PRESETS + tuple(TRACTOR_PRESETS) + tuple(RIGID_PRESETS)
+        generate = _preset_table(t, "generate", keys, presets)
     if geometry == "trailer":
         vehicle = _trailer(t, name)
     elif generate is not None and generate[1] in TRACTOR_PRESETS:
         vehicle = _tractor(t, name, *generate)
+    elif generate is not None and generate[1] in RIGID_PRESETS:
+        vehicle = _rigid(t, name, *generate)
     else:
         vehicle = _wheels(t, _body(t, base, name, geometry, generate))
     return _hitch(t, vehicle)
@@ -624,6 +632,24 @@ def _reject_unit_keys(t: _Table, what: str, table: str) -> None:
         f"its {table} table (its tyre in [vehicles.tyre])",
     )
     _reject(t, ("stiffness",), f"a {what} has no crush stiffness in scene files yet")
+
+
+def _rigid(t: _Table, name: str, g: _Table, preset: str) -> Vehicle:
+    """generate = "rigid_truck" or { preset = "rigid_truck", length = ... } (g, RIGID_KEYS):
+    crashsim.rigid_truck with the combination class's numbers (laden to its maximum mass);
+    mass (or weight) the vehicle's, default the class's."""
+    _reject_unit_keys(t, "rigid truck", "generate")
+    mass = _unit_mass(t, required=False)
+    tyre = _tyre(t)
+    args: dict[str, Any] = {}
+    if g.has("length"):
+        args["length"] = g.quantity("length", "length", low="> 0")
+    g.finish()
+    return _wrap(
+        t,
+        "generate",
+        lambda: rigid_truck(RIGID_PRESETS[preset], name=name, tyre=tyre, **mass, **args),
+    )
 
 
 def _tractor(t: _Table, name: str, g: _Table, preset: str) -> Vehicle:

@@ -28,16 +28,27 @@ from crashsim.vehicles.vehicle import (
 )
 from crashsim.vehicles.wheels import Tyre, Wheels
 
-__all__ = ["TRACTOR_PRESETS", "TRAILER_KINDS", "TRAILER_PRESETS", "Trailer", "tractor"]
+__all__ = [
+    "RIGID_PRESETS",
+    "TRACTOR_PRESETS",
+    "TRAILER_KINDS",
+    "TRAILER_PRESETS",
+    "Trailer",
+    "rigid_truck",
+    "tractor",
+]
 
 TRAILER_KINDS = ("semitrailer", "centre_axle", "drawbar_body")
 """A semitrailer rests on a kingpin over a fifth wheel; a centre-axle trailer (a caravan, a
 cargo trailer, a dolly) on a drawbar's coupler over a tow ball; a drawbar trailer's body on a
 ring over its dolly's turntable (:meth:`Trailer.drawbar`)."""
 
-TRAILER_PRESETS = ("box_van", "caravan")
+TRAILER_PRESETS = ("box_van", "flatbed", "tanker", "caravan")
 """The combination classes :meth:`Trailer.generate` builds (the others lack a body's
 dimensions)."""
+
+RIGID_PRESETS = {"rigid_truck": "rigid_truck"}
+""":meth:`crashsim.Vehicle.generate`'s rigid-truck presets and the combination class each is."""
 
 TRACTOR_PRESETS = {"tractor": "tractor_6x4", "tractor_6x4": "tractor_6x4"}
 """:meth:`crashsim.Vehicle.generate`'s tractor presets and the combination class each is."""
@@ -120,6 +131,36 @@ CARAVAN_TYRE_RADIUS = 0.29
 CARAVAN_TRACK_INSET = 0.35
 # A caravan's body stands this far above the road (m; not sourced): its floor over the axle.
 CARAVAN_CLEARANCE = 0.35
+# A semitrailer's kingpin lock (and a box van's floor) at the tractor_6x4 class's fifth-wheel
+# height (m, the midpoint of axleload_eu's 100-120 cm).
+KINGPIN_HEIGHT = 1.1
+# Not sourced (combination_classes.toml has none): the height of a laden flatbed's load, a
+# box the deck's length and width centred on the deck (m), an assumption of the flatbed preset.
+FLATBED_LOAD_HEIGHT = 1.0
+# The tanker class has no axle group: its preset takes the tandem spread of tractor_6x4 (the
+# register's 1.37 m) and puts the tandem's centre as far ahead of its rear end as the flatbed
+# class's spread axles (2.743 m); its barrel (a solid cylinder the class's width across, the
+# class's length long) rests at KINGPIN_HEIGHT. Assumptions of the tanker preset.
+
+
+def _solid_box_parts(
+    parts: Sequence[tuple[trimesh.Trimesh, float]],
+) -> tuple[np.ndarray, np.ndarray]:
+    """CG and inertia about it (body axes, kg m^2) of boxes each a uniform solid of its mass."""
+    total = sum(m for _, m in parts)
+    cg = sum(m * part.bounds.mean(axis=0) for part, m in parts) / total
+    inertia = np.zeros((3, 3))
+    for part, m in parts:
+        lo, hi = part.bounds
+        inertia += _parallel_axis(_box_inertia(m, *(hi - lo)), m, cg - (lo + hi) / 2.0)
+    return cg, inertia
+
+
+# The keywords the flatbed and tanker presets take besides their class's numbers.
+_SEMI_OVERRIDES = (
+    "mass", "length", "track", "radius", "tyre", "natural_frequency", "damping_ratio", "abs",
+    "load_sharing", "load_height",
+)
 
 
 class Trailer:
@@ -144,6 +185,16 @@ class Trailer:
           setback, the tridem's centre the kingpin-to-axle-group distance behind it, the
           axles the group's spread apart; the box from ``coupler_height`` (default 1.1 m,
           the class's fifth-wheel height: the kingpin at the floor) to the class's height.
+        - "flatbed": a 53 ft spread-axle flatbed, a deck from ``coupler_height`` (default
+          KINGPIN_HEIGHT) to the class's deck height, the kingpin at its setting, the two
+          axles the class's spread apart about the group's centre; ``laden`` adds the class's
+          payload as a box the deck's length and width, ``load_height`` (FLATBED_LOAD_HEIGHT,
+          not sourced) tall, centred on the deck; deck and load uniform solids.
+        - "tanker": a petroleum tank semitrailer, a barrel (a solid cylinder the class's width
+          across, its length long) from ``coupler_height`` up on a subframe over a tandem
+          (spread and place not sourced: see the module's constants), laden to the class's
+          mass (the CG at the barrel's axis); the empty mass was not found: ``laden=False``
+          needs ``mass``.
         - "caravan": a single-axle caravan, ``laden`` its maximum mass else its mass in
           running order, the CG at the body's middle; the axle placed so the coupler carries
           the class's nose-load share (6 %); the drawbar (1.2 m), tyres and track are
@@ -153,8 +204,18 @@ class Trailer:
 
         cls = combination_class(preset)
         value = {q: cls[q].value for q in cls.quantities}
+        if preset in ("flatbed", "tanker"):
+            unknown = sorted(set(overrides) - set(_SEMI_OVERRIDES))
+            if unknown:
+                raise ParameterError(
+                    f"Trailer.generate({preset!r}) takes {', '.join(_SEMI_OVERRIDES)}; "
+                    f"got {', '.join(unknown)}"
+                )
+            hz = coupler_height if coupler_height is not None else KINGPIN_HEIGHT
+            build = Trailer._flatbed if preset == "flatbed" else Trailer._tanker
+            return build(value, laden, _positive(hz, "coupler_height"), name or preset, overrides)
         if preset == "box_van":
-            hz = coupler_height if coupler_height is not None else 1.1
+            hz = coupler_height if coupler_height is not None else KINGPIN_HEIGHT
             group = value["kingpin_setback"] + value["kingpin_to_axle_group"]
             spread = value["axle_group_spread"] / 2.0
             args: dict[str, Any] = dict(
@@ -196,11 +257,100 @@ class Trailer:
         else:
             raise ParameterError(
                 f"trailer preset {preset!r} has no builder: the presets are "
-                f"{' and '.join(repr(p) for p in TRAILER_PRESETS)} (the other combination "
+                f"{', '.join(repr(p) for p in TRAILER_PRESETS)} (the other combination "
                 "classes lack the dimensions a body needs; build them with Trailer.box)"
             )
         args.update(overrides)
         return Trailer.box(kind, name=name or preset, **args)
+
+    @staticmethod
+    def _semitrailer(
+        name: str, parts: list[tuple[trimesh.Trimesh, float]], extra: list[trimesh.Trimesh],
+        kingpin: np.ndarray, axles: list[float], track: float, radius: float,
+        options: dict[str, Any],
+    ) -> Vehicle:
+        """A semitrailer of uniform solid parts (mesh, mass) and massless drawn ``extra``."""
+        cg, inertia = _solid_box_parts(parts)
+        mesh = trimesh.util.concatenate([p for p, _ in parts] + extra)
+        mass = sum(m for _, m in parts)
+        body = Vehicle(mesh, mass, cg, inertia, name=name,
+                       sources={"cg": "uniform solids", "inertia": "uniform solids"})
+        return Trailer.from_vehicle(body, "semitrailer", coupler_at=kingpin, axles=axles,
+                                    track=track, radius=radius, **options)
+
+    @staticmethod
+    def _flatbed(
+        value: dict[str, float], laden: bool, hz: float, name: str, given: dict[str, Any]
+    ) -> Vehicle:
+        """The flatbed preset (see :meth:`generate`); model frame x = 0 mid-deck."""
+        length = _positive(given.get("length", value["length"]), "length")
+        width, deck = value["width"], value["deck_height"]
+        if not hz < deck:
+            raise ParameterError(
+                f"coupler_height = {hz} m must lie under the flatbed's deck ({deck:.3f} m)"
+            )
+        front = length / 2.0
+        group = front - value["kingpin_setback"] - value["kingpin_to_axle_group"]
+        half = value["axle_group_spread"] / 2.0
+        empty = value["mass"]
+        platform = _box((-front, -width / 2, hz), (front, width / 2, deck))
+        parts = [(platform, empty)]
+        if laden:
+            top = deck + _positive(given.get("load_height", FLATBED_LOAD_HEIGHT), "load_height")
+            load = _box((-front, -width / 2, deck), (front, width / 2, top))
+            parts.append((load, value["mass_laden"] - empty))
+        if "mass" in given:  # the mass given, its parts in the class's proportion
+            scale = _positive(given["mass"], "mass") / sum(m for _, m in parts)
+            parts = [(p, m * scale) for p, m in parts]
+        return Trailer._semitrailer(
+            name, parts, [], np.array([front - value["kingpin_setback"], 0.0, hz]),
+            [group + half, group - half], given.get("track", value["track"]),
+            given.get("radius", value["tyre_radius"]), _wheel_options(given),
+        )
+
+    @staticmethod
+    def _tanker(
+        value: dict[str, float], laden: bool, hz: float, name: str, given: dict[str, Any]
+    ) -> Vehicle:
+        """The tanker preset (see :meth:`generate`); model frame x = 0 mid-barrel."""
+        from crashsim.vehicles.combination_data import combination_class
+
+        if not laden and "mass" not in given:
+            raise ParameterError(
+                "the tanker class has no empty mass (not found, docs/vehicle-data.md): "
+                "give Trailer.generate('tanker', laden=False, mass=...) in kg"
+            )
+        mass = _positive(given.get("mass", value["mass_laden"]), "mass")
+        length = _positive(given.get("length", value["length"]), "length")
+        r = value["width"] / 2.0
+        barrel = trimesh.creation.cylinder(radius=r, height=length, sections=48)
+        barrel.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [0, 1, 0]))
+        barrel.apply_translation([0.0, 0.0, hz + r])
+        flatbed = combination_class("flatbed")
+        to_rear = (
+            flatbed["length"].value
+            - flatbed["kingpin_setback"].value
+            - flatbed["kingpin_to_axle_group"].value
+        )
+        group = -length / 2.0 + to_rear
+        half = combination_class("tractor_6x4")["tandem_spread"].value / 2.0
+        # the subframe over the tandem and the kingpin's plate (drawn, massless)
+        frame = _box((group - 2 * half - 0.5, -0.55, hz - 0.25), (group + 2 * half + 0.5, 0.55, hz))
+        plate = _box((length / 2 - 2.0, -0.55, hz - 0.05), (length / 2 - 0.2, 0.55, hz))
+        # a solid cylinder about its axis (x): m r^2 / 2; across: m (3 r^2 + L^2) / 12
+        across = mass * (3 * r**2 + length**2) / 12.0
+        inertia = np.diag([mass * r**2 / 2.0, across, across])
+        mesh = trimesh.util.concatenate([barrel, frame, plate])
+        body = Vehicle(mesh, mass, [0.0, 0.0, hz + r], inertia, name=name,
+                       sources={"cg": "the barrel's axis", "inertia": "solid cylinder"})
+        return Trailer.from_vehicle(
+            body, "semitrailer",
+            coupler_at=[length / 2.0 - value["kingpin_setback"], 0.0, hz],
+            axles=[group + half, group - half],
+            track=given.get("track", value["track"]),
+            radius=given.get("radius", value["tyre_radius"]),
+            **_wheel_options(given),
+        )
 
     @staticmethod
     def from_vehicle(
@@ -444,6 +594,12 @@ class Trailer:
         return vehicle
 
 
+def _wheel_options(given: dict[str, Any]) -> dict[str, Any]:
+    """The wheel keywords of :meth:`Trailer.from_vehicle` among a preset's overrides."""
+    keys = ("tyre", "natural_frequency", "damping_ratio", "abs", "load_sharing")
+    return {k: given[k] for k in keys if k in given}
+
+
 # Not sourced (combination_classes.toml has no overhang): a cab-over tractor's front axle this
 # far behind its bumper (m), an assumption of the tractor builder.
 FRONT_OVERHANG = 1.4
@@ -615,13 +771,166 @@ def tractor(
     return vehicle.with_hitch(kingpin, "fifth_wheel")
 
 
-def _generated(preset: str) -> Any:
-    """Vehicle.generate(preset) for a tractor preset: the class's tractor."""
+# The rigid-truck builder's keywords a combination class gives: keyword -> the class's quantity.
+RIGID_FIELDS = {
+    "mass": "mass_max",
+    "wheelbase": "wheelbase",
+    "cg_to_front_axle": "cg_to_front_axle_laden",
+    "length": "length",
+    "width": "width",
+    "height": "height",
+    "front_overhang": "front_overhang",
+    "track": "track_front",
+    "radius": "tyre_radius_front",
+}
+# Not sourced: a rigid truck's cab height (m, as the tractor builder's default) and its load
+# body's floor (m, KINGPIN_HEIGHT, as the box van's); drawing rules of the rigid-truck builder.
+RIGID_CAB_HEIGHT = 3.0
 
-    def build(*, mass: float | None, length: float | None, name: str | None) -> Vehicle:
+
+def rigid_truck(
+    preset: str | None = None,
+    *,
+    mass: float | None = None,
+    wheelbase: float | None = None,
+    cg_to_front_axle: float | None = None,
+    cg_height: float | None = None,
+    track: float | None = None,
+    radius: float | None = None,
+    length: float | None = None,
+    width: float | None = None,
+    height: float | None = None,
+    front_overhang: float | None = None,
+    cab_height: float = RIGID_CAB_HEIGHT,
+    floor_height: float = KINGPIN_HEIGHT,
+    hitch_height: float | None = None,
+    tyre: Tyre | dict[str, Any] | None = None,
+    natural_frequency: float | None = None,
+    damping_ratio: float | None = None,
+    steering_ratio: float | None = None,
+    steering_reference: str | None = None,
+    abs: bool = True,
+    name: str | None = None,
+) -> Vehicle:
+    """A two-axle rigid truck (m, kg): a cab (``front_overhang`` + 1.0 m long, ``cab_height``
+    tall), a load body from 0.1 m behind it to the rear end (``length`` in all), its floor at
+    ``floor_height`` and its top at ``height``, and a chassis frame under it from 0.45 m up;
+    a steered front axle ``front_overhang`` behind the bumper, the driven rear axle
+    ``wheelbase`` behind it (one wheel a side at the twin tyres' centres, ``track`` apart);
+    the CG ``cg_to_front_axle`` behind the front axle at ``cg_height`` (default: the cab, body
+    and frame as uniform solids sharing the mass by volume, as their inertia about the CG is);
+    a rear hitch (a ball joint's, for a drawbar or centre-axle trailer) at the frame's rear end,
+    ``hitch_height`` above the road (default the frame's mid-height).
+
+    ``preset="rigid_truck"``: every number the combination class gives (docs/vehicle-data.md):
+    the truck laden to its maximum mass (18 t) with the CG where an 18 t rigid's axle loads put
+    it, the class's dimensions, tracks and the front tyre's radius (the rear's as the front's:
+    not found); keywords given replace them. The kerb mass was not found: an empty truck needs
+    ``mass`` (the CG then kept where the laden truck's is)."""
+    given: dict[str, Any] = {
+        "mass": mass,
+        "wheelbase": wheelbase,
+        "cg_to_front_axle": cg_to_front_axle,
+        "track": track,
+        "radius": radius,
+        "length": length,
+        "width": width,
+        "height": height,
+        "front_overhang": front_overhang,
+    }
+    if preset is not None:
+        data = _from_class(preset, RIGID_FIELDS)
+        given = {k: data.get(k) if v is None else v for k, v in given.items()}
+    missing = [k for k, v in given.items() if v is None]
+    if missing:
+        raise ParameterError(
+            f"rigid_truck: give {', '.join(missing)} (m, kg), or a preset "
+            "(crashsim.vehicles.combination_data)"
+        )
+    m = _positive(given["mass"], "mass")
+    wb = _positive(given["wheelbase"], "wheelbase")
+    ln = _positive(given["length"], "length")
+    wd = _positive(given["width"], "width")
+    top = _positive(given["height"], "height")
+    overhang = _positive(given["front_overhang"], "front_overhang")
+    floor = _positive(floor_height, "floor_height")
+    r = _positive(given["radius"], "radius")
+    front = ln / 2.0
+    x_front_axle = front - overhang
+    x_rear_axle = x_front_axle - wb
+    if not -front < x_rear_axle < x_front_axle:
+        raise ParameterError(
+            f"rigid_truck: front_overhang {overhang} m + wheelbase {wb} m reach past its length "
+            f"{ln} m"
+        )
+    if not 0.45 < floor < top:
+        raise ParameterError(
+            f"rigid_truck: floor_height = {floor} m must lie between the frame's 0.45 m and "
+            f"the body's top {top} m"
+        )
+    cab_len = overhang + 1.0
+    cab_top = _positive(cab_height, "cab_height")
+    cab = _box((front - cab_len, -wd / 2, 0.45), (front, wd / 2, cab_top))
+    body = _box((-front, -wd / 2, floor), (front - cab_len - 0.1, wd / 2, top))
+    frame = _box((-front, -0.55, 0.45), (front - cab_len + 0.05, 0.55, floor))
+    parts = [cab, body, frame]
+    volume = sum(p.volume for p in parts)
+    uniform_cg, inertia = _solid_box_parts([(p, m * p.volume / volume) for p in parts])
+    cg = np.array(
+        [
+            x_front_axle - _positive(given["cg_to_front_axle"], "cg_to_front_axle"),
+            0.0,
+            uniform_cg[2] if cg_height is None else _positive(cg_height, "cg_height"),
+        ]
+    )
+    inertia = _parallel_axis(inertia, m, cg - uniform_cg)  # the same boxes, about the CG
+    sources = {
+        "cg": "user" if preset is None else f"class {preset}",
+        "inertia": "uniform boxes",
+    }
+    vehicle = Vehicle(
+        trimesh.util.concatenate(parts), m, cg, inertia, name=name or preset or "rigid_truck",
+        sources=sources,
+    )
+    centers, flags, wheel_names = _axle_wheels(
+        [x_front_axle, x_rear_axle], _positive(given["track"], "track"), r, cg,
+        [True, False], ["steer", "drive"],
+    )
+    wheels = Wheels.custom(
+        centers,
+        r,
+        flags,
+        names=wheel_names,
+        natural_frequency=natural_frequency,
+        damping_ratio=damping_ratio,
+        tyre=tyre,
+        steering_ratio=steering_ratio,
+        steering_reference=steering_reference,
+        abs=abs,
+    )
+    vehicle = vehicle.with_wheels(wheels)
+    hz = (0.45 + floor) / 2.0 if hitch_height is None else _positive(hitch_height, "hitch_height")
+    return vehicle.with_hitch(np.array([-front + 0.05, 0.0, hz]), "ball")
+
+
+def _generated(preset: str) -> Any:
+    """Vehicle.generate(preset) for a tractor or rigid-truck preset: the class's vehicle,
+    built by the function named as the builder (the error messages name it)."""
+    if preset in RIGID_PRESETS:
+
+        def rigid_truck_(*, mass: float | None, length: float | None, name: str | None) -> Vehicle:
+            return rigid_truck(RIGID_PRESETS[preset], mass=mass, length=length, name=name)
+
+        rigid_truck_.__name__ = "rigid_truck"
+        return rigid_truck_
+
+    def tractor_(*, mass: float | None, length: float | None, name: str | None) -> Vehicle:
         return tractor(TRACTOR_PRESETS[preset], mass=mass, length=length, name=name or "tractor")
 
-    return build
+    tractor_.__name__ = "tractor"
+    return tractor_
 
 
-COMBINATION_PRESETS.update({preset: _generated(preset) for preset in TRACTOR_PRESETS})
+COMBINATION_PRESETS.update(
+    {preset: _generated(preset) for preset in (*TRACTOR_PRESETS, *RIGID_PRESETS)}
+)

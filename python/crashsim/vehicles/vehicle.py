@@ -728,7 +728,9 @@ class Vehicle:
 
         ``"tractor"`` (or "tractor_6x4") is a tractor with its fifth wheel from the combination
         class (:func:`crashsim.tractor`, ``preset="tractor_6x4"``; ``mass`` and ``length`` pass
-        through); trailers come from :meth:`crashsim.Trailer.generate`.
+        through); ``"rigid_truck"`` a two-axle rigid truck laden to its class's 18 t with a
+        rear hitch (:func:`crashsim.rigid_truck`); trailers come from
+        :meth:`crashsim.Trailer.generate`.
         """
         if preset in COMBINATION_PRESETS:
             others = {
@@ -749,7 +751,8 @@ class Vehicle:
             if given:
                 raise ParameterError(
                     f"Vehicle.generate({preset!r}) takes mass, length and name; give "
-                    f"{', '.join(given)} to crashsim.tractor({preset!r}, ...) instead"
+                    f"{', '.join(given)} to crashsim.{COMBINATION_PRESETS[preset].__name__}"
+                    f"({preset!r}, ...) instead"
                 )
             return COMBINATION_PRESETS[preset](mass=mass, length=length, name=name)
         vc, key = _preset_class(preset)
