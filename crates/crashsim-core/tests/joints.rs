@@ -301,7 +301,9 @@ fn a_ball_joints_cone_holds_the_swing_and_keeps_the_spin_about_its_axis() {
     // momentum about the vertical through the pivot (which neither gravity nor the pivot's
     // force changes) is kept but for the stop's lateness: a limit is found at the end of the
     // step that passed it, and putting the rod back on the cone moves its CG without its
-    // velocity, an error of order (rate x step): measured 0.22 % at 1 ms, 0.008 % at 0.1 ms.
+    // velocity, an error of order (rate x step): measured 0.22 % at 1 ms and 0.008 % at
+    // 0.1 ms. The crossing here falls at a step's end: rounding in the last bits (another
+    // solver's) found it one step later, 0.67 %; the bounds allow 10 x step / s.
     let cone = 30.0_f64.to_radians();
     let limit = AngleLimit {
         angle: 0,
@@ -309,7 +311,7 @@ fn a_ball_joints_cone_holds_the_swing_and_keeps_the_spin_about_its_axis() {
         upper: cone,
     };
     let pivot = Point::new(0.0, 0.0, HEIGHT);
-    for (dt, kept) in [(DT, 3e-3), (DT / 10.0, 3e-4)] {
+    for (dt, kept) in [(DT, 1e-2), (DT / 10.0, 1e-3)] {
         let (mut world, props) = hanging_on_a_ball(
             vec![limit],
             10.0_f64.to_radians(),
