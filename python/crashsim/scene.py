@@ -493,7 +493,8 @@ class Scene:
         ``collide``).
 
         A :class:`crashsim.Pedestrian` (needs a ground) is placed with its body frame's
-        origin (on the ground midway between the feet) at ``position`` (x, y), facing
+        origin (on the ground midway between the feet) at ``position`` (x, y), or at the
+        world point (x, y, z), facing
         ``heading``, every segment moving at ``velocity``: each segment is a vehicle named
         "<pedestrian>/<segment>", the segments joined by its joints (named the same way).
         """

@@ -195,9 +195,10 @@ class Pedestrian:
     ) -> tuple[list[_Body], list[_JointAt]]:
         """Where each segment starts in the world: [(body, CG m, rotation (3, 3) body ->
         world, velocity m/s)], and each joint's [(joint, anchor m, axes (3, 3)) world]. The
-        body frame's origin at ``position`` (x, y; a z given is ignored: the ground's height
-        ``ground`` m is used), its x axis at ``heading`` rad about world z; the lowest point
-        CLEARANCE above the ground; every segment moving at ``velocity``."""
+        body frame's origin at ``position``: (x, y) puts the body's lowest point CLEARANCE
+        above the ground's height ``ground`` (m) there, (x, y, z) puts the origin at that
+        world point (a fall, a person lifted); its x axis at ``heading`` rad about world z;
+        every segment moving at ``velocity``."""
         p = np.asarray(position, dtype=np.float64).reshape(-1)
         v = np.asarray(velocity, dtype=np.float64).reshape(-1)
         if p.size not in (2, 3) or v.size != 3:
@@ -206,8 +207,10 @@ class Pedestrian:
                 f"{position!r} and {velocity!r}"
             )
         yaw = _rot(_Z, math.degrees(heading))
-        lift = CLEARANCE - float(self.vertices()[:, 2].min())
-        origin = np.array([p[0], p[1], ground + lift])
+        if p.size == 3:
+            origin = p.copy()
+        else:
+            origin = np.array([p[0], p[1], ground + CLEARANCE - float(self.vertices()[:, 2].min())])
         bodies = []
         for posed, vehicle in zip(self._posed.values(), self._segments, strict=True):
             cg = _to_posed(posed, np.asarray(posed.segment.cg_body))
