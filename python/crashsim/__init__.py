@@ -30,6 +30,7 @@ from crashsim.errors import (
     SimulationError,
     StudyError,
 )
+from crashsim.human.pedestrian import Pedestrian
 from crashsim.io import export, scenefile
 from crashsim.io.export import export_frames, export_glb
 from crashsim.io.viewer import view
@@ -73,6 +74,7 @@ from crashsim.vehicles.wheels import Tyre, Wheels
 __all__ = [
     "__version__",
     "Vehicle",
+    "Pedestrian",
     "Trailer",
     "tractor",
     "rigid_truck",

@@ -28,6 +28,7 @@ from crashsim import _core
 from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import InitialOverlapError, ParameterError, SceneError, SimulationError
+from crashsim.human.pedestrian import Pedestrian
 from crashsim.joints import Joint, check_new, checked_frame, make_joint
 from crashsim.result import Result, rotation_matrix
 from crashsim.vehicles.coupling import JOINT_OF, check_coupling
@@ -487,7 +488,7 @@ class Scene:
 
     def add(
         self,
-        vehicle: Vehicle,
+        vehicle: Vehicle | Pedestrian,
         position: ArrayLike,
         heading: float | None = None,
         velocity: ArrayLike = (0.0, 0.0, 0.0),
@@ -516,7 +517,15 @@ class Scene:
         coupling: :meth:`join`'s keywords for every trailer's joint (``limits``, e.g.
         {"articulation": (-1.5, 1.5)} rad, ``stiffness``, ``damping``, ``friction``,
         ``collide``), or a sequence of them, one per trailer in order (None: the defaults).
+
+        A :class:`crashsim.Pedestrian` (needs a ground) is placed with its body frame's
+        origin (on the ground midway between the feet) at ``position`` (x, y), or at the world
+        point (x, y, z), facing ``heading``, every segment moving at ``velocity``: each segment
+        is a vehicle named "<pedestrian>/<segment>", the segments joined by its joints (named
+        the same way). A first version: docs/human.md lists what its contacts still lack.
         """
+        if isinstance(vehicle, Pedestrian):
+            return self._add_pedestrian(vehicle, position, heading, velocity)
         if not isinstance(vehicle, Vehicle):
             raise TypeError(f"add() needs a crashsim.Vehicle, got {type(vehicle).__name__}")
         self._check_name(vehicle.name, vehicle, "a vehicle")
@@ -555,6 +564,35 @@ class Scene:
                     "kg), which tows it: check both masses (kg)"
                 )
             tower = self._tow(tower, trailer, trailer_inputs, dict(options or {}))
+        return self
+
+    def _add_pedestrian(
+        self, pedestrian: Pedestrian, position: ArrayLike, heading: float | None,
+        velocity: ArrayLike,
+    ) -> Scene:
+        """Places a pedestrian's segments and joins them (:meth:`add`)."""
+        what = f"pedestrian {pedestrian.name!r}"
+        if self._ground is None:
+            raise SceneError(f"{what} needs a ground: set scene.ground = crashsim.Ground(...)")
+        xy = np.asarray(position, dtype=np.float64).reshape(-1)[:2]
+        ground = self._ground_height(float(xy[0]), float(xy[1]), what)
+        h = 0.0 if heading is None else _as_float(heading, "heading", "rad")
+        bodies, joints = pedestrian.placement(position, h, velocity, ground)
+        for body, cg, rotation, v in bodies:
+            self.add(body, cg, orientation=rotation, velocity=v)
+        for j, at, axes in joints:
+            self.join(
+                f"{pedestrian.name}/{j.parent}",
+                f"{pedestrian.name}/{j.child}",
+                at=at,
+                kind=j.kind,
+                axes=axes,
+                limits=j.limits,
+                stiffness=j.stiffness,
+                damping=j.damping,
+                friction=j.friction,
+                name=f"{pedestrian.name}/{j.name}",
+            )
         return self
 
     def _tow(

@@ -1,0 +1,195 @@
+"""The multibody pedestrian (crashsim.Pedestrian, docs/human.md "The multibody pedestrian"):
+its segments and joints as the data give them, its placement in a scene, and physical checks
+(free fall of the whole body's centre of mass, momentum through an exchange with a car)."""
+
+from __future__ import annotations
+
+import math
+
+import crashsim as cs
+import numpy as np
+import pytest
+from crashsim.errors import ParameterError, SceneError
+from crashsim.human import body_segments
+from crashsim.result import rotation_matrix
+
+G = 9.80665  # m/s^2, the engine's gravity
+
+
+@pytest.fixture(scope="module")
+def standing() -> cs.Pedestrian:
+    return cs.Pedestrian(height=1.75, mass=75.0, sex="male")
+
+
+def joint(p: cs.Pedestrian, name: str):
+    return next(j for j in p.joints if j.name == name)
+
+
+def test_mass_height_and_segments(standing: cs.Pedestrian) -> None:
+    data = body_segments(1.75, 75.0, "male")
+    assert len(standing.segments) == 16 and len(standing.joints) == 15
+    assert sum(v.mass for v in standing.segments) == pytest.approx(75.0, abs=1e-9)
+    for v, s in zip(standing.segments, data, strict=True):
+        assert v.name == f"pedestrian/{s.name}"
+        assert v.mass == s.mass
+        np.testing.assert_array_equal(np.diag(v.inertia), s.inertia)
+        np.testing.assert_array_equal(v.cg, s.cg)
+    # the capsules stand the stature: vertex on top, the feet's capsules under it (their
+    # 8-sided section leaves the lowest vertex 1.3 mm above the ground)
+    z = standing.vertices()[:, 2]
+    assert standing.height == pytest.approx(1.75, abs=1e-12)
+    assert z.max() == pytest.approx(1.75, abs=1e-9)
+    assert 0.0 < z.min() < 2e-3
+
+
+def test_joints_meet_their_segments(standing: cs.Pedestrian) -> None:
+    """Each joint sits where the data put it on its child, moved into the pose, and where the
+    chain joints' parent ends (the hip, shoulder and ankle sit off their parent's ends)."""
+    walking = cs.Pedestrian(pose="walking")
+    for p in (standing, walking):
+        for j in p.joints:
+            child = next(s for s in p.data if s.name == j.child)
+            parent = next(s for s in p.data if s.name == j.parent)
+            cg, rot = p.posed(child.name)
+            # the data's joint position moved with the child's pose
+            at_child = cg + rot @ (np.asarray(child.joint.position) - child.cg_body)
+            np.testing.assert_allclose(at_child, j.at, atol=1e-12)
+            if j.name.split("_")[0] in ("hip", "shoulder", "ankle"):
+                continue
+            pcg, prot = p.posed(parent.name)
+            ends = [pcg + prot @ (np.asarray(e) - parent.cg_body) for e in
+                    (parent.origin, parent.end)]
+            assert min(np.linalg.norm(e - j.at) for e in ends) < 1e-12, j.name
+
+
+def test_kinds_and_limits_from_the_ranges(standing: cs.Pedestrian) -> None:
+    deg = math.radians
+    kinds = {j.name: j.kind for j in standing.joints}
+    for name in ("knee_left", "elbow_right", "ankle_left"):
+        assert kinds[name] == "revolute"
+    for name in ("hip_left", "shoulder_right", "neck", "lumbar", "thoracic", "wrist_left"):
+        assert kinds[name] == "spherical"
+    # Castori (2012): knee hyperextension 0 (men), ankle 20 / 50, neck 45; the normal-ROM
+    # table: knee flexion 140, elbow 145, hip flexion 125 (the cone), rotations 60 / 40
+    assert joint(standing, "knee_left").limits["angle"] == pytest.approx((0.0, deg(140)))
+    assert joint(standing, "elbow_left").limits["angle"] == pytest.approx((-deg(10), deg(145)))
+    assert joint(standing, "ankle_right").limits["angle"] == pytest.approx((-deg(20), deg(50)))
+    assert joint(standing, "neck").limits["swing"] == pytest.approx((0.0, deg(45)))
+    assert joint(standing, "lumbar").limits["swing"] == pytest.approx((0.0, deg(17.5)))
+    hip_l, hip_r = joint(standing, "hip_left"), joint(standing, "hip_right")
+    assert hip_l.limits["swing"] == pytest.approx((0.0, deg(125)))
+    assert hip_l.limits["twist"] == pytest.approx((-deg(60), deg(40)))  # mirrored sides
+    assert hip_r.limits["twist"] == pytest.approx((-deg(40), deg(60)))
+    assert "swing" not in joint(standing, "shoulder_left").limits  # 180 deg: no cone
+    female = cs.Pedestrian(1.65, 60.0, "female")
+    assert joint(female, "knee_left").limits["angle"] == pytest.approx((-deg(10), deg(140)))
+    # a ball's frame runs along its child: the knee below the hip
+    z = joint(standing, "hip_left").axes[:, 2]
+    assert z[2] < -0.99
+
+
+def test_walking_pose_shifts_the_hinges_limits() -> None:
+    p = cs.Pedestrian(pose="walking")
+    deg = math.radians
+    # the lead knee starts flexed 5 deg, the trailing one 15 deg: their ranges stay the
+    # standing posture's
+    assert joint(p, "knee_left").limits["angle"] == pytest.approx((-deg(5), deg(135)))
+    assert joint(p, "knee_right").limits["angle"] == pytest.approx((-deg(15), deg(125)))
+    assert joint(p, "elbow_left").limits["angle"] == pytest.approx((-deg(30), deg(125)))
+    # legs apart: the left foot ahead of the right
+    left, _ = p.posed("foot_left")
+    right, _ = p.posed("foot_right")
+    assert left[0] - right[0] > 0.4
+
+
+def test_scene_runs_and_names_segments(standing: cs.Pedestrian) -> None:
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(standing, (1.0, 2.0), heading=0.3)
+    assert len(scene.vehicles) == 16 and len(scene.joints) == 15
+    result = scene.run(0.05)
+    head = result.trajectory("pedestrian/head")
+    assert head.position[0, 2] > 1.5
+    # the joints hold: the anchors on both bodies together
+    for j in scene.joints:
+        (pa, _), (pb, _) = j.frames
+        ta, tb = result.trajectory(j.vehicles[0]), result.trajectory(j.vehicles[1])
+        wa = ta.position[-1] + rotation_matrix(ta.orientation[-1]) @ pa
+        wb = tb.position[-1] + rotation_matrix(tb.orientation[-1]) @ pb
+        assert np.linalg.norm(wa - wb) < 1e-9, j.name
+    # the body frame's origin at (1, 2), the lowest point 1 mm above the ground
+    lowest = min(
+        float((result.trajectory(v.name).position[0]
+               + v.body_vertices @ rotation_matrix(result.trajectory(v.name).orientation[0]).T
+               )[:, 2].min())
+        for v in standing.segments
+    )
+    assert lowest == pytest.approx(1e-3, abs=1e-9)
+
+
+def test_whole_body_falls_freely(standing: cs.Pedestrian) -> None:
+    """High above the ground, the jointed body's centre of mass falls as g t^2 / 2 (the
+    joints' forces are internal) and the joints stay together."""
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(standing, (0.0, 0.0, 20.0), velocity=(1.0, 0.0, 0.0))
+    result = scene.run(0.5)
+    trajectories = [result.trajectory(v.name) for v in standing.segments]
+    masses = np.array([v.mass for v in standing.segments])
+    cg = np.einsum("i,ikj->kj", masses, np.array([t.position for t in trajectories])) / 75.0
+    t = trajectories[0].t
+    expected_z = cg[0, 2] - 0.5 * G * t**2
+    np.testing.assert_allclose(cg[:, 2], expected_z, atol=1e-9)
+    np.testing.assert_allclose(cg[:, 0], cg[0, 0] + 1.0 * t, atol=1e-9)
+    assert not result.impacts  # nothing moved relative to anything else
+
+
+def test_momentum_kept_through_an_exchange_with_a_car(standing: cs.Pedestrian) -> None:
+    """The struck segment's impulse reaches the whole body through the joints: between the
+    samples before and after the first exchange (dt_p 0) the pedestrian's horizontal momentum
+    changes by the impulse and the car's by minus it (gravity and the ground act vertically
+    over that 0.7 ms; nothing else acts horizontally), while the struck hand itself takes
+    only part of it."""
+    car = cs.Vehicle.box(length=4.0, width=1.7, height=1.0, mass=1200.0, name="car",
+                         ground_clearance=0.3, cg_height=0.8)
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(car, (0.0, 0.0, 0.8), velocity=(10.0, 0.0, 0.0))
+    scene.add(standing, (2.4, 0.0), heading=math.pi / 2)
+    for seg in standing.segments:
+        scene.contact(car, seg, depth_of_penetration=0.0)
+    result = scene.run(0.02)
+    first = result.impacts[0]
+    struck = next(n for n in first.vehicles if n != "car")
+    assert struck == "pedestrian/hand_left"  # the arm hangs nearest the car
+    t = result.trajectory("car").t
+    k = int(np.flatnonzero(t == first.time)[0])  # the state after the exchange; k - 1 before
+    assert first.time - t[k - 1] < 1e-3
+
+    def momentum(names: list[str], sample: int) -> np.ndarray:
+        return sum(result.trajectory(n).velocity[sample] * m for n, m in
+                   ((n, next(v.mass for v in [car, *standing.segments] if v.name == n))
+                    for n in names))
+
+    body = [v.name for v in standing.segments]
+    impulse = first.impulse_on(struck)
+    assert impulse[0] > 10.0
+    np.testing.assert_allclose((momentum(body, k) - momentum(body, k - 1))[:2], impulse[:2],
+                               rtol=0, atol=1e-9)
+    np.testing.assert_allclose((momentum(["car"], k) - momentum(["car"], k - 1))[:2],
+                               -impulse[:2], rtol=0, atol=1e-9)
+    hand = momentum([struck], k) - momentum([struck], k - 1)
+    assert 0.0 < hand[0] < 0.5 * impulse[0]
+
+
+def test_bad_input() -> None:
+    with pytest.raises(ParameterError, match="pose 'running'"):
+        cs.Pedestrian(pose="running")
+    with pytest.raises(ParameterError, match="height_m"):
+        cs.Pedestrian(height=3.0)
+    with pytest.raises(ParameterError, match="mass_kg"):
+        cs.Pedestrian(mass=5.0)
+    with pytest.raises(SceneError, match="needs a ground"):
+        cs.Scene().add(cs.Pedestrian(), (0.0, 0.0))
+    scene = cs.Scene(ground=cs.Ground())
+    p = cs.Pedestrian()
+    scene.add(p, (0.0, 0.0))
+    with pytest.raises(SceneError, match="already in the scene"):
+        scene.add(p, (5.0, 0.0))
