@@ -90,6 +90,29 @@ def test_a_ball_joints_cone_stops_the_swing_and_records_swing_and_twist() -> Non
     assert np.abs(record.angle("twist")).max() < 1e-9
 
 
+def test_a_no_contact_pair_passes_through_and_takes_no_parameters() -> None:
+    # Two boxes overlapping at the start: refused, unless they never collide; a third still
+    # strikes one of them; the engine's document keeps the pair.
+    scene = cs.Scene(ground=cs.Ground())
+    for name, x, vx in (("a", 0.0, 0.0), ("b", 0.9, 0.0), ("c", 4.0, -8.0)):
+        box = cs.Vehicle.box(1.0, 0.5, 0.5, mass=5.0, name=name)
+        scene.add(box, (x, 0, HIGH), velocity=(vx, 0, 0))
+    with pytest.raises(cs.errors.InitialOverlapError):
+        scene.run(0.1)
+    scene.no_contact("b", "a")
+    assert {frozenset(p[:2]) for p in scene.pairs()} == {frozenset("ac"), frozenset("bc")}
+    result = scene.run(0.5)
+    assert [set(i.vehicles) for i in result.impacts] == [{"b", "c"}]
+    spec = scene.to_spec(0.5)
+    assert spec.no_contact == [(0, 1)]
+    assert _core.SceneSpec.from_json(spec.to_json()).no_contact == [(0, 1)]
+    with pytest.raises(SceneError, match="never collide"):
+        scene.contact("a", "b", restitution=0.2)
+    scene.contact("a", "c", restitution=0.2)
+    with pytest.raises(SceneError, match="takes none"):
+        scene.no_contact("c", "a")
+
+
 def _towed(brake: float = 0.3) -> tuple[cs.Scene, float]:
     car = cs.Vehicle.generate("sedan", name="car")
     towed = cs.Vehicle.generate("sedan", name="towed")

@@ -106,6 +106,8 @@ def test_scene_runs_and_names_segments(standing: cs.Pedestrian) -> None:
     scene = cs.Scene(ground=cs.Ground())
     scene.add(standing, (1.0, 2.0), heading=0.3)
     assert len(scene.vehicles) == 16 and len(scene.joints) == 15
+    # its segments never strike each other: no pair among them (15 joined, 105 no-contact)
+    assert scene.pairs() == [] and len(scene.to_spec(0.05).no_contact) == 105
     result = scene.run(0.05)
     head = result.trajectory("pedestrian/head")
     assert head.position[0, 2] > 1.5

@@ -377,6 +377,11 @@ class SceneSpec:
         """Parameters of the pair (body1, body2); every pair of bodies but two obstacles
         collides with the defaults unless set here. The normal points from body1 into body2.
         Face stiffness the parameters need is checked when the scene is built."""
+    def set_no_contact(self, body1: int, body2: int) -> None:
+        """Makes the two bodies never collide (no overlap search, contact or exchange)."""
+    @property
+    def no_contact(self) -> list[tuple[int, int]]:
+        """The pairs that never collide, (lower index, higher)."""
     def set_stiffness(
         self,
         body: int,

@@ -337,6 +337,8 @@ class Scene:
         self._ground: Ground | None = None
         self.ground = ground
         self._joints: list[Joint] = []
+        # Pairs of vehicles (names) that never collide.
+        self._no_contact: set[frozenset[str]] = set()
 
     # -- ground and obstacles ------------------------------------------------------------
 
@@ -593,6 +595,13 @@ class Scene:
                 friction=j.friction,
                 name=f"{pedestrian.name}/{j.name}",
             )
+        # A passive body's segments never strike each other (the joints hold the neighbours).
+        names = [body.name for body, *_ in bodies]
+        joined = {frozenset((f"{pedestrian.name}/{j.parent}", f"{pedestrian.name}/{j.child}"))
+                  for j, *_ in joints}  # fmt: skip
+        for a, b in combinations(names, 2):
+            if frozenset((a, b)) not in joined:
+                self.no_contact(a, b)
         return self
 
     def _tow(
@@ -773,6 +782,11 @@ class Scene:
         if i >= n and j >= n:
             raise SceneError("two obstacles never meet: a contact needs a vehicle")
         names = (bodies[i].name, bodies[j].name)
+        if frozenset(names) in self._no_contact:
+            raise SceneError(
+                f"{names[0]!r} and {names[1]!r} never collide (scene.no_contact): they take no "
+                "contact parameters"
+            )
         given = dict(
             zip(
                 CONTACT_KEYS,
@@ -797,6 +811,25 @@ class Scene:
         self._overrides[names] = overrides
         return self
 
+    def no_contact(self, vehicle1: VehicleRef, vehicle2: VehicleRef) -> Scene:
+        """Make two vehicles (or a vehicle and an obstacle; objects or names) never collide:
+        their meshes pass through each other, with no contact and no exchange, as joined
+        vehicles do (a pedestrian's segments among themselves). Returns the scene."""
+        i, j = self._index(vehicle1), self._index(vehicle2)
+        if i == j:
+            raise SceneError("no_contact needs two different vehicles")
+        bodies = self._bodies()
+        if i >= len(self._placements) and j >= len(self._placements):
+            raise SceneError("two obstacles never meet: no_contact needs a vehicle")
+        names = (bodies[i].name, bodies[j].name)
+        if names in self._overrides or names[::-1] in self._overrides:
+            raise SceneError(
+                f"{names[0]!r} and {names[1]!r} have contact parameters (scene.contact): a pair "
+                "that never collides takes none"
+            )
+        self._no_contact.add(frozenset(names))
+        return self
+
     def pairs(self) -> list[tuple[str, str, dict[str, Any]]]:
         """Every pair of vehicles as the engine gets it: (vehicle 1, vehicle 2, parameters),
         vehicle 1 being the one the normal points away from (the first argument of the last
@@ -804,13 +837,14 @@ class Scene:
         names = [b.name for b in self._bodies()]
         n = len(self._placements)
         joined = {frozenset(j.vehicles) for j in self._joints if not j.core.collide}
+        joined |= self._no_contact
         out = []
         for i, j in combinations(range(len(names)), 2):
             if i >= n and j >= n:
                 continue  # two obstacles never meet
             a, b = names[i], names[j]
             if frozenset((a, b)) in joined:
-                continue  # joined vehicles pass through each other
+                continue  # joined vehicles (and no-contact pairs) pass through each other
             if (b, a) in self._overrides:
                 a, b = b, a
             out.append((a, b, {**self._defaults, **self._overrides.get((a, b), {})}))
@@ -940,6 +974,8 @@ class Scene:
             i, j = self._index(a), self._index(b)
             _check_stiffness(params, (bodies[i], bodies[j]))
             spec.set_contact(i, j, self._core_params(params, (i, j)))
+        for pair in sorted(tuple(sorted(self._index(n) for n in p)) for p in self._no_contact):
+            spec.set_no_contact(*pair)
         if self._ground is not None:
             spec.set_ground(**self._ground.core_kwargs())
             for i, p in enumerate(self._placements):

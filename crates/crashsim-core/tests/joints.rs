@@ -784,3 +784,51 @@ fn jointed_bodies_that_collide_exchange_through_their_joint() {
         - (s[b].position + s[b].orientation * Vector::new(-1.2, 0.0, 0.0));
     assert!(gap.norm() < 1e-6, "{gap:?}");
 }
+
+/// A no-contact pair (a pedestrian's segments among themselves): two rods overlapping at the
+/// start pass through each other with no contact (without it the scene is refused), a third
+/// body still strikes them, the JSON document keeps the pair and runs the same bits, and a
+/// pair that never collides takes no contact parameters.
+#[test]
+fn a_no_contact_pair_passes_through_and_round_trips() {
+    use crashsim_core::spec::{self, SceneSpec};
+    use crashsim_core::ContactParams;
+    let build = |ignore: bool| {
+        let mut s = SceneSpec::new();
+        for (name, x, v) in [("a", 0.0, 0.0), ("b", 0.6, 0.0), ("c", 3.0, -5.0)] {
+            let (shape, props) = rod(1.0, 0.2, 5.0);
+            let mut state = at(x, HEIGHT, 0.0);
+            state.velocity = Vector::new(v, 0.0, 0.0);
+            s.add_body(Some(name.into()), shape, props, state).unwrap();
+        }
+        if ignore {
+            s.set_no_contact(1, 0).unwrap();
+        }
+        s.run.duration = 0.5;
+        s
+    };
+    assert!(matches!(
+        build(false).run(),
+        Err(crashsim_core::Error::InitialOverlap(_))
+    ));
+    let s = build(true);
+    assert_eq!(s.no_contact, vec![(0, 1)]);
+    let out = s.run().unwrap();
+    // c, thrown at the pair, strikes b: the only exchange.
+    assert_eq!(out.impacts.len(), 1);
+    let hit = &out.impacts[0];
+    assert_eq!((hit.body1.min(hit.body2), hit.body1.max(hit.body2)), (1, 2));
+    let again = spec::from_json(&spec::to_json(&s)).unwrap();
+    assert_eq!(again.no_contact, s.no_contact);
+    assert_eq!(again.run().unwrap(), out);
+    let mut s = build(true);
+    let err = s
+        .set_contact(0, 1, ContactParams::default())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("never collide"), "{err}");
+    let mut s = build(false);
+    s.set_contact(0, 1, ContactParams::default()).unwrap();
+    let err = s.set_no_contact(0, 1).unwrap_err().to_string();
+    assert!(err.contains("contact parameters of their own"), "{err}");
+}

@@ -473,6 +473,19 @@ impl SceneSpec {
             .map_err(errors::to_py)
     }
 
+    /// Makes two bodies never collide (their meshes pass through each other).
+    fn set_no_contact(&mut self, body1: usize, body2: usize) -> PyResult<()> {
+        self.inner
+            .set_no_contact(body1, body2)
+            .map_err(errors::to_py)
+    }
+
+    /// The pairs that never collide, (lower index, higher).
+    #[getter]
+    fn no_contact(&self) -> Vec<(usize, usize)> {
+        self.inner.no_contact.clone()
+    }
+
     /// Sets a body's face stiffness: each face (A, B) in (N/m, N/m^2) or None.
     #[pyo3(signature = (body, *, front = None, rear = None, left = None, right = None))]
     fn set_stiffness(

@@ -31,9 +31,10 @@ use crate::world::RunOptions;
 /// The document's format name and version (a reader refuses others).
 const FORMAT: &str = "crashsim-scene-spec";
 /// 2 (2026-11): tyres with the cornering coefficient and the combined-slip law, the steering
-/// linkage, per-wheel steering. 3: joints, a vehicle's coupling point, hitch load and load groups (version 2 documents,
-/// which have neither, are read too).
-const VERSION: u32 = 3;
+/// linkage, per-wheel steering. 3: joints, a vehicle's coupling point, hitch load and load
+/// groups. 4: pairs of bodies that never collide (`no_contact`). Versions 2 and 3, which lack
+/// the later fields, are read too.
+const VERSION: u32 = 4;
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -47,6 +48,9 @@ struct Document {
     run: RunDoc,
     #[serde(default)]
     joints: Vec<JointDoc>,
+    /// Pairs of bodies that never collide (body indices).
+    #[serde(default)]
+    no_contact: Vec<(usize, usize)>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -424,6 +428,7 @@ fn document(spec: &SceneSpec) -> Document {
             })
             .collect(),
         ground,
+        no_contact: spec.no_contact.clone(),
         joints: spec
             .joints
             .iter()
@@ -637,6 +642,9 @@ fn spec(doc: Document) -> Result<SceneSpec> {
     }
     for c in doc.contacts {
         out.set_contact(c.body1, c.body2, params(c.params))?;
+    }
+    for (a, b) in doc.no_contact {
+        out.set_no_contact(a, b)?;
     }
     for j in doc.joints {
         let mut joint = JointSpec::new(

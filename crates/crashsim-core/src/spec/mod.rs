@@ -114,6 +114,9 @@ pub struct SceneSpec {
     pub ground: Option<Ground>,
     /// Joints between bodies (or a body and the world), in order (docs/joints.md).
     pub joints: Vec<JointSpec>,
+    /// Pairs of bodies that never collide (a pedestrian's segments among themselves), each
+    /// once, (lower index, higher).
+    pub no_contact: Vec<(usize, usize)>,
     /// Duration, step and options of a run.
     pub run: RunSpec,
 }
@@ -226,6 +229,15 @@ impl SceneSpec {
                 "bodies {body1} and {body2} are both fixed obstacles: two obstacles never meet"
             )));
         }
+        if self
+            .no_contact
+            .contains(&(body1.min(body2), body1.max(body2)))
+        {
+            return Err(Error::Parameter(format!(
+                "bodies {body1} and {body2} never collide (a no-contact pair): they take no \
+                 contact parameters"
+            )));
+        }
         params.validate()?;
         if let CentroidMode::Body { body, .. } = params.centroid {
             if body != body1 && body != body2 {
@@ -246,6 +258,38 @@ impl SceneSpec {
         {
             Some(c) => *c = entry,
             None => self.contacts.push(entry),
+        }
+        Ok(())
+    }
+
+    /// Makes bodies `body1` and `body2` never collide (their meshes pass through each other,
+    /// no contact, no exchange), as a joint without `collide` does; checked: two different
+    /// bodies of the scene, not both fixed, no contact parameters of their own.
+    pub fn set_no_contact(&mut self, body1: usize, body2: usize) -> Result<()> {
+        let n = self.bodies.len();
+        if body1 >= n || body2 >= n || body1 == body2 {
+            return Err(Error::Parameter(format!(
+                "no-contact pair ({body1}, {body2}) must name two different bodies among 0..{n}"
+            )));
+        }
+        if self.bodies[body1].is_fixed() && self.bodies[body2].is_fixed() {
+            return Err(Error::Parameter(format!(
+                "bodies {body1} and {body2} are both fixed obstacles: two obstacles never meet"
+            )));
+        }
+        let key = (body1.min(body2), body1.max(body2));
+        if self
+            .contacts
+            .iter()
+            .any(|c| (c.body1.min(c.body2), c.body1.max(c.body2)) == key)
+        {
+            return Err(Error::Parameter(format!(
+                "bodies {body1} and {body2} have contact parameters of their own: a pair that \
+                 never collides takes none"
+            )));
+        }
+        if !self.no_contact.contains(&key) {
+            self.no_contact.push(key);
         }
         Ok(())
     }
@@ -309,6 +353,9 @@ impl SceneSpec {
         }
         for c in &self.contacts {
             world.set_contact(c.body1, c.body2, c.params.clone())?;
+        }
+        for &(a, b) in &self.no_contact {
+            world.set_no_contact(a, b)?;
         }
         if let Some(g) = &self.ground {
             world.set_ground(g.clone())?;

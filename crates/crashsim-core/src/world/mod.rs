@@ -536,6 +536,21 @@ impl World {
         Ok(())
     }
 
+    /// Makes bodies `body1` and `body2` never collide: their pair is dropped (no overlap
+    /// search, no contact, no exchange), as a joint without `collide` drops it.
+    pub fn set_no_contact(&mut self, body1: usize, body2: usize) -> Result<()> {
+        let n = self.bodies.len();
+        if body1 >= n || body2 >= n || body1 == body2 {
+            return Err(Error::Parameter(format!(
+                "no-contact pair ({body1}, {body2}) must name two different bodies among 0..{n}"
+            )));
+        }
+        let key = (body1.min(body2), body1.max(body2));
+        self.pairs
+            .retain(|p| (p.body1.min(p.body2), p.body1.max(p.body2)) != key);
+        Ok(())
+    }
+
     /// Sets the contact parameters of the pair; the normal points from `body1` into `body2`.
     pub fn set_contact(&mut self, body1: usize, body2: usize, params: ContactParams) -> Result<()> {
         let n = self.bodies.len();
