@@ -264,6 +264,37 @@ fn a_limit_stops_the_hinge_there_and_is_reported() {
     );
 }
 
+#[test]
+fn a_joint_resting_on_its_limit_is_one_event() {
+    // A horizontal rod on a hinge at its end falls 17 deg onto its limit and rests there under
+    // gravity, stopped again every sub-step: one event, not one per re-entry (mechanism.rs
+    // LIMIT_RELEASE), and the rod held at the limit.
+    let mut w = World::new();
+    w.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+    let (shape, props) = rod(1.0, 0.05, 5.0);
+    w.add_body(shape, props, &at(0.5, HEIGHT, 0.0)).unwrap();
+    let axes = hinge_axes();
+    let mut joint = JointSpec::new(
+        JointKind::Revolute,
+        0,
+        None,
+        (Point::new(-0.5, 0.0, 0.0), axes),
+        (Point::new(0.0, 0.0, HEIGHT), axes),
+    );
+    joint.limits = vec![AngleLimit {
+        angle: 0,
+        lower: -0.3,
+        upper: 0.3,
+    }];
+    w.add_joint(joint).unwrap();
+    let out = w.run(2.0, DT).unwrap();
+    let events = &out.joint_events;
+    assert_eq!(events.len(), 1, "{:?}", &events[..3.min(events.len())]);
+    let last = out.sample(out.len() - 1)[0].position;
+    let drop = (HEIGHT - last.z).atan2(last.x);
+    assert!((drop - 0.3).abs() < 1e-3, "rests at {drop} rad");
+}
+
 /// A 1 m rod hanging from the world on a ball joint at its top, tilted `tilt` rad towards +x
 /// and turning at `w` (rad/s, world) about the pivot: the joint's z along the rod in the rod
 /// (F1) and straight down in the world (F2), so the swing starts at `tilt`.

@@ -24,6 +24,12 @@ use crate::math::{Point, Real, Rotation, Vector};
 /// linearised rows; two bring a sub-step's drift, O(h^5), to rounding).
 const POSITION_PROJECTIONS: usize = 3;
 
+/// How far (rad, about 0.6 deg) a joint must come back inside a limit's range before its next
+/// stop there is a new event: a joint resting on its limit under a load leaves and re-enters
+/// the range by a rounding's worth each sub-step (a standing pedestrian's knees and ankles
+/// made 1586 events in 1 s with no margin). The stop itself is applied every time.
+pub const LIMIT_RELEASE: Real = 0.01;
+
 /// A limit a joint ran into: the inelastic stop's impulse was applied.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LimitHit {
@@ -303,10 +309,14 @@ fn project(
     for (j, joint) in joints.iter().enumerate() {
         let mut rows = Vec::new();
         let which = limit_rows(joint, &jb, &mut rows);
-        // A limit back inside its range rests against it no more.
-        for (k, flag) in engaged[j].iter_mut().enumerate() {
-            if !which.iter().any(|(past, _)| *past == k) {
-                *flag = false;
+        // A limit the joint has come LIMIT_RELEASE back inside rests against it no more.
+        if engaged[j].iter().any(|&flag| flag) {
+            let (theta, _) = limit_angles(joint, &jb);
+            for (limit, flag) in joint.limits.iter().zip(engaged[j].iter_mut()) {
+                let angle = theta[limit.angle];
+                if angle > limit.lower + LIMIT_RELEASE && angle < limit.upper - LIMIT_RELEASE {
+                    *flag = false;
+                }
             }
         }
         for (row, (k, outward)) in rows.into_iter().zip(which) {
