@@ -113,6 +113,16 @@ def test_a_no_contact_pair_passes_through_and_takes_no_parameters() -> None:
         scene.no_contact("c", "a")
 
 
+def test_an_overlap_at_the_start_names_only_pairs_that_collide() -> None:
+    scene = cs.Scene(ground=cs.Ground())
+    for name, x in (("a", 0.0), ("b", 0.9), ("c", 1.7)):
+        scene.add(cs.Vehicle.box(1.0, 0.5, 0.5, mass=5.0, name=name), (x, 0, HIGH))
+    scene.no_contact("a", "b")
+    with pytest.raises(cs.errors.InitialOverlapError) as info:
+        scene.run(0.1)
+    assert str(info.value).startswith("vehicles 'b' and 'c' already overlap at t = 0")
+
+
 def _towed(brake: float = 0.3) -> tuple[cs.Scene, float]:
     car = cs.Vehicle.generate("sedan", name="car")
     towed = cs.Vehicle.generate("sedan", name="towed")

@@ -1172,8 +1172,10 @@ class Scene:
         pairs = []
         placed = [(p.vehicle, p.position, p.orientation) for p in self._placements]
         placed += [(o.obstacle, o.position, o.orientation) for o in self._obstacles]
+        # Only the pairs the engine searches (joined and no-contact ones pass through).
+        searched = {frozenset(p[:2]) for p in self.pairs()}
         for a, b in combinations(placed, 2):
-            if isinstance(a[0], Obstacle) and isinstance(b[0], Obstacle):
+            if frozenset((a[0].name, b[0].name)) not in searched:
                 continue
             if _core.shapes_overlap(a[0].shape, a[1], a[2], b[0].shape, b[1], b[2]):
                 pairs.append(f"{a[0].name!r} and {b[0].name!r}")
