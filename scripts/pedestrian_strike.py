@@ -54,7 +54,8 @@ def stand(duration: float, pose: str) -> None:
 
 
 def strike(speed_kmh: float, dtp: float, normal: str, duration: float, pose: str,
-           brake: float) -> None:
+           brake: float, soft: float | None = None, damping_ratio: float = 0.5,
+           dt: float | None = None) -> None:
     car = cs.Vehicle.generate("sedan", name="car")
     ped = cs.Pedestrian(pose=pose)
     scene = cs.Scene(ground=cs.Ground(friction=0.8))
@@ -68,11 +69,16 @@ def strike(speed_kmh: float, dtp: float, normal: str, duration: float, pose: str
     for seg in ped.segments:
         scene.contact(car, seg, depth_of_penetration=dtp, restitution=0.1, friction=0.3,
                       normal=None if normal == "horizontal" else normal)
+    if soft is not None:
+        scene.soft_contact(car, ped, stiffness=soft, damping_ratio=damping_ratio)
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", cs.DepthOfPenetrationWarning)
-        result = scene.run(duration)
+        result = scene.run(duration, dt=dt)
     wall = time.perf_counter() - t0
+    if soft is not None:
+        soft_report(scene, result, ped, speed_kmh, soft, damping_ratio, wall, duration)
+        return
     print(f"sedan at {speed_kmh:g} km/h into a {pose} pedestrian, dt_p {dtp * 1e3:g} ms, normal "
           f"{normal}, brake {brake:g}: {len(scene.pairs())} pairs, wall {wall:.2f} s for "
           f"{duration:g} s")
@@ -109,6 +115,37 @@ def strike(speed_kmh: float, dtp: float, normal: str, duration: float, pose: str
           f"largest gap {joint_gap(scene, result):.1e} m")
 
 
+def soft_report(scene: cs.Scene, result: cs.Result, ped: cs.Pedestrian, speed_kmh: float,
+                stiffness: float, damping_ratio: float, wall: float, duration: float) -> None:
+    """What a strike with soft car-segment contacts did: each segment's first contact (time,
+    its CG's speed relative to the car's there, height), the head's, the pelvis's travel."""
+    print(f"sedan at {speed_kmh:g} km/h, soft contacts {stiffness:g} N/m, damping ratio "
+          f"{damping_ratio:g}: {len(result.impacts)} exchanges, wall {wall:.2f} s for "
+          f"{duration:g} s")
+    car_tr = result.trajectory("car")
+    first: dict[str, float] = {}
+    for c in result.contacts:
+        if c.kind == "first_overlap" and "car" in c.vehicles:
+            first.setdefault(next(n for n in c.vehicles if n != "car"), c.time)
+    for name, t in sorted(first.items(), key=lambda kv: kv[1]):
+        tr = result.trajectory(name)
+        k = int(np.searchsorted(tr.t, t))
+        rel = float(np.linalg.norm(tr.velocity[k] - car_tr.velocity[k]))
+        ahead = tr.position[k, 0] - car_tr.position[k, 0]
+        print(f"    {name.split('/')[1]:16s} first contact {t:.4f} s, CG {rel:5.2f} m/s relative "
+              f"to the car, CG z {tr.position[k, 2]:.2f} m, {ahead:+.2f} m ahead of the car's CG")
+    pelvis = result.trajectory(f"{ped.name}/pelvis")
+    head = result.trajectory(f"{ped.name}/head")
+    t0 = min(first.values()) if first else 0.0
+    k0 = int(np.searchsorted(pelvis.t, t0))
+    travel = float(np.linalg.norm(pelvis.position[-1, :2] - pelvis.position[k0, :2]))
+    print(f"  pelvis {travel:.2f} m from first contact to {duration:g} s "
+          f"({np.linalg.norm(pelvis.velocity[-1]):.2f} m/s then); car at x "
+          f"{car_tr.position[-1, 0]:.2f} m, {np.linalg.norm(car_tr.velocity[-1]):.2f} m/s")
+    print(f"  head CG highest {head.position[:, 2].max():.2f} m; joints' largest gap "
+          f"{joint_gap(scene, result):.1e} m")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--speed", type=float, default=40.0, help="km/h")
@@ -118,11 +155,16 @@ def main() -> None:
     p.add_argument("--pose", default="standing", choices=cs.human.pedestrian.POSES)
     p.add_argument("--brake", type=float, default=0.0, help="the car's braking, fraction of mu")
     p.add_argument("--stand", type=float, default=None, help="the pedestrian alone for this long")
+    p.add_argument("--soft", type=float, default=None,
+                   help="soft car-segment contacts of this stiffness, N/m (no timer, no exchange)")
+    p.add_argument("--damping-ratio", type=float, default=0.5, help="of the soft contacts")
+    p.add_argument("--dt", type=float, default=None, help="the step, s (the engine's: 1 ms)")
     a = p.parse_args()
     if a.stand is not None:
         stand(a.stand, a.pose)
     else:
-        strike(a.speed, a.dtp, a.normal, a.duration, a.pose, a.brake)
+        strike(a.speed, a.dtp, a.normal, a.duration, a.pose, a.brake, a.soft, a.damping_ratio,
+               a.dt)
 
 
 if __name__ == "__main__":

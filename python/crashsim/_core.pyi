@@ -28,6 +28,7 @@ __all__ = [
     "World",
     "__version__",
     "Tyre",
+    "check_soft_contact",
     "dynamics_defaults",
     "free_motion",
     "overlap_region",
@@ -88,6 +89,9 @@ class Shape:
         crosses the mesh, up to max_distance (default: no limit); a shared edge counts once."""
     def winding_numbers(self, points: ArrayLike) -> NDArray[np.float64]:
         """Generalized winding number of each body-frame point, (k,). About 1 inside, 0 outside."""
+
+def check_soft_contact(stiffness: float, damping_ratio: float) -> None:
+    """Checks a soft contact's stiffness (N/m) and damping ratio (ParameterError)."""
 
 def shapes_overlap(
     shape1: Shape,
@@ -382,6 +386,13 @@ class SceneSpec:
     @property
     def no_contact(self) -> list[tuple[int, int]]:
         """The pairs that never collide, (lower index, higher)."""
+    def set_soft_contact(
+        self, body1: int, body2: int, stiffness: float, damping_ratio: float
+    ) -> None:
+        """A compliant contact (N/m, damping ratio) in place of the timer and the exchange."""
+    @property
+    def soft_contacts(self) -> list[tuple[int, int, float, float]]:
+        """The soft pairs, (lower index, higher, stiffness N/m, damping ratio)."""
     def set_stiffness(
         self,
         body: int,

@@ -339,6 +339,8 @@ class Scene:
         self._joints: list[Joint] = []
         # Pairs of vehicles (names) that never collide.
         self._no_contact: set[frozenset[str]] = set()
+        # Pairs (names) with a compliant contact: (stiffness N/m, damping ratio).
+        self._soft: dict[frozenset[str], tuple[float, float]] = {}
 
     # -- ground and obstacles ------------------------------------------------------------
 
@@ -822,12 +824,58 @@ class Scene:
         if i >= len(self._placements) and j >= len(self._placements):
             raise SceneError("two obstacles never meet: no_contact needs a vehicle")
         names = (bodies[i].name, bodies[j].name)
+        if frozenset(names) in self._soft:
+            raise SceneError(
+                f"{names[0]!r} and {names[1]!r} have a soft contact (scene.soft_contact): a pair "
+                "that never collides takes none"
+            )
         if names in self._overrides or names[::-1] in self._overrides:
             raise SceneError(
                 f"{names[0]!r} and {names[1]!r} have contact parameters (scene.contact): a pair "
                 "that never collides takes none"
             )
         self._no_contact.add(frozenset(names))
+        return self
+
+    def soft_contact(
+        self,
+        vehicle1: VehicleRef | Pedestrian,
+        vehicle2: VehicleRef | Pedestrian,
+        stiffness: float,
+        damping_ratio: float = 0.5,
+    ) -> Scene:
+        """Give a pair a compliant contact in place of the depth-of-penetration timer and the
+        impulse exchange (docs/human.md, "Soft contacts"): while their meshes overlap, a
+        normal force ``max(0, k d + c v)`` (``d`` the overlap's depth, m; ``v`` its closing
+        speed, m/s; ``c = 2 damping_ratio sqrt(k m)``) acts at its centre of pressure with
+        friction up to the pair's ``friction`` times it. ``stiffness`` k in N/m (up to 1e8),
+        ``damping_ratio`` in [0, 2] (0.5: a head-on restitution of about 0.16). Either side
+        may be a :class:`crashsim.Pedestrian` in the scene: every segment of it. The pair's
+        normal and friction are its contact parameters (:meth:`contact`; ``normal="volume"``
+        for contacts from above). The run refuses a step too long for the stiffness
+        (``sqrt(k / m) dt`` above 0.2, m the lighter body's mass). Returns the scene."""
+        k = _as_float(stiffness, "stiffness", "N/m")
+        zeta = _as_float(damping_ratio, "damping_ratio", "1")
+        _core.check_soft_contact(k, zeta)
+
+        def names(v: VehicleRef | Pedestrian) -> list[str]:
+            if isinstance(v, Pedestrian):
+                return [s.name for s in v.segments]
+            return [self._bodies()[self._index(v)].name]
+
+        for a in names(vehicle1):
+            for b in names(vehicle2):
+                i, j = self._index(a), self._index(b)
+                if i == j:
+                    raise SceneError("a soft contact needs two different vehicles")
+                if i >= len(self._placements) and j >= len(self._placements):
+                    raise SceneError("two obstacles never meet: a soft contact needs a vehicle")
+                if frozenset((a, b)) in self._no_contact:
+                    raise SceneError(
+                        f"{a!r} and {b!r} never collide (scene.no_contact): they take no soft "
+                        "contact"
+                    )
+                self._soft[frozenset((a, b))] = (k, zeta)
         return self
 
     def pairs(self) -> list[tuple[str, str, dict[str, Any]]]:
@@ -976,6 +1024,9 @@ class Scene:
             spec.set_contact(i, j, self._core_params(params, (i, j)))
         for pair in sorted(tuple(sorted(self._index(n) for n in p)) for p in self._no_contact):
             spec.set_no_contact(*pair)
+        for names, (k, zeta) in self._soft.items():
+            a, b = sorted(self._index(n) for n in names)
+            spec.set_soft_contact(a, b, k, zeta)
         if self._ground is not None:
             spec.set_ground(**self._ground.core_kwargs())
             for i, p in enumerate(self._placements):

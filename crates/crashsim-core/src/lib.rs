@@ -20,6 +20,7 @@ pub mod math;
 pub mod motion;
 pub mod overlap;
 pub mod shape;
+pub mod soft;
 pub mod spec;
 pub mod stiffness;
 pub mod triangle;
@@ -32,6 +33,7 @@ pub use error::{Error, Result};
 pub use impulse::RestitutionMode;
 pub use mass::SolidProperties;
 pub use shape::MeshShape;
+pub use soft::SoftContact;
 pub use spec::{BodyMotion, BodySpec, ContactSpec, RunSpec, SceneSpec};
 pub use stiffness::{Face, FaceStiffness, Stiffness};
 pub use world::{

@@ -372,6 +372,9 @@ pub struct OverlapRegion {
     pub segment_count: usize,
     /// Number of vertices of either mesh inside the other.
     pub inside_vertex_count: usize,
+    /// Of those, mesh 1's (inside mesh 2). `points` holds the crossings' end points (2 per
+    /// segment), then mesh 1's vertices inside mesh 2, then mesh 2's inside mesh 1.
+    pub inside_1_count: usize,
 }
 
 impl OverlapRegion {
@@ -849,6 +852,7 @@ fn overlap_region_with(
         nudge,
     );
     region.inside_vertex_count = inside1.len() + inside2.len();
+    region.inside_1_count = inside1.len();
     region.points.extend(inside1.iter().map(|p| pose1 * p));
     region.points.extend(inside2.iter().map(|p| pose2 * p));
     region.area_normal_1_in_2 = pose1.rotation * va1;

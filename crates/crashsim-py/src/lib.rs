@@ -160,6 +160,18 @@ impl Shape {
 }
 
 /// True when the two posed meshes' surfaces intersect or one lies inside the other.
+/// Checks a soft contact's stiffness (N/m) and damping ratio by the engine's rule
+/// (ParameterError naming the bad one).
+#[pyfunction]
+fn check_soft_contact(stiffness: f64, damping_ratio: f64) -> PyResult<()> {
+    core::SoftContact {
+        stiffness,
+        damping_ratio,
+    }
+    .validate()
+    .map_err(errors::to_py)
+}
+
 #[pyfunction]
 fn shapes_overlap(
     py: Python<'_>,
@@ -671,6 +683,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<ground::Tyre>()?;
     m.add_function(wrap_pyfunction!(batch::run_batch, m)?)?;
     m.add_function(wrap_pyfunction!(shapes_overlap, m)?)?;
+    m.add_function(wrap_pyfunction!(check_soft_contact, m)?)?;
     m.add_function(wrap_pyfunction!(overlap_region, m)?)?;
     m.add_function(wrap_pyfunction!(free_motion, m)?)?;
     m.add_function(wrap_pyfunction!(solid_properties, m)?)?;

@@ -486,6 +486,37 @@ impl SceneSpec {
         self.inner.no_contact.clone()
     }
 
+    /// Gives two bodies a compliant contact (stiffness N/m, damping ratio) in place of the
+    /// timer and the exchange.
+    fn set_soft_contact(
+        &mut self,
+        body1: usize,
+        body2: usize,
+        stiffness: f64,
+        damping_ratio: f64,
+    ) -> PyResult<()> {
+        self.inner
+            .set_soft_contact(
+                body1,
+                body2,
+                core::SoftContact {
+                    stiffness,
+                    damping_ratio,
+                },
+            )
+            .map_err(errors::to_py)
+    }
+
+    /// The soft pairs, (lower index, higher, stiffness N/m, damping ratio).
+    #[getter]
+    fn soft_contacts(&self) -> Vec<(usize, usize, f64, f64)> {
+        self.inner
+            .soft_contacts
+            .iter()
+            .map(|&(a, b, s)| (a, b, s.stiffness, s.damping_ratio))
+            .collect()
+    }
+
     /// Sets a body's face stiffness: each face (A, B) in (N/m, N/m^2) or None.
     #[pyo3(signature = (body, *, front = None, rear = None, left = None, right = None))]
     fn set_stiffness(

@@ -21,6 +21,7 @@ use crate::impulse::RestitutionMode;
 use crate::joint::{AngleLimit, JointKind, JointSpec};
 use crate::math::{Isometry, Matrix, Point, Real, Rotation, Vector};
 use crate::shape::MeshShape;
+use crate::soft::SoftContact;
 use crate::stiffness::{Face, FaceStiffness, Stiffness};
 use crate::vehicle::{
     AntiRollBar, Braking, DriverInputs, SteerInput, Steering, Table, Trigger, Tyre, VehicleSpec,
@@ -32,7 +33,8 @@ use crate::world::RunOptions;
 const FORMAT: &str = "crashsim-scene-spec";
 /// 2 (2026-11): tyres with the cornering coefficient and the combined-slip law, the steering
 /// linkage, per-wheel steering. 3: joints, a vehicle's coupling point, hitch load and load
-/// groups. 4: pairs of bodies that never collide (`no_contact`). Versions 2 and 3, which lack
+/// groups. 4: pairs of bodies that never collide (`no_contact`), soft contacts
+/// (`soft_contacts`). Versions 2 and 3, which lack
 /// the later fields, are read too.
 const VERSION: u32 = 4;
 
@@ -51,6 +53,9 @@ struct Document {
     /// Pairs of bodies that never collide (body indices).
     #[serde(default)]
     no_contact: Vec<(usize, usize)>,
+    /// Pairs with a compliant contact: (body 1, body 2, stiffness N/m, damping ratio).
+    #[serde(default)]
+    soft_contacts: Vec<(usize, usize, Real, Real)>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -429,6 +434,11 @@ fn document(spec: &SceneSpec) -> Document {
             .collect(),
         ground,
         no_contact: spec.no_contact.clone(),
+        soft_contacts: spec
+            .soft_contacts
+            .iter()
+            .map(|&(a, b, s)| (a, b, s.stiffness, s.damping_ratio))
+            .collect(),
         joints: spec
             .joints
             .iter()
@@ -645,6 +655,16 @@ fn spec(doc: Document) -> Result<SceneSpec> {
     }
     for (a, b) in doc.no_contact {
         out.set_no_contact(a, b)?;
+    }
+    for (a, b, stiffness, damping_ratio) in doc.soft_contacts {
+        out.set_soft_contact(
+            a,
+            b,
+            SoftContact {
+                stiffness,
+                damping_ratio,
+            },
+        )?;
     }
     for j in doc.joints {
         let mut joint = JointSpec::new(

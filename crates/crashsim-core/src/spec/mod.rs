@@ -22,6 +22,7 @@ use crate::ground::Ground;
 use crate::joint::JointSpec;
 use crate::math::{Isometry, Real};
 use crate::shape::MeshShape;
+use crate::soft::SoftContact;
 use crate::stiffness::Stiffness;
 use crate::vehicle::VehicleSpec;
 use crate::world::{RunOptions, RunOutput, World};
@@ -117,6 +118,9 @@ pub struct SceneSpec {
     /// Pairs of bodies that never collide (a pedestrian's segments among themselves), each
     /// once, (lower index, higher).
     pub no_contact: Vec<(usize, usize)>,
+    /// Pairs with a compliant contact instead of the timer and the exchange (soft.rs), each
+    /// once, (lower index, higher, its law).
+    pub soft_contacts: Vec<(usize, usize, SoftContact)>,
     /// Duration, step and options of a run.
     pub run: RunSpec,
 }
@@ -288,9 +292,48 @@ impl SceneSpec {
                  never collides takes none"
             )));
         }
+        if self.soft_contacts.iter().any(|&(a, b, _)| (a, b) == key) {
+            return Err(Error::Parameter(format!(
+                "bodies {body1} and {body2} have a soft contact: a pair that never collides \
+                 takes none"
+            )));
+        }
         if !self.no_contact.contains(&key) {
             self.no_contact.push(key);
         }
+        Ok(())
+    }
+
+    /// Gives bodies `body1` and `body2` a compliant contact (soft.rs) in place of the timer
+    /// and the exchange; checked: its numbers, two different bodies of the scene, not both
+    /// fixed, not a pair that never collides. Replaces the pair's earlier one.
+    pub fn set_soft_contact(
+        &mut self,
+        body1: usize,
+        body2: usize,
+        soft: SoftContact,
+    ) -> Result<()> {
+        let n = self.bodies.len();
+        if body1 >= n || body2 >= n || body1 == body2 {
+            return Err(Error::Parameter(format!(
+                "soft contact ({body1}, {body2}) must name two different bodies among 0..{n}"
+            )));
+        }
+        if self.bodies[body1].is_fixed() && self.bodies[body2].is_fixed() {
+            return Err(Error::Parameter(format!(
+                "bodies {body1} and {body2} are both fixed obstacles: two obstacles never meet"
+            )));
+        }
+        soft.validate()?;
+        let (a, b) = (body1.min(body2), body1.max(body2));
+        if self.no_contact.contains(&(a, b)) {
+            return Err(Error::Parameter(format!(
+                "bodies {body1} and {body2} never collide (a no-contact pair): they take no \
+                 soft contact"
+            )));
+        }
+        self.soft_contacts.retain(|&(x, y, _)| (x, y) != (a, b));
+        self.soft_contacts.push((a, b, soft));
         Ok(())
     }
 
@@ -356,6 +399,9 @@ impl SceneSpec {
         }
         for &(a, b) in &self.no_contact {
             world.set_no_contact(a, b)?;
+        }
+        for &(a, b, soft) in &self.soft_contacts {
+            world.set_soft_contact(a, b, soft)?;
         }
         if let Some(g) = &self.ground {
             world.set_ground(g.clone())?;

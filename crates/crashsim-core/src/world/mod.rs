@@ -18,6 +18,7 @@ mod exchange;
 mod first_contact;
 mod geometry;
 mod joints;
+mod soft;
 mod stepper;
 
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -32,6 +33,7 @@ use crate::math::{Isometry, Point, Real, Vector};
 use crate::motion::{BodyContact, MotionBound, OnGround};
 use crate::overlap::QueryWorkspace;
 use crate::shape::MeshShape;
+use crate::soft::SoftContact;
 use crate::stiffness::{Face, Stiffness};
 use crate::vehicle::VehicleSpec;
 use clearance::Front;
@@ -78,6 +80,11 @@ enum Phase {
         /// The normal, body 1's frame.
         normal_in_1: Vector,
     },
+    /// A soft pair overlapping: its compliant force acts each step (soft.rs).
+    Pressing {
+        /// The overlap's depth (m) at the end of the last step (0 at the first overlap).
+        depth: Real,
+    },
     /// Two bodies at rest touching without an exchange (exchange.rs, a resting contact).
     Touching {
         /// Where they first touched, as material points of body 1 and body 2 (their frames,
@@ -107,6 +114,9 @@ struct Pair {
     /// A pair of triangles (of body 1, body 2) whose surfaces crossed at the engaged pair's
     /// last overlap test: the next test tries it first (overlap.rs, shapes_overlap_hinted).
     crossing: Option<(u32, u32)>,
+    /// The compliant contact that replaces the timer and the exchange (None: the impulse
+    /// model of `params`).
+    soft: Option<SoftContact>,
 }
 
 /// How a body moves between exchanges.
@@ -287,6 +297,7 @@ impl World {
                 clear_until: Real::NEG_INFINITY,
                 closest: None,
                 crossing: None,
+                soft: None,
             });
         }
         self.bodies.push(WorldBody {
@@ -548,6 +559,30 @@ impl World {
         let key = (body1.min(body2), body1.max(body2));
         self.pairs
             .retain(|p| (p.body1.min(p.body2), p.body1.max(p.body2)) != key);
+        Ok(())
+    }
+
+    /// Gives the pair a compliant contact (soft.rs) in place of the timer and the exchange;
+    /// its friction and normal come from the pair's contact parameters.
+    pub fn set_soft_contact(
+        &mut self,
+        body1: usize,
+        body2: usize,
+        soft: SoftContact,
+    ) -> Result<()> {
+        soft.validate()?;
+        let key = (body1.min(body2), body1.max(body2));
+        let pair = self
+            .pairs
+            .iter_mut()
+            .find(|p| (p.body1.min(p.body2), p.body1.max(p.body2)) == key)
+            .ok_or_else(|| {
+                Error::Parameter(format!(
+                    "bodies {body1} and {body2} form no pair (joined, never colliding, two \
+                     obstacles or not in the world): they take no soft contact"
+                ))
+            })?;
+        pair.soft = Some(soft);
         Ok(())
     }
 

@@ -203,6 +203,7 @@ impl World {
                 self.check_stiffness(p.body1, p.body2, &p.params)?;
             }
             self.check_initial_overlaps()?;
+            self.check_soft_steps(dt)?;
             if self.ground.is_some() {
                 self.carry_coupling_loads()?;
             }
@@ -308,7 +309,10 @@ impl World {
                     kind: ContactEventKind::FirstOverlap,
                 });
                 self.pairs[pi].exchanges = 0;
-                if !self.start_resting_contact(pi, &mut out) {
+                if self.pairs[pi].soft.is_some() {
+                    self.pairs[pi].phase = Phase::Pressing { depth: 0.0 };
+                    self.pairs[pi].front = None;
+                } else if !self.start_resting_contact(pi, &mut out) {
                     self.start_timer(pi, self.time, None, &mut out);
                 }
                 if options.history {
@@ -332,6 +336,7 @@ impl World {
                     }
                     Phase::Engaged { .. } => self.follow_engaged(pi, t_prev, &mut out),
                     Phase::Touching { .. } => self.follow_touching(pi, t_prev, &mut out),
+                    Phase::Pressing { .. } => self.press(pi, t_prev, &mut out),
                     _ => {}
                 }
             }
