@@ -90,6 +90,33 @@ def test_a_ball_joints_cone_stops_the_swing_and_records_swing_and_twist() -> Non
     assert np.abs(record.angle("twist")).max() < 1e-9
 
 
+def test_a_ball_joints_cone_may_lie_off_the_start_with_axes2() -> None:
+    # A rod hanging on a ball whose cone (half-angle 50 deg) is turned 40 deg towards +x from
+    # the rod: the rod's frame (axes) straight down, the world's (axes2, the second side)
+    # the cone's. It may swing 90 deg towards +x but only 10 deg towards -x, where a kick
+    # that way stops it.
+    scene = cs.Scene(ground=cs.Ground())
+    q = (math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4), 0.0)  # body x down
+    scene.add(_rod(), (0.0, 0.0, HIGH - 0.5), orientation=q,
+              velocity=(-1.5, 0.0, 0.0), angular_velocity=(0.0, 3.0, 0.0))
+    down = np.array([[1.0, 0, 0], [0, -1.0, 0], [0, 0, -1.0]])  # z straight down
+    tilt = math.radians(40.0)  # the cone's axis: down, turned towards +x
+    c, s = math.cos(tilt), math.sin(tilt)
+    cone = np.array([[c, 0.0, s], [0.0, -1.0, 0.0], [s, 0.0, -c]])
+    scene.join("rod", at=(0.0, 0.0, HIGH), kind="spherical", axes=down, axes2=cone,
+               limits={"swing": (0.0, math.radians(50.0))})
+    result = scene.run(0.6)
+    record = result.joints["rod-world"]
+    assert record.angle("swing")[0] == pytest.approx(tilt, abs=1e-9)
+    first = result.joint_events[0]
+    assert first.angle == "swing"
+    x = result.trajectory("rod").position[:, 0]
+    back = np.degrees(np.arcsin(np.clip(-x.min() / 0.5, -1.0, 1.0)))
+    assert back == pytest.approx(10.0, abs=0.1)
+    with pytest.raises(ParameterError, match="axes2 is for a spherical joint"):
+        scene.join("rod", at=(0.0, 0.0, HIGH), kind="revolute", axes2=down, name="other")
+
+
 def test_a_no_contact_pair_passes_through_and_takes_no_parameters() -> None:
     # Two boxes overlapping at the start: refused, unless they never collide; a third still
     # strikes one of them; the engine's document keeps the pair.

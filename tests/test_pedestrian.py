@@ -70,22 +70,29 @@ def test_kinds_and_limits_from_the_ranges(standing: cs.Pedestrian) -> None:
     for name in ("hip_left", "shoulder_right", "neck", "lumbar", "thoracic", "wrist_left"):
         assert kinds[name] == "spherical"
     # Castori (2012): knee hyperextension 0 (men), ankle 20 / 50, neck 45; the normal-ROM
-    # table: knee flexion 140, elbow 145, hip flexion 125 (the cone), rotations 60 / 40
+    # table: knee flexion 140, elbow 145, hip flexion 125 and extension 30 (the cone),
+    # rotations 60 / 40
     assert joint(standing, "knee_left").limits["angle"] == pytest.approx((0.0, deg(140)))
     assert joint(standing, "elbow_left").limits["angle"] == pytest.approx((-deg(10), deg(145)))
     assert joint(standing, "ankle_right").limits["angle"] == pytest.approx((-deg(20), deg(50)))
     assert joint(standing, "neck").limits["swing"] == pytest.approx((0.0, deg(45)))
     assert joint(standing, "lumbar").limits["swing"] == pytest.approx((0.0, deg(17.5)))
     hip_l, hip_r = joint(standing, "hip_left"), joint(standing, "hip_right")
-    assert hip_l.limits["swing"] == pytest.approx((0.0, deg(125)))
+    # the hip's cone: half-angle (125 + 30) / 2 about the standing thigh turned forward by
+    # (125 - 30) / 2, so the thigh stops at 125 deg forward and 30 deg back
+    assert hip_l.limits["swing"] == pytest.approx((0.0, deg(77.5)))
+    cone, limb = hip_l.axes[:, 2], hip_l.child_axes[:, 2]
+    assert math.degrees(math.acos(cone @ limb)) == pytest.approx(47.5)
+    assert cone[0] > 0.7  # forward
     assert hip_l.limits["twist"] == pytest.approx((-deg(60), deg(40)))  # mirrored sides
     assert hip_r.limits["twist"] == pytest.approx((-deg(40), deg(60)))
     assert "swing" not in joint(standing, "shoulder_left").limits  # 180 deg: no cone
     female = cs.Pedestrian(1.65, 60.0, "female")
     assert joint(female, "knee_left").limits["angle"] == pytest.approx((-deg(10), deg(140)))
     # a ball's frame runs along its child: the knee below the hip
-    z = joint(standing, "hip_left").axes[:, 2]
+    z = joint(standing, "hip_left").child_axes[:, 2]
     assert z[2] < -0.99
+    assert joint(standing, "neck").child_axes is None  # its cone centred on the pose
 
 
 def test_walking_pose_shifts_the_hinges_limits() -> None:

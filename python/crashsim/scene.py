@@ -584,7 +584,7 @@ class Scene:
         bodies, joints = pedestrian.placement(position, h, velocity, ground)
         for body, cg, rotation, v in bodies:
             self.add(body, cg, orientation=rotation, velocity=v)
-        for j, at, axes in joints:
+        for j, at, axes, child_axes in joints:
             self.join(
                 f"{pedestrian.name}/{j.parent}",
                 f"{pedestrian.name}/{j.child}",
@@ -596,6 +596,7 @@ class Scene:
                 damping=j.damping,
                 friction=j.friction,
                 name=f"{pedestrian.name}/{j.name}",
+                axes2=child_axes,
             )
         # A passive body's segments never strike each other (the joints hold the neighbours).
         names = [body.name for body, *_ in bodies]
@@ -669,6 +670,7 @@ class Scene:
         friction: float = 0.0,
         collide: bool = False,
         name: str | None = None,
+        axes2: ArrayLike | None = None,
     ) -> Scene:
         """Join two vehicles (``vehicle2`` None: ``vehicle1`` to the world) by a joint made
         where they stand at t = 0 (add them first); returns the scene (calls chain).
@@ -681,8 +683,12 @@ class Scene:
         ``limits``: {angle name: (lower, upper)} rad ("angle"; "articulation", "pitch").
         ``stiffness`` N m/rad, ``damping`` N m s/rad, ``friction`` N m resist the free
         rotation. ``collide``: the two vehicles' meshes still collide with each other
-        (default no). Needs a ground when the scene runs; the joined vehicles must start
-        with velocities that agree (a trailer moving with its tractor)."""
+        (default no). ``axes2``: a spherical joint's frame on ``vehicle2`` (world, at t = 0;
+        default ``axes``): its swing is the angle between the two frames' z axes, so a cone
+        (``limits={"swing": (0, half-angle)}``) about ``axes``'s z need not hold the start
+        at its middle (a hip: flexion 125 deg, extension 30 deg). Needs a ground when the
+        scene runs; the joined vehicles must start with velocities that agree (a trailer
+        moving with its tractor)."""
         first = self._placement(vehicle1)
         second = None if vehicle2 is None else self._placement(vehicle2)
         names = (first.vehicle.name, None if second is None else second.vehicle.name)
@@ -698,6 +704,19 @@ class Scene:
                 raise ParameterError(f"joint {label!r}: axes: {e}") from e
         anchor, axes_q = checked_frame(label, at, q)
         world = (anchor, axes_q)
+        world2 = world
+        if axes2 is not None:
+            if kind != "spherical":
+                raise ParameterError(
+                    f"joint {label!r}: axes2 is for a spherical joint (a {kind} joint's frames "
+                    "coincide at the start): drop it"
+                )
+            try:
+                q2 = _orientation(None, axes2)
+                _check_state(np.zeros(3), q2, np.zeros(3), np.zeros(3))
+            except ParameterError as e:
+                raise ParameterError(f"joint {label!r}: axes2: {e}") from e
+            world2 = checked_frame(label, at, q2)
         joint = make_joint(
             label,
             names,
@@ -706,7 +725,7 @@ class Scene:
             axes=axes_q,
             frames=(
                 _in_body(world, first),
-                world if second is None else _in_body(world, second),
+                world2 if second is None else _in_body(world2, second),
             ),
             limits=limits,
             stiffness=stiffness,

@@ -65,8 +65,10 @@ class PedestrianJoint:
     """A joint of the pedestrian, as made in its pose: ``parent`` and ``child`` segment names,
     ``kind`` ("spherical" or "revolute"), ``at`` the joint centre and ``axes`` (3, 3) the joint
     frame (columns x, y, z) in the body frame (m); a hinge turns about the frame's z, a ball's
-    swing is measured from it. ``limits`` {angle: (lower, upper)} rad from the pose; ``rom``
-    the published ranges used (motion -> rad from the standing posture); resistance."""
+    swing is measured from it (its cone's axis) to ``child_axes``'s z (the limb; None: the
+    same frame, the cone centred on the pose). ``limits`` {angle: (lower, upper)} rad from
+    the pose; ``rom`` the published ranges used (motion -> rad from the standing posture);
+    resistance."""
 
     name: str
     parent: str
@@ -79,10 +81,12 @@ class PedestrianJoint:
     stiffness: float  # N m/rad
     damping: float  # N m s/rad
     friction: float  # N m
+    child_axes: Array | None = None
 
 
 _Body = tuple[Vehicle, Array, Array, Array]  # body, CG m, rotation, velocity m/s (world)
-_JointAt = tuple[PedestrianJoint, Array, Array]  # joint, anchor m, axes (world)
+# joint, anchor m, axes (world), the child's axes (world; None: the same)
+_JointAt = tuple[PedestrianJoint, Array, Array, Array | None]
 
 
 @dataclass(frozen=True)
@@ -215,7 +219,11 @@ class Pedestrian:
         for posed, vehicle in zip(self._posed.values(), self._segments, strict=True):
             cg = _to_posed(posed, np.asarray(posed.segment.cg_body))
             bodies.append((vehicle, origin + yaw @ cg, yaw @ posed.rotation, v.copy()))
-        joints = [(j, origin + yaw @ j.at, yaw @ j.axes) for j in self._joints]
+        joints = [
+            (j, origin + yaw @ j.at, yaw @ j.axes,
+             None if j.child_axes is None else yaw @ j.child_axes)
+            for j in self._joints
+        ]  # fmt: skip
         return bodies, joints
 
     def __repr__(self) -> str:
@@ -341,6 +349,16 @@ def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
         else:
             axes, limits = _ball(joint, parent.rotation, rom, p, side)
             kind = "spherical"
+        child_axes = None
+        if joint == "hip":
+            # A cone between flexion (forward) and extension: its axis the standing thigh's
+            # turned forward (about the pelvis's lateral axis) by half their difference, its
+            # half-angle half their sum; the pose's thigh starts inside it.
+            flexion, extension = rom["flexion"], rom["extension"]
+            standing = parent.rotation @ p.rotation.T @ axes  # the pose's hip turn undone
+            turn = _axis_angle(parent.rotation @ _Y, -(flexion - extension) / 2.0)
+            child_axes, axes = axes, turn @ standing
+            limits["swing"] = (0.0, (flexion + extension) / 2.0)
         out.append(PedestrianJoint(
             name=joint if s.side is None else f"{joint}_{s.side}",
             parent=s.parent,
@@ -353,8 +371,16 @@ def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
             stiffness=float(res["stiffness"]),
             damping=float(res["damping"]),
             friction=float(res["friction"]),
+            child_axes=child_axes,
         ))
     return out
+
+
+def _axis_angle(axis: Array, angle: float) -> Array:
+    """The rotation matrix of ``angle`` rad about the unit ``axis`` (Rodrigues)."""
+    k = np.asarray(axis, dtype=np.float64) / np.linalg.norm(axis)
+    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx
 
 
 def _frame(z: Array, x_hint: Array) -> Array:
