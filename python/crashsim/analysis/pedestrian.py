@@ -1,0 +1,184 @@
+"""A struck pedestrian's figures from a run (issue 22; docs/human.md, "Head impact"): each
+segment's first contact with a vehicle (when, the segment's speed relative to the vehicle at
+the contact point, where on the vehicle, the wrap-around distance there), its largest relative
+speed while in contact, and where the person's centre of mass comes to rest.
+
+Frames: world (x, y, z up, m); a vehicle's model frame (x forward from the body's middle, y
+left, z up from the road: the mesh's own coordinates). Speeds in m/s, times in s.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+import trimesh
+from numpy.typing import ArrayLike
+
+from crashsim.errors import ParameterError
+from crashsim.result import Result, rotation_matrix
+
+if TYPE_CHECKING:
+    from crashsim.human.pedestrian import Pedestrian
+    from crashsim.vehicles.vehicle import Vehicle
+
+Array = np.ndarray
+
+__all__ = ["SegmentContact", "rest_of", "segment_contacts", "wrap_around_distance"]
+
+# How far (m) the outline may fall below its highest point so far while a wrap-around tape
+# still follows it (a bonnet's or roof's curvature); past that it goes down the rear.
+DESCENT = 0.2
+
+
+@dataclass(frozen=True)
+class SegmentContact:
+    """A segment's first contact with the vehicle. ``segment`` its name (e.g. "head");
+    ``time`` (s) the first overlap; ``point`` (3,) the vehicle's surface point nearest the
+    segment's centre of mass then, in the vehicle's model frame (m); ``wrap_around`` (m) that
+    point's wrap-around distance (:func:`wrap_around_distance`; None off the vehicle's front
+    and top); ``relative_speed`` (m/s) the segment's velocity less the vehicle's at that point
+    then; ``peak_relative_speed`` (m/s) the largest of it at the samples while the two
+    overlap (from each first overlap to its separation)."""
+
+    segment: str
+    time: float
+    point: Array
+    wrap_around: float | None
+    relative_speed: float
+    peak_relative_speed: float
+
+
+def _pose(result: Result, name: str, k: int) -> tuple[Array, Array, Array, Array]:
+    """A body's CG (m), rotation (3, 3, body -> world), velocity (m/s) and angular velocity
+    (rad/s) at sample ``k``."""
+    tr = result.trajectory(name)
+    return (
+        tr.position[k],
+        rotation_matrix(tr.orientation[k]),
+        tr.velocity[k],
+        tr.angular_velocity[k],
+    )
+
+
+def _point_velocity(result: Result, name: str, k: int, point: Array) -> Array:
+    x, _, v, w = _pose(result, name, k)
+    return v + np.cross(w, point - x)
+
+
+def wrap_around_distance(vehicle: Vehicle, point: ArrayLike) -> float | None:
+    """The wrap-around distance (m) of a point on the vehicle's surface (model frame): the
+    length of a tape laid from the road up the vehicle's front and over its top to the point,
+    in the vertical longitudinal plane through it (the mesh's section there): the height of
+    the front's lowest point (the tape from the road straight up to it) plus the length along
+    the section's outline from there, up the front, to the point. None when the point is not
+    on the front or the top (under the vehicle, or on its rear: the outline fell more than
+    DESCENT below its highest before the point)."""
+    p = np.asarray(point, dtype=np.float64).reshape(3)
+    section = vehicle.mesh.section(plane_origin=[0.0, p[1], 0.0], plane_normal=[0.0, 1.0, 0.0])
+    if section is None:
+        raise ParameterError(
+            f"the point {p.tolist()} m is beside vehicle {vehicle.name!r} (no section of its "
+            "mesh at that y): give a point on its surface (model frame)"
+        )
+    loops = [np.asarray(d)[:, [0, 2]] for d in section.discrete]
+    # The loop through the point, and the point's place on it.
+    best = None
+    for loop in loops:
+        for i in range(len(loop) - 1):
+            a, b = loop[i], loop[i + 1]
+            ab = b - a
+            s = float(np.clip(np.dot(p[[0, 2]] - a, ab) / max(float(ab @ ab), 1e-300), 0, 1))
+            d = float(np.linalg.norm(a + s * ab - p[[0, 2]]))
+            if best is None or d < best[0]:
+                best = (d, loop, i, s)
+    assert best is not None
+    _, loop, seg, frac = best
+    if loop.shape[0] > 1 and np.allclose(loop[0], loop[-1]):
+        loop = loop[:-1]
+    n = len(loop)
+    lengths = np.linalg.norm(np.roll(loop, -1, axis=0) - loop, axis=1)  # edge i: i -> i + 1
+    # The front's lowest point: the outline's frontmost among its points within 5 cm of its
+    # lowest.
+    low = loop[:, 1] <= loop[:, 1].min() + 0.05
+    start = int(np.flatnonzero(low)[np.argmax(loop[low, 0])])
+    # Walk from there up the front: the way whose next point is higher.
+    up = 1 if loop[(start + 1) % n, 1] >= loop[(start - 1) % n, 1] else -1
+    travelled, i, highest = 0.0, start, loop[start, 1]
+    for _ in range(n):
+        j = (i + up) % n
+        edge = lengths[i] if up == 1 else lengths[j]
+        on_edge = (i == seg and j == (seg + 1) % n) or (j == seg and i == (seg + 1) % n)
+        if on_edge:
+            at = frac if i == seg else 1.0 - frac
+            return float(loop[start, 1] + travelled + at * edge)
+        travelled += edge
+        i = j
+        highest = max(highest, loop[i, 1])
+        if loop[i, 1] < highest - DESCENT:
+            break  # over the top and down the rear: the point is not on the front or top
+    return None
+
+
+def segment_contacts(
+    result: Result, pedestrian: Pedestrian, vehicle: Vehicle
+) -> dict[str, SegmentContact]:
+    """Each of the pedestrian's segments that touched ``vehicle`` in the run: its
+    :class:`SegmentContact`, by segment name (e.g. "head"), in the order they first touched.
+    The contact log gives the instants (first overlaps and separations, the soft contacts'
+    and the exchanges' alike); the point is the vehicle's surface point nearest the segment's
+    CG at the first overlap's sample."""
+    names = {s.name: s.name.split("/", 1)[1] for s in pedestrian.segments}
+    car = vehicle.name
+    spans: dict[str, list[list[float]]] = {}
+    for c in result.contacts:
+        if car not in c.vehicles:
+            continue
+        other = c.vehicles[0] if c.vehicles[1] == car else c.vehicles[1]
+        if other not in names:
+            continue
+        if c.kind == "first_overlap":
+            spans.setdefault(other, []).append([c.time, np.inf])
+        elif c.kind == "separation" and spans.get(other):
+            spans[other][-1][1] = c.time
+    t = result.t
+    out: dict[str, SegmentContact] = {}
+    for name, intervals in sorted(spans.items(), key=lambda kv: kv[1][0][0]):
+        t0 = intervals[0][0]
+        k = int(np.searchsorted(t, t0 - 1e-12))
+        x_c, r_c, _, _ = _pose(result, car, k)
+        x_s = result.trajectory(name).position[k]
+        local = r_c.T @ (x_s - x_c) + vehicle.cg  # the segment's CG, the car's model frame
+        nearest, _, _ = trimesh.proximity.closest_point(vehicle.mesh, local[None, :])
+        point = nearest[0]
+        world = r_c @ (point - vehicle.cg) + x_c
+
+        def relative(sample: int, at: Array = world) -> float:
+            return float(np.linalg.norm(
+                _point_velocity(result, name, sample, at) - _point_velocity(result, car, sample, at)
+            ))  # fmt: skip
+
+        peak = 0.0
+        for a, b in intervals:
+            for sample in np.flatnonzero((t >= a) & (t <= b)):
+                x_c2, r_c2, _, _ = _pose(result, car, int(sample))
+                peak = max(peak, relative(int(sample), r_c2 @ (point - vehicle.cg) + x_c2))
+        out[names[name]] = SegmentContact(
+            segment=names[name],
+            time=float(t0),
+            point=point,
+            wrap_around=wrap_around_distance(vehicle, point),
+            relative_speed=relative(k),
+            peak_relative_speed=peak,
+        )
+    return out
+
+
+def rest_of(result: Result, pedestrian: Pedestrian) -> tuple[Array, float]:
+    """The pedestrian's centre of mass at the run's last sample (world, m) and its speed
+    there (m/s): the rest position when that speed is small."""
+    total = sum(s.mass for s in pedestrian.segments)
+    x = sum(result.trajectory(s.name).position[-1] * s.mass for s in pedestrian.segments)
+    v = sum(result.trajectory(s.name).velocity[-1] * s.mass for s in pedestrian.segments)
+    return x / total, float(np.linalg.norm(v / total))
