@@ -7,7 +7,6 @@ from __future__ import annotations
 import math
 
 import crashsim as cs
-import numpy as np
 import pytest
 from crashsim.analysis.pedestrian import rest_of, segment_contacts, wrap_around_distance
 from crashsim.errors import ParameterError

@@ -67,6 +67,13 @@ def _point_velocity(result: Result, name: str, k: int, point: Array) -> Array:
     return v + np.cross(w, point - x)
 
 
+def _relative(result: Result, a: str, b: str, k: int, point: Array) -> float:
+    """|velocity of body a's material point at ``point`` less body b's| at sample k (m/s)."""
+    return float(np.linalg.norm(
+        _point_velocity(result, a, k, point) - _point_velocity(result, b, k, point)
+    ))
+
+
 def wrap_around_distance(vehicle: Vehicle, point: ArrayLike) -> float | None:
     """The wrap-around distance (m) of a point on the vehicle's surface (model frame): the
     length of a tape laid from the road up the vehicle's front and over its top to the point,
@@ -154,22 +161,18 @@ def segment_contacts(
         point = nearest[0]
         world = r_c @ (point - vehicle.cg) + x_c
 
-        def relative(sample: int, at: Array = world) -> float:
-            return float(np.linalg.norm(
-                _point_velocity(result, name, sample, at) - _point_velocity(result, car, sample, at)
-            ))  # fmt: skip
-
         peak = 0.0
         for a, b in intervals:
             for sample in np.flatnonzero((t >= a) & (t <= b)):
                 x_c2, r_c2, _, _ = _pose(result, car, int(sample))
-                peak = max(peak, relative(int(sample), r_c2 @ (point - vehicle.cg) + x_c2))
+                at = r_c2 @ (point - vehicle.cg) + x_c2
+                peak = max(peak, _relative(result, name, car, int(sample), at))
         out[names[name]] = SegmentContact(
             segment=names[name],
             time=float(t0),
             point=point,
             wrap_around=wrap_around_distance(vehicle, point),
-            relative_speed=relative(k),
+            relative_speed=_relative(result, name, car, k, world),
             peak_relative_speed=peak,
         )
     return out
