@@ -123,14 +123,16 @@ def _heading(q: np.ndarray) -> np.ndarray:
 
 def articulation_events(result: Result) -> list[ArticulationEvent]:
     """Every jackknife and trailer swing of the result's combinations (joints between two
-    vehicles), in time order: the first instant each rule holds per joint."""
+    vehicles on wheels: not a pedestrian's), in time order: the first instant each rule holds
+    per joint."""
     scene = result.scene
     if scene is None:
         return []
+    on_wheels = {v.name for v in scene.vehicles if v.wheels is not None}
     out = []
     for joint in scene.joints:
         tower, trailer = joint.vehicles
-        if trailer is None or joint.kind == "fixed":
+        if trailer is None or joint.kind == "fixed" or not {tower, trailer} <= on_wheels:
             continue
         a, b = result.trajectory(tower), result.trajectory(trailer)
         speed = np.linalg.norm(a.velocity[:, :2], axis=1)

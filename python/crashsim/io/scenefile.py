@@ -205,12 +205,27 @@ TOP_KEYS = (
     "output",
     "ground",
     "obstacles",
+    "pedestrians",
     "joints",
     "study",
     "fit",
     "evidence",
 )
 RUN_KEYS = ("duration", "dt", "record_interval", "until", "max_duration")
+PEDESTRIAN_KEYS = (
+    "name",
+    "height",
+    "mass",
+    "sex",
+    "percentile",
+    "pose",
+    "position",
+    "heading",
+    "speed",
+    "direction",
+    "soft_contact",
+)
+SOFT_CONTACT_KEYS = ("with", "stiffness", "damping_ratio")
 OUTPUT_KEYS = ("dir", "report", "csv", "pictures", "glb")
 CONTACT_KEYS = (
     "depth_of_penetration",
@@ -1473,6 +1488,57 @@ def _defaults(t: _Table | None, names: list[str]) -> Scene:
     return _wrap(t, None, lambda: Scene(**values))
 
 
+def _pedestrian(t: _Table, scene: Scene, names: list[str]) -> None:
+    """A [[pedestrians]] entry: crashsim.Pedestrian's keywords (SI), placed by Scene.add
+    (its body frame's origin on the ground at position (x, y), or at the world point (x, y, z),
+    facing heading, moving at speed along direction (default the heading)), and its soft
+    contacts with the vehicles named."""
+    name = t.string("name")
+    if name in names:
+        t.fail("name", f'a vehicle or obstacle named "{name}" is already in the scene: names '
+               "must be unique")  # fmt: skip
+    if scene.ground is None:
+        t.fail("name", "a pedestrian needs a ground: add a [ground] table")
+    kwargs: dict[str, Any] = {"name": name}
+    if t.has("percentile"):
+        kwargs["percentile"] = t.number("percentile")
+    else:
+        kwargs["height"] = t.quantity("height", "length", 1.75, low="> 0")
+    kwargs["mass"] = t.quantity("mass", "mass", 75.0, low="> 0")
+    kwargs["sex"] = t.string("sex", "male", choices=("male", "female"))
+    kwargs["pose"] = t.string("pose", "standing", choices=("standing", "walking"))
+    from crashsim.human.pedestrian import Pedestrian
+
+    person = _wrap(t, None, lambda: Pedestrian(**kwargs))
+    position = t.vector("position", "length", sizes=(2, 3))
+    heading = t.quantity("heading", "angle", 0.0)
+    speed = t.quantity("speed", "speed", 0.0, low=">= 0")
+    direction = t.quantity("direction", "angle", heading)
+    velocity = speed * np.array([math.cos(direction), math.sin(direction), 0.0])
+    for segment in person.segments:
+        if segment.name in names:
+            t.fail("name", f'its segment "{segment.name}" has the name of a vehicle: rename one')
+    _wrap(t, None, lambda: scene.add(person, position, heading=heading, velocity=velocity))
+    for c in _rows(t, "soft_contact", SOFT_CONTACT_KEYS):
+        others = c.raw("with")
+        if isinstance(others, str):
+            others = [others]
+        if not (isinstance(others, list) and others and all(isinstance(o, str) for o in others)):
+            c.fail("with", f'expected vehicle names, e.g. ["car"], got {_show(others)}')
+        for i, other in enumerate(others):
+            if other not in names:
+                key = f"with[{i}]" if len(others) > 1 else "with"
+                c.fail(key, f'no vehicle named "{other}" (the vehicles: {", ".join(names)})')
+        law = {
+            "stiffness": c.quantity("stiffness", "force per width", low="> 0"),
+            "damping_ratio": c.number("damping_ratio", 0.5),
+        }
+        c.finish()
+        for other in others:
+            _wrap(c, "stiffness", lambda o=other, law=law: scene.soft_contact(o, person, **law))
+    t.finish()
+
+
 def _pair(t: _Table, scene: Scene, names: list[str], seen: set[frozenset[str]]) -> None:
     pair = t.raw("vehicles")
     if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(p, str) for p in pair)):
@@ -1632,6 +1698,8 @@ def loads_scene(
     for o in obstacle_tables:
         _obstacle(o, scene, base)
     obstacles = [o.name for o in scene.obstacles]
+    for p in top.tables("pedestrians", PEDESTRIAN_KEYS):
+        _pedestrian(p, scene, names)
     for j in top.tables("joints", JOINT_KEYS):
         _joint(j, scene, obstacles)
     seen: set[frozenset[str]] = set()
