@@ -257,3 +257,22 @@ def test_a_softly_struck_pedestrian_keeps_momentum_and_rides_the_car(
     for name in ("pelvis", "thigh_left", "thigh_right", "shank_left", "shank_right"):
         x = result.trajectory(f"pedestrian/{name}").position[:, 0]
         assert np.all(x > front - 0.05), name
+
+
+def test_the_picture_from_above_draws_a_pedestrian_as_one(standing: cs.Pedestrian) -> None:
+    from crashsim.plots import plot_trajectories
+
+    car = cs.Vehicle.box(length=4.0, width=1.7, height=1.0, mass=1200.0, name="car",
+                         ground_clearance=0.3, cg_height=0.8)
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(car, (0.0, 0.0), velocity=(10.0, 0.0, 0.0))
+    scene.add(standing, (2.4, 0.0), heading=math.pi / 2)
+    assert scene.pedestrians == {"pedestrian": tuple(s.name for s in standing.segments)}
+    result = scene.run(0.05)
+    fig = plot_trajectories(result)
+    caption = fig._suptitle.get_text()
+    assert "pedestrian (its centre of mass) at (" in caption
+    # segments are named only in the impacts' lines, no run-out line per segment
+    assert caption.count("pedestrian/") == caption.count("car-pedestrian/")
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert "pedestrian (start)" in texts and not any("pedestrian/" in t for t in texts)

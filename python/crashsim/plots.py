@@ -413,9 +413,35 @@ def _path_points(result: Result) -> Array:
     return np.concatenate(pts)
 
 
+def _persons(result: Result) -> dict[str, str]:
+    """Each pedestrian segment's vehicle name -> its pedestrian's name (none without a
+    scene)."""
+    scene = getattr(result, "scene", None)
+    people = scene.pedestrians if scene is not None else {}
+    return {seg: person for person, segs in people.items() for seg in segs}
+
+
+def _units(result: Result) -> list[tuple[str, list[str]]]:
+    """What a picture draws as one thing, in order: each vehicle alone, and each pedestrian
+    (name, its segments), at the place of its first segment."""
+    person_of = _persons(result)
+    out: list[tuple[str, list[str]]] = []
+    for name in result.vehicles:
+        person = person_of.get(name)
+        if person is None:
+            out.append((name, [name]))
+        elif not out or out[-1][0] != person:
+            out.append((person, [name]))
+        else:
+            out[-1][1].append(name)
+    return out
+
+
 def _draw_paths(ax: Axes, result: Result, split_time: float) -> None:
-    """Every vehicle's CG path: solid up to ``split_time``, dashed after it."""
-    for k, name in enumerate(result.vehicles):
+    """Every vehicle's CG path (a pedestrian's pelvis's): solid up to ``split_time``, dashed
+    after it."""
+    for k, (_, members) in enumerate(_units(result)):
+        name = next((m for m in members if m.endswith("/pelvis")), members[0])
         tr = result.trajectory(name)
         xy = tr.position[:, :2]
         before = tr.t <= split_time
@@ -991,7 +1017,13 @@ def plot_trajectories(
     tilts: dict[str, float] = {}
     spacing = _outline_spacing(result, int(count)) if on_ground else 0.0
     rests: list[str] = []
-    for k, name in enumerate(result.vehicles):
+    person_of = _persons(result)
+    for k, (person, members) in enumerate(_units(result)):
+        if members[0] in person_of:
+            rests.append(_draw_person(ax, result, person, members, vehicle_colour(k), spacing,
+                                      times, on_ground, outlines))  # fmt: skip
+            continue
+        name = person
         c = vehicle_colour(k)
         last: Array | None = None  # CG of the last time stamp written
         vtimes = _spaced_times(result, name, spacing) if on_ground else times
@@ -1061,10 +1093,12 @@ def plot_trajectories(
     ax.set_ylabel("world y (m)")
     vehicle_handles: list[Any] = []
     vehicle_labels: list[str] = []
-    for k, name in enumerate(result.vehicles):
+    for k, (name, members) in enumerate(_units(result)):
         c = vehicle_colour(k)
         vehicle_handles.append(Patch(facecolor=to_rgba(c, 0.12), edgecolor=to_rgba(c, 0.6)))
-        if on_ground:
+        if members[0] in person_of:
+            vehicle_labels.append(f"{name} (a pedestrian: its segments from above; darker = later)")
+        elif on_ground:
             vehicle_labels.append(f"{name} every {spacing:.3g} m of travel (darker = later)")
         else:
             vehicle_labels.append(f"{name} every {(times[1] - times[0]):.3g} s (darker = later)")
@@ -1121,6 +1155,51 @@ def plot_trajectories(
     if path is not None:
         fig.savefig(Path(path), dpi=dpi)
     return fig
+
+
+def _draw_person(
+    ax: Axes,
+    result: Result,
+    person: str,
+    members: list[str],
+    colour: str,
+    spacing: float,
+    times: Array,
+    on_ground: bool,
+    outlines: list[Any],
+) -> str:
+    """A pedestrian from above as one thing: its segments' outlines at the pelvis's spaced
+    times (thin, darker as time goes on), at the end bold, one label; returns its caption
+    words (where its centre of mass ends)."""
+    pelvis = next((m for m in members if m.endswith("/pelvis")), members[0])
+    when = _spaced_times(result, pelvis, spacing) if on_ground else times
+    t_end = float(result.t[-1])
+    shown = [*map(float, when), t_end]
+    for i, t in enumerate(shown):
+        share = i / max(len(shown) - 1, 1)
+        last = i == len(shown) - 1
+        for m in members:
+            pose = _Pose(result, m, t)
+            outlines.append(pose.outline)
+            _draw_vehicle(ax, pose, colour, fill_alpha=0.10 if last else 0.04 + 0.06 * share,
+                          edge_alpha=0.9 if last else 0.25 + 0.4 * share,
+                          lw=1.2 if last else 0.6, details=False, z=2.0 + share)  # fmt: skip
+    scene = result.scene
+    assert scene is not None  # a pedestrian is known from its scene
+    masses = {v.name: v.mass for v in scene.vehicles if v.name in members}
+    total = sum(masses.values())
+    x = sum(result.trajectory(m).position[-1] * w for m, w in masses.items()) / total
+    v = sum(result.trajectory(m).velocity[-1] * w for m, w in masses.items()) / total
+    start = _Pose(result, pelvis, float(result.t[0])).position
+    ax.annotate(f"{person} (start)", (start[0], start[1]), xytext=(6, -14),
+                textcoords="offset points", fontsize=8.5, color=colour, zorder=8)  # fmt: skip
+    ax.annotate(f"{person} at {t_end:.2f} s", (x[0], x[1]), xytext=(6, 6),
+                textcoords="offset points", fontsize=8.5, color=colour, zorder=8)  # fmt: skip
+    speed = float(np.linalg.norm(v))
+    return (
+        f"{person} (its centre of mass) at ({x[0]:.2f}, {x[1]:.2f}) m at {t_end:.2f} s, "
+        f"{speed:.2f} m/s"
+    )
 
 
 # -- the run-out on the ground -------------------------------------------------------------

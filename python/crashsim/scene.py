@@ -341,6 +341,8 @@ class Scene:
         self._no_contact: set[frozenset[str]] = set()
         # Pairs (names) with a compliant contact: (stiffness N/m, damping ratio).
         self._soft: dict[frozenset[str], tuple[float, float]] = {}
+        # Each pedestrian's name -> its segments' vehicle names.
+        self._pedestrians: dict[str, tuple[str, ...]] = {}
 
     # -- ground and obstacles ------------------------------------------------------------
 
@@ -600,6 +602,7 @@ class Scene:
             )
         # A passive body's segments never strike each other (the joints hold the neighbours).
         names = [body.name for body, *_ in bodies]
+        self._pedestrians[pedestrian.name] = tuple(names)
         joined = {frozenset((f"{pedestrian.name}/{j.parent}", f"{pedestrian.name}/{j.child}"))
                   for j, *_ in joints}  # fmt: skip
         for a, b in combinations(names, 2):
@@ -741,6 +744,11 @@ class Scene:
     def joints(self) -> list[Joint]:
         """The joints, in the order made."""
         return list(self._joints)
+
+    @property
+    def pedestrians(self) -> dict[str, tuple[str, ...]]:
+        """Each pedestrian's name and its segments' vehicle names, in the order added."""
+        return dict(self._pedestrians)
 
     def _placement(self, vehicle: VehicleRef) -> _Placement:
         i = self._index(vehicle)
