@@ -267,7 +267,7 @@ def test_the_picture_from_above_draws_a_pedestrian_as_one(standing: cs.Pedestria
     scene = cs.Scene(ground=cs.Ground())
     scene.add(car, (0.0, 0.0), velocity=(10.0, 0.0, 0.0))
     scene.add(standing, (2.4, 0.0), heading=math.pi / 2)
-    assert scene.pedestrians == {"pedestrian": tuple(s.name for s in standing.segments)}
+    assert scene.pedestrians == {"pedestrian": standing}
     result = scene.run(0.05)
     fig = plot_trajectories(result)
     caption = fig._suptitle.get_text()

@@ -69,3 +69,35 @@ def test_each_segments_first_contact_is_read_from_the_run() -> None:
     x, speed = rest_of(result, person)
     assert x[0] > 2.4 and speed > 1.0
     assert x[2] > 0.5
+
+
+def test_the_report_has_the_pedestrian_as_one() -> None:
+    import json
+    from importlib import resources
+
+    import jsonschema
+    from crashsim.analysis.report import build_report
+
+    car = _box_car()
+    person = cs.Pedestrian(height=1.75, mass=75.0)
+    scene = cs.Scene(ground=cs.Ground(), normal="volume", friction=0.3)
+    scene.add(car, (0.0, 0.0), velocity=(10.0, 0.0, 0.0))
+    scene.add(person, (2.4, 0.0), heading=math.pi / 2)
+    scene.soft_contact(car, person, stiffness=1e5, damping_ratio=0.5)
+    result = scene.run(0.05, dt=2e-4)
+    report = build_report(result)
+    data = report.to_dict()
+    schema = json.loads(
+        resources.files("crashsim.analysis").joinpath("schema/report-1.schema.json").read_text()
+    )
+    jsonschema.validate(data, schema)
+    (ped,) = data["pedestrians"]
+    assert ped["name"] == "pedestrian" and ped["struck_by"][0]["vehicle"] == "car"
+    first = ped["struck_by"][0]["segments"][0]
+    read = next(iter(segment_contacts(result, person, car).values()))
+    assert (first["segment"], first["time"], first["relative_speed"]) == (
+        read.segment, read.time, read.relative_speed
+    )
+    assert [r["vehicle"] for r in data["run_out"]] == ["car"]  # the segments are the person
+    text = report.summary_table()
+    assert "Pedestrian 'pedestrian':" in text and "first contacts with 'car': " in text

@@ -418,7 +418,7 @@ def _persons(result: Result) -> dict[str, str]:
     scene)."""
     scene = getattr(result, "scene", None)
     people = scene.pedestrians if scene is not None else {}
-    return {seg: person for person, segs in people.items() for seg in segs}
+    return {seg.name: name for name, person in people.items() for seg in person.segments}
 
 
 def _units(result: Result) -> list[tuple[str, list[str]]]:

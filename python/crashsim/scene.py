@@ -341,8 +341,8 @@ class Scene:
         self._no_contact: set[frozenset[str]] = set()
         # Pairs (names) with a compliant contact: (stiffness N/m, damping ratio).
         self._soft: dict[frozenset[str], tuple[float, float]] = {}
-        # Each pedestrian's name -> its segments' vehicle names.
-        self._pedestrians: dict[str, tuple[str, ...]] = {}
+        # The pedestrians added, by name.
+        self._pedestrians: dict[str, Pedestrian] = {}
 
     # -- ground and obstacles ------------------------------------------------------------
 
@@ -602,7 +602,7 @@ class Scene:
             )
         # A passive body's segments never strike each other (the joints hold the neighbours).
         names = [body.name for body, *_ in bodies]
-        self._pedestrians[pedestrian.name] = tuple(names)
+        self._pedestrians[pedestrian.name] = pedestrian
         joined = {frozenset((f"{pedestrian.name}/{j.parent}", f"{pedestrian.name}/{j.child}"))
                   for j, *_ in joints}  # fmt: skip
         for a, b in combinations(names, 2):
@@ -746,8 +746,8 @@ class Scene:
         return list(self._joints)
 
     @property
-    def pedestrians(self) -> dict[str, tuple[str, ...]]:
-        """Each pedestrian's name and its segments' vehicle names, in the order added."""
+    def pedestrians(self) -> dict[str, Pedestrian]:
+        """The pedestrians added (each one's segments are vehicles of the scene), by name."""
         return dict(self._pedestrians)
 
     def _placement(self, vehicle: VehicleRef) -> _Placement:

@@ -25,7 +25,15 @@ if TYPE_CHECKING:
 
 Array = np.ndarray
 
-__all__ = ["SegmentContact", "rest_of", "segment_contacts", "wrap_around_distance"]
+__all__ = [
+    "PedestrianReport",
+    "SegmentContact",
+    "pedestrian_lines",
+    "pedestrian_reports",
+    "rest_of",
+    "segment_contacts",
+    "wrap_around_distance",
+]
 
 # How far (m) the outline may fall below its highest point so far while a wrap-around tape
 # still follows it (a bonnet's or roof's curvature); past that it goes down the rear.
@@ -185,3 +193,89 @@ def rest_of(result: Result, pedestrian: Pedestrian) -> tuple[Array, float]:
     x = sum(result.trajectory(s.name).position[-1] * s.mass for s in pedestrian.segments)
     v = sum(result.trajectory(s.name).velocity[-1] * s.mass for s in pedestrian.segments)
     return x / total, float(np.linalg.norm(v / total))
+
+
+@dataclass(frozen=True)
+class PedestrianReport:
+    """One pedestrian over the run: ``name``; ``contacts`` {vehicle: {segment:
+    SegmentContact}} for every vehicle it touched; ``rest`` (3,) its centre of mass at the
+    last sample (world, m) and ``rest_speed`` (m/s) its speed there; ``end_time`` (s)."""
+
+    name: str
+    contacts: dict[str, dict[str, SegmentContact]]
+    rest: Array
+    rest_speed: float
+    end_time: float
+
+    def to_dict(self) -> dict[str, object]:
+        """The JSON report's record (SI)."""
+        return {
+            "name": self.name,
+            "struck_by": [
+                {
+                    "vehicle": vehicle,
+                    "segments": [
+                        {
+                            "segment": c.segment,
+                            "time": c.time,
+                            "point": [float(x) for x in c.point],
+                            "wrap_around": c.wrap_around,
+                            "relative_speed": c.relative_speed,
+                            "peak_relative_speed": c.peak_relative_speed,
+                        }
+                        for c in segs.values()
+                    ],
+                }
+                for vehicle, segs in self.contacts.items()
+            ],
+            "rest": [float(x) for x in self.rest],
+            "rest_speed": self.rest_speed,
+            "end_time": self.end_time,
+        }
+
+
+def pedestrian_reports(result: Result) -> list[PedestrianReport]:
+    """Every pedestrian of the result's scene (none without one)."""
+    scene = result.scene
+    if scene is None or not scene.pedestrians:
+        return []
+    out = []
+    segments = {s.name for p in scene.pedestrians.values() for s in p.segments}
+    others = [v for v in scene.vehicles if v.name not in segments]
+    for name, person in scene.pedestrians.items():
+        contacts = {}
+        for v in others:
+            touched = segment_contacts(result, person, v)
+            if touched:
+                contacts[v.name] = touched
+        rest, speed = rest_of(result, person)
+        out.append(PedestrianReport(name, contacts, rest, speed, float(result.t[-1])))
+    return out
+
+
+def pedestrian_lines(reports: list[PedestrianReport]) -> list[str]:
+    """The text report's lines: each pedestrian's first contacts (head first) and its end."""
+    lines = []
+    for r in reports:
+        lines.append(f"Pedestrian {r.name!r}:")
+        for vehicle, segs in r.contacts.items():
+            head = segs.get("head")
+            if head is not None:
+                wad = "off the front and top" if head.wrap_around is None else (
+                    f"wrap-around distance {head.wrap_around:.2f} m")
+                lines.append(
+                    f"  head first touches {vehicle!r} at {head.time:.4f} s, {wad}, "
+                    f"{head.relative_speed:.2f} m/s relative to it (peak "
+                    f"{head.peak_relative_speed:.2f} m/s)"
+                )  # fmt: skip
+            first = ", ".join(f"{c.segment} {c.time:.4f} s ({c.relative_speed:.1f} m/s)"
+                              for c in list(segs.values())[:6])  # fmt: skip
+            lines.append(f"  first contacts with {vehicle!r}: {first}"
+                         + (", ..." if len(segs) > 6 else ""))  # fmt: skip
+        x = r.rest
+        lines.append(
+            f"  centre of mass at ({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m at {r.end_time:.2f} s, "
+            f"{r.rest_speed:.2f} m/s"
+            + (" (at rest)" if r.rest_speed < 0.1 else " (still moving)")
+        )
+    return lines

@@ -45,6 +45,7 @@ from crashsim.analysis.joints import (
     joint_lines,
     joint_reports,
 )
+from crashsim.analysis.pedestrian import PedestrianReport, pedestrian_lines, pedestrian_reports
 from crashsim.analysis.runout import RunOutReport, run_out, run_out_lines
 from crashsim.errors import ParameterError, SceneError
 from crashsim.units import to_kmh, to_mph
@@ -821,7 +822,13 @@ def build_report(result: Result) -> Report:
             "build the report from the Result that Scene.run returned"
         )
     impacts = [_impact_report(result, imp, i) for i, imp in enumerate(result.impacts, start=1)]
-    runout = [run_out(result, n) for n in result.vehicles] if result.on_ground else []
+    # a pedestrian's segments are reported as one person (its own section), not as vehicles
+    segments = {s.name for p in result.scene.pedestrians.values() for s in p.segments}
+    runout = (
+        [run_out(result, n) for n in result.vehicles if n not in segments]
+        if result.on_ground
+        else []
+    )
     return Report(
         result=result,
         impacts=impacts,
@@ -829,6 +836,7 @@ def build_report(result: Result) -> Report:
         run_out=runout,
         joints=joint_reports(result),
         articulation=articulation_events(result),
+        pedestrians=pedestrian_reports(result),
     )
 
 
@@ -1080,6 +1088,7 @@ class Report:
         run_out: list[RunOutReport] | None = None,
         joints: list[JointReport] | None = None,
         articulation: list[ArticulationEvent] | None = None,
+        pedestrians: list[PedestrianReport] | None = None,
     ) -> None:
         self.result = result
         self.impacts = list(impacts)
@@ -1091,6 +1100,8 @@ class Report:
         self.joints = list(joints) if joints is not None else []
         #: the combinations' jackknifes and trailer swings (crashsim.analysis.joints' rules)
         self.articulation = list(articulation) if articulation is not None else []
+        #: each pedestrian: its first contacts, head impact, end (crashsim.analysis.pedestrian)
+        self.pedestrians = list(pedestrians) if pedestrians is not None else []
 
     def vehicle_run_out(self, name: str) -> RunOutReport:
         """The run-out of a named vehicle (SceneError when the run had no ground)."""
@@ -1150,6 +1161,9 @@ class Report:
             if self.articulation:
                 lines.append("Jackknifes and trailer swings (crashsim's rules, docs/joints.md):")
                 lines += articulation_lines(self.articulation)
+        if self.pedestrians:
+            lines.append("")
+            lines += pedestrian_lines(self.pedestrians)
         return "\n".join(lines)
 
     def __str__(self) -> str:
@@ -1194,6 +1208,12 @@ class Report:
                     "articulation_events": [e.to_dict() for e in self.articulation],
                 }
                 if self.joints
+                else {}
+            ),
+            # optional: a scene with pedestrians (schema version stays 1)
+            **(
+                {"pedestrians": [p.to_dict() for p in self.pedestrians]}
+                if self.pedestrians
                 else {}
             ),
         }
