@@ -1,0 +1,207 @@
+"""Throw distance against impact speed, crashsim's multibody pedestrian against the published
+corridors (docs/human.md, "Throw distance").
+
+    python3 benches/pedestrian_throw.py                  # 20-70 km/h, four fronts, the picture
+    python3 benches/pedestrian_throw.py --speeds 30 --fronts sedan --no-picture
+
+A walking 50th-percentile man (1.75 m, 75 kg) struck on his left side, his nearest point 5 cm
+ahead of the vehicle's foremost point, as scripts/pedestrian_strike.py does: soft car-segment
+contacts (1e5 N/m, damping ratio 0.5, friction 0.3, normal "volume"), 0.2 ms steps, tyre-road
+friction 0.8, the vehicle braking at the friction limit from the start (3-19 ms before the
+first contact). The pedestrian's segments slide on the road with the engine's body-ground
+friction (Ground.body_friction: 0.45, the engine's default). Each run lasts
+1 s + 1.2 v / (0.45 g) (v the impact speed; the slide from v at 0.45 g takes v / (0.45 g)),
+and the table gives the pelvis speed at the end (at rest below 0.1 m/s):
+``run(until="rest")`` never ends, the segments keep the engine's rest test from passing.
+
+Prints a row per run (speed, front, throw distance of the whole-body CG, the head's first
+contact time and speed relative to the vehicle, the pelvis speed at the end, wall time) and
+draws docs/img/pedestrian-throw.png (crashsim's points over the corridors).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import crashsim as cs
+import numpy as np
+from crashsim.analysis.throw import (
+    VKU_FRICTION,
+    VKU_THROW_FACTORS,
+    G,
+    first_contact_time,
+    searle_distance,
+    throw_distance,
+    vku_throw_distance,
+)
+
+BODY_FRICTION = 0.45  # the engine's default body-ground friction (Ground.body_friction None)
+REST_SPEED = 0.1  # m/s, the pelvis below this at the end: at rest
+FRONTS = ("sedan", "suv", "van", "truck")
+SPEEDS = (20.0, 30.0, 40.0, 50.0, 60.0, 70.0)  # km/h
+PICTURE = Path(__file__).resolve().parent.parent / "docs" / "img" / "pedestrian-throw.png"
+
+
+def vehicle(front: str) -> cs.Vehicle:
+    """The striking vehicle: a generated sedan, SUV or van, or the laden rigid truck (18 t,
+    its flat cab front)."""
+    if front == "truck":
+        return cs.rigid_truck("rigid_truck", name="car")
+    return cs.Vehicle.generate(front, name="car")
+
+
+def duration_for(speed_kmh: float) -> float:
+    """The run's length (s): 1 s for the contact and flight, then 1.2 times the slide from
+    the impact speed at the body-ground friction."""
+    return 1.0 + 1.2 * cs.kmh(speed_kmh) / (BODY_FRICTION * G)
+
+
+@dataclass(frozen=True)
+class Strike:
+    speed_kmh: float
+    front: str
+    throw: float  # m, the whole-body CG from the first contact to the end
+    first_contact: float  # s
+    head_time: float | None  # s, the head's first contact with the vehicle
+    head_speed: float | None  # m/s, the head CG relative to the vehicle there
+    pelvis_end_speed: float  # m/s at the end of the run
+    duration: float  # s simulated
+    wall: float  # s
+
+
+def strike(speed_kmh: float, front: str, duration: float | None = None) -> Strike:
+    car = vehicle(front)
+    ped = cs.Pedestrian(height=1.75, mass=75.0, sex="male", pose="walking")
+    scene = cs.Scene(ground=cs.Ground(friction=0.8))
+    ahead = float(car.mesh.bounds[1, 0] - car.cg[0])  # the CG to the front, m
+    duration = duration_for(speed_kmh) if duration is None else duration
+    scene.add(car, (0.0, 0.0), heading=0.0, velocity=(cs.kmh(speed_kmh), 0.0, 0.0),
+              inputs=cs.DriverInputs(brake=[(0.0, 1.0), (duration, 1.0)]))
+    # facing across the vehicle's path (+y), his left side (body y, world -x) 5 cm ahead of
+    # the vehicle's foremost point (the arm's capsule reaches 0.22 m left of the mid-plane)
+    left = float(ped.vertices()[:, 1].max())
+    scene.add(ped, (ahead + 0.05 + left, 0.0), heading=np.pi / 2)
+    for seg in ped.segments:
+        scene.contact(car, seg, depth_of_penetration=0.0, restitution=0.1, friction=0.3,
+                      normal="volume")
+    scene.soft_contact(car, ped, stiffness=1e5, damping_ratio=0.5)
+    t0 = time.perf_counter()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", cs.DepthOfPenetrationWarning)
+        result = scene.run(duration, dt=2e-4, record_interval=2e-3)
+    wall = time.perf_counter() - t0
+    head_time, head_speed = head_contact(result, ped)
+    pelvis = result.trajectory(f"{ped.name}/pelvis")
+    return Strike(
+        speed_kmh, front, throw_distance(result, "car", ped),
+        first_contact_time(result, "car", ped), head_time, head_speed,
+        float(np.linalg.norm(pelvis.velocity[-1])), duration, wall,
+    )
+
+
+def head_contact(result: cs.Result, ped: cs.Pedestrian) -> tuple[float | None, float | None]:
+    """The head's first contact with the vehicle (s) and its CG's speed there relative to the
+    vehicle's point at the head's CG (m/s: the vehicle's CG velocity plus its rotation)."""
+    head_name = f"{ped.name}/head"
+    times = [c.time for c in result.contacts
+             if c.kind == "first_overlap" and set(c.vehicles) == {"car", head_name}]
+    if not times:
+        return None, None
+    t = min(times)
+    head, car = result.trajectory(head_name), result.trajectory("car")
+    k = min(int(np.searchsorted(head.t, t)), len(head.t) - 1)
+    arm = head.position[k] - car.position[k]
+    v_car = car.velocity[k] + np.cross(car.angular_velocity[k], arm)
+    return t, float(np.linalg.norm(head.velocity[k] - v_car))
+
+
+def table(rows: list[Strike]) -> str:
+    lines = ["| km/h | front | throw (m) | first contact (s) | head contact (s) | head rel. speed "
+             "(m/s) | pelvis at end (m/s) | run (s) | wall (s) |",
+             "| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    for r in rows:
+        head_t = "none" if r.head_time is None else f"{r.head_time:.3f}"
+        head_v = "-" if r.head_speed is None else f"{r.head_speed:.2f}"
+        lines.append(f"| {r.speed_kmh:.0f} | {r.front} | {r.throw:.2f} | {r.first_contact:.4f} | "
+                     f"{head_t} | {head_v} | {r.pelvis_end_speed:.3f} | {r.duration:.2f} | "
+                     f"{r.wall:.1f} |")
+    return "\n".join(lines)
+
+
+def picture(rows: list[Strike], path: Path) -> None:
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(8.0, 5.6), layout="constrained")
+    ax = fig.add_subplot()
+    kmh = np.linspace(15.0, 75.0, 121)
+    v = kmh / 3.6
+    lo, hi = np.array([searle_distance(x, BODY_FRICTION) for x in v]).T
+    ax.fill_between(kmh, lo, hi, color="tab:blue", alpha=0.18,
+                    label=f"Searle (1983), mu {BODY_FRICTION} (the engine's), v = impact speed")
+    lo66, hi66 = np.array([searle_distance(x, VKU_FRICTION) for x in v]).T
+    ax.plot(kmh, lo66, color="tab:blue", ls="--", lw=0.9,
+            label=f"Searle bounds, mu {VKU_FRICTION}")
+    ax.plot(kmh, hi66, color="tab:blue", ls="--", lw=0.9)
+    for (name, f), color in zip(VKU_THROW_FACTORS.items(), ("tab:green", "tab:olive"), strict=True):
+        for mu, ls in ((VKU_FRICTION, "-"), (BODY_FRICTION, ":")):
+            ax.plot(kmh, [vku_throw_distance(x, name, mu) for x in v], color=color, ls=ls, lw=1.4,
+                    label=f"VKU 1997 adult, {name} (f_w {f:g}), mu {mu:g}")
+    ax.errorbar([50.0], [20.0], xerr=[[10.0], [10.0]], fmt="none", ecolor="0.3", capsize=4,
+                label="20 m: 40-60 km/h (unfallanalyse.hamburg's table)")
+    markers = {"sedan": "o", "suv": "s", "van": "^", "truck": "D"}
+    colors = {"sedan": "tab:red", "suv": "tab:purple", "van": "tab:orange", "truck": "k"}
+    for front in FRONTS:
+        pts = [(r.speed_kmh, r.throw, r.pelvis_end_speed < REST_SPEED) for r in rows
+               if r.front == front]
+        if not pts:
+            continue
+        xs, ys, rest = zip(*pts, strict=True)
+        c = colors[front]
+        ax.plot(xs, ys, color=c, lw=0.8, alpha=0.6)
+        ax.scatter(xs, ys, marker=markers[front], s=42, zorder=3,
+                   facecolors=[c if r else "white" for r in rest], edgecolors=c,
+                   label=f"crashsim, {front}")
+    ax.set_xlabel("impact speed (km/h)")
+    ax.set_ylabel("throw distance, whole-body CG, first contact to rest (m)")
+    ax.set_title("Pedestrian throw distance: crashsim (walking 1.75 m, 75 kg, struck on the side)"
+                 "\nover the published corridors (hollow marker: still moving at the run's end)",
+                 fontsize=10)
+    ax.set_xlim(15.0, 75.0)
+    ax.set_ylim(0.0, None)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left")
+    fig.savefig(path, dpi=110)
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--speeds", type=float, nargs="+", default=SPEEDS, help="km/h")
+    p.add_argument("--fronts", nargs="+", default=FRONTS, choices=FRONTS)
+    p.add_argument("--duration", type=float, default=None,
+                   help="s, the same for every run (default: from the speed)")
+    p.add_argument("--no-picture", action="store_true")
+    p.add_argument("--out", type=Path, default=PICTURE)
+    a = p.parse_args()
+    rows = []
+    t0 = time.perf_counter()
+    for front in a.fronts:
+        for speed in a.speeds:
+            r = strike(speed, front, a.duration)
+            rows.append(r)
+            print(f"{speed:4.0f} km/h {front:6s} throw {r.throw:6.2f} m, head "
+                  f"{'none' if r.head_time is None else f'{r.head_time:.3f} s'}, pelvis "
+                  f"{r.pelvis_end_speed:.3f} m/s at {r.duration:.2f} s, wall {r.wall:.1f} s",
+                  flush=True)
+    print(table(rows))
+    print(f"total wall {time.perf_counter() - t0:.0f} s")
+    if not a.no_picture:
+        picture(rows, a.out)
+        print(f"wrote {a.out}")
+
+
+if __name__ == "__main__":
+    main()
