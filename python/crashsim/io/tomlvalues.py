@@ -1,8 +1,8 @@
 """The values of scene, study and fit files: quantities with units (:data:`UNITS`,
 :func:`parse_quantity`), the checked TOML tables every reader walks (unknown keys refused with
 the nearest known one, every key read remembered) and the one error they raise,
-:class:`SceneFileError`. crashsim.io.scenefile, studyfile and fitfile read through it; it
-imports none of them.
+:class:`SceneFileError`. crashsim.io.scenefile (with its scene_* modules), studyfile and fitfile
+read through it; it imports none of them.
 """
 
 from __future__ import annotations
