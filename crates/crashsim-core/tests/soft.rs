@@ -181,4 +181,17 @@ fn a_soft_contact_too_stiff_for_the_step_is_refused() {
     let err = w.run(0.1, DT).unwrap_err().to_string();
     assert!(err.contains("too stiff for the step"), "{err}");
     assert!(err.contains("at most 2.000e5 N/m"), "{err}");
+    // A run at a step that fits, then resumed with a longer one: refused again.
+    let mut w = on_a_slab(0.0, 0.5);
+    w.set_soft_contact(
+        0,
+        1,
+        SoftContact {
+            stiffness: 1e6,
+            damping_ratio: 0.7,
+        },
+    )
+    .unwrap();
+    w.run(0.01, 1e-4).unwrap();
+    assert!(w.run(0.01, DT).is_err());
 }

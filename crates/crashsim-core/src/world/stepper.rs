@@ -198,12 +198,13 @@ impl World {
         }
         let steps = (duration / dt).ceil() as usize;
         let stride = options.stride(steps, dt)?;
+        // Every run's step, not only the first's: a run resumed with a longer step is checked.
+        self.check_soft_steps(dt)?;
         if !self.started {
             for p in &self.pairs {
                 self.check_stiffness(p.body1, p.body2, &p.params)?;
             }
             self.check_initial_overlaps()?;
-            self.check_soft_steps(dt)?;
             if self.ground.is_some() {
                 self.carry_coupling_loads()?;
             }
