@@ -29,6 +29,7 @@ from pathlib import Path
 
 import crashsim as cs
 import numpy as np
+from crashsim.analysis.pedestrian import segment_contacts
 from crashsim.analysis.throw import (
     VKU_FRICTION,
     VKU_THROW_FACTORS,
@@ -67,7 +68,7 @@ class Strike:
     throw: float  # m, the whole-body CG from the first contact to the end
     first_contact: float  # s
     head_time: float | None  # s, the head's first contact with the vehicle
-    head_speed: float | None  # m/s, the head CG relative to the vehicle there
+    head_speed: float | None  # m/s, the head relative to the vehicle at the point it touched
     pelvis_end_speed: float  # m/s at the end of the run
     duration: float  # s simulated
     wall: float  # s
@@ -94,29 +95,14 @@ def strike(speed_kmh: float, front: str, duration: float | None = None) -> Strik
         warnings.simplefilter("ignore", cs.DepthOfPenetrationWarning)
         result = scene.run(duration, dt=2e-4, record_interval=2e-3)
     wall = time.perf_counter() - t0
-    head_time, head_speed = head_contact(result, ped)
+    head = segment_contacts(result, ped, car).get("head")
+    head_time, head_speed = (None, None) if head is None else (head.time, head.relative_speed)
     pelvis = result.trajectory(f"{ped.name}/pelvis")
     return Strike(
         speed_kmh, front, throw_distance(result, "car", ped),
         first_contact_time(result, "car", ped), head_time, head_speed,
         float(np.linalg.norm(pelvis.velocity[-1])), duration, wall,
     )
-
-
-def head_contact(result: cs.Result, ped: cs.Pedestrian) -> tuple[float | None, float | None]:
-    """The head's first contact with the vehicle (s) and its CG's speed there relative to the
-    vehicle's point at the head's CG (m/s: the vehicle's CG velocity plus its rotation)."""
-    head_name = f"{ped.name}/head"
-    times = [c.time for c in result.contacts
-             if c.kind == "first_overlap" and set(c.vehicles) == {"car", head_name}]
-    if not times:
-        return None, None
-    t = min(times)
-    head, car = result.trajectory(head_name), result.trajectory("car")
-    k = min(int(np.searchsorted(head.t, t)), len(head.t) - 1)
-    arm = head.position[k] - car.position[k]
-    v_car = car.velocity[k] + np.cross(car.angular_velocity[k], arm)
-    return t, float(np.linalg.norm(head.velocity[k] - v_car))
 
 
 def table(rows: list[Strike]) -> str:

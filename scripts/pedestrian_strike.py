@@ -19,6 +19,7 @@ from collections import Counter
 
 import crashsim as cs
 import numpy as np
+from crashsim.analysis.pedestrian import rest_of, segment_contacts
 from crashsim.result import rotation_matrix
 
 
@@ -77,7 +78,7 @@ def strike(speed_kmh: float, dtp: float, normal: str, duration: float, pose: str
         result = scene.run(duration, dt=dt)
     wall = time.perf_counter() - t0
     if soft is not None:
-        soft_report(scene, result, ped, speed_kmh, soft, damping_ratio, wall, duration)
+        soft_report(scene, result, ped, car, speed_kmh, soft, damping_ratio, wall, duration)
         return
     print(f"sedan at {speed_kmh:g} km/h into a {pose} pedestrian, dt_p {dtp * 1e3:g} ms, normal "
           f"{normal}, brake {brake:g}: {len(scene.pairs())} pairs, wall {wall:.2f} s for "
@@ -115,33 +116,29 @@ def strike(speed_kmh: float, dtp: float, normal: str, duration: float, pose: str
           f"largest gap {joint_gap(scene, result):.1e} m")
 
 
-def soft_report(scene: cs.Scene, result: cs.Result, ped: cs.Pedestrian, speed_kmh: float,
-                stiffness: float, damping_ratio: float, wall: float, duration: float) -> None:
-    """What a strike with soft car-segment contacts did: each segment's first contact (time,
-    its CG's speed relative to the car's there, height), the head's, the pelvis's travel."""
+def soft_report(scene: cs.Scene, result: cs.Result, ped: cs.Pedestrian, car: cs.Vehicle,
+                speed_kmh: float, stiffness: float, damping_ratio: float, wall: float,
+                duration: float) -> None:
+    """What a strike with soft car-segment contacts did: each segment's first contact
+    (crashsim.analysis.pedestrian), the pelvis's travel, the person's end."""
     print(f"sedan at {speed_kmh:g} km/h, soft contacts {stiffness:g} N/m, damping ratio "
           f"{damping_ratio:g}: {len(result.impacts)} exchanges, wall {wall:.2f} s for "
           f"{duration:g} s")
+    contacts = segment_contacts(result, ped, car)
+    for c in contacts.values():
+        wad = "-" if c.wrap_around is None else f"{c.wrap_around:.2f} m"
+        print(f"    {c.segment:16s} first contact {c.time:.4f} s, {c.relative_speed:5.2f} m/s "
+              f"relative to the car there (peak {c.peak_relative_speed:5.2f}), wrap-around {wad}")
     car_tr = result.trajectory("car")
-    first: dict[str, float] = {}
-    for c in result.contacts:
-        if c.kind == "first_overlap" and "car" in c.vehicles:
-            first.setdefault(next(n for n in c.vehicles if n != "car"), c.time)
-    for name, t in sorted(first.items(), key=lambda kv: kv[1]):
-        tr = result.trajectory(name)
-        k = int(np.searchsorted(tr.t, t))
-        rel = float(np.linalg.norm(tr.velocity[k] - car_tr.velocity[k]))
-        ahead = tr.position[k, 0] - car_tr.position[k, 0]
-        print(f"    {name.split('/')[1]:16s} first contact {t:.4f} s, CG {rel:5.2f} m/s relative "
-              f"to the car, CG z {tr.position[k, 2]:.2f} m, {ahead:+.2f} m ahead of the car's CG")
     pelvis = result.trajectory(f"{ped.name}/pelvis")
-    head = result.trajectory(f"{ped.name}/head")
-    t0 = min(first.values()) if first else 0.0
+    t0 = min((c.time for c in contacts.values()), default=0.0)
     k0 = int(np.searchsorted(pelvis.t, t0))
     travel = float(np.linalg.norm(pelvis.position[-1, :2] - pelvis.position[k0, :2]))
-    print(f"  pelvis {travel:.2f} m from first contact to {duration:g} s "
-          f"({np.linalg.norm(pelvis.velocity[-1]):.2f} m/s then); car at x "
+    rest, speed = rest_of(result, ped)
+    print(f"  pelvis {travel:.2f} m from first contact to {duration:g} s; centre of mass at "
+          f"({rest[0]:.2f}, {rest[1]:.2f}) m, {speed:.2f} m/s; car at x "
           f"{car_tr.position[-1, 0]:.2f} m, {np.linalg.norm(car_tr.velocity[-1]):.2f} m/s")
+    head = result.trajectory(f"{ped.name}/head")
     print(f"  head CG highest {head.position[:, 2].max():.2f} m; joints' largest gap "
           f"{joint_gap(scene, result):.1e} m")
 

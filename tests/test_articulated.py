@@ -126,8 +126,11 @@ def test_trailer_brakes_stop_the_combination_sooner() -> None:
     assert without > 1.5 * with_brakes
 
 
-def test_a_car_tows_a_centre_axle_trailer_on_its_ball() -> None:
-    car = cs.Vehicle.generate("sedan", name="car")
+def _car_and_trailer(tyre: cs.Tyre | None = None) -> tuple[cs.Vehicle, cs.Vehicle]:
+    """A generated sedan with a ball 15 cm behind its rear, 0.45 m up, and a 750 kg centre-axle
+    trailer (3.0 m box, its axle 1.7 m behind its front, the coupler 1.2 m ahead of it), both
+    on ``tyre`` (None: the default)."""
+    car = cs.Vehicle.generate("sedan", name="car", tyre=tyre)
     lo = (car.mesh.bounds[0] - car.cg)[0]
     car = car.with_hitch(car.cg + [lo - 0.15, 0.0, 0.45 - car.cg[2]], "ball")
     trailer = cs.Trailer.box(
@@ -145,7 +148,13 @@ def test_a_car_tows_a_centre_axle_trailer_on_its_ball() -> None:
         cg_height=0.7,
         cg_from_front=1.5,
         name="trailer",
+        tyre=tyre,
     )
+    return car, trailer
+
+
+def test_a_car_tows_a_centre_axle_trailer_on_its_ball() -> None:
+    car, trailer = _car_and_trailer()
     nose = trailer.wheels.coupling_load(trailer.mass)
     assert 0.0 < nose < 0.15 * trailer.mass * G
     scene = cs.Scene(ground=cs.Ground(friction=0.8))
@@ -485,27 +494,7 @@ def test_a_car_and_trailer_in_a_steady_turn_hold_the_linear_closed_forms() -> No
     # 4. the car's axles: their lateral forces from the car's force and moment balance with the
     #    hitch's force, their loads from statics with the nose load, tan(alpha) = F / (c Fz).
     # Each within 1 % (measured: 0.35 %, 0.15 %, 0.14 %, 0.05 % and 0.2 %).
-    tyre = cs.Tyre("linear", rolling_resistance=0.0)
-    car = cs.Vehicle.generate("sedan", name="car", tyre=tyre)
-    lo = (car.mesh.bounds[0] - car.cg)[0]
-    car = car.with_hitch(car.cg + [lo - 0.15, 0.0, 0.45 - car.cg[2]], "ball")
-    trailer = cs.Trailer.box(
-        "centre_axle",
-        length=3.0,
-        width=1.6,
-        height=1.2,
-        mass=750.0,
-        ground_clearance=0.5,
-        coupler=1.2,
-        coupler_height=0.45,
-        axles=[1.7],
-        track=1.4,
-        radius=0.3,
-        cg_height=0.7,
-        cg_from_front=1.5,
-        name="trailer",
-        tyre=tyre,
-    )
+    car, trailer = _car_and_trailer(cs.Tyre("linear", rolling_resistance=0.0))
     delta = math.radians(2.0)
     steer = [[0.0, 0.0], [0.5, delta], [30.0, delta]]
     scene = cs.Scene(ground=cs.Ground(friction=0.9))

@@ -9,12 +9,12 @@ import warnings
 import crashsim as cs
 import numpy as np
 import pytest
+from crashsim.analysis.pedestrian import whole_body
 from crashsim.analysis.throw import (
     VKU_FRICTION,
     VKU_THROW_FACTORS,
     G,
     first_contact_time,
-    pedestrian_cg,
     searle_distance,
     searle_speed,
     throw_distance,
@@ -109,7 +109,7 @@ def test_a_30_kmh_strike_lands_inside_the_corridors() -> None:
     # Searle's maximum at the engine's body-ground friction 0.45 (9.4 m)
     assert vku_throw_distance(v, "low front") < s < searle_distance(v, 0.45)[1]
     # the whole-body CG: the segments' CGs weighted by mass, here at the end
-    t, cg = pedestrian_cg(result, ped)
+    t, cg, _ = whole_body(result, ped)
     weighted = sum(seg.mass * result.trajectory(seg.name).position[-1] for seg in ped.segments)
     np.testing.assert_allclose(cg[-1], weighted / 75.0, rtol=0, atol=1e-12)
     assert 0.0 < first_contact_time(result, "car", ped) < 0.02

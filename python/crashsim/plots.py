@@ -1184,18 +1184,16 @@ def _draw_person(
             _draw_vehicle(ax, pose, colour, fill_alpha=0.10 if last else 0.04 + 0.06 * share,
                           edge_alpha=0.9 if last else 0.25 + 0.4 * share,
                           lw=1.2 if last else 0.6, details=False, z=2.0 + share)  # fmt: skip
+    from crashsim.analysis.pedestrian import rest_of
+
     scene = result.scene
     assert scene is not None  # a pedestrian is known from its scene
-    masses = {v.name: v.mass for v in scene.vehicles if v.name in members}
-    total = sum(masses.values())
-    x = sum(result.trajectory(m).position[-1] * w for m, w in masses.items()) / total
-    v = sum(result.trajectory(m).velocity[-1] * w for m, w in masses.items()) / total
+    x, speed = rest_of(result, scene.pedestrians[person])
     start = _Pose(result, pelvis, float(result.t[0])).position
     ax.annotate(f"{person} (start)", (start[0], start[1]), xytext=(6, -14),
                 textcoords="offset points", fontsize=8.5, color=colour, zorder=8)  # fmt: skip
     ax.annotate(f"{person} at {t_end:.2f} s", (x[0], x[1]), xytext=(6, 6),
                 textcoords="offset points", fontsize=8.5, color=colour, zorder=8)  # fmt: skip
-    speed = float(np.linalg.norm(v))
     return (
         f"{person} (its centre of mass) at ({x[0]:.2f}, {x[1]:.2f}) m at {t_end:.2f} s, "
         f"{speed:.2f} m/s"

@@ -32,6 +32,7 @@ __all__ = [
     "pedestrian_reports",
     "rest_of",
     "segment_contacts",
+    "whole_body",
     "wrap_around_distance",
 ]
 
@@ -58,28 +59,19 @@ class SegmentContact:
     peak_relative_speed: float
 
 
-def _pose(result: Result, name: str, k: int) -> tuple[Array, Array, Array, Array]:
-    """A body's CG (m), rotation (3, 3, body -> world), velocity (m/s) and angular velocity
-    (rad/s) at sample ``k``."""
-    tr = result.trajectory(name)
-    return (
-        tr.position[k],
-        rotation_matrix(tr.orientation[k]),
-        tr.velocity[k],
-        tr.angular_velocity[k],
-    )
-
-
-def _point_velocity(result: Result, name: str, k: int, point: Array) -> Array:
-    x, _, v, w = _pose(result, name, k)
-    return v + np.cross(w, point - x)
-
-
-def _relative(result: Result, a: str, b: str, k: int, point: Array) -> float:
-    """|velocity of body a's material point at ``point`` less body b's| at sample k (m/s)."""
-    return float(np.linalg.norm(
-        _point_velocity(result, a, k, point) - _point_velocity(result, b, k, point)
-    ))
+def _relative_speeds(
+    result: Result, segment: str, vehicle: Vehicle, samples: Array, point: Array
+) -> Array:
+    """At each of the ``samples`` (indices), |the segment's velocity less the vehicle's| (m/s)
+    at the vehicle's material point ``point`` (its model frame), both as rigid bodies."""
+    car, seg = result.trajectory(vehicle.name), result.trajectory(segment)
+    r = rotation_matrix(car.orientation[samples])  # (n, 3, 3)
+    at = np.einsum("nij,j->ni", r, point - vehicle.cg) + car.position[samples]
+    v_car = car.velocity[samples] + np.cross(car.angular_velocity[samples],
+                                             at - car.position[samples])  # fmt: skip
+    v_seg = seg.velocity[samples] + np.cross(seg.angular_velocity[samples],
+                                             at - seg.position[samples])  # fmt: skip
+    return np.linalg.norm(v_seg - v_car, axis=1)
 
 
 def wrap_around_distance(vehicle: Vehicle, point: ArrayLike) -> float | None:
@@ -162,37 +154,42 @@ def segment_contacts(
     for name, intervals in sorted(spans.items(), key=lambda kv: kv[1][0][0]):
         t0 = intervals[0][0]
         k = int(np.searchsorted(t, t0 - 1e-12))
-        x_c, r_c, _, _ = _pose(result, car, k)
+        car_tr = result.trajectory(car)
+        r_c = rotation_matrix(car_tr.orientation[k])
         x_s = result.trajectory(name).position[k]
-        local = r_c.T @ (x_s - x_c) + vehicle.cg  # the segment's CG, the car's model frame
+        local = r_c.T @ (x_s - car_tr.position[k]) + vehicle.cg  # the car's model frame
         nearest, _, _ = trimesh.proximity.closest_point(vehicle.mesh, local[None, :])
         point = nearest[0]
-        world = r_c @ (point - vehicle.cg) + x_c
-
-        peak = 0.0
+        touching = np.zeros(t.size, dtype=bool)
         for a, b in intervals:
-            for sample in np.flatnonzero((t >= a) & (t <= b)):
-                x_c2, r_c2, _, _ = _pose(result, car, int(sample))
-                at = r_c2 @ (point - vehicle.cg) + x_c2
-                peak = max(peak, _relative(result, name, car, int(sample), at))
+            touching |= (t >= a) & (t <= b)
+        speeds = _relative_speeds(result, name, vehicle, np.flatnonzero(touching), point)
         out[names[name]] = SegmentContact(
             segment=names[name],
             time=float(t0),
             point=point,
             wrap_around=wrap_around_distance(vehicle, point),
-            relative_speed=_relative(result, name, car, k, world),
-            peak_relative_speed=peak,
+            relative_speed=float(_relative_speeds(result, name, vehicle, np.array([k]), point)[0]),
+            peak_relative_speed=float(speeds.max(initial=0.0)),
         )
     return out
+
+
+def whole_body(result: Result, pedestrian: Pedestrian) -> tuple[Array, Array, Array]:
+    """The pedestrian's whole-body centre of mass over the run: t (k,) s, its position (k, 3)
+    m and velocity (k, 3) m/s (world), its segments' weighted by their masses (every body of
+    a run is sampled at the same times)."""
+    total = sum(s.mass for s in pedestrian.segments)
+    x = sum(s.mass * result.trajectory(s.name).position for s in pedestrian.segments)
+    v = sum(s.mass * result.trajectory(s.name).velocity for s in pedestrian.segments)
+    return np.asarray(result.t, dtype=np.float64), x / total, v / total
 
 
 def rest_of(result: Result, pedestrian: Pedestrian) -> tuple[Array, float]:
     """The pedestrian's centre of mass at the run's last sample (world, m) and its speed
     there (m/s): the rest position when that speed is small."""
-    total = sum(s.mass for s in pedestrian.segments)
-    x = sum(result.trajectory(s.name).position[-1] * s.mass for s in pedestrian.segments)
-    v = sum(result.trajectory(s.name).velocity[-1] * s.mass for s in pedestrian.segments)
-    return x / total, float(np.linalg.norm(v / total))
+    _, x, v = whole_body(result, pedestrian)
+    return x[-1], float(np.linalg.norm(v[-1]))
 
 
 @dataclass(frozen=True)

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from crashsim.analysis.pedestrian import whole_body
 from crashsim.errors import ParameterError
 
 if TYPE_CHECKING:
@@ -29,7 +30,6 @@ __all__ = [
     "VKU_THROW_FACTORS",
     "VKU_FRICTION",
     "first_contact_time",
-    "pedestrian_cg",
     "searle_distance",
     "searle_speed",
     "throw_distance",
@@ -117,23 +117,6 @@ def vku_throw_distance(speed: float, front: str, mu: float = VKU_FRICTION) -> fl
     return s_max
 
 
-def pedestrian_cg(result: Result, pedestrian: Pedestrian) -> tuple[Array, Array]:
-    """The pedestrian's whole-body centre of mass over the run: (t (k,) s, position (k, 3) m),
-    its segments' CGs weighted by their masses at the run's samples (every body of a run is
-    sampled at the same times)."""
-    total = 0.0
-    acc: Array | None = None
-    t: Array | None = None
-    for seg in pedestrian.segments:
-        tr = result.trajectory(seg.name)
-        weighted = seg.mass * np.asarray(tr.position, dtype=np.float64)
-        acc = weighted if acc is None else acc + weighted
-        t = tr.t if t is None else t
-        total += seg.mass
-    assert acc is not None and t is not None  # a pedestrian has 16 segments
-    return np.asarray(t, dtype=np.float64), acc / total
-
-
 def first_contact_time(result: Result, vehicle: str, pedestrian: Pedestrian) -> float:
     """The time (s) of the first contact between ``vehicle`` and any of the pedestrian's
     segments: its first overlap in the contact log. Raises ParameterError when they never
@@ -158,6 +141,6 @@ def throw_distance(result: Result, vehicle: str, pedestrian: Pedestrian) -> floa
     at the first contact with ``vehicle`` to its position at the end of the run (its rest
     position when the run lasted until it stopped)."""
     t0 = first_contact_time(result, vehicle, pedestrian)
-    t, cg = pedestrian_cg(result, pedestrian)
+    t, cg, _ = whole_body(result, pedestrian)
     k0 = min(int(np.searchsorted(t, t0)), len(t) - 1)
     return float(np.linalg.norm(cg[-1, :2] - cg[k0, :2]))
