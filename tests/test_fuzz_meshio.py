@@ -190,7 +190,8 @@ def test_nearly_flat_soup_is_a_mesh_error_not_out_of_memory() -> None:
         cs.Vehicle.from_mesh(soup, mass=1500.0)
     check_mesh_source(soup)
     thin = closed_box((4.0, 1e-4, 1.5))  # 0.1 mm thin: a solid, on a grid of about 50k cells
-    counts = cs.vehicles.vehicle._grid_counts(thin.extents, cs.vehicles.vehicle.WINDING_GRID_CELLS)
+    mass_properties = cs.vehicles.mass_properties
+    counts = mass_properties._grid_counts(thin.extents, mass_properties.WINDING_GRID_CELLS)
     assert counts[1] == 1 and 40_000 < counts.prod() < 60_000
 
 

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import trimesh
 from crashsim.vehicles.generator import PRESETS, body_params, generate_body
-from crashsim.vehicles.vehicle import empirical_inertia
+from crashsim.vehicles.mass_properties import empirical_inertia
 from crashsim.vehicles.vehicle_data import vehicle_class
 
 CLASS_FIELDS = ("length", "width", "height", "wheelbase")

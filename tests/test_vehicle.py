@@ -335,7 +335,7 @@ def test_the_yaw_rule_on_the_measured_reference_cars() -> None:
     ratios = []
     for mass, wb, measured in cars.values():
         k = math.sqrt(measured / mass) / wb
-        rule = cs.vehicles.vehicle.empirical_inertia(mass, wb, 4.5, 1.7, 1.4)[2, 2]
+        rule = cs.vehicles.mass_properties.empirical_inertia(mass, wb, 4.5, 1.7, 1.4)[2, 2]
         assert rule == pytest.approx(mass * (0.5 * wb) ** 2, rel=1e-15)
         assert rule / measured == pytest.approx((0.5 / k) ** 2, rel=1e-12)
         ratios.append(rule / measured)
@@ -407,7 +407,7 @@ def test_the_winding_number_solid_of_a_box_is_exact_on_its_grid() -> None:
     # the grid's cells tile the box exactly, so volume, centroid and inertia are exact
     mesh = trimesh.creation.box(extents=(4.0, 2.0, 1.0))
     mesh.apply_translation([0.5, 0.25, 0.5])
-    volume, centroid, inertia = cs.vehicles.vehicle._winding_solid(mesh, "box")
+    volume, centroid, inertia = cs.vehicles.mass_properties._winding_solid(mesh, "box")
     assert volume == pytest.approx(8.0, rel=1e-12)
     assert np.allclose(centroid, [0.5, 0.25, 0.5], rtol=0, atol=1e-12)
     assert np.allclose(inertia, uniform_box_inertia(8.0, 4.0, 2.0, 1.0), rtol=1e-9)
@@ -461,7 +461,7 @@ def test_a_single_open_curved_sheet_has_no_closed_shell_but_a_winding_solid() ->
     cap = trimesh.Trimesh(sphere.vertices, sphere.faces[sphere.triangles_center[:, 2] > 0.3])
     with pytest.raises(cs.MeshError, match="no closed shell"):
         cs.Vehicle.from_mesh(cap, mass=1.0, solid="closed shells")
-    lens = cs.vehicles.vehicle._winding_solid(cap, "cap")[0]
+    lens = cs.vehicles.mass_properties._winding_solid(cap, "cap")[0]
     assert 0.85 < lens / cap.convex_hull.volume < 1.0
 
 

@@ -55,7 +55,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import ParameterError
-from crashsim.vehicles.vehicle import _as_float
+from crashsim.vehicles.checks import _as_float
 
 if TYPE_CHECKING:
     from crashsim.scene import Scene

@@ -31,10 +31,11 @@ from crashsim.errors import InitialOverlapError, ParameterError, SceneError, Sim
 from crashsim.human.pedestrian import Pedestrian
 from crashsim.joints import Joint, check_new, checked_frame, make_joint
 from crashsim.result import Result, rotation_matrix
+from crashsim.vehicles.checks import _as_float, _probe_shape
 from crashsim.vehicles.coupling import JOINT_OF, check_coupling
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.stiffness import FACES
-from crashsim.vehicles.vehicle import Vehicle, _as_float, _probe_shape
+from crashsim.vehicles.vehicle import Vehicle
 from crashsim.vehicles.wheels import Wheels
 
 __all__ = ["DEFAULT_MAX_DURATION", "DepthOfPenetrationWarning", "RestNotReachedWarning", "Scene"]

@@ -25,9 +25,10 @@ from crashsim.io.tomlvalues import (
 from crashsim.scene import Scene
 from crashsim.vehicles.generator import SHAPE_PARAMETERS
 from crashsim.vehicles.inputs import Brake, DriverInputs
+from crashsim.vehicles.mass_properties import SOLIDS
 from crashsim.vehicles.meshio import axes_rotation, unit_scale
 from crashsim.vehicles.tyre import TYRE_MODELS, TYRE_PARAMETERS, Tyre
-from crashsim.vehicles.vehicle import SOLIDS, Vehicle
+from crashsim.vehicles.vehicle import Vehicle
 from crashsim.vehicles.vehicle_data import vehicle_class
 
 _GEOMETRY = ("box", "mesh", "generate", "trailer")

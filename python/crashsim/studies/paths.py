@@ -492,7 +492,7 @@ def _with_mass(vehicle: Any, mass: float) -> Any:
     """The vehicle with another mass (kg): inertia scaled by the same ratio (radii of
     gyration kept); wheels keep their natural frequencies (explicit spring rates and damping
     scaled by the ratio; rates from natural frequencies follow the static loads)."""
-    from crashsim.vehicles.vehicle import _check_mass_properties
+    from crashsim.vehicles.checks import _check_mass_properties
 
     ratio = mass / vehicle.mass
     inertia = np.asarray(vehicle.inertia, dtype=np.float64) * ratio

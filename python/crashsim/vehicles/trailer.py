@@ -19,13 +19,10 @@ import trimesh
 from numpy.typing import ArrayLike
 
 from crashsim.errors import ParameterError
+from crashsim.vehicles.builders import COMBINATION_PRESETS
 from crashsim.vehicles.coupling import Hitch
-from crashsim.vehicles.vehicle import (
-    COMBINATION_PRESETS,
-    Vehicle,
-    _box_inertia,
-    _parallel_axis,
-)
+from crashsim.vehicles.mass_properties import _box_inertia, _parallel_axis
+from crashsim.vehicles.vehicle import Vehicle
 from crashsim.vehicles.wheels import Tyre, Wheels
 
 __all__ = [
