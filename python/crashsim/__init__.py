@@ -66,7 +66,8 @@ from crashsim.vehicles import generator, meshio, vehicle_data
 from crashsim.vehicles.inputs import Brake, DriverInputs
 from crashsim.vehicles.meshio import MeshQuality, load_mesh, mesh_quality
 from crashsim.vehicles.stiffness import FaceStiffness, Stiffness
-from crashsim.vehicles.trailer import Trailer, rigid_truck, tractor
+from crashsim.vehicles.trailer import Trailer
+from crashsim.vehicles.trucks import rigid_truck, tractor
 from crashsim.vehicles.vehicle import Vehicle
 from crashsim.vehicles.vehicle_data import VehicleClass, vehicle_class, vehicle_classes
 from crashsim.vehicles.wheels import Tyre, Wheels

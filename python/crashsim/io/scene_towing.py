@@ -15,15 +15,8 @@ from crashsim.scene import Scene
 from crashsim.units import POUND
 from crashsim.vehicles.coupling import JOINT_OF, TOWING, check_coupling
 from crashsim.vehicles.inputs import DriverInputs
-from crashsim.vehicles.trailer import (
-    RIGID_PRESETS,
-    TRACTOR_PRESETS,
-    TRAILER_KINDS,
-    TRAILER_PRESETS,
-    Trailer,
-    rigid_truck,
-    tractor,
-)
+from crashsim.vehicles.trailer import TRAILER_KINDS, TRAILER_PRESETS, Trailer
+from crashsim.vehicles.trucks import RIGID_PRESETS, TRACTOR_PRESETS, rigid_truck, tractor
 from crashsim.vehicles.vehicle import Vehicle
 
 # generate = { preset = "rigid_truck", ... }: crashsim.rigid_truck's keywords a scene may give

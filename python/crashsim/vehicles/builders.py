@@ -65,7 +65,7 @@ def _rule_hint(mode: str, fix: str) -> Iterator[None]:
 
 
 COMBINATION_PRESETS: dict[str, Callable[..., VehicleBuilders]] = {}
-"""Presets of Vehicle.generate built elsewhere ("tractor": crashsim.vehicles.trailer registers
+"""Presets of Vehicle.generate built elsewhere ("tractor": crashsim.vehicles.trucks registers
 its builder when imported, so this module does not import that one, which imports it)."""
 
 
