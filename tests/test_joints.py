@@ -69,6 +69,22 @@ def test_a_limit_stops_the_swing_and_is_an_event() -> None:
     assert np.abs(angle[result.t > first.time]).max() < limit + 1e-3
 
 
+def test_a_joint_resting_on_its_limit_is_held_by_the_limits_reaction() -> None:
+    # Released at 30 deg from the vertical, stopped 10 deg from where it was made: it rests
+    # at 20 deg, where the limit carries the rod's moment about the hinge, m g (L / 2) sin 20
+    # (5 kg, 1 m), and holds it still (the limit is a reaction while the joint rests on it,
+    # not a stop after each sub-step: a lying pedestrian's joints jittered at 15 deg/s).
+    limit = math.radians(10.0)
+    result = _pendulum(math.radians(30.0), limits={"angle": (-limit, limit)}).run(1.5)
+    record = result.joints["rod-world"]
+    resting = result.t > 1.0
+    assert np.allclose(record.angle("angle")[resting], -limit, atol=1e-9)
+    moment = 5.0 * G * 0.5 * math.sin(math.radians(20.0))
+    assert np.abs(record.torque[resting, 1]) == pytest.approx(moment, rel=1e-6)
+    spin = result.trajectory("rod").angular_velocity[resting]
+    assert np.abs(spin).max() < 1e-9
+
+
 def test_a_ball_joints_cone_stops_the_swing_and_records_swing_and_twist() -> None:
     # Released at 40 deg from the vertical on a ball joint whose cone (20 deg) is centred on
     # where it was made: gravity swings it 20 deg towards the vertical, where the cone stops it.

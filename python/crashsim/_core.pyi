@@ -180,8 +180,8 @@ def dynamics_defaults() -> dict[str, float]:
     """The engine's defaults for the ground, wheels and tyres (gravity, natural_frequency,
     damping_ratio, cornering (1/rad), load_sensitivity, ackermann, relaxation_length,
     rolling_resistance, tyre_friction, body_friction, magic_formula_b, magic_formula_c,
-    magic_formula_e) and its rest thresholds (rest_speed m/s, rest_yaw_rate rad/s, rest_time
-    s)."""
+    magic_formula_e) and its rest thresholds (rest_speed m/s, rest_yaw_rate rad/s,
+    rest_turn_speed m/s: a small body's yaw limit times its reach, rest_time s)."""
 
 @final
 class Tyre:

@@ -666,6 +666,7 @@ fn dynamics_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("magic_formula_e", e)?;
     d.set_item("rest_speed", core::world::REST_SPEED)?;
     d.set_item("rest_yaw_rate", core::world::REST_YAW_RATE)?;
+    d.set_item("rest_turn_speed", core::world::REST_TURN_SPEED)?;
     d.set_item("rest_time", core::world::REST_TIME)?;
     Ok(d)
 }

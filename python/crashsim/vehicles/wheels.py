@@ -64,7 +64,9 @@ def dynamics_defaults() -> dict[str, float]:
     """The engine's defaults for the ground, wheels and tyres, and its rest thresholds
     (``_core.dynamics_defaults()``): gravity (m/s^2), natural_frequency (Hz),
     damping_ratio, saturation_angle (rad), relaxation_length (m), rolling_resistance,
-    tyre_friction, body_friction, rest_speed (m/s), rest_yaw_rate (rad/s), rest_time (s)."""
+    tyre_friction, body_friction, rest_speed (m/s), rest_yaw_rate (rad/s), rest_turn_speed
+    (m/s: a body smaller than 0.57 m from its CG to its box's corner is slow in yaw below this
+    over that distance), rest_time (s)."""
     return dict(_defaults())
 
 

@@ -276,6 +276,49 @@ pub(crate) fn limit_rows(
     which
 }
 
+/// How close (rad) to a limit's bound a joint resting on it may be for the limit to hold it
+/// (the projection leaves it on the bound to about 1e-13 rad).
+pub(crate) const RESTING_ANGLE: Real = 1e-6;
+/// How fast (rad/s) a joint resting on a limit may move away from it for the limit to hold
+/// it still (a Runge-Kutta stage's rounding).
+pub(crate) const RESTING_RATE: Real = 1e-6;
+
+/// The rows of the `engaged` limits `joint` rests on now (at the bound within
+/// [`RESTING_ANGLE`], not leaving it faster than [`RESTING_RATE`]), each held still
+/// (C'' = 0), and per row the sign its reaction must have: +1 at a lower bound, -1 at an
+/// upper one.
+fn resting_limit_rows(
+    joint: &JointSpec,
+    bodies: &[JointBody],
+    engaged: &[bool],
+    out: &mut Vec<Row>,
+    signs: &mut Vec<Real>,
+) {
+    let (theta, axes) = limit_angles(joint, bodies);
+    let (_, wa) = velocity(bodies, Some(joint.body1));
+    let (_, wb) = velocity(bodies, joint.body2);
+    for (limit, _) in joint.limits.iter().zip(engaged).filter(|(_, &e)| e) {
+        let (angle, axis) = (theta[limit.angle], axes[limit.angle]);
+        let rate = (wb - wa).dot(&axis);
+        let sign = if angle >= limit.upper - RESTING_ANGLE && rate >= -RESTING_RATE {
+            -1.0
+        } else if angle <= limit.lower + RESTING_ANGLE && rate <= RESTING_RATE {
+            1.0
+        } else {
+            continue;
+        };
+        out.push(Row {
+            a: joint.body1,
+            b: joint.body2,
+            ja: [Vector::zeros(), -axis],
+            jb: [Vector::zeros(), axis],
+            c: 0.0,
+            bias: 0.0,
+        });
+        signs.push(sign);
+    }
+}
+
 /// The largest rate (m/s at the anchor, rad/s between axes) at which the joint's held
 /// quantities change now: 0 when the bodies' velocities agree with the joint.
 pub(crate) fn drift_rate(joint: &JointSpec, bodies: &[JointBody]) -> Real {
@@ -372,10 +415,16 @@ fn spread(
 /// joint's rows from accelerating, given each body's acceleration without them (linear,
 /// angular; m/s^2, rad/s^2). Also each joint's reaction on its body 2 (force, torque about
 /// the anchor's ... as the rows give it: the anchor force, and the alignment torques).
+///
+/// `engaged` (per joint and limit, may be empty: none) marks the limits a joint rests
+/// against: each one the joint is at (within [`RESTING_ANGLE`]) and not leaving (faster than
+/// [`RESTING_RATE`]) is held too, as long as its reaction pushes the joint inward (a
+/// unilateral row: one pulling is dropped and the rest solved again).
 pub(crate) fn reactions(
     joints: &[JointSpec],
     bodies: &[JointBody],
     free: &[(Vector, Vector)],
+    engaged: &[Vec<bool>],
 ) -> (Pairs, Pairs) {
     let mut rows = Vec::new();
     let mut owner = Vec::new();
@@ -384,8 +433,27 @@ pub(crate) fn reactions(
         self::rows(joint, bodies, &mut rows);
         owner.extend(std::iter::repeat_n(k, rows.len() - before));
     }
-    let rhs = DVector::from_iterator(rows.len(), rows.iter().map(|r| -(apply(r, free) + r.bias)));
-    let lambda = solve(&rows, bodies, rhs);
+    let held = rows.len();
+    // Per resting limit row: the sign its reaction must have (+1 at a lower bound).
+    let mut signs = Vec::new();
+    for (k, joint) in joints.iter().enumerate() {
+        if engaged.get(k).is_some_and(|e| e.iter().any(|&f| f)) {
+            let before = rows.len();
+            resting_limit_rows(joint, bodies, &engaged[k], &mut rows, &mut signs);
+            owner.extend(std::iter::repeat_n(k, rows.len() - before));
+        }
+    }
+    let rhs = |rows: &[Row]| {
+        DVector::from_iterator(rows.len(), rows.iter().map(|r| -(apply(r, free) + r.bias)))
+    };
+    let mut lambda = solve(&rows, bodies, rhs(&rows));
+    // Drop the limit rows that pull (the joint leaves the limit) until none does.
+    while let Some(i) = (held..rows.len()).find(|&i| lambda[i] * signs[i - held] < 0.0) {
+        rows.remove(i);
+        owner.remove(i);
+        signs.remove(i - held);
+        lambda = solve(&rows, bodies, rhs(&rows));
+    }
     let per_body = spread(&rows, bodies, &lambda, false);
     let mut per_joint = vec![(Vector::zeros(), Vector::zeros()); joints.len()];
     for ((row, l), k) in rows.iter().zip(lambda.iter()).zip(&owner) {

@@ -136,18 +136,19 @@ pub fn advance_mechanism(
         .zip(motions.iter())
         .map(|(b, g)| g.stage_of(b))
         .collect();
-    let rates = |t: Real, s: &[Stage]| -> Result<Vec<Stage>> {
-        Ok(mechanism_rates(bodies, motions, joints, ground, t, s, false)?.0)
+    // The limits the joints rest on hold over the whole sub-step (updated by `project`).
+    let rates = |t: Real, s: &[Stage], engaged: &[Vec<bool>]| -> Result<Vec<Stage>> {
+        Ok(mechanism_rates(bodies, motions, joints, engaged, ground, t, s, false)?.0)
     };
     let combine = |s: &[Stage], d: &[Stage], h: Real| -> Vec<Stage> {
         s.iter().zip(d).map(|(a, b)| a.axpy(h, b)).collect()
     };
     for i in 0..n {
         let t = t0 + i as Real * h;
-        let k1 = rates(t, &s)?;
-        let k2 = rates(t + 0.5 * h, &combine(&s, &k1, 0.5 * h))?;
-        let k3 = rates(t + 0.5 * h, &combine(&s, &k2, 0.5 * h))?;
-        let k4 = rates(t + h, &combine(&s, &k3, h))?;
+        let k1 = rates(t, &s, engaged)?;
+        let k2 = rates(t + 0.5 * h, &combine(&s, &k1, 0.5 * h), engaged)?;
+        let k3 = rates(t + 0.5 * h, &combine(&s, &k2, 0.5 * h), engaged)?;
+        let k4 = rates(t + h, &combine(&s, &k3, h), engaged)?;
         let mut next = combine(&s, &k1, h / 6.0);
         next = combine(&next, &k2, h / 3.0);
         next = combine(&next, &k3, h / 3.0);
@@ -203,13 +204,16 @@ pub fn advance_mechanism(
     Ok(span)
 }
 
-/// The rates of the members' stages at time `t` with the joints' torques and reactions, and
-/// with `samples`, what each joint carries (its angles, force and torque: the record's, not
-/// needed by the integration).
+/// The rates of the members' stages at time `t` with the joints' torques and reactions (the
+/// `engaged` limits' among them while the joints rest on them), and with `samples`, what
+/// each joint carries (its angles, force and torque: the record's, not needed by the
+/// integration).
+#[allow(clippy::too_many_arguments)]
 fn mechanism_rates(
     bodies: &[RigidBody],
     motions: &[OnGround],
     joints: &[JointSpec],
+    engaged: &[Vec<bool>],
     ground: &Ground,
     t: Real,
     s: &[Stage],
@@ -246,7 +250,7 @@ fn mechanism_rates(
             (out[k].v, jb[k].inv_inertia * (out[k].l - w.cross(&l)))
         })
         .collect();
-    let (per_body, per_joint) = reactions(joints, &jb, &free);
+    let (per_body, per_joint) = reactions(joints, &jb, &free, engaged);
     for (k, (f, t)) in per_body.into_iter().enumerate() {
         out[k].v += f * jb[k].inv_mass;
         out[k].l += t;
@@ -258,12 +262,13 @@ fn mechanism_rates(
     Ok((out, out_samples))
 }
 
-/// What each joint of the mechanism carries now (its angles, force and torque), from the
-/// members' forces at time `t`.
+/// What each joint of the mechanism carries now (its angles, force and torque, a resting
+/// limit's reaction included), from the members' forces at time `t`.
 pub fn joint_samples(
     bodies: &[RigidBody],
     motions: &[OnGround],
     joints: &[JointSpec],
+    engaged: &[Vec<bool>],
     ground: &Ground,
     t: Real,
 ) -> Result<Vec<JointSample>> {
@@ -272,7 +277,7 @@ pub fn joint_samples(
         .zip(motions)
         .map(|(b, g)| g.stage_of(b))
         .collect();
-    Ok(mechanism_rates(bodies, motions, joints, ground, t, &s, true)?.1)
+    Ok(mechanism_rates(bodies, motions, joints, engaged, ground, t, &s, true)?.1)
 }
 
 /// Projects the stages back onto the joints (and the limits passed), stops the limits moving

@@ -43,7 +43,8 @@ pub use events::{
 };
 pub use joints::{JointEvent, ANCHOR_REACH};
 pub use stepper::{
-    RunOptions, DEFAULT_MAX_HISTORY_BYTES, DEFAULT_SAMPLES, REST_SPEED, REST_TIME, REST_YAW_RATE,
+    RunOptions, DEFAULT_MAX_HISTORY_BYTES, DEFAULT_SAMPLES, REST_SPEED, REST_TIME, REST_TURN_SPEED,
+    REST_YAW_RATE,
 };
 
 /// First-overlap instants are resolved to this (s).
@@ -134,6 +135,9 @@ enum Motion {
 struct WorldBody {
     shape: Arc<MeshShape>,
     body: RigidBody,
+    /// Distance (m) from the CG to the farthest corner of the mesh's box (body frame): how
+    /// fast a turn moves the body's points, for the rest test.
+    reach: Real,
     stiffness: Stiffness,
     /// Wheels, tyre and inputs, used when the world has a ground.
     vehicle: Option<Arc<VehicleSpec>>,
@@ -300,9 +304,17 @@ impl World {
                 soft: None,
             });
         }
+        let b = shape.aabb();
+        let reach = Vector::new(
+            b.mins.x.abs().max(b.maxs.x.abs()),
+            b.mins.y.abs().max(b.maxs.y.abs()),
+            b.mins.z.abs().max(b.maxs.z.abs()),
+        )
+        .norm();
         self.bodies.push(WorldBody {
             shape,
             body,
+            reach,
             stiffness: Stiffness::none(),
             vehicle: None,
             motion,

@@ -7,7 +7,7 @@
 //! the time. The caller's hook is asked after every step and inside the first-contact search,
 //! so an interrupt (Ctrl-C from Python) is honoured within the hook's own polling interval.
 
-use super::{Motion, Phase, World};
+use super::{Motion, Phase, World, WorldBody};
 use crate::body::BodyState;
 use crate::error::{require_finite, Error, Result};
 use crate::joint::JointSample;
@@ -34,6 +34,13 @@ pub const REST_SPEED: Real = 0.05;
 pub const REST_YAW_RATE: Real = 0.5 * std::f64::consts::PI / 180.0;
 /// ... for this long (s) (docs/model.md, "Vehicles on the ground").
 pub const REST_TIME: Real = 0.2;
+/// A body smaller than 0.57 m from its CG to its box's farthest corner is slow enough in
+/// yaw below this speed (m/s) over that distance (a pedestrian's hand, 0.1 m: 2.9 deg/s)
+/// rather than below [`REST_YAW_RATE`]: no point of it turns faster. Settled, likewise, below
+/// [`SETTLED_SPEED`] over that distance. A lying pedestrian's segments creep on the ground's
+/// regularised friction at a few mm/s and turn at up to 1.3 deg/s for seconds (docs/human.md,
+/// "Rest of a lying body"); a car, larger, keeps the fixed rates.
+pub const REST_TURN_SPEED: Real = 0.005;
 /// A body faster than this along the ground (m/s) is moving again: its time to rest starts
 /// over.
 pub const MOVING_SPEED: Real = 10.0 * REST_SPEED;
@@ -390,6 +397,24 @@ impl World {
         let Some(ground) = &self.ground else {
             return;
         };
+        // Per mechanism, whether the ground carries one of its members (found when needed):
+        // a member held up by its joints (a pedestrian's arm lying on his chest) is carried
+        // through them.
+        let mut mechanism_carried: Vec<Option<bool>> = vec![None; self.mechanisms.len()];
+        let mut carried = |i: usize, bodies: &[WorldBody]| -> bool {
+            let on = |k: usize| match &bodies[k].motion {
+                Motion::OnGround(m) => m.supported(&bodies[k].body, ground),
+                _ => false,
+            };
+            if on(i) {
+                return true;
+            }
+            let Some(g) = self.mechanism_of.get(i).copied().flatten() else {
+                return false;
+            };
+            *mechanism_carried[g]
+                .get_or_insert_with(|| self.mechanisms[g].members.iter().any(|&k| on(k)))
+        };
         for (i, wb) in self.bodies.iter().enumerate() {
             let Motion::OnGround(motion) = &wb.motion else {
                 continue;
@@ -397,13 +422,15 @@ impl World {
             let v = wb.body.velocity();
             let w = wb.body.angular_velocity();
             let along = v.x.hypot(v.y);
-            let travel_slow = along < REST_SPEED && w.z.abs() < REST_YAW_RATE;
+            let yaw_limit = REST_YAW_RATE.max(REST_TURN_SPEED / wb.reach);
+            let travel_slow = along < REST_SPEED && w.z.abs() < yaw_limit;
             let fast = along > MOVING_SPEED
                 || v.z.abs() > MOVING_SPEED
                 || w.z.abs() > 10.0 * REST_YAW_RATE;
             // Only a body that may be or stay at rest needs to know whether it is carried.
             let on_ground = if travel_slow || (!fast && self.stopped_at[i].is_some()) {
-                motion.supported(&wb.body, ground)
+                let _ = motion;
+                carried(i, &self.bodies)
             } else {
                 true
             };
@@ -418,7 +445,8 @@ impl World {
             } else if slow && self.stopped_at[i].is_none() {
                 self.stopped_at[i] = Some(self.time);
             }
-            let settled = slow && v.norm() < SETTLED_SPEED && w.norm() < SETTLED_ANGULAR_SPEED;
+            let turn_limit = SETTLED_ANGULAR_SPEED.max(SETTLED_SPEED / wb.reach);
+            let settled = slow && v.norm() < SETTLED_SPEED && w.norm() < turn_limit;
             self.settled_since[i] = if settled {
                 self.settled_since[i].or(Some(self.time))
             } else {
@@ -505,7 +533,8 @@ impl World {
                         (wb.body.clone(), g.as_ref().clone())
                     })
                     .unzip();
-                let samples = joint_samples(&bodies, &motions, &m.joints, ground, self.time)?;
+                let samples =
+                    joint_samples(&bodies, &motions, &m.joints, &m.engaged, ground, self.time)?;
                 for (id, sample) in m.ids.iter().zip(samples) {
                     out.joints[start + id] = sample;
                 }
