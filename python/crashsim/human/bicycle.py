@@ -179,8 +179,14 @@ class Bicycle:
         self._check_fit(self._fit)
         mass, cg, inertia = _combined([_benchmark_body(d["rear_frame"], w),
                                        _benchmark_body(d["front_frame"], w)])  # fmt: skip
-        self._frame = Vehicle(self._frame_mesh(), mass, cg, inertia, name=f"{name}/frame",
-                              sources={"cg": "Moore (Crescendo)", "inertia": "Moore (Crescendo)"})
+        self._frame = Vehicle(
+            self._frame_mesh(),
+            mass,
+            cg,
+            inertia,
+            name=f"{name}/frame",
+            sources={"cg": "Moore (Crescendo)", "inertia": "Moore (Crescendo)"},
+        )
         self._wheels = {end: self._wheel(end) for end in ("rear", "front")}
 
     # -- what it is ----------------------------------------------------------------------
@@ -343,8 +349,10 @@ class Bicycle:
         # the stem and the handlebar (straight, across)
         bar = np.array([fit.handlebar[0], 0.0, fit.handlebar[1]])
         half = float(g["handlebar_width"]) / 2.0
-        parts += [_tube(head_top, bar, r),
-                  _tube(bar - half * side, bar + half * side, float(a["bar_radius"]))]
+        parts += [
+            _tube(head_top, bar, r),
+            _tube(bar - half * side, bar + half * side, float(a["bar_radius"])),
+        ]
         # the cranks (vertical, the left pedal down; inboard of the feet at 0.4 of the
         # pedal's offset) and the pedals, their tops at the soles' contact points
         crank, pedal = self.crank_length, np.asarray(a["pedal"], dtype=np.float64)
@@ -354,17 +362,24 @@ class Bicycle:
             normal = np.array([math.sin(tilt), 0.0, math.cos(tilt)])
             centre = contact - normal * pedal[2] / 2.0
             inboard = 0.4 * fit.pedal_offset * side * s
-            parts += [_tube(bb + inboard, [bb[0], 0.0, centre[2]] + inboard, 0.6 * r),
-                      _box(centre, pedal, tilt)]
+            parts += [
+                _tube(bb + inboard, [bb[0], 0.0, centre[2]] + inboard, 0.6 * r),
+                _box(centre, pedal, tilt),
+            ]
         return trimesh.util.concatenate(parts)
 
     def _wheel(self, end: str) -> Vehicle:
         w = self._data[f"{end}_wheel"]
         ixx, iyy = float(w["Ixx"]), float(w["Iyy"])
         mesh = _wheel_mesh(float(w["radius"]), float(self._data["assumed"]["tyre_width"]))
-        return Vehicle(mesh, float(w["mass"]), np.zeros(3), np.diag([ixx, iyy, ixx]),
-                       name=f"{self._name}/{end}_wheel",
-                       sources={"cg": "the hub", "inertia": "Moore (Crescendo)"})
+        return Vehicle(
+            mesh,
+            float(w["mass"]),
+            np.zeros(3),
+            np.diag([ixx, iyy, ixx]),
+            name=f"{self._name}/{end}_wheel",
+            sources={"cg": "the hub", "inertia": "Moore (Crescendo)"},
+        )
 
     # -- in a scene ----------------------------------------------------------------------
 
@@ -401,8 +416,11 @@ class Bicycle:
         size."""
         p = np.asarray(position, dtype=np.float64).reshape(-1)
         v = np.asarray(velocity, dtype=np.float64).reshape(-1)
-        if p.size not in (2, 3) or v.size != 3 or not (np.all(np.isfinite(p))
-                                                       and np.all(np.isfinite(v))):
+        if (
+            p.size not in (2, 3)
+            or v.size != 3
+            or not (np.all(np.isfinite(p)) and np.all(np.isfinite(v)))
+        ):
             raise ParameterError(
                 f"a bicycle's position is (x, y) or (x, y, z) m and its velocity (vx, vy, vz) "
                 f"m/s, finite, got {position!r} and {velocity!r}"

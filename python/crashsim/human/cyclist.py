@@ -93,8 +93,10 @@ class Cyclist:
         kind = "city" if bicycle is None else bicycle.kind
         base = Bicycle(kind, name)
         angles = rider.pose_angles
-        for key, value in (("crank_length", base.crank_length),
-                           ("seat_tube_angle", math.degrees(base.seat_tube_angle))):
+        for key, value in (
+            ("crank_length", base.crank_length),
+            ("seat_tube_angle", math.degrees(base.seat_tube_angle)),
+        ):
             if abs(angles[key] - value) > 1e-9:
                 raise ParameterError(
                     f"the rider's cycling pose is fitted to a {key} of {angles[key]:g}, the "
@@ -154,7 +156,7 @@ class Cyclist:
         segments = [s.name for s in self._rider.segments]
         joined = {frozenset((prefix + j.parent, prefix + j.child)) for j, *_ in joints}
         for i, a in enumerate(segments):
-            for b in segments[i + 1:]:
+            for b in segments[i + 1 :]:
                 if frozenset((a, b)) not in joined:
                     parts.no_contact.append((a, b))
         frame = self._bicycle.frame.name
@@ -202,8 +204,12 @@ def _fit(rider: Pedestrian, bicycle: Bicycle) -> tuple[Array, BicycleFit]:
     bar = (ends[0] + ends[1]) / 2.0 + offset - (hand.contact.radius + radius + GAP) * up
     foot = next(s for s in data if s.name == "foot_left")
     a = rider.pose_angles
-    tilt = [math.radians(-a[f"hip_flexion_{s}"] + a[f"knee_flexion_{s}"]
-                         + a[f"ankle_plantarflexion_{s}"]) for s in ("left", "right")]
+    tilt = [
+        math.radians(
+            -a[f"hip_flexion_{s}"] + a[f"knee_flexion_{s}"] + a[f"ankle_plantarflexion_{s}"]
+        )
+        for s in ("left", "right")
+    ]
     fit = BicycleFit(
         saddle=(float(saddle[0]), float(saddle[2])),
         handlebar=(float(bar[0]), float(bar[2])),
