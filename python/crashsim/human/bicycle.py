@@ -304,6 +304,13 @@ class Bicycle:
                 f"tube top ({self._seat_cluster[2]:.3f} m) plus the saddle: the rider is too short "
                 f"for the {self._kind} bicycle's frame (its legs need a lower saddle)"
             )
+        out = (post_top - self._seat_cluster[2]) / self._seat_dir[2]  # along the seat tube
+        if out > float(a["seat_post_max"]):
+            raise ParameterError(
+                f"the seat post would stand {out:.3f} m out of the seat tube, more than "
+                f"{float(a['seat_post_max']):.2f} m: the rider is too tall for the {self._kind} "
+                "bicycle's frame"
+            )
         head_top = self._steer_point(self._head_bottom_z() + float(a["head_tube"]))
         if fit.handlebar[1] < self._head_bottom_z() or fit.handlebar[0] <= fit.saddle[0]:
             raise ParameterError(

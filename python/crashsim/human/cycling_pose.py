@@ -129,7 +129,7 @@ def cycling_angles(data: Sequence[Segment], pose: Mapping[str, float]) -> dict[s
     torso = rad(float(pose["torso_angle"]))
 
     def trunk(phi: float) -> float:
-        return _angle(lumbar + _turn(shoulder - lumbar, phi) - hips) - torso
+        return _wrap(_angle(lumbar + _turn(shoulder - lumbar, phi) - hips) - torso)
 
     out["lumbar_flexion"] = math.degrees(_bisect(trunk, 0.0, rad(90.0), "trunk lean"))
     # The left leg at bottom dead centre: knee and ankle as given, the hip flexed until the
@@ -143,7 +143,7 @@ def cycling_angles(data: Sequence[Segment], pose: Mapping[str, float]) -> dict[s
 
     def on_seat_line(hip: float) -> float:
         bracket = left.posed(hip, knee, ankle)[2] + np.array([0.0, crank])
-        return _angle(left.hip - bracket) - seat_line
+        return _wrap(_angle(left.hip - bracket) - seat_line)
 
     hip_left = _bisect(on_seat_line, rad(-30.0), rad(85.0), "hip flexion at bottom dead centre")
     out.update(
