@@ -282,7 +282,7 @@ def test_bad_input_in_a_subprocess_has_no_traceback(tmp_path: Path) -> None:
     assert done.stderr == (
         "crashsim: error: bad.toml: mass: unknown key: (the keys here: format_version, title, "
         "description, run, contact, pairs, vehicles, output, ground, obstacles, pedestrians, "
-        "joints, study, fit, evidence)\n"
+        "cyclists, joints, study, fit, evidence)\n"
     )
     done = crashsim("check", "missing.toml", cwd=tmp_path)
     assert (done.returncode, done.stderr) == (2, "crashsim: error: missing.toml: no such file\n")

@@ -30,6 +30,8 @@ from crashsim.errors import (
     SimulationError,
     StudyError,
 )
+from crashsim.human.bicycle import Bicycle
+from crashsim.human.cyclist import Cyclist
 from crashsim.human.pedestrian import Pedestrian
 from crashsim.io import export, scenefile
 from crashsim.io.export import export_frames, export_glb
@@ -76,6 +78,8 @@ __all__ = [
     "__version__",
     "Vehicle",
     "Pedestrian",
+    "Cyclist",
+    "Bicycle",
     "Trailer",
     "tractor",
     "rigid_truck",

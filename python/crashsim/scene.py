@@ -28,6 +28,8 @@ from crashsim import _core
 from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import InitialOverlapError, ParameterError, SceneError, SimulationError
+from crashsim.human.bicycle import Bicycle
+from crashsim.human.cyclist import Cyclist
 from crashsim.human.pedestrian import Pedestrian
 from crashsim.joints import Joint, check_new, checked_frame, make_joint
 from crashsim.result import Result, rotation_matrix
@@ -342,8 +344,9 @@ class Scene:
         self._no_contact: set[frozenset[str]] = set()
         # Pairs (names) with a compliant contact: (stiffness N/m, damping ratio).
         self._soft: dict[frozenset[str], tuple[float, float]] = {}
-        # The pedestrians added, by name.
+        # The pedestrians, cyclists and bicycles added, by name.
         self._pedestrians: dict[str, Pedestrian] = {}
+        self._cyclists: dict[str, Cyclist | Bicycle] = {}
 
     # -- ground and obstacles ------------------------------------------------------------
 
@@ -495,7 +498,7 @@ class Scene:
 
     def add(
         self,
-        vehicle: Vehicle | Pedestrian,
+        vehicle: Vehicle | Pedestrian | Cyclist | Bicycle,
         position: ArrayLike,
         heading: float | None = None,
         velocity: ArrayLike = (0.0, 0.0, 0.0),
@@ -530,9 +533,15 @@ class Scene:
         point (x, y, z), facing ``heading``, every segment moving at ``velocity``: each segment
         is a vehicle named "<pedestrian>/<segment>", the segments joined by its joints (named
         the same way). A first version: docs/human.md lists what its contacts still lack.
+        A :class:`crashsim.Cyclist` or :class:`crashsim.Bicycle` (needs a ground) is placed
+        with its bicycle frame's origin (on the ground midway between the wheels' contact
+        points) at ``position``, riding towards ``heading``, every body moving at
+        ``velocity`` and the wheels rolling (docs/human.md, "The cyclist").
         """
         if isinstance(vehicle, Pedestrian):
             return self._add_pedestrian(vehicle, position, heading, velocity)
+        if isinstance(vehicle, (Cyclist, Bicycle)):
+            return self._add_bicycle(vehicle, position, heading, velocity)
         if not isinstance(vehicle, Vehicle):
             raise TypeError(f"add() needs a crashsim.Vehicle, got {type(vehicle).__name__}")
         self._check_name(vehicle.name, vehicle, "a vehicle")
@@ -609,6 +618,34 @@ class Scene:
         for a, b in combinations(names, 2):
             if frozenset((a, b)) not in joined:
                 self.no_contact(a, b)
+        return self
+
+    def _add_bicycle(
+        self, thing: Cyclist | Bicycle, position: ArrayLike, heading: float | None,
+        velocity: ArrayLike,
+    ) -> Scene:
+        """Places a cyclist's or a bicycle's bodies, joins them and sets their pairs (the
+        rider's soft contacts with the frame, the pairs that never collide) (:meth:`add`)."""
+        what = f"{type(thing).__name__.lower()} {thing.name!r}"
+        if self._ground is None:
+            raise SceneError(f"{what} needs a ground: set scene.ground = crashsim.Ground(...)")
+        if thing.name in self._cyclists or thing.name in self._pedestrians:
+            raise SceneError(f"{what} is already in the scene: names must be unique")
+        xy = np.asarray(position, dtype=np.float64).reshape(-1)[:2]
+        ground = self._ground_height(float(xy[0]), float(xy[1]), what)
+        h = 0.0 if heading is None else _as_float(heading, "heading", "rad")
+        parts = thing.placement(position, h, velocity, ground)
+        for body, cg, rotation, v, w in parts.bodies:
+            self.add(body, cg, orientation=rotation, velocity=v, angular_velocity=w)
+        for j in parts.joints:
+            j = dict(j)
+            self.join(j.pop("vehicle1"), j.pop("vehicle2"), **j)
+        for a, b in parts.no_contact:
+            self.no_contact(a, b)
+        for a, b, k, zeta, params in parts.soft:
+            self.contact(a, b, **params)
+            self.soft_contact(a, b, stiffness=k, damping_ratio=zeta)
+        self._cyclists[thing.name] = thing
         return self
 
     def _tow(
@@ -751,6 +788,17 @@ class Scene:
         """The pedestrians added (each one's segments are vehicles of the scene), by name."""
         return dict(self._pedestrians)
 
+    @property
+    def cyclists(self) -> dict[str, Cyclist]:
+        """The cyclists added (each one's rider segments and bicycle bodies are vehicles of
+        the scene), by name."""
+        return {k: v for k, v in self._cyclists.items() if isinstance(v, Cyclist)}
+
+    @property
+    def bicycles(self) -> dict[str, Bicycle]:
+        """The bicycles added on their own (a cyclist's is its ``bicycle``), by name."""
+        return {k: v for k, v in self._cyclists.items() if isinstance(v, Bicycle)}
+
     def _placement(self, vehicle: VehicleRef) -> _Placement:
         i = self._index(vehicle)
         if i >= len(self._placements):
@@ -867,8 +915,8 @@ class Scene:
 
     def soft_contact(
         self,
-        vehicle1: VehicleRef | Pedestrian,
-        vehicle2: VehicleRef | Pedestrian,
+        vehicle1: VehicleRef | Pedestrian | Cyclist | Bicycle,
+        vehicle2: VehicleRef | Pedestrian | Cyclist | Bicycle,
         stiffness: float,
         damping_ratio: float = 0.5,
     ) -> Scene:
@@ -878,7 +926,8 @@ class Scene:
         speed, m/s; ``c = 2 damping_ratio sqrt(k m)``) acts at its centre of pressure with
         friction up to the pair's ``friction`` times it. ``stiffness`` k in N/m (up to 1e8),
         ``damping_ratio`` in [0, 2] (0.5: a head-on restitution of about 0.16). Either side
-        may be a :class:`crashsim.Pedestrian` in the scene: every segment of it. The pair's
+        may be a :class:`crashsim.Pedestrian` in the scene: every segment of it (a
+        :class:`crashsim.Cyclist` or :class:`crashsim.Bicycle`: every body of it). The pair's
         normal and friction are its contact parameters (:meth:`contact`; ``normal="volume"``
         for contacts from above). The run refuses a step too long for the stiffness
         (``sqrt(k / m) dt`` above 0.2, m the lighter body's mass). Returns the scene."""
@@ -886,9 +935,11 @@ class Scene:
         zeta = _as_float(damping_ratio, "damping_ratio", "1")
         _core.check_soft_contact(k, zeta)
 
-        def names(v: VehicleRef | Pedestrian) -> list[str]:
+        def names(v: VehicleRef | Pedestrian | Cyclist | Bicycle) -> list[str]:
             if isinstance(v, Pedestrian):
                 return [s.name for s in v.segments]
+            if isinstance(v, (Cyclist, Bicycle)):
+                return [b.name for b in v.bodies]
             return [self._bodies()[self._index(v)].name]
 
         for a in names(vehicle1):

@@ -34,13 +34,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim.errors import ParameterError
 from crashsim.human.anthropometry import Segment, body_segments
+from crashsim.human.cycling_pose import cycling_angles
 from crashsim.names import check_name
 from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = ["POSES", "Pedestrian", "PedestrianJoint"]
 
 Array = NDArray[np.float64]
-POSES = ("standing", "walking")
+POSES = ("standing", "walking", "cycling")
 CLEARANCE = 1e-3  # m, the lowest point of the body above the ground at the start
 _CAPSULE_COUNT = (8, 8)  # trimesh capsule resolution: 128 triangles a segment
 
@@ -99,11 +100,13 @@ class _Posed:
 class Pedestrian:
     """A multibody pedestrian (module docstring). ``height`` m, ``mass`` kg, ``sex``
     ("male" or "female"), or ``percentile`` (0-100, ANSUR II stature; then ``height`` is
-    not used); ``pose`` "standing" or "walking"; ``name`` prefixes its segments' names.
+    not used); ``pose`` "standing", "walking" or "cycling"; ``name`` prefixes its segments' names.
 
     Attributes: ``segments`` (the :class:`crashsim.Vehicle` of each segment, pelvis first),
     ``joints`` (:class:`PedestrianJoint`), ``data`` (body_segments' :class:`Segment`\\ s),
-    ``height``, ``mass``, ``sex``, ``pose``, ``name``."""
+    ``height``, ``mass``, ``sex``, ``pose``, ``pose_angles``, ``name``. The "cycling" pose
+    is seated on a bicycle (crashsim.Cyclist puts one under it; docs/human.md, "The
+    cyclist")."""
 
     def __init__(
         self,
@@ -122,7 +125,13 @@ class Pedestrian:
         data = body_segments(None if percentile is not None else height, mass, sex, percentile)
         self._name, self._pose, self._sex = name, pose, sex
         self._data = tuple(data)
-        self._posed = _pose(data, _table()["poses"][pose], sex)
+        angles = dict(_table()["poses"][pose])
+        if pose == "cycling":
+            angles.update(cycling_angles(data, angles))
+        self._angles = MappingProxyType(
+            {k: float(v) for k, v in angles.items() if isinstance(v, (int, float))}
+        )
+        self._posed = _pose(data, angles, sex)
         self._segments = tuple(_segment_vehicle(p, name) for p in self._posed.values())
         self._joints = tuple(_joints(self._posed, sex))
         self._height = max(s.origin[2] for s in data)
@@ -151,6 +160,13 @@ class Pedestrian:
     def mass(self) -> float:
         """Body mass (kg): the segments' masses summed."""
         return self._mass
+
+    @property
+    def pose_angles(self) -> Mapping[str, float]:
+        """The pose's angles and targets as made (degrees; lengths in m): pedestrian.toml's
+        ``[poses.<pose>]``, and for "cycling" the joint angles solved from its targets
+        (crashsim.human.cycling_pose.CYCLING_KEYS)."""
+        return self._angles
 
     @property
     def data(self) -> tuple[Segment, ...]:
@@ -258,7 +274,10 @@ def _pose(data: list[Segment], angles: dict[str, Any], sex: str) -> dict[str, _P
 def _relative_rotations(a: dict[str, Any]) -> dict[str, Array]:
     """Each segment's rotation relative to its parent (body axes), from a pose's angles
     (degrees). Signs: abduction of a left limb is about +x, flexion of a hip or shoulder
-    about -y, of a knee about +y, of an elbow about -y, plantarflexion about +y."""
+    about -y, of a knee about +y, of an elbow about -y, plantarflexion about +y; the trunk's
+    (lumbar) flexion about +y, the neck's extension about -y."""
+    if "lumbar_flexion" in a:
+        return _cycling_rotations(a)
     out: dict[str, Array] = {}
     for side, s in (("left", 1.0), ("right", -1.0)):
         out[f"upper_arm_{side}"] = _rot(_X, s * a.get("shoulder_abduction", 0.0))
@@ -274,6 +293,22 @@ def _relative_rotations(a: dict[str, Any]) -> dict[str, Array]:
         out["upper_arm_left"] = _rot(_Y, a["arm_swing"]) @ out["upper_arm_left"]
         for side in ("left", "right"):
             out[f"forearm_{side}"] = _rot(_Y, -a["elbow_flexion"])
+    return out
+
+
+def _cycling_rotations(a: dict[str, Any]) -> dict[str, Array]:
+    """The cycling pose's rotations (cycling_pose.CYCLING_KEYS, degrees): every one in the
+    sagittal plane; both arms alike."""
+    out = {
+        "lower_torso": _rot(_Y, a["lumbar_flexion"]),
+        "head": _rot(_Y, -a["neck_extension"]),
+    }
+    for side in ("left", "right"):
+        out[f"upper_arm_{side}"] = _rot(_Y, -a["shoulder_flexion"])
+        out[f"forearm_{side}"] = _rot(_Y, -a["elbow_flexion"])
+        out[f"thigh_{side}"] = _rot(_Y, -a[f"hip_flexion_{side}"])
+        out[f"shank_{side}"] = _rot(_Y, a[f"knee_flexion_{side}"])
+        out[f"foot_{side}"] = _rot(_Y, a[f"ankle_plantarflexion_{side}"])
     return out
 
 

@@ -1,5 +1,6 @@
 """The scene file's other bodies and links (docs/scene-format.md): [[obstacles]], [[joints]]
-(whose limits and resistance a towed vehicle's coupling shares) and [[pedestrians]].
+(whose limits and resistance a towed vehicle's coupling shares), [[pedestrians]] and
+[[cyclists]].
 """
 
 from __future__ import annotations
@@ -25,6 +26,19 @@ PEDESTRIAN_KEYS = (
     "sex",
     "percentile",
     "pose",
+    "position",
+    "heading",
+    "speed",
+    "direction",
+    "soft_contact",
+)
+CYCLIST_KEYS = (
+    "name",
+    "height",
+    "mass",
+    "sex",
+    "percentile",
+    "bicycle",
     "position",
     "heading",
     "speed",
@@ -192,12 +206,29 @@ def _pedestrian(t: _Table, scene: Scene, names: list[str]) -> None:
     (its body frame's origin on the ground at position (x, y), or at the world point (x, y, z),
     facing heading, moving at speed along direction (default the heading)), and its soft
     contacts with the vehicles named."""
+    kwargs = _person(t, scene, names, "pedestrian")
+    kwargs["pose"] = t.string("pose", "standing", choices=("standing", "walking"))
+    from crashsim.human.pedestrian import Pedestrian
+
+    person = _wrap(t, None, lambda: Pedestrian(**kwargs))
+    position, heading, velocity = _motion(t)
+    for segment in person.segments:
+        if segment.name in names:
+            t.fail("name", f'its segment "{segment.name}" has the name of a vehicle: rename one')
+    _wrap(t, None, lambda: scene.add(person, position, heading=heading, velocity=velocity))
+    _soft_contacts(t, scene, person, names)
+    t.finish()
+
+
+def _person(t: _Table, scene: Scene, names: list[str], what: str) -> dict[str, Any]:
+    """The keywords of the person in table t ([[pedestrians]], [[cyclists]]): name, height
+    or percentile, mass, sex (SI)."""
     name = t.string("name")
     if name in names:
         t.fail("name", f'a vehicle or obstacle named "{name}" is already in the scene: names '
                "must be unique")  # fmt: skip
     if scene.ground is None:
-        t.fail("name", "a pedestrian needs a ground: add a [ground] table")
+        t.fail("name", f"a {what} needs a ground: add a [ground] table")
     kwargs: dict[str, Any] = {"name": name}
     if t.has("percentile"):
         kwargs["percentile"] = t.number("percentile")
@@ -205,19 +236,42 @@ def _pedestrian(t: _Table, scene: Scene, names: list[str]) -> None:
         kwargs["height"] = t.quantity("height", "length", 1.75, low="> 0")
     kwargs["mass"] = t.quantity("mass", "mass", 75.0, low="> 0")
     kwargs["sex"] = t.string("sex", "male", choices=("male", "female"))
-    kwargs["pose"] = t.string("pose", "standing", choices=("standing", "walking"))
-    from crashsim.human.pedestrian import Pedestrian
+    return kwargs
 
-    person = _wrap(t, None, lambda: Pedestrian(**kwargs))
+
+def _motion(t: _Table) -> tuple[Any, float, Any]:
+    """position, heading (rad) and velocity (m/s) from position, heading, speed and direction
+    (default the heading)."""
     position = t.vector("position", "length", sizes=(2, 3))
     heading = t.quantity("heading", "angle", 0.0)
     speed = t.quantity("speed", "speed", 0.0, low=">= 0")
     direction = t.quantity("direction", "angle", heading)
-    velocity = speed * np.array([math.cos(direction), math.sin(direction), 0.0])
-    for segment in person.segments:
-        if segment.name in names:
-            t.fail("name", f'its segment "{segment.name}" has the name of a vehicle: rename one')
-    _wrap(t, None, lambda: scene.add(person, position, heading=heading, velocity=velocity))
+    return position, heading, speed * np.array([math.cos(direction), math.sin(direction), 0.0])
+
+
+def _cyclist(t: _Table, scene: Scene, names: list[str]) -> None:
+    """A [[cyclists]] entry: crashsim.Cyclist's keywords (SI; ``bicycle`` its kind), placed by
+    Scene.add (its bicycle frame's origin on the ground at position (x, y), riding towards
+    heading at speed along direction (default the heading)), and its soft contacts with the
+    vehicles named (every body of it)."""
+    from crashsim.human.bicycle import KINDS, Bicycle
+    from crashsim.human.cyclist import Cyclist
+
+    kwargs = _person(t, scene, names, "cyclist")
+    kind = t.string("bicycle", "city", choices=KINDS)
+    cyclist = _wrap(t, None, lambda: Cyclist(bicycle=Bicycle(kind), **kwargs))
+    position, heading, velocity = _motion(t)
+    for body in cyclist.bodies:
+        if body.name in names:
+            t.fail("name", f'its body "{body.name}" has the name of a vehicle: rename one')
+    _wrap(t, None, lambda: scene.add(cyclist, position, heading=heading, velocity=velocity))
+    _soft_contacts(t, scene, cyclist, names)
+    t.finish()
+
+
+def _soft_contacts(t: _Table, scene: Scene, thing: Any, names: list[str]) -> None:
+    """The [[<table>.soft_contact]] rows of a pedestrian or cyclist: Scene.soft_contact with
+    each vehicle named."""
     for c in _rows(t, "soft_contact", SOFT_CONTACT_KEYS):
         others = c.raw("with")
         if isinstance(others, str):
@@ -234,5 +288,4 @@ def _pedestrian(t: _Table, scene: Scene, names: list[str]) -> None:
         }
         c.finish()
         for other in others:
-            _wrap(c, "stiffness", lambda o=other, law=law: scene.soft_contact(o, person, **law))
-    t.finish()
+            _wrap(c, "stiffness", lambda o=other, law=law: scene.soft_contact(o, thing, **law))

@@ -46,9 +46,11 @@ from crashsim.environment.ground import FrictionZone, Ground
 from crashsim.filekind import special_file
 from crashsim.io.fitfile import read_fit
 from crashsim.io.scene_bodies import (
+    CYCLIST_KEYS,
     JOINT_KEYS,
     OBSTACLE_KEYS,
     PEDESTRIAN_KEYS,
+    _cyclist,
     _joint,
     _obstacle,
     _pedestrian,
@@ -213,6 +215,7 @@ TOP_KEYS = (
     "ground",
     "obstacles",
     "pedestrians",
+    "cyclists",
     "joints",
     "study",
     "fit",
@@ -534,6 +537,8 @@ def loads_scene(
     obstacles = [o.name for o in scene.obstacles]
     for p in top.tables("pedestrians", PEDESTRIAN_KEYS):
         _pedestrian(p, scene, names)
+    for c in top.tables("cyclists", CYCLIST_KEYS):
+        _cyclist(c, scene, names)
     for j in top.tables("joints", JOINT_KEYS):
         _joint(j, scene, obstacles)
     seen: set[frozenset[str]] = set()
