@@ -121,6 +121,8 @@ class Pedestrian:
             )
         data = body_segments(None if percentile is not None else height, mass, sex, percentile)
         self._name, self._pose, self._sex = name, pose, sex
+        self._arguments = {"height": height, "mass": mass, "sex": sex,
+                           "percentile": percentile, "pose": pose, "name": name}
         self._data = tuple(data)
         self._posed = _pose(data, _table()["poses"][pose], sex)
         self._segments = tuple(_segment_vehicle(p, name) for p in self._posed.values())
@@ -151,6 +153,14 @@ class Pedestrian:
     def mass(self) -> float:
         """Body mass (kg): the segments' masses summed."""
         return self._mass
+
+    @property
+    def arguments(self) -> dict[str, Any]:
+        """The arguments it was made with (``height``, ``mass``, ``sex``, ``percentile``,
+        ``pose``, ``name``): ``Pedestrian(**p.arguments)`` makes the same body, bit for bit
+        (a study's variant of another height is ``Pedestrian(**{**p.arguments, "height":
+        h})``; the ``height`` property is the stature computed from the segments)."""
+        return dict(self._arguments)
 
     @property
     def data(self) -> tuple[Segment, ...]:
