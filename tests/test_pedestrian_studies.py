@@ -183,6 +183,10 @@ def test_monte_carlo_records_the_person_as_a_run_of_that_variant_gives() -> None
             assert frame[k].iloc[i] == v, (i, k)
         assert speed > 0.1 and math.isnan(frame["pedestrian.rest_x"].iloc[i])  # still moving
         assert 0.1 < head.time < 0.3 and 1.5 < throw_distance(result, "car", person) < 3.0
+    units = study.summary()["unit"]
+    assert units["pedestrian.car.throw_distance"] == units["pedestrian.car.head_x"] == "m"
+    assert units["pedestrian.car.head_time"] == "s"
+    assert units["pedestrian.car.head_relative_speed"] == "m/s"
     again = cs.monte_carlo(scene, dists, n=3, seed=2, duration=0.3, dt=DT, progress=False)
     assert np.array_equal(again["pedestrian.car.throw_distance"],
                           study["pedestrian.car.throw_distance"])
@@ -264,3 +268,18 @@ def test_fit_recovers_the_impact_speed_from_the_rest_and_the_head_strike() -> No
     # the person still slides at 0.5 s: the verdict says the "rest" is not one
     assert fit.verdict.status == "poor fit"
     assert any("still moves at" in r for r in fit.verdict.reasons)
+
+
+def test_fit_of_a_pedestrians_own_path_rebuilds_it_per_candidate() -> None:
+    """The person's place as the unknown (each candidate rebuilds the pedestrian): evidence
+    of its centre of mass 0.05 s into a strike placed 0.1 m further from the car than the
+    base scene; the fit recovers the place within 5 mm."""
+    scene = strike()
+    x0 = base_value(scene, "pedestrian.position_x")
+    truth = scene.with_({"pedestrian.position_x": x0 + 0.1})
+    end, _ = rest_of(run(truth, 0.05), truth.pedestrians["pedestrian"])
+    fit = cs.fit(scene, {"pedestrian.position_x": (x0 - 0.02, x0 + 0.3)},
+                 [PedestrianRest("pedestrian", end[0], end[1], 0.01)], until=None,
+                 duration=0.05, dt=DT, samples=0, scan=False, progress=False)
+    assert abs(fit.values["pedestrian.position_x"] - (x0 + 0.1)) < 0.005
+    assert fit.scene.pedestrians["pedestrian"] is not scene.pedestrians["pedestrian"]
