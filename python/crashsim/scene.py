@@ -347,6 +347,8 @@ class Scene:
         # The pedestrians, cyclists and bicycles added, by name.
         self._pedestrians: dict[str, Pedestrian] = {}
         self._cyclists: dict[str, Cyclist | Bicycle] = {}
+        # Where each was added: (position as given, heading rad, velocity m/s).
+        self._pedestrian_places: dict[str, tuple[Array, float, Array]] = {}
 
     # -- ground and obstacles ------------------------------------------------------------
 
@@ -613,6 +615,7 @@ class Scene:
         # A passive body's segments never strike each other (the joints hold the neighbours).
         names = [body.name for body, *_ in bodies]
         self._pedestrians[pedestrian.name] = pedestrian
+        self._pedestrian_places[pedestrian.name] = (_read_only(position), h, _read_only(velocity))
         joined = {frozenset((f"{pedestrian.name}/{j.parent}", f"{pedestrian.name}/{j.child}"))
                   for j, *_ in joints}  # fmt: skip
         for a, b in combinations(names, 2):

@@ -9,6 +9,7 @@ left, z up from the road: the mesh's own coordinates). Speeds in m/s, times in s
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -129,14 +130,24 @@ def wrap_around_distance(vehicle: Vehicle, point: ArrayLike) -> float | None:
 
 
 def segment_contacts(
-    result: Result, pedestrian: Pedestrian, vehicle: Vehicle
+    result: Result, pedestrian: Pedestrian, vehicle: Vehicle,
+    segments: Iterable[str] | None = None,
 ) -> dict[str, SegmentContact]:
     """Each of the pedestrian's segments that touched ``vehicle`` in the run: its
     :class:`SegmentContact`, by segment name (e.g. "head"), in the order they first touched.
     The contact log gives the instants (first overlaps and separations, the soft contacts'
     and the exchanges' alike); the point is the vehicle's surface point nearest the segment's
-    CG at the first overlap's sample."""
+    CG at the first overlap's sample. ``segments``: only these (short names, e.g.
+    ``["head"]``; None: every segment)."""
     names = {s.name: s.name.split("/", 1)[1] for s in pedestrian.segments}
+    if segments is not None:
+        wanted = set(segments)
+        unknown = wanted - set(names.values())
+        if unknown:
+            raise ParameterError(
+                f"the pedestrian has no segment {sorted(unknown)}: it has {list(names.values())}"
+            )
+        names = {k: v for k, v in names.items() if v in wanted}
     car = vehicle.name
     spans: dict[str, list[list[float]]] = {}
     for c in result.contacts:

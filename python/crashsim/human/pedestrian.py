@@ -124,6 +124,8 @@ class Pedestrian:
             )
         data = body_segments(None if percentile is not None else height, mass, sex, percentile)
         self._name, self._pose, self._sex = name, pose, sex
+        self._arguments = {"height": height, "mass": mass, "sex": sex,
+                           "percentile": percentile, "pose": pose, "name": name}
         self._data = tuple(data)
         angles = dict(_table()["poses"][pose])
         if pose == "cycling":
@@ -167,6 +169,14 @@ class Pedestrian:
         ``[poses.<pose>]``, and for "cycling" the joint angles solved from its targets
         (crashsim.human.cycling_pose.CYCLING_KEYS)."""
         return self._angles
+
+    @property
+    def arguments(self) -> dict[str, Any]:
+        """The arguments it was made with (``height``, ``mass``, ``sex``, ``percentile``,
+        ``pose``, ``name``): ``Pedestrian(**p.arguments)`` makes the same body, bit for bit
+        (a study's variant of another height is ``Pedestrian(**{**p.arguments, "height":
+        h})``; the ``height`` property is the stature computed from the segments)."""
+        return dict(self._arguments)
 
     @property
     def data(self) -> tuple[Segment, ...]:

@@ -14,11 +14,13 @@ engine (crashsim.batch.run_batch) in chunks.
 
 from crashsim.studies.design import Linspace, grid, linspace, monte_carlo_sample, one_at_a_time
 from crashsim.studies.distributions import (
+    Choice,
     ClassTable,
     Distribution,
     Normal,
     Triangular,
     Uniform,
+    choice,
     class_table,
     normal,
     triangular,
@@ -29,6 +31,7 @@ from crashsim.studies.run import FailedVariant, Study, monte_carlo, run_study, s
 from crashsim.studies.sensitivity import Sobol, Tornado, sobol, tornado
 
 __all__ = [
+    "Choice",
     "ClassTable",
     "Distribution",
     "FailedVariant",
@@ -39,6 +42,7 @@ __all__ = [
     "Tornado",
     "Triangular",
     "Uniform",
+    "choice",
     "class_table",
     "grid",
     "linspace",

@@ -5,6 +5,8 @@
   [lo, hi] (the density renormalised inside; no value outside).
 - :class:`Triangular` ``(lo, mode, hi)``: density rising linearly from lo to mode and falling
   to hi.
+- :class:`Choice` ``(values, weights=None)``: one of a few values (e.g. a pedestrian's pose
+  number), each with its weight (equal by default; normalised).
 - :class:`ClassTable` ``(vehicle_class, figure="mass", k=3.0)``: a figure of the built-in
   vehicle-class table (crashsim.vehicles.vehicle_data, docs/vehicle-data.md): a normal with
   the class's value and published standard deviation, truncated to value +- k sd (3 by
@@ -33,11 +35,13 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim.errors import CrashsimError, StudyError
 
 __all__ = [
+    "Choice",
     "ClassTable",
     "Distribution",
     "Normal",
     "Triangular",
     "Uniform",
+    "choice",
     "class_table",
     "normal",
     "triangular",
@@ -213,6 +217,39 @@ class Triangular(Distribution):
         return f"triangular({self.lo:g}, {self.mode:g}, {self.hi:g})"
 
 
+@dataclass(frozen=True)
+class Choice(Distribution):
+    values: tuple[float, ...]
+    weights: tuple[float, ...] | None = None
+
+    def check(self, key: str | None = None) -> None:
+        values = [_finite(key, "a value", v, "choice") for v in self.values]
+        if not values:
+            raise StudyError(f"{_at(key)}choice(): give at least one value", key)
+        if self.weights is not None:
+            weights = [_finite(key, "a weight", w, "choice") for w in self.weights]
+            if len(weights) != len(values) or min(weights) < 0.0 or sum(weights) <= 0.0:
+                raise StudyError(
+                    f"{_at(key)}choice({list(self.values)}, weights={list(self.weights)}): give "
+                    "one weight >= 0 per value, not all zero",
+                    key,
+                )
+
+    def _cdf(self) -> Array:
+        w = np.ones(len(self.values)) if self.weights is None else np.asarray(self.weights, float)
+        return np.cumsum(w) / np.sum(w)
+
+    def ppf(self, u: ArrayLike) -> Array:
+        """The value whose cumulative weight first reaches u (values in the order given)."""
+        u = np.asarray(u, dtype=np.float64)
+        k = np.searchsorted(self._cdf(), u, side="left")
+        return np.asarray(self.values, dtype=np.float64)[np.clip(k, 0, len(self.values) - 1)]
+
+    def __str__(self) -> str:
+        w = "" if self.weights is None else f", weights={list(self.weights)}"
+        return f"choice({list(self.values)}{w})"
+
+
 # the class table's figures and the quantity each measures (for the command line's units)
 _FIGURE_DIMENSIONS = {
     "mass": "mass",
@@ -297,6 +334,14 @@ def normal(mean: float, sd: float, lo: float | None = None, hi: float | None = N
 def triangular(lo: float, mode: float, hi: float) -> Triangular:
     """A triangular distribution on [lo, hi] peaking at mode."""
     return Triangular(lo, mode, hi)
+
+
+def choice(values: ArrayLike, weights: ArrayLike | None = None) -> Choice:
+    """One of ``values`` (numbers), each drawn with its weight (equal by default)."""
+    def listed(x: ArrayLike) -> tuple[Any, ...]:
+        return tuple(np.atleast_1d(np.asarray(x, dtype=object)).tolist())
+
+    return Choice(listed(values), None if weights is None else listed(weights))
 
 
 def class_table(vehicle_class: str, figure: str = "mass", k: float = 3.0) -> ClassTable:

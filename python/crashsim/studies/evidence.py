@@ -14,6 +14,13 @@ TyreMark               mean 2-D distance of the mark's points to the       m
                        wheel's path (its contact patch over the run)
 PostImpactSpeed        CG speed at the vehicle's separation after impact   m/s
                        ``impact`` (which it must be in) minus speed
+PedestrianRest         a pedestrian's whole-body CG (x, y) at the end of   m
+                       the run minus (x, y)
+HeadStrike             where the pedestrian's head first touched the       m
+                       vehicle, (x, y, z) in the vehicle's model frame,
+                       minus (x, y, z)
+WrapAround             that point's wrap-around distance minus distance    m
+ThrowDistance          the pedestrian's throw distance minus distance      m
 =====================  =================================================  =================
 
 The tolerance plays the part of one standard deviation: a fit's objective is the sum of the
@@ -27,7 +34,10 @@ run until rest ended (a poor fit).
 
 Rest positions, headings and EDR delta-V are read from the batch engine's columns
 (``uses_result = False``), so a fit with only these evaluates its candidates as batches; an
-impact point, a tyre mark or a post-impact speed needs each run's Result.
+impact point, a tyre mark, a post-impact speed or a pedestrian's item needs each run's Result.
+A pedestrian's items read its figures as a study records them (crashsim.studies.pedestrians:
+crashsim.analysis.pedestrian and crashsim.analysis.throw); a PedestrianRest whose person is
+still moving at the end (0.1 m/s or more) makes a poor fit, whatever the run's length.
 """
 
 from __future__ import annotations
@@ -49,13 +59,17 @@ if TYPE_CHECKING:
 __all__ = [
     "EDRDeltaV",
     "Evidence",
+    "HeadStrike",
     "FitError",
     "ImpactPoint",
     "MISSING",
+    "PedestrianRest",
     "PostImpactSpeed",
     "RestHeading",
     "RestPosition",
+    "ThrowDistance",
     "TyreMark",
+    "WrapAround",
     "check_evidence",
 ]
 
@@ -93,6 +107,7 @@ class Evidence:
 
     unit: ClassVar[str] = ""
     uses_result: ClassVar[bool] = False  # True: needs the run's Result, not the columns
+    caveat_always: ClassVar[bool] = False  # its caveat holds in runs of a fixed length too
 
     @property
     def label(self) -> str:
@@ -408,6 +423,162 @@ class PostImpactSpeed(Evidence):
         return why
 
 
+class _PedestrianItem(Evidence):
+    """Base of a pedestrian's items: ``pedestrian`` (its name in the scene) and, where the
+    item is about a contact, ``vehicle`` (the striking vehicle's name)."""
+
+    uses_result: ClassVar[bool] = True
+
+    @property
+    def label(self) -> str:
+        v = getattr(self, "vehicle", None)
+        who = self.pedestrian if v is None else f"{self.pedestrian}, {v}"  # type: ignore[attr-defined]
+        return f"{type(self).__name__}({who})"
+
+    def check(self, scene: Scene, label: str) -> None:
+        super().check(scene, label)
+        person = self.pedestrian  # type: ignore[attr-defined]
+        if person not in scene.pedestrians:
+            have = ", ".join(scene.pedestrians) or "none"
+            raise FitError(f"{label}: the scene has no pedestrian {person!r} (its pedestrians: "
+                           f"{have})", key=label)  # fmt: skip
+        v = getattr(self, "vehicle", None)
+        if v is not None and any(s.name == v for s in scene.pedestrians[person].segments):
+            raise FitError(f"{label}: {v!r} is a segment of {person!r}: name the vehicle that "
+                           "struck it", key=label)  # fmt: skip
+
+    def _figures(self, result: Result) -> dict[str, float]:
+        """The pedestrian's figures against ``vehicle`` in the run (NaN where none)."""
+        from crashsim.studies.pedestrians import pedestrian_figures
+
+        scene = result.scene
+        assert scene is not None
+        person = scene.pedestrians[self.pedestrian]  # type: ignore[attr-defined]
+        car = next(v for v in scene.vehicles if v.name == self.vehicle)  # type: ignore[attr-defined]
+        return pedestrian_figures(result, person, car)
+
+    def absent(self, result: Result) -> str | None:
+        f = self._figures(result)
+        who, v = self.pedestrian, self.vehicle  # type: ignore[attr-defined]
+        if not math.isfinite(f["first_contact_time"]):
+            return f"{v} never touched {who} in the fitted run"
+        if not math.isfinite(f["head_time"]) and isinstance(self, HeadStrike | WrapAround):
+            return f"the head of {who} never touched {v} in the fitted run"
+        if not math.isfinite(f["head_wrap_around"]) and isinstance(self, WrapAround):
+            return (f"the head of {who} struck {v} off its front and top (no wrap-around "
+                    "distance)")  # fmt: skip
+        return None
+
+
+@dataclass(frozen=True)
+class PedestrianRest(_PedestrianItem):
+    """Where ``pedestrian``'s whole-body centre of mass came to rest, (x, y) m in the world
+    frame (read at the run's last sample); tolerance m (per coordinate). A person still
+    moving at 0.1 m/s or more at the end makes a poor fit (a longer duration)."""
+
+    pedestrian: str
+    x: float
+    y: float
+    tolerance: float
+    unit: ClassVar[str] = "m"
+    caveat_always: ClassVar[bool] = True
+
+    @property
+    def components(self) -> tuple[str, ...]:
+        return ("x", "y")
+
+    def target(self) -> Array:
+        return np.array([self.x, self.y], dtype=np.float64)
+
+    def _end(self, result: Result) -> tuple[Array, float]:
+        from crashsim.analysis.pedestrian import rest_of
+
+        assert result.scene is not None
+        return rest_of(result, result.scene.pedestrians[self.pedestrian])
+
+    def from_result(self, result: Result) -> Array:
+        x, _ = self._end(result)
+        return np.array([x[0], x[1]], dtype=np.float64)
+
+    def absent(self, result: Result) -> str | None:
+        return None
+
+    def caveat(self, result: Result) -> str | None:
+        from crashsim.studies.pedestrians import REST_SPEED
+
+        _, speed = self._end(result)
+        if speed < REST_SPEED:
+            return None
+        return (f"{self.pedestrian}'s centre of mass still moves at {speed:.2g} m/s when the "
+                f"fitted run ends ({result.t[-1]:.3g} s): its rest is read at the last sample "
+                "(a longer duration?)")  # fmt: skip
+
+
+@dataclass(frozen=True)
+class HeadStrike(_PedestrianItem):
+    """Where ``pedestrian``'s head first touched ``vehicle``: (x, y, z) m in the vehicle's
+    model frame (x forward from the body's middle, y left, z up from the road: the mesh's
+    coordinates), the vehicle's surface point nearest the head's CG at the first overlap
+    (crashsim.analysis.pedestrian.segment_contacts); tolerance m (per coordinate)."""
+
+    pedestrian: str
+    vehicle: str
+    x: float
+    y: float
+    z: float
+    tolerance: float
+    unit: ClassVar[str] = "m"
+
+    @property
+    def components(self) -> tuple[str, ...]:
+        return ("x", "y", "z")
+
+    def target(self) -> Array:
+        return np.array([self.x, self.y, self.z], dtype=np.float64)
+
+    def from_result(self, result: Result) -> Array:
+        f = self._figures(result)
+        return np.array([f["head_x"], f["head_y"], f["head_z"]], dtype=np.float64)
+
+
+@dataclass(frozen=True)
+class WrapAround(_PedestrianItem):
+    """The wrap-around distance (m) of the head's first contact with ``vehicle``
+    (crashsim.analysis.pedestrian.wrap_around_distance at the HeadStrike point); tolerance
+    m."""
+
+    pedestrian: str
+    vehicle: str
+    distance: float
+    tolerance: float
+    unit: ClassVar[str] = "m"
+
+    def target(self) -> Array:
+        return np.array([self.distance], dtype=np.float64)
+
+    def from_result(self, result: Result) -> Array:
+        return np.array([self._figures(result)["head_wrap_around"]], dtype=np.float64)
+
+
+@dataclass(frozen=True)
+class ThrowDistance(_PedestrianItem):
+    """The pedestrian's throw distance (m): its whole-body CG's horizontal travel from the
+    first contact with ``vehicle`` to the end of the run (crashsim.analysis.throw); tolerance
+    m."""
+
+    pedestrian: str
+    vehicle: str
+    distance: float
+    tolerance: float
+    unit: ClassVar[str] = "m"
+
+    def target(self) -> Array:
+        return np.array([self.distance], dtype=np.float64)
+
+    def from_result(self, result: Result) -> Array:
+        return np.array([self._figures(result)["throw_distance"]], dtype=np.float64)
+
+
 _VALUES = {
     RestPosition: ("x", "y"),
     RestHeading: ("heading",),
@@ -415,6 +586,10 @@ _VALUES = {
     ImpactPoint: ("x", "y"),
     PostImpactSpeed: ("speed",),
     TyreMark: (),
+    PedestrianRest: ("x", "y"),
+    HeadStrike: ("x", "y", "z"),
+    WrapAround: ("distance",),
+    ThrowDistance: ("distance",),
 }
 
 
@@ -431,11 +606,12 @@ def check_evidence(scene: Scene, evidence: Sequence[Evidence]) -> list[str]:
         if not isinstance(e, Evidence):
             raise FitError(
                 f"evidence[{k}]: {e!r} is not an evidence item (RestPosition, RestHeading, "
-                "EDRDeltaV, ImpactPoint, TyreMark, PostImpactSpeed)",
+                "EDRDeltaV, ImpactPoint, TyreMark, PostImpactSpeed, PedestrianRest, "
+                "HeadStrike, WrapAround, ThrowDistance)",
                 key=f"evidence[{k}]",
             )
         label = f"evidence[{k}] {e.label}"
-        for name in _VALUES[type(e)]:
+        for name in _VALUES.get(type(e), ()):
             _finite(label, name, getattr(e, name))
         e.check(scene, label)
         labels.append(label)

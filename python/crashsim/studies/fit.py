@@ -299,7 +299,9 @@ class _Problem:
         self.run_kw, self.threads, self.progress = run, threads, progress
         self.sizes = [e.size for e in evidence]
         self.m = sum(self.sizes)
-        self.use_result = any(e.uses_result for e in evidence)
+        # a pedestrian's own paths rebuild it: never the batch's override arrays
+        self.use_result = any(e.uses_result for e in evidence) or any(
+            paths.parse_path(scene, n).kind in paths.PEDESTRIAN_KINDS for n in names)
         self.max_impacts = max([1] + [int(getattr(e, "impact", 1)) for e in evidence])
         self.cache: dict[bytes, Array] = {}
         self.gave: dict[bytes, NDArray[np.bool_]] = {}  # per candidate: the items its run gave
@@ -387,6 +389,11 @@ class _Problem:
             if kw["until"] == "rest":
                 return scene.run(dt=kw["dt"], until="rest", max_duration=kw["max_duration"],
                                  progress=check)  # fmt: skip
+            if scene.pedestrians:  # its figures need samples, not every step's
+                from crashsim.studies.pedestrians import RECORD_INTERVAL
+
+                return scene.run(duration=kw["duration"], dt=kw["dt"], progress=check,
+                                 record_interval=max(kw["dt"], RECORD_INTERVAL))  # fmt: skip
             return scene.run(duration=kw["duration"], dt=kw["dt"], progress=check)
 
     def from_result(self, result: Result) -> tuple[Array, NDArray[np.bool_]]:
@@ -852,7 +859,7 @@ def _verdict(
             unavailable[r.label] = (f"{why} ({tried or 'none'} of the {prob.n_runs} runs tried "
                                     f"gave it)")  # fmt: skip
             continue
-        if until_rest and result is not None:
+        if (until_rest or e.caveat_always) and result is not None:
             caveat = e.caveat(result)
             if caveat is not None:
                 caveats[r.label] = caveat
@@ -915,6 +922,12 @@ def fit(
         raise FitError('give duration (s) for runs of a fixed length, or until="rest"')
     if until == "rest" and scene.ground is None:
         raise FitError('until="rest" needs a ground: give duration and until=None instead')
+    if until == "rest" and scene.pedestrians:
+        raise FitError(
+            'until="rest" never ends for a pedestrian (its segments do not pass the engine\'s '
+            "rest test, docs/human.md): give duration= (s, long enough for the person to stop: "
+            "a PedestrianRest item says when it did not) and until=None"
+        )
     for what, v in (("dt", dt), ("max_duration", max_duration), ("step", step)):
         if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
             raise FitError(f"{what} = {v!r} must be a number > 0")

@@ -27,8 +27,22 @@ path                       unit      what it sets
 ``red/blue.restitution``   1         one pair's (either order; obstacles too:
                                      ``red/wall.friction``)
 ``ground.friction``        1         the tyre-road friction outside friction zones
-``ground.body_friction``   1         body-ground friction
+``ground.body_friction``   1         body-ground friction (a pedestrian's segments on
+                                     the road)
+``ped.height``             m         a pedestrian's stature (``ped.percentile`` instead:
+                                     ANSUR II's, 0-100); ``ped.mass`` kg; ``ped.pose`` the
+                                     index in POSES (0 standing, 1 walking)
+``ped.position_x/_y``      m         its body frame's origin, as Scene.add took it
+``ped.heading``            rad       its facing; its velocity turned with it
+``ped.speed``              m/s       along its velocity (its facing when at rest)
+``car/ped.friction``       1         that pair parameter of every pair of the vehicle and
+                                     one of the pedestrian's segments (any of the four)
+``car/ped.stiffness``      N/m       the soft contact of the vehicle with every segment;
+                                     ``car/ped.damping_ratio`` 1
 =========================  ========  =====================================================
+
+A pedestrian's own paths rebuild it for each variant (crashsim.studies.pedestrians): they are
+never the batch's override arrays, and a scene with pedestrians runs its variants as Scenes.
 
 Several paths of one vehicle combine in this order: mass, position, heading (turning the base
 velocity), direction, speed, then velocity_x/_y; ``speed`` or ``direction`` together with
@@ -96,14 +110,32 @@ GROUND_PARAMETERS: dict[str, tuple[str | None, str]] = {
     "body_friction": (None, "1"),
 }
 _GROUND_KEYS = {"friction": "ground.tyre_friction", "body_friction": "ground.body_friction"}
+# a pedestrian's own paths (crashsim.studies.pedestrians rebuilds it for each variant)
+PEDESTRIAN_PARAMETERS: dict[str, tuple[str | None, str]] = {
+    "height": ("length", "m"),
+    "mass": ("mass", "kg"),
+    "percentile": (None, "1"),
+    "pose": (None, "1"),
+    "position_x": ("length", "m"),
+    "position_y": ("length", "m"),
+    "heading": ("angle", "rad"),
+    "speed": ("speed", "m/s"),
+}
+# the soft contact of a vehicle with a pedestrian (Scene.soft_contact)
+SOFT_PARAMETERS: dict[str, tuple[str | None, str]] = {
+    "stiffness": (None, "N/m"),
+    "damping_ratio": (None, "1"),
+}
+PEDESTRIAN_KINDS = ("pedestrian", "pedestrian pair")
 
 
 @dataclass(frozen=True)
 class ParameterPath:
     """A parsed path: ``name`` (as the study names it), ``kind`` ("vehicle", "pairs" (every
-    pair), "pair" or "ground"), ``target`` (the vehicle's name, the pair (vehicle 1, vehicle
-    2) as ``Scene.pairs()`` orders it, or None), ``parameter``, its ``dimension`` (for unit
-    parsing; None: a plain number) and SI ``unit``."""
+    pair), "pair", "ground", "pedestrian" or "pedestrian pair"), ``target`` (the vehicle's
+    or pedestrian's name, the pair (vehicle 1, vehicle 2) as ``Scene.pairs()`` orders it,
+    (vehicle, pedestrian), or None), ``parameter``, its ``dimension`` (for unit parsing;
+    None: a plain number) and SI ``unit``."""
 
     name: str
     kind: str
@@ -117,27 +149,65 @@ def _names(scene: Scene) -> tuple[list[str], list[str]]:
     return [v.name for v in scene.vehicles], [o.name for o in scene.obstacles]
 
 
+def _struck(scene: Scene) -> list[tuple[str, str, list[tuple[str, str]]]]:
+    """Every (body, pedestrian) with pairs between the body (a vehicle or obstacle that is
+    not one of the pedestrian's segments) and the pedestrian's segments: (body, pedestrian,
+    those pairs in ``Scene.pairs()`` order)."""
+    out = []
+    pairs = [(a, b) for a, b, _ in scene.pairs()]
+    for person, ped in scene.pedestrians.items():
+        own = {s.name for s in ped.segments}
+        found: dict[str, list[tuple[str, str]]] = {}
+        for a, b in pairs:
+            if (a in own) != (b in own):
+                found.setdefault(b if a in own else a, []).append((a, b))
+        out += [(body, person, ps) for body, ps in found.items()]
+    return out
+
+
+def _soft_with(scene: Scene, body: str, person: str) -> bool:
+    """Whether every segment of the pedestrian has a soft contact with the body."""
+    return all(frozenset((body, s.name)) in scene._soft
+               for s in scene.pedestrians[person].segments)  # fmt: skip
+
+
+def _pedestrian_pair_parameters(scene: Scene, body: str, person: str) -> list[str]:
+    soft = list(SOFT_PARAMETERS) if _soft_with(scene, body, person) else []
+    return [*PAIR_PARAMETERS, *soft]
+
+
 def valid_paths(scene: Scene) -> list[str]:
-    """Every path the scene has, in a stable order (vehicles, every-pair, pairs, ground)."""
+    """Every path the scene has, in a stable order (vehicles, every-pair, pairs, ground,
+    pedestrians, the pairs of a body and a pedestrian)."""
     vehicles, _ = _names(scene)
     out = [f"{v}.{p}" for v in vehicles for p in VEHICLE_PARAMETERS]
     out += list(PAIR_PARAMETERS)
     out += [f"{a}/{b}.{p}" for a, b, _ in scene.pairs() for p in PAIR_PARAMETERS]
     if scene.ground is not None:
         out += [f"ground.{p}" for p in GROUND_PARAMETERS]
+    out += [f"{p}.{k}" for p in scene.pedestrians for k in PEDESTRIAN_PARAMETERS]
+    out += [f"{b}/{p}.{k}" for b, p, _ in _struck(scene)
+            for k in _pedestrian_pair_parameters(scene, b, p)]  # fmt: skip
     return out
 
 
 def _listing(scene: Scene) -> str:
     """The valid paths, compactly: red.{speed, ...}, restitution, ..."""
     vehicles, _ = _names(scene)
+    segments = {s.name for p in scene.pedestrians.values() for s in p.segments}
     params = ", ".join(VEHICLE_PARAMETERS)
-    parts = [f"{v}.{{{params}}}" for v in vehicles]
+    parts = [f"{v}.{{{params}}}" for v in vehicles if v not in segments]
+    if segments:
+        parts.append(f"each pedestrian's segment (e.g. {min(segments)}).{{{params}}}")
     parts += list(PAIR_PARAMETERS)
     pair_params = ", ".join(PAIR_PARAMETERS)
-    parts += [f"{a}/{b}.{{{pair_params}}}" for a, b, _ in scene.pairs()]
+    parts += [f"{a}/{b}.{{{pair_params}}}" for a, b, _ in scene.pairs()
+              if a not in segments and b not in segments]  # fmt: skip
     if scene.ground is not None:
         parts.append(f"ground.{{{', '.join(GROUND_PARAMETERS)}}}")
+    parts += [f"{p}.{{{', '.join(PEDESTRIAN_PARAMETERS)}}}" for p in scene.pedestrians]
+    parts += [f"{b}/{p}.{{{', '.join(_pedestrian_pair_parameters(scene, b, p))}}}"
+              for b, p, _ in _struck(scene)]  # fmt: skip
     return "; ".join(parts)
 
 
@@ -165,7 +235,8 @@ def parse_path(scene: Scene, name: str) -> ParameterPath:
         raise _unknown(scene, text, "a path is <vehicle>.<parameter>, <a>/<b>.<parameter>, "
                        "ground.<parameter> or an every-pair parameter")
     vehicles, obstacles = _names(scene)
-    if head == "ground" and "ground" not in vehicles:
+    people = scene.pedestrians
+    if head == "ground" and "ground" not in vehicles and "ground" not in people:
         if parameter not in GROUND_PARAMETERS:
             raise _unknown(scene, text, f"the ground has {', '.join(GROUND_PARAMETERS)}")
         if scene.ground is None:
@@ -176,24 +247,61 @@ def parse_path(scene: Scene, name: str) -> ParameterPath:
             )
         dim, unit = GROUND_PARAMETERS[parameter]
         return ParameterPath(text, "ground", None, parameter, dim, unit)
-    if "/" in head:
-        a, _, b = head.partition("/")
-        a, b = a.strip(), b.strip()
-        if parameter not in PAIR_PARAMETERS:
-            raise _unknown(scene, text, f"a pair has {', '.join(PAIR_PARAMETERS)}")
-        for v1, v2, _ in scene.pairs():
-            if {v1, v2} == {a, b} and a != b:
-                dim, unit = PAIR_PARAMETERS[parameter]
-                return ParameterPath(text, "pair", (v1, v2), parameter, dim, unit)
-        raise _unknown(scene, text, f"the scene has no pair of {a!r} and {b!r}")
-    if head in vehicles:
+    if head in vehicles:  # before pairs: a pedestrian's segment has "/" in its name
         if parameter not in VEHICLE_PARAMETERS:
             raise _unknown(scene, text, f"a vehicle has {', '.join(VEHICLE_PARAMETERS)}")
         dim, unit = VEHICLE_PARAMETERS[parameter]
         return ParameterPath(text, "vehicle", head, parameter, dim, unit)
+    if head in people:
+        if parameter not in PEDESTRIAN_PARAMETERS:
+            raise _unknown(scene, text, f"a pedestrian has {', '.join(PEDESTRIAN_PARAMETERS)}")
+        dim, unit = PEDESTRIAN_PARAMETERS[parameter]
+        return ParameterPath(text, "pedestrian", head, parameter, dim, unit)
+    if "/" in head:
+        return _pair_path(scene, text, head, parameter)
     if head in obstacles:
         raise _unknown(scene, text, f"{head!r} is a fixed obstacle: it has no state to vary")
     raise _unknown(scene, text, f"the scene has no vehicle named {head!r}")
+
+
+def _pair_path(scene: Scene, text: str, head: str, parameter: str) -> ParameterPath:
+    """A pair's path ``<a>/<b>.<parameter>``: two bodies, or a body and a pedestrian (every
+    pair of the body with one of its segments). Names may hold "/" (a pedestrian's
+    segments): the split that names two things of the scene is taken."""
+    vehicles, obstacles = _names(scene)
+    known = set(vehicles) | set(obstacles) | set(scene.pedestrians)
+    cuts = [i for i, c in enumerate(head) if c == "/"]
+    split = next(((head[:i].strip(), head[i + 1:].strip()) for i in cuts
+                  if head[:i].strip() in known and head[i + 1:].strip() in known), None)
+    if split is None:
+        a, _, b = head.partition("/")
+        raise _unknown(scene, text, f"the scene has no pair of {a.strip()!r} and {b.strip()!r}")
+    a, b = split
+    people = scene.pedestrians
+    if a in people or b in people:
+        if a in people and b in people:
+            raise _unknown(scene, text, "a path names a pedestrian and a vehicle (or obstacle), "
+                           "not two pedestrians")
+        body, person = (b, a) if a in people else (a, b)
+        found = next((ps for x, p, ps in _struck(scene) if x == body and p == person), None)
+        if not found:
+            raise _unknown(scene, text, f"{body!r} has no pair with {person!r}'s segments")
+        allowed = _pedestrian_pair_parameters(scene, body, person)
+        if parameter not in allowed:
+            hint = "" if parameter not in SOFT_PARAMETERS else (
+                f" (a soft contact's: give the pair one first, scene.soft_contact({body!r}, "
+                f"{person!r}, stiffness=...))")
+            raise _unknown(scene, text, f"a vehicle and a pedestrian have {', '.join(allowed)}"
+                           + hint)
+        dim, unit = {**PAIR_PARAMETERS, **SOFT_PARAMETERS}[parameter]
+        return ParameterPath(text, "pedestrian pair", (body, person), parameter, dim, unit)
+    if parameter not in PAIR_PARAMETERS:
+        raise _unknown(scene, text, f"a pair has {', '.join(PAIR_PARAMETERS)}")
+    for v1, v2, _ in scene.pairs():
+        if {v1, v2} == {a, b} and a != b:
+            dim, unit = PAIR_PARAMETERS[parameter]
+            return ParameterPath(text, "pair", (v1, v2), parameter, dim, unit)
+    raise _unknown(scene, text, f"the scene has no pair of {a!r} and {b!r}")
 
 
 # -- values -> the contract's override arrays -------------------------------------------------
@@ -272,6 +380,7 @@ def overrides(
                     key=p.name,
                 )
             seen[key] = p.name
+    _check_pedestrian_paths(scene, paths)
     vehicles, _ = _names(scene)
     for v in vehicles:
         given = {p.parameter for p in paths if p.kind == "vehicle" and p.target == v}
@@ -365,7 +474,7 @@ def overrides(
     _move_combinations(scene, by_vehicle, base, out, count)
     pairs = scene.pairs()
     for p in paths:
-        if p.kind not in ("pairs", "pair"):
+        if p.kind not in ("pairs", "pair", "pedestrian pair") or p.parameter in SOFT_PARAMETERS:
             continue
         key = f"contact.{p.parameter}"
         if key not in out:
@@ -373,15 +482,56 @@ def overrides(
                 [[_pair_value(params[p.parameter]) for _, _, params in pairs]] * count,
                 dtype=np.float64,
             ).reshape(count, len(pairs))
+        chosen = set(_pairs_of(scene, p))
         for k, (a, b, _) in enumerate(pairs):
-            if p.kind == "pairs" or p.target == (a, b):
+            if (a, b) in chosen:
                 out[key][:, k] = arrays[p.name]
     for p in paths:
         if p.kind == "ground":
             assert ground is not None
             key = _GROUND_KEYS[p.parameter]
             out[key] = arrays[p.name].copy()
+        elif p.kind == "pedestrian" or p.kind == "pedestrian pair" and (
+                p.parameter in SOFT_PARAMETERS):  # fmt: skip
+            out[_pedestrian_key(p)] = arrays[p.name].copy()
     return out
+
+
+def _pedestrian_key(p: ParameterPath) -> str:
+    """The study's array of a path that rebuilds a pedestrian or sets its soft contact
+    (crashsim.studies.pedestrians.KEY + "<p>.<parameter>" or "<body>/<p>.<parameter>")."""
+    from crashsim.studies.pedestrians import KEY
+
+    target = p.target if isinstance(p.target, str) else "/".join(p.target or ())
+    return f"{KEY}{target}.{p.parameter}"
+
+
+def _pairs_of(scene: Scene, p: ParameterPath) -> list[tuple[str, str]]:
+    """The pairs (as Scene.pairs() orders them) a pair parameter's path sets."""
+    if p.kind == "pairs":
+        return [(a, b) for a, b, _ in scene.pairs()]
+    if p.kind == "pair":
+        assert isinstance(p.target, tuple)
+        return [p.target]
+    body, person = p.target  # type: ignore[misc]
+    return next(ps for x, q, ps in _struck(scene) if x == body and q == person)
+
+
+def _check_pedestrian_paths(scene: Scene, paths: Sequence[ParameterPath]) -> None:
+    """A pedestrian's own paths move or rebuild all its segments: StudyError when a path of
+    one of its segments (as a vehicle) is given with them."""
+    for p in paths:
+        if p.kind != "pedestrian":
+            continue
+        own = {s.name for s in scene.pedestrians[str(p.target)].segments}
+        clash = next((q for q in paths if q.kind == "vehicle" and q.target in own), None)
+        if clash is not None:
+            raise StudyError(
+                f'"{p.name}" rebuilds pedestrian {p.target!r}, whose segment "{clash.name}" '
+                "also varies: vary the pedestrian's paths (height, pose, position_x, heading, "
+                "speed, ...) or its segments', not both",
+                key=clash.name,
+            )
 
 
 def _combinations(scene: Scene) -> list[list[int]]:
@@ -474,9 +624,12 @@ def _slots(scene: Scene, p: ParameterPath) -> list[tuple[Any, ...]]:
         return [("vehicle", p.target, p.parameter)]
     if p.kind == "ground":
         return [("ground", p.parameter)]
-    if p.kind == "pair":
-        return [("pair", p.target, p.parameter)]
-    return [("pair", (a, b), p.parameter) for a, b, _ in scene.pairs()]
+    if p.kind == "pedestrian":  # a height and a percentile set the same stature
+        what = "stature" if p.parameter in ("height", "percentile") else p.parameter
+        return [("pedestrian", p.target, what)]
+    if p.kind == "pedestrian pair" and p.parameter in SOFT_PARAMETERS:
+        return [("soft", p.target, p.parameter)]
+    return [("pair", pair, p.parameter) for pair in _pairs_of(scene, p)]
 
 
 # -- one variant as a Scene -------------------------------------------------------------------
@@ -515,10 +668,19 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
     """The Scene of variant ``i`` of core-level override arrays (the batch contract's keys):
     a copy of ``scene`` sharing its vehicles' meshes and engine shapes, with the variant's
     states, masses, pair parameters and ground frictions. Values are not checked here: the
-    engine checks them when the scene runs (as in the batch)."""
+    engine checks them when the scene runs (as in the batch). A pedestrian's own paths
+    rebuild it (crashsim.studies.pedestrians.rebuild; ParameterError for a value it refuses)
+    and its segments keep the rebuilt states."""
     new = copy.copy(scene)
-    placements = list(scene._placements)
+    rebuilt: set[str] = set()
+    if any(k.startswith("pedestrian:") for k in arrays):
+        from crashsim.studies.pedestrians import rebuild
+
+        new, rebuilt = rebuild(scene, arrays, i)
+    placements = list(new._placements)
     for j, p in enumerate(placements):
+        if p.vehicle.name in rebuilt:
+            continue
         changes: dict[str, Any] = {}
         for key in ("position", "orientation", "velocity", "angular_velocity"):
             if key in arrays:
@@ -594,11 +756,16 @@ def base_value(scene: Scene, name: str) -> float:
         assert scene.ground is not None
         kwargs = scene.ground.core_kwargs()
         return float(kwargs["tyre_friction" if p.parameter == "friction" else "body_friction"])
-    values = [
-        _pair_value(params[p.parameter])
-        for a, b, params in scene.pairs()
-        if p.kind == "pairs" or p.target == (a, b)
-    ]
+    if p.kind == "pedestrian":
+        return _pedestrian_value(scene, str(p.target), p.parameter)
+    if p.kind == "pedestrian pair" and p.parameter in SOFT_PARAMETERS:
+        body, person = p.target  # type: ignore[misc]
+        k, zeta = {scene._soft[frozenset((body, s.name))]
+                   for s in scene.pedestrians[person].segments}.pop()  # fmt: skip
+        return k if p.parameter == "stiffness" else zeta
+    chosen = set(_pairs_of(scene, p))
+    values = [_pair_value(params[p.parameter]) for a, b, params in scene.pairs()
+              if (a, b) in chosen]  # fmt: skip
     distinct = {("nan" if math.isnan(x) else x) for x in values}
     if len(distinct) > 1:
         raise StudyError(
@@ -607,3 +774,23 @@ def base_value(scene: Scene, name: str) -> float:
             key=name,
         )
     return values[0] if values else math.nan
+
+
+def _pedestrian_value(scene: Scene, person: str, parameter: str) -> float:
+    """The base scene's value of a pedestrian's own path (SI; NaN: a percentile not given)."""
+    from crashsim.human.pedestrian import POSES
+
+    ped = scene.pedestrians[person]
+    args = ped.arguments
+    position, heading, velocity = scene._pedestrian_places[person]
+    values = {
+        "height": lambda: ped.height if args["percentile"] is not None else args["height"],
+        "mass": lambda: args["mass"],
+        "percentile": lambda: math.nan if args["percentile"] is None else args["percentile"],
+        "pose": lambda: POSES.index(args["pose"]),
+        "position_x": lambda: position[0],
+        "position_y": lambda: position[1],
+        "heading": lambda: heading,
+        "speed": lambda: np.linalg.norm(velocity),
+    }
+    return float(values[parameter]())

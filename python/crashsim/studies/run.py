@@ -223,7 +223,12 @@ def check_size(
             "bytes (e.g. 2**30)"
         )
     probe = paths.overrides(scene, {k: np.zeros(1) for k in keys})  # StudyError: a bad path
-    outputs = empty_columns(scene, 0, max_impacts)
+    if scene.pedestrians:  # its variants run as Scenes: crashsim.studies.pedestrians
+        from crashsim.studies.pedestrians import empty_columns as pedestrian_columns
+
+        outputs = pedestrian_columns(scene, 0, max_impacts)
+    else:
+        outputs = empty_columns(scene, 0, max_impacts)
     status = np.dtype(object).itemsize + np.dtype(f"U{len(NOT_RUN)}").itemsize
     per = (8 * len(keys) + sum(a.nbytes for a in probe.values())
            + sum(c.dtype.itemsize for c in outputs.values()) + status)  # fmt: skip
@@ -293,9 +298,15 @@ def run_study(
     ):
         raise StudyError(f"chunk_size = {chunk_size!r} is invalid: give an integer >= 1")
     options = {"duration": duration, "dt": dt, "until": until, "max_impacts": max_impacts}
+    if scene.pedestrians:
+        _check_pedestrian_study(backend, until)
     bar = _Progress(progress, n)
     try:
-        if backend == "dask":
+        if scene.pedestrians:
+            from crashsim.studies.pedestrians import run_scenes
+
+            result = run_scenes(scene, overrides, n, options, threads, bar)
+        elif backend == "dask":
             from crashsim.studies.dask_backend import run_dask
 
             result = run_dask(
@@ -335,6 +346,23 @@ def run_study(
         distributions=dict(distributions or {}),
         settings={**options, "backend": backend},
     )
+
+
+def _check_pedestrian_study(backend: str, until: str | None) -> None:
+    """A study of a scene with pedestrians runs its variants as Scenes on this machine, for a
+    fixed duration (crashsim.studies.pedestrians)."""
+    if backend != "local":
+        raise StudyError(
+            'a study of a scene with pedestrians runs on this machine (backend="local"): its '
+            "variants run as Scenes, whose trajectories give the person's figures, not through "
+            "the batch engine the Dask backend distributes"
+        )
+    if until is not None:
+        raise StudyError(
+            'until="rest" never ends for a pedestrian (its segments do not pass the engine\'s '
+            "rest test, docs/human.md): give duration= (s) and until=None; the study records "
+            "the person's rest position when it is slower than 0.1 m/s at the end"
+        )
 
 
 def _run_local(

@@ -35,13 +35,16 @@ def output_unit(name: str) -> str:
         return "count"
     if last.endswith("_deg"):
         return "deg"
-    if last in ("time", "rest_time"):
+    if last in ("time", "rest_time", "first_contact_time", "head_time"):
         return "s"
     if last == "energy":
         return "J"
     if last.startswith("delta_v") or last == "total_delta_v" or last == "final_speed":
         return "m/s"
-    if last in ("final_x", "final_y", "rest_x", "rest_y"):
+    if last in ("head_relative_speed",):
+        return "m/s"
+    if last in ("final_x", "final_y", "rest_x", "rest_y", "throw_distance", "head_x", "head_y",
+                "head_z", "head_wrap_around"):  # fmt: skip
         return "m"
     return ""
 

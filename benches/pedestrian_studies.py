@@ -1,0 +1,148 @@
+"""Studies and fits with a pedestrian (docs/studies.md and docs/fitting.md, "Pedestrians"):
+a Monte Carlo of the throw distance over the uncertain inputs, and the vehicle's impact
+speed fitted back from the person's rest position and the head-strike point.
+
+    python3 benches/pedestrian_studies.py --mc 100            # Monte Carlo, 100 variants
+    python3 benches/pedestrian_studies.py --fit               # fit 45 km/h back from 35
+    python3 benches/pedestrian_studies.py --mc 8 --duration 1.0   # a quick look
+
+The scene is benches/pedestrian_throw.py's: a generated sedan braking at the friction limit
+from t = 0 strikes a 1.75 m, 75 kg man's left side (his nearest point 5 cm ahead of its
+foremost point); soft car-segment contacts 1e5 N/m, damping ratio 0.5, friction 0.3, normal
+"volume"; tyre-road friction 0.8; 0.2 ms steps.
+
+Monte Carlo at 40 km/h (``--mc N``, seed 1): the pedestrian-road friction
+(``ground.body_friction``) uniform(0.45, 0.70), the pose (``pedestrian.pose``) standing or
+walking with equal weights, the stature (``pedestrian.height``) normal(1.756 m, 0.0686 m)
+truncated to 1.55-1.95 m (ANSUR II men, docs/human.md); 4.0 s runs (the bench's length at
+40 km/h and 0.45). Prints the throw distance's mean, standard deviation, 5th, 50th and 95th
+percentiles, the rest position's, and the wall time per run.
+
+Fit (``--fit``): the evidence is read off a run at 45 km/h (4.5 s): the person's rest position
+(tolerance 0.25 m) and the head-strike point on the car (0.05 m per coordinate, the car's
+model frame); ``cs.fit`` of ``car.speed`` within 25-70 km/h from 35 km/h, least squares,
+runs of the same length. Prints the recovered speed, its 95 % range, the verdict, the runs
+and the wall time.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+
+import crashsim as cs
+import numpy as np
+from crashsim.studies import choice, normal, uniform
+from crashsim.studies.evidence import HeadStrike, PedestrianRest
+from crashsim.studies.pedestrians import columns_of, run_one
+
+STIFFNESS = 1e5  # N/m, the car-segment soft contact (docs/human.md, "Soft contacts")
+DT = 2e-4  # s
+
+
+def strike_scene(speed_kmh: float, pose: str = "walking") -> cs.Scene:
+    """The sedan at ``speed_kmh`` braking from t = 0, the pedestrian's left side 5 cm ahead
+    of it (benches/pedestrian_throw.py's scene)."""
+    car = cs.Vehicle.generate("sedan", name="car")
+    person = cs.Pedestrian(height=1.75, mass=75.0, sex="male", pose=pose)
+    scene = cs.Scene(ground=cs.Ground(friction=0.8))
+    ahead = float(car.mesh.bounds[1, 0] - car.cg[0])  # the CG to the front, m
+    scene.add(car, (0.0, 0.0), heading=0.0, velocity=(cs.kmh(speed_kmh), 0.0, 0.0),
+              inputs=cs.DriverInputs(brake=[(0.0, 1.0), (30.0, 1.0)]))
+    left = float(person.vertices()[:, 1].max())  # his left side (body y), m
+    scene.add(person, (ahead + 0.05 + left, 0.0), heading=np.pi / 2)
+    for seg in person.segments:
+        scene.contact(car, seg, depth_of_penetration=0.0, restitution=0.1, friction=0.3,
+                      normal="volume")
+    scene.soft_contact(car, person, stiffness=STIFFNESS, damping_ratio=0.5)
+    return scene
+
+
+def monte_carlo(n: int, duration: float, threads: int | None) -> None:
+    scene = strike_scene(40.0)
+    dists = {
+        "ground.body_friction": uniform(0.45, 0.70),
+        "pedestrian.pose": choice([0, 1]),
+        "pedestrian.height": normal(1.756, 0.0686, 1.55, 1.95),
+    }
+    t0 = time.perf_counter()
+    study = cs.monte_carlo(scene, dists, n=n, seed=1, duration=duration, dt=DT,
+                           threads=threads, progress=True)
+    wall = time.perf_counter() - t0
+    ok = study.ok
+    print(f"{n} variants, {int(ok.sum())} ran, {len(study.errors)} failed; {duration:g} s runs "
+          f"at {DT:g} s; wall {wall:.0f} s ({wall / n:.2f} s per variant on "
+          f"{threads or 'all'} threads)")
+    for e in study.errors:
+        print(" ", e)
+    throw = study["pedestrian.car.throw_distance"][ok]
+    p5, p50, p95 = np.percentile(throw, [5, 50, 95])
+    print(f"throw distance: mean {throw.mean():.2f} m, sd {throw.std(ddof=1):.2f} m, P5 {p5:.2f}, "
+          f"P50 {p50:.2f}, P95 {p95:.2f} m (min {throw.min():.2f}, max {throw.max():.2f})")
+    for col in ("pedestrian.rest_x", "pedestrian.final_x", "pedestrian.final_speed",
+                "pedestrian.car.head_time", "pedestrian.car.head_wrap_around",
+                "pedestrian.car.head_relative_speed"):
+        v = study[col][ok]
+        v = v[np.isfinite(v)]
+        if v.size < 2:
+            print(f"{col}: {v.size} finite")
+            continue
+        print(f"{col}: {v.size} finite, mean {v.mean():.3f}, sd {v.std(ddof=1):.3f}, P5 "
+              f"{np.percentile(v, 5):.3f}, P95 {np.percentile(v, 95):.3f}")
+    frame = study.frame[ok]
+    for pose, name in ((0, "standing"), (1, "walking")):
+        sel = frame["pedestrian.pose"] == pose
+        t = frame.loc[sel, "pedestrian.car.throw_distance"]
+        print(f"  {name}: {int(sel.sum())} runs, throw mean {t.mean():.2f} m, sd {t.std():.2f} m")
+    r = np.corrcoef(frame["ground.body_friction"], frame["pedestrian.car.throw_distance"])[0, 1]
+    print(f"  correlation of the throw distance with ground.body_friction: {r:.2f}")
+
+
+def fit(duration: float, threads: int | None) -> None:
+    truth = strike_scene(45.0)
+    t0 = time.perf_counter()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        row = columns_of(run_one(truth, {"duration": duration, "dt": DT}), truth, 2)
+    print(f"evidence run (45 km/h, {duration:g} s): {time.perf_counter() - t0:.1f} s wall; "
+          f"rest ({row['pedestrian.final_x']:.3f}, {row['pedestrian.final_y']:.3f}) m at "
+          f"{row['pedestrian.final_speed']:.3f} m/s; head strike at "
+          f"{row['pedestrian.car.head_time']:.4f} s, point ({row['pedestrian.car.head_x']:.3f}, "
+          f"{row['pedestrian.car.head_y']:.3f}, {row['pedestrian.car.head_z']:.3f}) m, WAD "
+          f"{row['pedestrian.car.head_wrap_around']:.3f} m")
+    evidence = [
+        PedestrianRest("pedestrian", row["pedestrian.final_x"], row["pedestrian.final_y"], 0.25),
+        HeadStrike("pedestrian", "car", row["pedestrian.car.head_x"],
+                   row["pedestrian.car.head_y"], row["pedestrian.car.head_z"], 0.05),
+    ]
+    t0 = time.perf_counter()
+    result = cs.fit(strike_scene(35.0), {"car.speed": (cs.kmh(25.0), cs.kmh(70.0))}, evidence,
+                    until=None, duration=duration, dt=DT, samples=0, scan=False,
+                    threads=threads, progress=True)
+    wall = time.perf_counter() - t0
+    print(result.summary())
+    v = result.values["car.speed"]
+    lo, hi = result.ranges["car.speed"] or (float("nan"), float("nan"))
+    print(f"recovered {v * 3.6:.3f} km/h (true 45), sigma {result.sigma['car.speed'] * 3.6:.3f} "
+          f"km/h, 95 % {lo * 3.6:.3f}-{hi * 3.6:.3f} km/h; {result.n_runs} runs, wall {wall:.0f} s")
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--mc", type=int, default=None, help="Monte Carlo variants")
+    p.add_argument("--fit", action="store_true")
+    p.add_argument("--duration", type=float, default=None,
+                   help="s per run (default 4.0 for --mc, 4.5 for --fit)")
+    p.add_argument("--threads", type=int, default=None)
+    a = p.parse_args()
+    if a.mc is None and not a.fit:
+        p.error("give --mc N and/or --fit")
+    if a.mc is not None:
+        monte_carlo(a.mc, a.duration or 4.0, a.threads)
+    if a.fit:
+        fit(a.duration or 4.5, a.threads)
+
+
+if __name__ == "__main__":
+    main()
