@@ -15,8 +15,14 @@ rigid_truck and the combination presets of Vehicle.generate; for each, every pub
 (floats as float.hex, arrays as their bytes' sha256), its private state, summary(), repr(),
 the plausibility warnings raised while it was built (category, message, file and line) and
 the engine's scene spec of it on a ground (``to_json()``); bad inputs give their error's type
-and message. Then a few scenes run in the engine (impacts, a tractor and semitrailer, a car
-and caravan, a rigid truck and drawbar trailer) and their raw output is hashed.
+and message. The body generator (crashsim.vehicles.generator) on its own: its public names and
+tables, every preset at resolutions 0.25 to 8 (the parameters, the loft's stations and sections,
+the mesh's vertex and face bytes and its binary PLY), every shape parameter given to every
+preset, each dimension scaled (moving the adaptive defaults), every check's error for bad input,
+loft on hand-made sections and its errors, ply_bytes with comments; private names are read from
+wherever they are defined (generator_name). Then a few scenes run in the engine (impacts, a
+tractor and semitrailer, a car and caravan, a rigid truck and drawbar trailer) and their raw
+output is hashed.
 """
 
 from __future__ import annotations
@@ -330,6 +336,309 @@ def generate_cases() -> dict[str, Callable[[], Any]]:
         "gen-two-masses-error": lambda: G("sedan", mass=1.0, weight_lb=2.0),
     }
     return out
+
+
+def generator_name(name: str) -> Any:
+    """A name of the body generator: from crashsim.vehicles.generator, where every one stood
+    before issue 20 split it, else from the module of its package that defines it."""
+    import importlib
+    import pkgutil
+
+    gen = importlib.import_module("crashsim.vehicles.generator")
+    modules = [gen]
+    if hasattr(gen, "__path__"):  # a package since the split
+        modules += [
+            importlib.import_module(f"{gen.__name__}.{m.name}")
+            for m in pkgutil.iter_modules(gen.__path__)
+        ]
+    for module in modules:
+        if name in vars(module):
+            return vars(module)[name]
+    raise AttributeError(name)
+
+
+# The generator's fixed numbers and tables (private names, read wherever they are defined).
+GENERATOR_CONSTANTS = (
+    "_DEFAULTS",
+    "_SILL_RADIUS",
+    "_STEP",
+    "_SHOULDER_MIN",
+    "_CROWN",
+    "_MARGIN",
+    "_ARCH_RAMP_DEG",
+    "_FILLET",
+    "_FILLET_MAX",
+    "_PROFILE_SAMPLES",
+    "_DIMS",
+    "_NUMBERS",
+    "_ARCH_BUMPER",
+    "_ARCH_CLEARANCE",
+    "_WHEEL_LEAST_SHARE",
+    "_CLEARANCE_SHARE",
+    "_CORNER_SHARE",
+)
+RESOLUTIONS = (0.25, 0.5, 0.7, 1.0, 1.7, 3.0, 8.0)
+
+
+def body_text(p: Any, resolution: float) -> dict[str, Any]:
+    """The parameters of a body, its loft (stations and sections) and its mesh, with the
+    sha256 of its binary PLY."""
+    g = generator_name
+    x, sections = g("body_sections")(p, resolution)
+    mesh = g("generate_body")(p, resolution)
+    return {
+        "params": p,
+        "repr": repr(p),
+        "as_dict": p.as_dict(),
+        "rear_overhang": p.rear_overhang,
+        "arch_radius": p.arch_radius,
+        "x": x,
+        "sections": sections,
+        "mesh": mesh,
+        "ply": hashlib.sha256(g("ply_bytes")(mesh)).hexdigest(),
+    }
+
+
+def body_private(p: Any) -> dict[str, Any]:
+    """What the private geometry of a body gives: the checking stations, the profiles there,
+    the stations and point counts at every resolution."""
+    g = generator_name
+    d = g("_check_stations")(p)
+    return {
+        "check_stations": d,
+        "profiles": g("_profiles")(p, d),
+        "stations": [g("_stations")(p, r) for r in RESOLUTIONS],
+        "counts": [g("_counts")(r) for r in RESOLUTIONS],
+        "top": g("_top_points")(p),
+        "bottom": g("_bottom_points")(p),
+        "near_axle": [g("_near_axle")(p, float(v)) for v in d[::50]],
+    }
+
+
+def generator_cases() -> dict[str, Callable[[], Any]]:
+    """crashsim.vehicles.generator itself: its public names and tables, every preset at every
+    resolution, every shape parameter given to every preset, dimensions that move the
+    adaptive defaults, and every error of body_params, BodyParams, generate_body, loft and
+    ply_bytes."""
+    import importlib
+
+    gen = importlib.import_module("crashsim.vehicles.generator")
+    g = generator_name
+    presets = g("PRESETS")
+    bp, dims = g("body_params"), g("default_dims")
+    out: dict[str, Callable[[], Any]] = {
+        "body-api": lambda: {
+            "all": list(gen.__all__),
+            "all_names": [(n, type(getattr(gen, n)).__name__) for n in gen.__all__],
+            "PRESETS": g("PRESETS"),
+            "SHAPE_PARAMETERS": g("SHAPE_PARAMETERS"),
+            "fields": [(f.name, str(f.type)) for f in dataclasses.fields(g("BodyParams"))],
+            "dims": {p: dims(p) for p in presets},
+            "constants": {n: g(n) for n in GENERATOR_CONSTANTS},
+            "adaptive": [name for name, _ in g("_ADAPTIVE")],
+            "may_be_zero": sorted(g("_MAY_BE_ZERO")),
+        },
+        "body-elementary": lambda: {
+            "cos_sin": g("_cos_sin")(np.arange(1001, dtype=np.float64) * (np.pi / 1000)),
+            "interp": g("_interp")(
+                np.linspace(0.0, 3.0, 97), np.array([0.0, 0.5, 2.0, 3.0]), np.array([1, 2, 2, 0.5])
+            ),
+            "filleted": [
+                g("_filleted")([(0.0, 1.0), (1.0, 1.3), (2.5, 1.3), (3.0, 0.2)], n) for n in (2, 16)
+            ],
+            "arc_stations": [g("_arc_stations")(r, n) for r in (0.1, 0.37) for n in (3, 5, 40)],
+        },
+    }
+    for preset in presets:
+        out[f"body-{preset}-private"] = lambda pr=preset: body_private(bp(pr, **dims(pr)))
+        for r in RESOLUTIONS:
+            out[f"body-{preset}-res-{r}"] = lambda pr=preset, r=r: body_text(bp(pr, **dims(pr)), r)
+        # every shape parameter given, 4 % above its default (some give errors: fingerprinted)
+        for name in g("SHAPE_PARAMETERS"):
+
+            def shaped(pr: str = preset, name: str = name) -> Any:
+                nominal = bp(pr, **dims(pr)).as_dict()[name]
+                value = nominal * 1.04 if nominal > 0.0 else 0.01
+                return body_text(bp(pr, **dims(pr), **{name: value}), 0.5)
+
+            out[f"body-{preset}-shape-{name}"] = shaped
+        # each dimension scaled (the adaptive defaults move; far ones are refused)
+        for dim in ("length", "width", "height", "wheelbase"):
+            for f in (0.7, 0.85, 1.15, 1.3):
+
+                def scaled(pr: str = preset, dim: str = dim, f: float = f) -> Any:
+                    given = dims(pr)
+                    given[dim] *= f
+                    return body_text(bp(pr, **given), 0.5)
+
+                out[f"body-{preset}-{dim}-{f}"] = scaled
+    # the adaptive defaults at short, low bodies with long wheelbases (every rule moves)
+    out |= {
+        "body-adapt-sedan-short": lambda: body_text(
+            bp("sedan", length=3.6, width=1.6, height=1.2, wheelbase=2.6), 1.0
+        ),
+        "body-adapt-van-low": lambda: body_text(
+            bp("van", length=4.2, width=1.7, height=1.35, wheelbase=2.9), 1.0
+        ),
+        "body-adapt-pickup-narrow": lambda: body_text(
+            bp("pickup", length=4.6, width=1.5, height=1.5, wheelbase=3.3), 1.0
+        ),
+        "body-adapt-suv-given-wheel": lambda: body_text(
+            bp("suv", length=3.8, width=1.7, height=1.5, wheelbase=2.7, wheel_radius=0.3), 1.0
+        ),
+        "body-adapt-clearance": lambda: body_text(
+            bp("pickup", **dims("pickup"), wheel_radius=0.28), 1.0
+        ),
+        "body-adapt-bumper-bottom": lambda: body_text(
+            bp("sedan", **dims("sedan"), ground_clearance=0.3), 1.0
+        ),
+        "body-adapt-edge": lambda: body_text(
+            bp("sedan", **dims("sedan"), front_overhang=0.43, wheel_radius=0.31), 1.0
+        ),
+        "body-tumblehome-zero": lambda: body_text(bp("sedan", **dims("sedan"), tumblehome=0), 1),
+        "body-numpy-numbers": lambda: body_text(
+            bp("suv", length=np.float32(4.6), width=np.int64(2), height=1.7, wheelbase=2.7), 1.0
+        ),
+        "body-replace": lambda: body_text(
+            dataclasses.replace(bp("bus", **dims("bus")), beltline=1.3, tumblehome=0.06), 1.0
+        ),
+        "body-direct": lambda: body_text(g("BodyParams")(**bp("van", **dims("van")).as_dict()), 1),
+    }
+    out |= generator_error_cases()
+    out |= loft_cases()
+    return out
+
+
+def generator_error_cases() -> dict[str, Callable[[], Any]]:
+    """Every ParameterError of the generator's parameters, with its message."""
+    g = generator_name
+    bp, dims = g("body_params"), g("default_dims")
+    sedan = dims("sedan")
+    L, wb = sedan["length"], sedan["wheelbase"]
+
+    def sedan_with(**shape: Any) -> Any:
+        return bp("sedan", **{**sedan, **shape})
+
+    def replaced(**changes: Any) -> Any:
+        return dataclasses.replace(bp("sedan", **sedan), **changes)
+
+    bad_numbers = {
+        "bool": True,
+        "str": "4.8",
+        "none": None,
+        "nan": float("nan"),
+        "inf": float("inf"),
+        "negative": -1.0,
+        "zero": 0.0,
+    }
+    out: dict[str, Callable[[], Any]] = {
+        f"body-error-length-{k}": (lambda v=v: sedan_with(length=v)) for k, v in bad_numbers.items()
+    }
+    out |= {
+        f"body-error-shape-{k}": (lambda v=v: sedan_with(arch_gap=v))
+        for k, v in bad_numbers.items()
+    }
+    out |= {
+        "body-error-tumblehome-negative": lambda: sedan_with(tumblehome=-0.01),
+        "body-error-preset": lambda: bp("tank", **sedan),
+        "body-error-preset-type": lambda: bp(3, **sedan),
+        "body-error-dims-preset": lambda: dims("tank"),
+        "body-error-direct-preset": lambda: g("BodyParams")(
+            **{**bp("sedan", **sedan).as_dict(), "preset": "tank"}
+        ),
+        "body-error-unknown-shape": lambda: sedan_with(spoiler=0.1, fin=0.2),
+        "body-error-wheelbase": lambda: sedan_with(wheelbase=L),
+        "body-error-replace-wheelbase": lambda: replaced(wheelbase=L + 0.1),
+        "body-error-replace-number": lambda: replaced(height="tall"),
+        "body-error-rear-overhang-none": lambda: sedan_with(front_overhang=L - wb + 0.1),
+        "body-error-front-overhang": lambda: sedan_with(front_overhang=0.3, wheel_radius=0.31),
+        "body-error-rear-overhang": lambda: sedan_with(
+            front_overhang=L - wb - 0.3, wheel_radius=0.31
+        ),
+        "body-error-wheelbase-arches": lambda: sedan_with(wheelbase=0.75, wheel_radius=0.31),
+        "body-error-clearance": lambda: sedan_with(ground_clearance=0.4, wheel_radius=0.31),
+        "body-error-bumper-bottom": lambda: sedan_with(bumper_bottom=0.1, ground_clearance=0.14),
+        "body-error-beltline-high": lambda: sedan_with(beltline=sedan["height"]),
+        "body-error-beltline-low": lambda: sedan_with(beltline=0.1),
+        "body-error-arch-beltline": lambda: sedan_with(beltline=0.4),
+        "body-error-beltline-ends": lambda: sedan_with(
+            wheel_radius=0.16,
+            arch_gap=0.01,
+            ground_clearance=0.1,
+            bumper_bottom=0.45,
+            edge_radius=0.05,
+            beltline=0.4,
+        ),
+        "body-error-nose": lambda: sedan_with(nose_height=sedan["height"] + 0.1),
+        "body-error-hood": lambda: sedan_with(hood_height=sedan["height"] + 0.1),
+        "body-error-deck": lambda: sedan_with(deck_height=sedan["height"] + 0.1),
+        "body-error-tail": lambda: sedan_with(tail_height=sedan["height"] + 0.1),
+        "body-error-windshield": lambda: sedan_with(windshield_base=0.005),
+        "body-error-roof-start": lambda: replaced(roof_start=replaced().windshield_base),
+        "body-error-roof-end": lambda: replaced(roof_end=replaced().roof_start + 0.005),
+        "body-error-rear-window": lambda: replaced(rear_window_end=replaced().roof_end),
+        "body-error-rear-window-far": lambda: sedan_with(rear_window_end=L + 0.2),
+        "body-error-bumper-radius-width": lambda: sedan_with(bumper_radius=sedan["width"] / 2),
+        "body-error-bumper-radius-front": lambda: sedan_with(front_overhang=0.7, bumper_radius=0.8),
+        "body-error-bumper-radius-rear": lambda: sedan_with(front_overhang=1.4, bumper_radius=0.8),
+        "body-error-arch-depth-small": lambda: sedan_with(arch_depth=0.05),
+        "body-error-arch-depth-large": lambda: sedan_with(arch_depth=0.8),
+        "body-error-tumblehome": lambda: sedan_with(tumblehome=0.5),
+        "body-error-edge-radius": lambda: sedan_with(edge_radius=0.7),
+        "body-error-front-face": lambda: sedan_with(nose_height=0.35),
+        "body-error-rear-face": lambda: sedan_with(tail_height=0.35),
+        "body-error-arch-fit": lambda: sedan_with(wheel_radius=0.45, arch_gap=0.1),
+        "body-error-too-low": lambda: sedan_with(
+            rear_window_end=4.5, deck_height=0.2, wheel_radius=0.31
+        ),
+        "body-error-adapt-refused": lambda: bp(
+            "sedan", length=2.6, width=1.6, height=1.0, wheelbase=2.2
+        ),
+        "body-error-resolution-bool": lambda: g("generate_body")(bp("sedan", **sedan), True),
+        "body-error-resolution-str": lambda: g("generate_body")(bp("sedan", **sedan), "1"),
+        "body-error-resolution-nan": lambda: g("generate_body")(bp("sedan", **sedan), np.nan),
+        "body-error-resolution-low": lambda: g("generate_body")(bp("sedan", **sedan), 0.2),
+        "body-error-resolution-high": lambda: g("body_sections")(bp("sedan", **sedan), 8.5),
+        "body-error-generate-type": lambda: g("generate_body")(sedan),
+        "body-error-degenerate-section": lambda: g("_check_sections")(
+            np.array([[[0.0, 0.0], [1.0, 0.5], [0.5, 0.2], [0.0, 1.0], [-1.0, 0.5]]]),
+            bp("sedan", **sedan),
+        ),
+    }
+    return out
+
+
+def loft_cases() -> dict[str, Callable[[], Any]]:
+    """loft on small hand-made sections, its errors, and ply_bytes with comments."""
+    g = generator_name
+    square = np.array([[-1.0, 0.0], [1.0, 0.0], [1.0, 1.0], [-1.0, 1.0]])
+    x = np.array([0.0, 0.5, 2.0])
+    secs = np.stack([square, square * 1.2, square * 0.8])
+    loft, ply = g("loft"), g("ply_bytes")
+    body = lambda: g("generate_body")(g("body_params")("van", **g("default_dims")("van")), 0.4)  # noqa: E731
+
+    def ply_text(mesh: trimesh.Trimesh, comments: Any) -> Any:
+        data = ply(mesh, comments)
+        return {"sha256": hashlib.sha256(data).hexdigest(), "head": data[:400]}
+
+    return {
+        "loft-squares": lambda: loft(x, secs),
+        "loft-lists": lambda: loft([0, 1], [square.tolist(), square.tolist()]),
+        "loft-error-x-2d": lambda: loft(x[None, :], secs),
+        "loft-error-one": lambda: loft(x[:1], secs[:1]),
+        "loft-error-count": lambda: loft(x[:2], secs),
+        "loft-error-shape": lambda: loft(x, secs[:, :, :1]),
+        "loft-error-two-points": lambda: loft(x, secs[:, :2]),
+        "loft-error-nan": lambda: loft(x, np.where(secs > 1.1, np.nan, secs)),
+        "loft-error-inf-x": lambda: loft(np.array([0.0, 1.0, np.inf]), secs),
+        "loft-error-order": lambda: loft(np.array([0.0, 2.0, 1.0]), secs),
+        "loft-error-clockwise": lambda: loft(x, secs[:, ::-1]),
+        "ply-plain": lambda: ply_text(body(), None),
+        "ply-comments": lambda: ply_text(
+            body(), {"generator": "fingerprint", "length": 4.5, "n": 3, "ok": True}
+        ),
+        "ply-error-newline": lambda: ply(body(), {"a": "one\ntwo"}),
+    }
 
 
 def derived_cases() -> dict[str, Callable[[], Any]]:
@@ -669,6 +978,7 @@ def main(out: Path) -> None:
         mesh_cases,
         box_cases,
         generate_cases,
+        generator_cases,
         derived_cases,
         trailer_cases,
         truck_cases,

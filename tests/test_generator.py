@@ -31,13 +31,9 @@ import trimesh
 from crashsim import _core
 from crashsim.errors import MeshError, ParameterError
 from crashsim.vehicles.generator import (
-    _ARCH_BUMPER,
-    _ARCH_CLEARANCE,
-    _CORNER_SHARE,
     PRESETS,
     SHAPE_PARAMETERS,
     BodyParams,
-    _profiles,
     body_params,
     body_sections,
     default_dims,
@@ -45,6 +41,8 @@ from crashsim.vehicles.generator import (
     loft,
     ply_bytes,
 )
+from crashsim.vehicles.generator.adaptive import _ARCH_BUMPER, _ARCH_CLEARANCE, _CORNER_SHARE
+from crashsim.vehicles.generator.params import _profiles
 from crashsim.vehicles.vehicle_data import vehicle_class
 from numpy.polynomial import Polynomial
 

@@ -23,7 +23,7 @@ from crashsim.io.tomlvalues import (
     _Table,
 )
 from crashsim.scene import Scene
-from crashsim.vehicles.generator import SHAPE_PARAMETERS
+from crashsim.vehicles.generator.presets import SHAPE_PARAMETERS
 from crashsim.vehicles.inputs import Brake, DriverInputs
 from crashsim.vehicles.mass_properties import SOLIDS
 from crashsim.vehicles.meshio import axes_rotation, unit_scale

@@ -22,7 +22,8 @@ from numpy.typing import ArrayLike
 from crashsim.errors import ParameterError
 from crashsim.vehicles import plausibility
 from crashsim.vehicles.checks import _as_float, _mass, _point, _wheelbase
-from crashsim.vehicles.generator import PRESETS, body_params, generate_body
+from crashsim.vehicles.generator import body_params, generate_body
+from crashsim.vehicles.generator.presets import PRESETS
 from crashsim.vehicles.mass_properties import (
     EMPIRICAL,
     GENERATED_SOLID,

@@ -39,7 +39,7 @@ from crashsim.vehicles import plausibility
 from crashsim.vehicles.builders import VehicleBuilders
 from crashsim.vehicles.checks import _as_float, _check_mass_properties, _point, _read_only
 from crashsim.vehicles.coupling import Hitch
-from crashsim.vehicles.generator import BodyParams
+from crashsim.vehicles.generator.params import BodyParams
 from crashsim.vehicles.mass_properties import USER
 from crashsim.vehicles.meshio import MeshQuality, check_mesh, mesh_quality
 from crashsim.vehicles.stiffness import FACES, Stiffness
