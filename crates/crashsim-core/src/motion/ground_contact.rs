@@ -68,8 +68,16 @@ pub struct BodyContact {
 impl BodyContact {
     /// The contact points of a mesh (body frame, origin at the CG) of mass `mass` (kg) whose
     /// wheels (if any) carry it. The stiffness per unit hull area makes a body resting on its
-    /// footprint (the box's x-y area) sink 0.6 mm.
-    pub fn new(shape: &MeshShape, mass: Real, wheels: Option<&VehicleSpec>) -> Result<BodyContact> {
+    /// footprint (the box's x-y area) sink 0.6 mm under the weight of `carried` kg (its own
+    /// mass, or more for a body that carries others through joints: a pedestrian's foot); the
+    /// damping is the damping ratio's for its own mass on that spring (with `carried` = `mass`,
+    /// 2 zeta m omega).
+    pub fn new(
+        shape: &MeshShape,
+        mass: Real,
+        carried: Real,
+        wheels: Option<&VehicleSpec>,
+    ) -> Result<BodyContact> {
         let (vertices, triangles) = shape.convex_hull().map_err(|e| {
             Error::Mesh(format!(
                 "the body's convex hull (its contact with the ground) failed: {e}; the mesh \
@@ -87,8 +95,14 @@ impl BodyContact {
         let b = shape.aabb();
         let footprint = ((b.maxs.x - b.mins.x) * (b.maxs.y - b.mins.y)).max(1e-6);
         let omega = 2.0 * std::f64::consts::PI * BODY_CONTACT_FREQUENCY;
-        let per_area = mass * omega * omega / footprint;
-        let damping_per_area = 2.0 * BODY_CONTACT_DAMPING * mass * omega / footprint;
+        let per_area = carried * omega * omega / footprint;
+        // sqrt(k m) per unit area; exactly m omega for a body carrying its own weight.
+        let effective = if carried == mass {
+            mass
+        } else {
+            (carried * mass).sqrt()
+        };
+        let damping_per_area = 2.0 * BODY_CONTACT_DAMPING * effective * omega / footprint;
         let in_wheel = |p: &Point| {
             wheels.is_some_and(|spec| {
                 spec.wheels.iter().any(|w| {
@@ -512,7 +526,7 @@ mod tests {
         ) {
             let ground = bumpy_slope();
             let shape = ellipsoid(Vector::new(2.3, 0.9, 0.7));
-            let contact = Arc::new(BodyContact::new(&shape, 1500.0, None).unwrap());
+            let contact = Arc::new(BodyContact::new(&shape, 1500.0, 1500.0, None).unwrap());
             let on = OnGround::new(None, contact.clone());
             let h = ground.height_at(x, y).unwrap();
             let cg = Point::new(x, y, h + dz);

@@ -395,8 +395,8 @@ impl World {
             if matches!(wb.motion, Motion::Fixed) {
                 continue;
             }
-            let contact =
-                BodyContact::new(&wb.shape, wb.body.props().mass(), wb.vehicle.as_deref())?;
+            let mass = wb.body.props().mass();
+            let contact = BodyContact::new(&wb.shape, mass, mass, wb.vehicle.as_deref())?;
             let on_ground = OnGround::new(wb.vehicle.clone(), Arc::new(contact));
             if let Some((depth, p)) = on_ground.deepest(&wb.body, ground) {
                 if depth > PLACEMENT_TOLERANCE {
