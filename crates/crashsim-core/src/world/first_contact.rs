@@ -295,7 +295,7 @@ impl World {
                     due.iter().any(|&p| md.triangles_cross(p, s1, s2))
                 };
                 // A crossing pair puts its segment in the overlap region (the same test of
-                // the same triangles, overlap.rs), so the region is not empty where the
+                // the same triangles, overlap/), so the region is not empty where the
                 // bisection ends: the first overlap.
                 let hi = if t == 0.0 {
                     0.0

@@ -113,7 +113,8 @@ struct Pair {
     /// the next query starts from it.
     closest: Option<(u32, u32)>,
     /// A pair of triangles (of body 1, body 2) whose surfaces crossed at the engaged pair's
-    /// last overlap test: the next test tries it first (overlap.rs, shapes_overlap_hinted).
+    /// last overlap test: the next test tries it first (overlap/intersect.rs,
+    /// shapes_overlap_hinted).
     crossing: Option<(u32, u32)>,
     /// The compliant contact that replaces the timer and the exchange (None: the impulse
     /// model of `params`).

@@ -1,0 +1,79 @@
+//! The two-tree descent the overlap queries share: mesh 2's leaves mapped into mesh 1's
+//! frame, and the leaf pairs whose boxes meet.
+
+use crate::bvh::{BvhNode, LEAF_SIZE};
+use crate::math::{Isometry, RigidMap};
+use crate::shape::MeshShape;
+use crate::triangle::Tri;
+use parry3d_f64::bounding_volume::BoundingVolume;
+
+#[inline]
+pub(super) fn map_tri(t: &Tri, m: &RigidMap) -> Tri {
+    [m.point(&t[0]), m.point(&t[1]), m.point(&t[2])]
+}
+
+/// The triangles of leaf `node` of `mesh` (at most [`crate::bvh::LEAF_SIZE`]) mapped by `m`,
+/// with their indices, in the leaf's order.
+#[inline]
+pub(super) fn mapped_leaf(
+    mesh: &MeshShape,
+    node: &BvhNode,
+    m: &RigidMap,
+) -> [Option<(u32, Tri)>; LEAF_SIZE] {
+    let mut out = [None; LEAF_SIZE];
+    for (slot, &t) in out.iter_mut().zip(mesh.bvh().leaf_primitives(node)) {
+        *slot = Some((t, map_tri(&mesh.triangle(t), m)));
+    }
+    out
+}
+
+/// Simultaneous descent of two trees (2 in 1's frame by `pose12`): calls `leaf` on every leaf
+/// pair whose boxes meet; `leaf` returns true to stop early. Returns true if stopped early.
+pub(super) fn traverse_pairs(
+    s1: &MeshShape,
+    s2: &MeshShape,
+    pose12: &Isometry,
+    stack: &mut Vec<(u32, u32)>,
+    mut leaf: impl FnMut(&BvhNode, &BvhNode) -> bool,
+) -> bool {
+    let (n1, n2) = (s1.bvh().nodes(), s2.bvh().nodes());
+    let map = RigidMap::new(pose12);
+    stack.clear();
+    stack.push((0, 0));
+    while let Some((i, j)) = stack.pop() {
+        let (a, b) = (&n1[i as usize], &n2[j as usize]);
+        if !a.aabb.intersects(&map.aabb(&b.aabb)) {
+            continue;
+        }
+        match (a.is_leaf(), b.is_leaf()) {
+            (true, true) => {
+                if leaf(a, b) {
+                    return true;
+                }
+            }
+            (false, true) => {
+                let (l, r) = s1.bvh().children(i);
+                stack.push((r, j));
+                stack.push((l, j));
+            }
+            (true, false) => {
+                let (l, r) = s2.bvh().children(j);
+                stack.push((i, r));
+                stack.push((i, l));
+            }
+            (false, false) => {
+                // Descend the larger box first keeps the pairs balanced.
+                if a.aabb.volume() >= b.aabb.volume() {
+                    let (l, r) = s1.bvh().children(i);
+                    stack.push((r, j));
+                    stack.push((l, j));
+                } else {
+                    let (l, r) = s2.bvh().children(j);
+                    stack.push((i, r));
+                    stack.push((i, l));
+                }
+            }
+        }
+    }
+    false
+}
