@@ -81,8 +81,10 @@ pub struct Obb {
 /// wholly outside (the overlap region classifies such patches once).
 #[derive(Clone, Debug)]
 struct Topology {
-    /// Pairs of triangles sharing an edge (for an edge of k > 2 triangles, a chain of k - 1).
-    edge_pairs: Vec<(u32, u32)>,
+    /// Per triangle t, the triangles it shares an edge with, `partners[start[t]..start[t + 1]]`
+    /// (for an edge of k > 2 triangles, a chain of k - 1 pairs: each its neighbours in it).
+    partner_start: Vec<u32>,
+    partners: Vec<u32>,
     /// One triangle having the vertex, or u32::MAX for an unused vertex.
     vertex_triangle: Vec<u32>,
     /// The triangle across edge k (vertex k to vertex k + 1) of each triangle, or u32::MAX
@@ -129,8 +131,26 @@ fn build_topology(n_vertices: usize, triangles: &[[u32; 3]]) -> Topology {
         }
         i = j;
     }
+    // The pairs as per-triangle lists (compressed rows), each in the pairs' order.
+    let mut partner_start = vec![0u32; triangles.len() + 1];
+    for &(a, b) in &edge_pairs {
+        partner_start[a as usize + 1] += 1;
+        partner_start[b as usize + 1] += 1;
+    }
+    for t in 0..triangles.len() {
+        partner_start[t + 1] += partner_start[t];
+    }
+    let mut fill = partner_start.clone();
+    let mut partners = vec![0u32; 2 * edge_pairs.len()];
+    for &(a, b) in &edge_pairs {
+        partners[fill[a as usize] as usize] = b;
+        fill[a as usize] += 1;
+        partners[fill[b as usize] as usize] = a;
+        fill[b as usize] += 1;
+    }
     Topology {
-        edge_pairs,
+        partner_start,
+        partners,
         vertex_triangle,
         neighbors,
         closed,
@@ -350,10 +370,12 @@ impl MeshShape {
         self.topology.closed
     }
 
-    /// Pairs of triangles sharing an edge.
+    /// The triangles sharing an edge with triangle `t` (for an edge of k > 2 triangles, its
+    /// neighbours in a chain of the k).
     #[inline]
-    pub fn edge_pairs(&self) -> &[(u32, u32)] {
-        &self.topology.edge_pairs
+    pub fn edge_partners(&self, t: u32) -> &[u32] {
+        let s = &self.topology.partner_start;
+        &self.topology.partners[s[t as usize] as usize..s[t as usize + 1] as usize]
     }
 
     /// The triangles across the edges of triangle `t` (edge k runs from its vertex k to

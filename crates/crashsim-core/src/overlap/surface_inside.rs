@@ -136,14 +136,18 @@ pub(super) fn surface_inside(
             on_other[tri[k] as usize] |= x.5[k];
         }
     }
-    let in_box =
-        |ti: u32| Aabb::from_points(own.triangle(ti).iter().copied()).intersects(&other_box_in_own);
-    let patches = (use_patches && other.is_closed()).then(|| Patches::new(own, &crossed, &in_box));
+    // Only the own triangles whose box meets the other's can be inside it (found through the
+    // own tree: a shallow overlap's few hundred, not the mesh's every triangle).
+    let in_box = triangles_in_box(own, &other_box_in_own);
+    let candidates: Vec<u32> = (0..n as u32).filter(|&t| in_box[t as usize]).collect();
+    let patches = (use_patches && other.is_closed())
+        .then(|| Patches::new(own, &crossed, &in_box, &candidates));
     let mut cls = Classifier {
         own,
         other,
         own_to_other,
         crossed: &crossed,
+        in_box: &in_box,
         patches: patches.as_ref(),
         patch_status: vec![None; if patches.is_some() { n } else { 0 }],
         vertex_patch: vec![
@@ -158,10 +162,13 @@ pub(super) fn surface_inside(
         on_other: &on_other,
         nudge,
     };
+    // The triangles to look at, ascending: those in the box and the crossed ones (every
+    // other triangle is uncut and out of the box: outside).
+    let order = (0..n as u32).filter(|&t| in_box[t as usize] || crossed[t as usize]);
     let mut total = Vector::zeros();
     let mut k = 0;
     let mut local: Vec<(Tri, Point, Point, bool)> = Vec::new();
-    for ti in 0..n as u32 {
+    for ti in order {
         local.clear();
         while k < crossings.len() && crossings[k].0 == ti {
             let (_, o, p, q, cut, _) = crossings[k];
@@ -170,7 +177,7 @@ pub(super) fn surface_inside(
         }
         let t = own.triangle(ti);
         if local.is_empty() {
-            if !in_box(ti) {
+            if !in_box[ti as usize] {
                 continue;
             }
             if let Some(is_inside) = cls.patch(ti) {
@@ -198,12 +205,46 @@ pub(super) fn surface_inside(
         }
         total += inside_vector_area(&t, &local, other, own_to_other, edges, nudge);
     }
-    for (vi, v) in own.vertices().iter().enumerate() {
-        if other_box_in_own.contains_local_point(v) && cls.vertex(vi as u32) {
-            inside.push(*v);
+    // A vertex in the box is a corner of a triangle in it, or of none (an unused vertex).
+    let mut corner = vec![false; own.vertices().len()];
+    for &ti in &candidates {
+        for v in own.triangles()[ti as usize] {
+            corner[v as usize] = true;
+        }
+    }
+    let corners = (0..own.vertices().len() as u32)
+        .filter(|&v| corner[v as usize] || own.vertex_triangle(v) == u32::MAX);
+    for vi in corners {
+        let v = own.vertices()[vi as usize];
+        if other_box_in_own.contains_local_point(&v) && cls.vertex(vi) {
+            inside.push(v);
         }
     }
     (total, inside)
+}
+
+/// Per triangle of `own`, whether its box meets `bx` (own frame), found through its tree.
+fn triangles_in_box(own: &MeshShape, bx: &Aabb) -> Vec<bool> {
+    let bvh = own.bvh();
+    let mut out = vec![false; own.triangles().len()];
+    let mut stack = vec![0u32];
+    while let Some(i) = stack.pop() {
+        let node = &bvh.nodes()[i as usize];
+        if !node.aabb.intersects(bx) {
+            continue;
+        }
+        if node.is_leaf() {
+            for &ti in bvh.leaf_primitives(node) {
+                out[ti as usize] =
+                    Aabb::from_points(own.triangle(ti).iter().copied()).intersects(bx);
+            }
+        } else {
+            let (left, right) = bvh.children(i);
+            stack.push(right);
+            stack.push(left);
+        }
+    }
+    out
 }
 
 /// What is known of an edge of a cut triangle before its pieces are classified.
@@ -226,6 +267,8 @@ struct Classifier<'a> {
     other: &'a MeshShape,
     own_to_other: &'a Isometry,
     crossed: &'a [bool],
+    /// Per own triangle: its box meets the other's.
+    in_box: &'a [bool],
     patches: Option<&'a Patches>,
     patch_status: Vec<Option<bool>>,
     /// Per vertex (with patches): the status of an uncut triangle's patch at it, if any.
@@ -242,6 +285,10 @@ impl Classifier<'_> {
     /// and ti has no area to decide it by.
     fn patch(&mut self, ti: u32) -> Option<bool> {
         let p = self.patches?;
+        // Out of the other's box: outside (its patch reaches out of the box).
+        if !self.in_box[ti as usize] {
+            return Some(false);
+        }
         let root = p.root(ti) as usize;
         if self.patch_status[root].is_none() {
             self.patch_status[root] = if p.leaves_box[root] {
@@ -320,15 +367,18 @@ impl Classifier<'_> {
     }
 }
 
-/// The own triangles no crossing touches, joined across shared edges (union-find), and for
-/// each patch root whether the patch reaches out of the other mesh's box.
+/// The own triangles in the other's box that no crossing touches, joined across shared edges
+/// (union-find: a patch's root is its smallest triangle), and for each patch root whether the
+/// patch reaches out of the other mesh's box (an uncut triangle beyond it shares an edge with
+/// it). A patch of the whole mesh's uncut triangles that leaves the box may be cut here into
+/// several, each of which leaves it: outside all the same; one inside the box is whole.
 struct Patches {
     parent: Vec<u32>,
     leaves_box: Vec<bool>,
 }
 
 impl Patches {
-    fn new(own: &MeshShape, crossed: &[bool], in_box: &impl Fn(u32) -> bool) -> Patches {
+    fn new(own: &MeshShape, crossed: &[bool], in_box: &[bool], candidates: &[u32]) -> Patches {
         let n = crossed.len();
         let mut parent: Vec<u32> = (0..n as u32).collect();
         fn find(parent: &mut [u32], mut x: u32) -> u32 {
@@ -338,24 +388,31 @@ impl Patches {
             }
             x
         }
-        for &(a, b) in own.edge_pairs() {
-            if crossed[a as usize] || crossed[b as usize] {
-                continue;
-            }
-            let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-            if ra != rb {
-                let (lo, hi) = (ra.min(rb), ra.max(rb));
-                parent[hi as usize] = lo;
+        let uncut = |t: u32| !crossed[t as usize];
+        for &a in candidates.iter().filter(|&&a| uncut(a)) {
+            for &b in own.edge_partners(a) {
+                if !uncut(b) || !in_box[b as usize] {
+                    continue;
+                }
+                let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+                if ra != rb {
+                    let (lo, hi) = (ra.min(rb), ra.max(rb));
+                    parent[hi as usize] = lo;
+                }
             }
         }
-        for i in 0..n as u32 {
-            let r = find(&mut parent, i);
-            parent[i as usize] = r;
+        for &a in candidates {
+            let r = find(&mut parent, a);
+            parent[a as usize] = r;
         }
         let mut leaves_box = vec![false; n];
-        for i in 0..n as u32 {
-            if !crossed[i as usize] && !in_box(i) {
-                leaves_box[parent[i as usize] as usize] = true;
+        for &a in candidates.iter().filter(|&&a| uncut(a)) {
+            if own
+                .edge_partners(a)
+                .iter()
+                .any(|&b| uncut(b) && !in_box[b as usize])
+            {
+                leaves_box[parent[a as usize] as usize] = true;
             }
         }
         Patches { parent, leaves_box }
