@@ -630,6 +630,16 @@ def test_a_cyclist_is_one_person_on_the_page(
         heads_at = [browser.execute_script("return crashsim.state('cyclist/head', arguments[0])"
                                            ".position", t) for t in (0.0, CYCLIST_RUN)]  # fmt: skip
         assert np.linalg.norm(np.subtract(*heads_at)) > 0.3
+    # a click on the person's title brings the camera to it: the whole-body CG in the middle
+    browser.execute_script("crashsim.setTime(arguments[0])", CYCLIST_RUN)
+    before = canvas_png(browser)
+    panel.find_element("tag name", "h3").click()
+    after = canvas_png(browser)
+    assert np.mean(np.any(np.abs(after - before) > 0.05, axis=-1)) > 0.2
+    centre = browser.execute_script("return crashsim.focusTarget()")
+    cg = sum(result.state(s.name, CYCLIST_RUN)["position"] * s.mass
+             for s in case.scene.cyclists["cyclist"].rider.segments) / 75.0  # fmt: skip
+    assert np.max(np.abs(np.array(centre) - cg)) < 1e-6
 
 
 @pytest.mark.skipif(not SHARED_MESHES.is_dir(), reason=MISSING)

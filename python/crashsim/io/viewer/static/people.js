@@ -105,13 +105,17 @@
       return rows;
     }
 
-    // A person's panel: its throw, head contact and rest, as the report gives them.
-    function panel(p, jump) {
+    // A person's panel: its throw, head contact and rest, as the report gives them. A click on
+    // its title brings the camera to it (focus), on a time jumps there (jump).
+    function panel(p, jump, focus) {
       const sec = el('section', { class: 'person', id: 'person-' + p.name });
       const e = p.entry;
       const swatch = el('span', { class: 'swatch' });
       swatch.style.background = p.colour;
       const title = el('h3', {}, [swatch, p.name + ' (' + p.kind + ')']);
+      title.style.cursor = 'pointer';
+      title.title = 'bring the camera to it';
+      title.addEventListener('click', () => focus(p.name));
       sec.appendChild(title);
       if (!e) {
         sec.appendChild(el('p', { class: 'muted', text: 'The report has no section for it.' }));

@@ -520,6 +520,26 @@
     render();
   }
 
+  // The camera to a point p (m), from its present direction, about r m around it in view.
+  function focus(p, r) {
+    const d = r / Math.tan((camera.fov * Math.PI) / 360);
+    const dir = camera.position.clone().sub(controls.target).normalize();
+    controls.target.set(p[0], p[1], p[2]);
+    camera.position.set(p[0] + dir.x * d, p[1] + dir.y * d, p[2] + dir.z * d);
+    camera.near = d / 1000; camera.far = d * 50;
+    camera.updateProjectionMatrix();
+    controls.update();
+    render();
+  }
+
+  // The camera to a person (its whole-body CG) or a body (its CG) as drawn now.
+  function focusOn(name, r) {
+    const p = persons.find((q) => q.name === name);
+    const body = bodies.find((b) => b.name === name);
+    if (!p && !body) throw new Error('no person or body named ' + name);
+    focus(p ? people.centreNow(p) : body.current.position, r || 3);
+  }
+
   // ---------------------------------------------------------------- timeline
 
   let playing = false, lastFrame = null;
@@ -904,7 +924,7 @@
       aside.appendChild(el('p', { class: 'muted', text: 'The report\'s pedestrians[] section: each person\'s bodies drawn ' +
         'as one. Throw distance: the horizontal travel of the centre of mass from the vehicle\'s first contact to the end ' +
         'of the run; head contact: the first overlap of the head with the vehicle, its wrap-around distance and speed relative to it.' }));
-      for (const p of persons) aside.appendChild(people.panel(p, setTime));
+      for (const p of persons) aside.appendChild(people.panel(p, setTime, (name) => focusOn(name)));
     }
     aside.appendChild(el('h2', { text: 'Speed of each vehicle' }));
     for (const b of bodies) {
@@ -965,6 +985,8 @@
   api.time = () => currentTime;
   api.setTime = (t) => { setTime(t); return currentTime; };
   api.setView = (kind) => setView(kind);
+  api.focus = (name, r) => focusOn(name, r);
+  api.focusTarget = () => [controls.target.x, controls.target.y, controls.target.z];
   api.state = (name, t) => {
     const body = bodies.find((b) => b.name === name);
     if (!body) throw new Error('no body named ' + name);
