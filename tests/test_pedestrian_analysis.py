@@ -77,6 +77,7 @@ def test_the_report_has_the_pedestrian_as_one() -> None:
 
     import jsonschema
     from crashsim.analysis.report import build_report
+    from crashsim.analysis.throw import first_contact_time, throw_distance
 
     car = _box_car()
     person = cs.Pedestrian(height=1.75, mass=75.0)
@@ -99,5 +100,21 @@ def test_the_report_has_the_pedestrian_as_one() -> None:
         read.segment, read.time, read.relative_speed
     )
     assert [r["vehicle"] for r in data["run_out"]] == ["car"]  # the segments are the person
+    # one person: its kind, its segments' names, its throw by the car (crashsim.analysis.throw)
+    assert (ped["kind"], ped["bodies"]) == ("pedestrian", [s.name for s in person.segments])
+    assert ped["mass"] == pytest.approx(75.0, abs=1e-9) and "bicycle" not in ped
+    struck = ped["struck_by"][0]
+    assert struck["first_contact_time"] == first_contact_time(result, "car", person)
+    assert struck["first_contact_time"] == first["time"]
+    assert struck["throw_distance"] == throw_distance(result, "car", person)
     text = report.summary_table()
     assert "Pedestrian 'pedestrian':" in text and "first contacts with 'car': " in text
+    assert f"throw distance from 'car': {struck['throw_distance']:.2f} m" in text
+    # the case page's data: every segment marked as the person's, in one colour
+    from crashsim.io.viewer.data import page_data
+
+    bodies = page_data(result)["bodies"]
+    roles = [(b["person"], b["role"]) for b in bodies]
+    assert roles == [(None, None)] + [("pedestrian", "segment")] * 16
+    colours = [b["colour"] for b in bodies]
+    assert len(set(colours[1:])) == 1 and colours[1] != colours[0]

@@ -433,12 +433,10 @@ def test_seed_page_loads_draws_and_moves_with_the_slider(
     )
 
 
-def test_the_tables_show_the_reports_numbers(
-    browser: webdriver.Chrome, three: cs.Result, tmp_path: Path
-) -> None:
-    open_page(browser, view(three, tmp_path / "case.html"))
-    report = cs.report(three).to_dict()
-    cells = browser.execute_script(
+def check_cells(driver: webdriver.Chrome, report: dict[str, Any]) -> list[list[str]]:
+    """Every element of the page that carries a report path shows that value of ``report``
+    to the digits shown; returns the [path, text] pairs."""
+    cells = driver.execute_script(
         "return Array.from(document.querySelectorAll('[data-path]'))"
         ".map((e) => [e.getAttribute('data-path'), e.textContent])"
     )
@@ -451,6 +449,15 @@ def test_the_tables_show_the_reports_numbers(
             continue
         decimals = len(text.split(".")[1]) if "." in text else 0
         assert abs(float(text) - value) <= 0.5 * 10.0**-decimals + 1e-9, (path, text, value)
+    return cells
+
+
+def test_the_tables_show_the_reports_numbers(
+    browser: webdriver.Chrome, three: cs.Result, tmp_path: Path
+) -> None:
+    open_page(browser, view(three, tmp_path / "case.html"))
+    report = cs.report(three).to_dict()
+    cells = check_cells(browser, report)
     # every impact's table: its times, |J|, energy, and per vehicle delta-V, EDR components,
     # PDOF, clock, energy, EES, crush
     party_keys = [
@@ -562,6 +569,77 @@ def test_whole_event_parts_are_drawn(
     for needed in ("tyre linear, 1 per 10.0 deg", "steering ratio, Ackermann", "roll gradient",
                    "springs 1.30, 1.30, 1.30, 1.30 Hz", "ABS on"):  # fmt: skip
         assert needed in table, (needed, table)
+
+
+CYCLIST = "cyclist-sedan-side-40kmh.toml"
+CYCLIST_RUN = 0.08  # s: the legs, the frame and the front wheel touch the car (0.3 s wall)
+
+
+@pytest.fixture(scope="module")
+def cyclist_out(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The cyclist example, run for CYCLIST_RUN by the command line with its case page."""
+    out = tmp_path_factory.mktemp("cyclist")
+    args = ["run", str(EXAMPLES / CYCLIST), "--out", str(out), "--duration", str(CYCLIST_RUN)]
+    assert main([*args, "--html"]) == 0
+    return out
+
+
+def test_a_cyclist_is_one_person_on_the_page(
+    browser: webdriver.Chrome, cyclist_out: Path, tmp_path: Path
+) -> None:
+    """The page of a run and the page of its report.json list the cyclist once (one legend
+    entry, one label, one speed plot, no column per body in the inputs), pose its 19 bodies
+    as the run does, and show its panel's numbers from the report."""
+    report = json.loads((cyclist_out / "report.json").read_text(encoding="utf-8"))
+    (entry,) = report["pedestrians"]
+    case = load_scene(EXAMPLES / CYCLIST)
+    result = case.simulate(duration=CYCLIST_RUN, dt=case.run.dt)
+    from_report = view_report(cyclist_out / "report.json", tmp_path / "from-report.html")
+    for page in (cyclist_out / "case.html", from_report):
+        logs = open_page(browser, page)
+        assert [e for e in logs if e["level"] in ("SEVERE", "WARNING")] == []
+        legend = browser.find_element("id", "legend").text
+        assert "car cyclist (cyclist, bicycle)" in legend and "cyclist/" not in legend
+        browser.execute_script("crashsim.setTime(0.05)")
+        labels = browser.execute_script(
+            "return Array.from(document.querySelectorAll('#labels .label'))"
+            ".filter((e) => e.style.display !== 'none').map((e) => e.textContent)"
+        )
+        assert sorted(labels) == ["car", "cyclist"]
+        plots = browser.find_elements("css selector", "svg.plot")
+        assert [p.get_attribute("data-vehicle") for p in plots] == ["car", "cyclist"]
+        heads = browser.execute_script(
+            "return Array.from(document.querySelector('#inputs table.data').rows[0].cells)"
+            ".map((c) => c.textContent)"
+        )
+        assert heads == ["vehicle", "car", "unit"]
+        # the panel: the rider's and the bicycle's throw distances, as the report gives them
+        panel = browser.find_element("id", "person-cyclist")
+        for path, value in (
+            ("pedestrians.0.struck_by.0.throw_distance", entry["struck_by"][0]["throw_distance"]),
+            ("pedestrians.0.bicycle.struck_by.0.throw_distance",
+             entry["bicycle"]["struck_by"][0]["throw_distance"]),
+        ):  # fmt: skip
+            shown = panel.find_element("css selector", f"[data-path='{path}']").text
+            assert shown == f"{value:.2f}" and value > 0.1
+        assert "whole-body CG at 0.08 s" in panel.text
+        paths = {p for p, _ in check_cells(browser, report)}
+        assert "pedestrians.0.rest.0" in paths and "pedestrians.0.bicycle.rest_speed" in paths
+        # each body still posed as the run, and moving
+        check_poses(browser, result, [0.0, 0.021, 0.05, CYCLIST_RUN])
+        heads_at = [browser.execute_script("return crashsim.state('cyclist/head', arguments[0])"
+                                           ".position", t) for t in (0.0, CYCLIST_RUN)]  # fmt: skip
+        assert np.linalg.norm(np.subtract(*heads_at)) > 0.3
+    # a click on the person's title brings the camera to it: the whole-body CG in the middle
+    browser.execute_script("crashsim.setTime(arguments[0])", CYCLIST_RUN)
+    before = canvas_png(browser)
+    panel.find_element("tag name", "h3").click()
+    after = canvas_png(browser)
+    assert np.mean(np.any(np.abs(after - before) > 0.05, axis=-1)) > 0.2
+    centre = browser.execute_script("return crashsim.focusTarget()")
+    cg = sum(result.state(s.name, CYCLIST_RUN)["position"] * s.mass
+             for s in case.scene.cyclists["cyclist"].rider.segments) / 75.0  # fmt: skip
+    assert np.max(np.abs(np.array(centre) - cg)) < 1e-6
 
 
 @pytest.mark.skipif(not SHARED_MESHES.is_dir(), reason=MISSING)

@@ -10,8 +10,8 @@ left, z up from the road: the mesh's own coordinates). Speeds in m/s, times in s
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import trimesh
@@ -21,18 +21,24 @@ from crashsim.errors import ParameterError
 from crashsim.result import Result, rotation_matrix
 
 if TYPE_CHECKING:
+    from crashsim.human.bicycle import Bicycle
     from crashsim.human.pedestrian import Pedestrian
+    from crashsim.scene import Scene
     from crashsim.vehicles.vehicle import Vehicle
 
 Array = np.ndarray
 
 __all__ = [
+    "BicycleReport",
     "PedestrianReport",
     "SegmentContact",
     "pedestrian_lines",
     "pedestrian_reports",
+    "person_bodies",
     "rest_of",
     "segment_contacts",
+    "Throw",
+    "travel",
     "whole_body",
     "wrap_around_distance",
 ]
@@ -203,87 +209,255 @@ def rest_of(result: Result, pedestrian: Pedestrian) -> tuple[Array, float]:
     return x[-1], float(np.linalg.norm(v[-1]))
 
 
+def travel(t: Array, x: Array, t0: float) -> float:
+    """The horizontal distance (m) from ``x`` (k, 3) at the first sample at or after ``t0``
+    (s; the last sample if none) to ``x`` at the last sample: a throw distance."""
+    k0 = min(int(np.searchsorted(t, t0)), len(t) - 1)
+    return float(np.linalg.norm(x[-1, :2] - x[k0, :2]))
+
+
+@dataclass(frozen=True)
+class Throw:
+    """How far a vehicle threw a person (or a bicycle): ``first_contact_time`` (s) the
+    vehicle's first overlap with any of its bodies, ``distance`` (m) the horizontal travel of
+    its centre of mass from that instant to the run's end (:func:`travel`)."""
+
+    first_contact_time: float
+    distance: float
+
+
+def _throws(
+    result: Result, contacts: dict[str, dict[str, SegmentContact]], x: Array
+) -> dict[str, Throw]:
+    """Per vehicle in ``contacts`` ({vehicle: {segment: SegmentContact}}), the throw of the
+    centre of mass whose path (k, 3) is ``x``."""
+    t = np.asarray(result.t, dtype=np.float64)
+    out = {}
+    for vehicle, segs in contacts.items():
+        t0 = min(c.time for c in segs.values())
+        out[vehicle] = Throw(float(t0), travel(t, x, t0))
+    return out
+
+
+def _contacts_record(
+    contacts: dict[str, dict[str, SegmentContact]], throws: dict[str, Throw]
+) -> list[dict[str, Any]]:
+    """``struck_by`` of the JSON report: per vehicle, its throw and each body's first
+    contact."""
+    return [
+        {
+            "vehicle": vehicle,
+            "segments": [
+                {
+                    "segment": c.segment,
+                    "time": c.time,
+                    "point": [float(x) for x in c.point],
+                    "wrap_around": c.wrap_around,
+                    "relative_speed": c.relative_speed,
+                    "peak_relative_speed": c.peak_relative_speed,
+                }
+                for c in segs.values()
+            ],
+            "first_contact_time": throws[vehicle].first_contact_time,
+            "throw_distance": throws[vehicle].distance,
+        }
+        for vehicle, segs in contacts.items()
+    ]
+
+
+@dataclass(frozen=True)
+class BicycleReport:
+    """A cyclist's bicycle over the run: ``name`` (the bicycle's), ``bodies`` its bodies'
+    vehicle names (frame, rear wheel, front wheel), ``mass`` (kg); ``contacts`` {vehicle:
+    {body: SegmentContact}} (bodies "frame", "rear_wheel", "front_wheel"); ``throws``
+    {vehicle: Throw} of the frame's CG from that vehicle's first contact with any of the
+    bicycle's bodies; ``rest`` (3,) the frame's CG at the last sample (world, m) and
+    ``rest_speed`` its speed there (m/s)."""
+
+    name: str
+    bodies: tuple[str, ...]
+    mass: float
+    contacts: dict[str, dict[str, SegmentContact]]
+    throws: dict[str, Throw]
+    rest: Array
+    rest_speed: float
+
+    def to_dict(self) -> dict[str, object]:
+        """The JSON report's record (SI)."""
+        return {
+            "name": self.name,
+            "bodies": list(self.bodies),
+            "mass": self.mass,
+            "struck_by": _contacts_record(self.contacts, self.throws),
+            "rest": [float(x) for x in self.rest],
+            "rest_speed": self.rest_speed,
+        }
+
+
 @dataclass(frozen=True)
 class PedestrianReport:
-    """One pedestrian over the run: ``name``; ``contacts`` {vehicle: {segment:
-    SegmentContact}} for every vehicle it touched; ``rest`` (3,) its centre of mass at the
-    last sample (world, m) and ``rest_speed`` (m/s) its speed there; ``end_time`` (s)."""
+    """One pedestrian, or a cyclist's rider, over the run: ``name`` (the cyclist's for a
+    rider); ``contacts`` {vehicle: {segment: SegmentContact}} for every vehicle it touched;
+    ``rest`` (3,) its centre of mass at the last sample (world, m) and ``rest_speed`` (m/s)
+    its speed there; ``end_time`` (s); ``kind`` "pedestrian" or "cyclist"; ``bodies`` its
+    segments' vehicle names; ``height`` (m) and ``mass`` (kg); ``throws`` {vehicle: Throw}
+    of its whole-body centre of mass from that vehicle's first contact with a segment; a
+    cyclist's ``bicycle`` (:class:`BicycleReport`)."""
 
     name: str
     contacts: dict[str, dict[str, SegmentContact]]
     rest: Array
     rest_speed: float
     end_time: float
+    kind: str = "pedestrian"
+    bodies: tuple[str, ...] = ()
+    height: float | None = None
+    mass: float | None = None
+    throws: dict[str, Throw] = field(default_factory=dict)
+    bicycle: BicycleReport | None = None
 
     def to_dict(self) -> dict[str, object]:
         """The JSON report's record (SI)."""
-        return {
+        out: dict[str, object] = {
             "name": self.name,
-            "struck_by": [
-                {
-                    "vehicle": vehicle,
-                    "segments": [
-                        {
-                            "segment": c.segment,
-                            "time": c.time,
-                            "point": [float(x) for x in c.point],
-                            "wrap_around": c.wrap_around,
-                            "relative_speed": c.relative_speed,
-                            "peak_relative_speed": c.peak_relative_speed,
-                        }
-                        for c in segs.values()
-                    ],
-                }
-                for vehicle, segs in self.contacts.items()
-            ],
+            "kind": self.kind,
+            "bodies": list(self.bodies),
+            "height": self.height,
+            "mass": self.mass,
+            "struck_by": _contacts_record(self.contacts, self.throws),
             "rest": [float(x) for x in self.rest],
             "rest_speed": self.rest_speed,
             "end_time": self.end_time,
         }
+        if self.bicycle is not None:
+            out["bicycle"] = self.bicycle.to_dict()
+        return out
 
 
-def pedestrian_reports(result: Result) -> list[PedestrianReport]:
-    """Every pedestrian of the result's scene (none without one)."""
-    scene = result.scene
-    if scene is None or not scene.pedestrians:
-        return []
-    out = []
-    segments = {s.name for p in scene.pedestrians.values() for s in p.segments}
-    others = [v for v in scene.vehicles if v.name not in segments]
-    for name, person in scene.pedestrians.items():
-        contacts = {}
-        for v in others:
-            touched = segment_contacts(result, person, v)
-            if touched:
-                contacts[v.name] = touched
-        rest, speed = rest_of(result, person)
-        out.append(PedestrianReport(name, contacts, rest, speed, float(result.t[-1])))
+def person_bodies(scene: Scene | None) -> dict[str, str]:
+    """Every body of the scene's pedestrians and cyclists (a cyclist's rider segments and its
+    bicycle's bodies): its vehicle name -> the person's name ({} without a scene). A bicycle
+    added on its own is not a person."""
+    if scene is None:
+        return {}
+    out = {s.name: name for name, p in scene.pedestrians.items() for s in p.segments}
+    for name, c in scene.cyclists.items():
+        out.update({b.name: name for b in (*c.rider.segments, *c.bicycle.segments)})
     return out
 
 
+def _struck(
+    result: Result, person: Pedestrian | Bicycle, others: list[Vehicle]
+) -> dict[str, dict[str, SegmentContact]]:
+    """Each vehicle of ``others`` that touched the person's (or bicycle's) bodies: their
+    first contacts."""
+    contacts = {}
+    for v in others:
+        touched = segment_contacts(result, person, v)
+        if touched:
+            contacts[v.name] = touched
+    return contacts
+
+
+def _bicycle_report(result: Result, bicycle: Bicycle, others: list[Vehicle]) -> BicycleReport:
+    contacts = _struck(result, bicycle, others)
+    frame = result.trajectory(bicycle.frame.name)
+    return BicycleReport(
+        name=bicycle.name,
+        bodies=tuple(b.name for b in bicycle.segments),
+        mass=float(bicycle.mass),
+        contacts=contacts,
+        throws=_throws(result, contacts, frame.position),
+        rest=np.array(frame.position[-1], dtype=np.float64),
+        rest_speed=float(np.linalg.norm(frame.velocity[-1])),
+    )
+
+
+def pedestrian_reports(result: Result) -> list[PedestrianReport]:
+    """Every pedestrian of the result's scene, then every cyclist (its rider's section with
+    its bicycle's); none without a scene."""
+    scene = result.scene
+    if scene is None:
+        return []
+    people: list[tuple[str, Pedestrian, Bicycle | None]] = [
+        ("pedestrian", p, None) for p in scene.pedestrians.values()
+    ]
+    people += [("cyclist", c.rider, c.bicycle) for c in scene.cyclists.values()]
+    if not people:
+        return []
+    human = set(person_bodies(scene))
+    human |= {b.name for bike in scene.bicycles.values() for b in bike.segments}
+    others = [v for v in scene.vehicles if v.name not in human]
+    out = []
+    for kind, person, bicycle in people:
+        contacts = _struck(result, person, others)
+        _, x, v = whole_body(result, person)
+        out.append(
+            PedestrianReport(
+                name=person.name,
+                contacts=contacts,
+                rest=x[-1],
+                rest_speed=float(np.linalg.norm(v[-1])),
+                end_time=float(result.t[-1]),
+                kind=kind,
+                bodies=tuple(s.name for s in person.segments),
+                height=float(person.height),
+                mass=float(person.mass),
+                throws=_throws(result, contacts, x),
+                bicycle=None if bicycle is None else _bicycle_report(result, bicycle, others),
+            )
+        )
+    return out
+
+
+def _first_contact_lines(
+    contacts: dict[str, dict[str, SegmentContact]], throws: dict[str, Throw], what: str
+) -> list[str]:
+    """Per vehicle: the head's first contact (a person's), the first contacts, the throw."""
+    lines = []
+    for vehicle, segs in contacts.items():
+        head = segs.get("head")
+        if head is not None:
+            wad = "off the front and top" if head.wrap_around is None else (
+                f"wrap-around distance {head.wrap_around:.2f} m")
+            lines.append(
+                f"  head first touches {vehicle!r} at {head.time:.4f} s, {wad}, "
+                f"{head.relative_speed:.2f} m/s relative to it (peak "
+                f"{head.peak_relative_speed:.2f} m/s)"
+            )  # fmt: skip
+        first = ", ".join(f"{c.segment} {c.time:.4f} s ({c.relative_speed:.1f} m/s)"
+                          for c in list(segs.values())[:6])  # fmt: skip
+        lines.append(f"  first contacts with {vehicle!r}: {first}"
+                     + (", ..." if len(segs) > 6 else ""))  # fmt: skip
+        throw = throws[vehicle]
+        lines.append(
+            f"  throw distance from {vehicle!r}: {throw.distance:.2f} m ({what}, from the first "
+            f"contact at {throw.first_contact_time:.4f} s to the end of the run)"
+        )
+    return lines
+
+
+def _end_words(x: Array, end_time: float, speed: float) -> str:
+    return (
+        f"({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m at {end_time:.2f} s, {speed:.2f} m/s"
+        + (" (at rest)" if speed < 0.1 else " (still moving)")
+    )
+
+
 def pedestrian_lines(reports: list[PedestrianReport]) -> list[str]:
-    """The text report's lines: each pedestrian's first contacts (head first) and its end."""
+    """The text report's lines: each person's first contacts (head first), throw and end; a
+    cyclist's bicycle's too."""
     lines = []
     for r in reports:
-        lines.append(f"Pedestrian {r.name!r}:")
-        for vehicle, segs in r.contacts.items():
-            head = segs.get("head")
-            if head is not None:
-                wad = "off the front and top" if head.wrap_around is None else (
-                    f"wrap-around distance {head.wrap_around:.2f} m")
-                lines.append(
-                    f"  head first touches {vehicle!r} at {head.time:.4f} s, {wad}, "
-                    f"{head.relative_speed:.2f} m/s relative to it (peak "
-                    f"{head.peak_relative_speed:.2f} m/s)"
-                )  # fmt: skip
-            first = ", ".join(f"{c.segment} {c.time:.4f} s ({c.relative_speed:.1f} m/s)"
-                              for c in list(segs.values())[:6])  # fmt: skip
-            lines.append(f"  first contacts with {vehicle!r}: {first}"
-                         + (", ..." if len(segs) > 6 else ""))  # fmt: skip
-        x = r.rest
-        lines.append(
-            f"  centre of mass at ({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m at {r.end_time:.2f} s, "
-            f"{r.rest_speed:.2f} m/s"
-            + (" (at rest)" if r.rest_speed < 0.1 else " (still moving)")
-        )
+        title = "Pedestrian" if r.kind == "pedestrian" else "Cyclist"
+        rider = " (the rider)" if r.bicycle is not None else ""
+        lines.append(f"{title} {r.name!r}{rider}:")
+        lines += _first_contact_lines(r.contacts, r.throws, "centre of mass")
+        lines.append("  centre of mass at " + _end_words(r.rest, r.end_time, r.rest_speed))
+        b = r.bicycle
+        if b is None:
+            continue
+        lines.append(f"  the bicycle {b.name!r} ({b.mass:.2f} kg):")
+        lines += ["  " + line for line in _first_contact_lines(b.contacts, b.throws, "frame")]
+        lines.append("    frame's CG at " + _end_words(b.rest, r.end_time, b.rest_speed))
     return lines

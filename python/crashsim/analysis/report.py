@@ -50,7 +50,12 @@ from crashsim.analysis.joints import (
     joint_lines,
     joint_reports,
 )
-from crashsim.analysis.pedestrian import PedestrianReport, pedestrian_lines, pedestrian_reports
+from crashsim.analysis.pedestrian import (
+    PedestrianReport,
+    pedestrian_lines,
+    pedestrian_reports,
+    person_bodies,
+)
 from crashsim.analysis.report_common import _plain
 from crashsim.analysis.report_json import (
     CONVENTIONS,
@@ -98,8 +103,9 @@ def build_report(result: Result) -> Report:
             "build the report from the Result that Scene.run returned"
         )
     impacts = [_impact_report(result, imp, i) for i, imp in enumerate(result.impacts, start=1)]
-    # a pedestrian's segments are reported as one person (its own section), not as vehicles
-    segments = {s.name for p in result.scene.pedestrians.values() for s in p.segments}
+    # a pedestrian's segments, a cyclist's and its bicycle's bodies are reported as one person
+    # (its own section), not as vehicles
+    segments = set(person_bodies(result.scene))
     runout = (
         [run_out(result, n) for n in result.vehicles if n not in segments]
         if result.on_ground
@@ -144,7 +150,8 @@ class Report:
         self.joints = list(joints) if joints is not None else []
         #: the combinations' jackknifes and trailer swings (crashsim.analysis.joints' rules)
         self.articulation = list(articulation) if articulation is not None else []
-        #: each pedestrian: its first contacts, head impact, end (crashsim.analysis.pedestrian)
+        #: each pedestrian, then each cyclist: first contacts, head impact, throw, end (and a
+        #: cyclist's bicycle's; crashsim.analysis.pedestrian)
         self.pedestrians = list(pedestrians) if pedestrians is not None else []
 
     def vehicle_run_out(self, name: str) -> RunOutReport:
@@ -254,7 +261,8 @@ class Report:
                 if self.joints
                 else {}
             ),
-            # optional: a scene with pedestrians (schema version stays 1)
+            # optional: a scene with pedestrians or cyclists (schema version stays 1; kind,
+            # bodies, height, mass, throws and bicycle added later, also without a change)
             **(
                 {"pedestrians": [p.to_dict() for p in self.pedestrians]}
                 if self.pedestrians

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from crashsim.analysis.pedestrian import whole_body
+from crashsim.analysis.pedestrian import travel, whole_body
 from crashsim.errors import ParameterError
 
 if TYPE_CHECKING:
@@ -142,5 +142,4 @@ def throw_distance(result: Result, vehicle: str, pedestrian: Pedestrian) -> floa
     position when the run lasted until it stopped)."""
     t0 = first_contact_time(result, vehicle, pedestrian)
     t, cg, _ = whole_body(result, pedestrian)
-    k0 = min(int(np.searchsorted(t, t0)), len(t) - 1)
-    return float(np.linalg.norm(cg[-1, :2] - cg[k0, :2]))
+    return travel(t, cg, t0)

@@ -33,6 +33,17 @@ def vehicle_colour(index: int) -> str:
     return VEHICLE_COLOURS[index % len(VEHICLE_COLOURS)]
 
 
+SHADE = 0.45  # a cyclist's bicycle: its rider's colour this much of the way to black
+
+
+def shade(colour: str) -> tuple[float, float, float]:
+    """The second shade of a person's colour (RGB): a cyclist's bicycle is drawn in it."""
+    from matplotlib.colors import to_rgb
+
+    r, g, b = (1.0 - SHADE) * np.asarray(to_rgb(colour))
+    return (float(r), float(g), float(b))
+
+
 def _patch(geom: Any, **kw: Any) -> Any:
     """A matplotlib PathPatch of a shapely (Multi)Polygon, holes included."""
     import shapely
@@ -171,16 +182,23 @@ def _path_points(result: Result) -> Array:
 
 
 def _persons(result: Result) -> dict[str, str]:
-    """Each pedestrian segment's vehicle name -> its pedestrian's name (none without a
-    scene)."""
+    """Each body of a pedestrian or a cyclist (its rider's segments and its bicycle's
+    bodies): its vehicle name -> the person's name (none without a scene)."""
+    from crashsim.analysis.pedestrian import person_bodies
+
+    return person_bodies(getattr(result, "scene", None))
+
+
+def _bicycle_bodies(result: Result) -> dict[str, str]:
+    """Each cyclist's bicycle body: its vehicle name -> the cyclist's name."""
     scene = getattr(result, "scene", None)
-    people = scene.pedestrians if scene is not None else {}
-    return {seg.name: name for name, person in people.items() for seg in person.segments}
+    cyclists = scene.cyclists if scene is not None else {}
+    return {b.name: name for name, c in cyclists.items() for b in c.bicycle.segments}
 
 
 def _units(result: Result) -> list[tuple[str, list[str]]]:
     """What a picture draws as one thing, in order: each vehicle alone, and each pedestrian
-    (name, its segments), at the place of its first segment."""
+    or cyclist (name, its bodies), at the place of its first body."""
     person_of = _persons(result)
     out: list[tuple[str, list[str]]] = []
     for name in result.vehicles:
@@ -195,17 +213,21 @@ def _units(result: Result) -> list[tuple[str, list[str]]]:
 
 
 def _draw_paths(ax: Axes, result: Result, split_time: float) -> None:
-    """Every vehicle's CG path (a pedestrian's pelvis's): solid up to ``split_time``, dashed
-    after it."""
+    """Every vehicle's CG path (a person's pelvis's, a cyclist's bicycle frame's in the
+    second shade): solid up to ``split_time``, dashed after it."""
+    bicycle = _bicycle_bodies(result)
     for k, (_, members) in enumerate(_units(result)):
-        name = next((m for m in members if m.endswith("/pelvis")), members[0])
-        tr = result.trajectory(name)
-        xy = tr.position[:, :2]
-        before = tr.t <= split_time
-        after = tr.t >= split_time
-        c = vehicle_colour(k)
-        ax.plot(xy[before, 0], xy[before, 1], color=c, lw=1.2, ls="-", zorder=1.5)
-        ax.plot(xy[after, 0], xy[after, 1], color=c, lw=1.2, ls=(0, (4, 3)), zorder=1.5)
+        paths = [(next((m for m in members if m.endswith("/pelvis")), members[0]),
+                  vehicle_colour(k))]  # fmt: skip
+        paths += [(m, shade(vehicle_colour(k))) for m in members if m.endswith("/frame")
+                  and m in bicycle]  # fmt: skip
+        for name, c in paths:
+            tr = result.trajectory(name)
+            xy = tr.position[:, :2]
+            before = tr.t <= split_time
+            after = tr.t >= split_time
+            ax.plot(xy[before, 0], xy[before, 1], color=c, lw=1.2, ls="-", zorder=1.5)
+            ax.plot(xy[after, 0], xy[after, 1], color=c, lw=1.2, ls=(0, (4, 3)), zorder=1.5)
 
 
 TILT_NOTE_DEG = 5.0  # a vehicle tilted more than this gets a note under the title

@@ -1,6 +1,6 @@
 """The run-out on a ground in the run from above: outlines spaced by distance travelled, the
 ground (terrain extent, friction zones), wheel paths and tyre marks, the rest words of the
-caption, and a pedestrian drawn as one thing.
+caption, and a pedestrian or a cyclist drawn as one thing.
 
 Imports crashsim.plots.outline and crashsim.plots.common.
 """
@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from crashsim.errors import SceneError
-from crashsim.plots.common import Array, _patch, vehicle_colour
+from crashsim.plots.common import Array, _bicycle_bodies, _patch, shade, vehicle_colour
 from crashsim.plots.outline import _draw_vehicle, _Pose, _projected_union
 
 if TYPE_CHECKING:
@@ -32,9 +32,13 @@ def _draw_person(
     on_ground: bool,
     outlines: list[Any],
 ) -> str:
-    """A pedestrian from above as one thing: its segments' outlines at the pelvis's spaced
-    times (thin, darker as time goes on), at the end bold, one label; returns its caption
-    words (where its centre of mass ends)."""
+    """A pedestrian or a cyclist from above as one thing: its bodies' outlines at the
+    pelvis's spaced times (thin, darker as time goes on), at the end bold, one label (a
+    cyclist's bicycle in the second shade of its colour, labelled at its end); returns its
+    caption words (where its centre of mass ends, and a bicycle's frame)."""
+    from crashsim.analysis.pedestrian import rest_of
+
+    bicycle = {m for m in members if _bicycle_bodies(result).get(m) == person}
     pelvis = next((m for m in members if m.endswith("/pelvis")), members[0])
     when = _spaced_times(result, pelvis, spacing) if on_ground else times
     t_end = float(result.t[-1])
@@ -45,23 +49,31 @@ def _draw_person(
         for m in members:
             pose = _Pose(result, m, t)
             outlines.append(pose.outline)
-            _draw_vehicle(ax, pose, colour, fill_alpha=0.10 if last else 0.04 + 0.06 * share,
+            _draw_vehicle(ax, pose, shade(colour) if m in bicycle else colour,
+                          fill_alpha=0.10 if last else 0.04 + 0.06 * share,
                           edge_alpha=0.9 if last else 0.25 + 0.4 * share,
                           lw=1.2 if last else 0.6, details=False, z=2.0 + share)  # fmt: skip
-    from crashsim.analysis.pedestrian import rest_of
-
     scene = result.scene
-    assert scene is not None  # a pedestrian is known from its scene
-    x, speed = rest_of(result, scene.pedestrians[person])
+    assert scene is not None  # a person is known from its scene
+    cyclist = scene.cyclists.get(person)
+    x, speed = rest_of(result, scene.pedestrians[person] if cyclist is None else cyclist.rider)
     start = _Pose(result, pelvis, float(result.t[0])).position
     ax.annotate(f"{person} (start)", (start[0], start[1]), xytext=(6, -14),
                 textcoords="offset points", fontsize=8.5, color=colour, zorder=8)  # fmt: skip
     ax.annotate(f"{person} at {t_end:.2f} s", (x[0], x[1]), xytext=(6, 6),
                 textcoords="offset points", fontsize=8.5, color=colour, zorder=8)  # fmt: skip
-    return (
+    words = (
         f"{person} (its centre of mass) at ({x[0]:.2f}, {x[1]:.2f}) m at {t_end:.2f} s, "
         f"{speed:.2f} m/s"
     )
+    if cyclist is None:
+        return words
+    frame = result.trajectory(cyclist.bicycle.frame.name)
+    end, v = frame.position[-1], float(np.linalg.norm(frame.velocity[-1]))
+    ax.annotate(f"{person}'s bicycle at {t_end:.2f} s", (end[0], end[1]), xytext=(6, -14),
+                textcoords="offset points", fontsize=8.5, color=shade(colour),
+                zorder=8)  # fmt: skip
+    return words + f"; its bicycle's frame at ({end[0]:.2f}, {end[1]:.2f}) m, {v:.2f} m/s"
 
 
 MARK_DARKEN = 0.6  # tyre marks: the vehicle's colour this much of the way to black

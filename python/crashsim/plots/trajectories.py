@@ -17,6 +17,7 @@ from crashsim.errors import ParameterError
 from crashsim.plots.common import (
     DPI,
     Array,
+    _bicycle_bodies,
     _bounds,
     _check_scene,
     _draw_paths,
@@ -26,6 +27,7 @@ from crashsim.plots.common import (
     _set_view,
     _tilt_note,
     _units,
+    shade,
     vehicle_colour,
 )
 from crashsim.plots.obstacles import _draw_obstacles
@@ -272,10 +274,17 @@ def plot_trajectories(
     ax.set_ylabel("world y (m)")
     vehicle_handles: list[Any] = []
     vehicle_labels: list[str] = []
+    bicycles = _bicycle_bodies(result)
     for k, (name, members) in enumerate(_units(result)):
         c = vehicle_colour(k)
         vehicle_handles.append(Patch(facecolor=to_rgba(c, 0.12), edgecolor=to_rgba(c, 0.6)))
-        if members[0] in person_of:
+        if members[0] in person_of and name in bicycles.values():
+            vehicle_labels.append(f"{name} (a cyclist: the rider's segments from above; darker "
+                                  "= later)")  # fmt: skip
+            vehicle_handles.append(Patch(facecolor=to_rgba(shade(c), 0.12),
+                                         edgecolor=to_rgba(shade(c), 0.6)))  # fmt: skip
+            vehicle_labels.append(f"{name}'s bicycle (frame and wheels from above)")
+        elif members[0] in person_of:
             vehicle_labels.append(f"{name} (a pedestrian: its segments from above; darker = later)")
         elif on_ground:
             vehicle_labels.append(f"{name} every {spacing:.3g} m of travel (darker = later)")

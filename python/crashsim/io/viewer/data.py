@@ -30,6 +30,7 @@ from crashsim.analysis.report import build_report
 from crashsim.errors import CrashsimError, ParameterError, SceneError
 from crashsim.io.viewer.meshes import DEFAULT_MAX_TRIANGLES, pack_array, pack_mesh
 from crashsim.plots import VEHICLE_COLOURS
+from crashsim.plots.common import SHADE
 
 if TYPE_CHECKING:
     from crashsim.result import Result
@@ -44,6 +45,9 @@ __all__ = [
     "body_entry",
     "colour_of",
     "dynamics",
+    "people_of",
+    "person_fields",
+    "vehicle_colours",
     "keep_samples",
     "page_data",
 ]
@@ -151,6 +155,52 @@ def dynamics(mass: float, inertia: ArrayLike) -> dict[str, Any]:
 def colour_of(index: int, obstacle: bool) -> str:
     """A body's colour: the plots' colour of the vehicle's index, grey for an obstacle."""
     return OBSTACLE_COLOUR if obstacle else VEHICLE_COLOURS[index % len(VEHICLE_COLOURS)]
+
+
+def people_of(report: dict[str, Any]) -> dict[str, tuple[str, str]]:
+    """Each body of a person in a report's ``pedestrians`` (its ``bodies``, a cyclist's
+    ``bicycle.bodies``): its name -> (the person's name, "segment" or "bicycle"). A report
+    written before those keys has none: its bodies are drawn as vehicles."""
+    out: dict[str, tuple[str, str]] = {}
+    people = report.get("pedestrians")
+    for person in people if isinstance(people, list) else []:
+        if not isinstance(person, dict):
+            continue  # not a report's record: its bodies stay vehicles
+        name = str(person.get("name"))
+        bicycle = person.get("bicycle")
+        for role, bodies in (
+            ("segment", person.get("bodies")),
+            ("bicycle", bicycle.get("bodies") if isinstance(bicycle, dict) else None),
+        ):
+            if isinstance(bodies, list):
+                out.update({str(b): (name, role) for b in bodies})
+    return out
+
+
+def _darker(colour: str) -> str:
+    """A hex colour SHADE of the way to black (a cyclist's bicycle: the plots' shade)."""
+    rgb = [int(colour[i : i + 2], 16) for i in (1, 3, 5)]
+    return "#" + "".join(f"{round((1.0 - SHADE) * c):02x}" for c in rgb)
+
+
+def vehicle_colours(names: list[str], people: dict[str, tuple[str, str]]) -> list[str]:
+    """Each vehicle's colour on the page: the plots' colours in order, one per vehicle and one
+    per person (all its segments; a cyclist's bicycle in that colour's darker shade)."""
+    index: dict[str, int] = {}
+    out = []
+    for name in names:
+        unit, role = people.get(name, (name, "vehicle"))
+        k = index.setdefault(unit, len(index))
+        colour = colour_of(k, False)
+        out.append(_darker(colour) if role == "bicycle" else colour)
+    return out
+
+
+def person_fields(name: str, people: dict[str, tuple[str, str]]) -> dict[str, Any]:
+    """A body's ``person`` (the person's name, or None for a vehicle) and ``role``
+    ("segment", "bicycle", or None)."""
+    person, role = people.get(name, (None, None))
+    return {"person": person, "role": role}
 
 
 def _body_mesh(result: Result, name: str, obstacle: bool) -> tuple[Array, NDArray[np.int64]]:
@@ -266,6 +316,8 @@ def page_data(
     events += [c.time for c in result.contacts]
     keep = keep_samples(t, events, int(max_samples))
     obstacles = list(getattr(result, "obstacles", []) or [])
+    people = people_of(report)
+    colours = vehicle_colours(list(result.vehicles), people)
     bodies = []
     lengths = []
     for k, name in enumerate([*result.vehicles, *obstacles]):
@@ -276,7 +328,7 @@ def page_data(
         body = body_entry(
             name,
             "obstacle" if is_obstacle else "vehicle",
-            colour_of(k, is_obstacle),
+            colour_of(k, True) if is_obstacle else colours[k],
             mesh,
             {key: np.asarray(getattr(tr, key))[keep] for key in SAMPLE_KEYS},
             int(max_triangles),
@@ -286,6 +338,7 @@ def page_data(
             body.update(dynamics(vehicle.mass, vehicle.inertia))
             body["tyre_marks"] = _tyre_marks(result, name)
             body["rest"] = _rest(result, name)
+            body.update(person_fields(name, people))
         bodies.append(body)
     scales = arrow_scales(
         [v for imp in result.impacts for v in imp.delta_v.values()],
@@ -296,7 +349,8 @@ def page_data(
         "format": FORMAT,
         "version": FORMAT_VERSION,
         "crashsim_version": str(__version__),
-        "title": title or "crashsim case: " + ", ".join(result.vehicles),
+        "title": title or "crashsim case: " + ", ".join(dict.fromkeys(
+            people.get(n, (n, ""))[0] for n in result.vehicles)),  # fmt: skip
         "source": "run",
         "interpolation": "hermite" if getattr(result, "on_ground", False) else "torque-free",
         "samples": {"total": int(t.size), "kept": int(keep.size), "t": pack_array(t[keep], "f8")},

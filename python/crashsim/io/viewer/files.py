@@ -43,6 +43,9 @@ from crashsim.io.viewer.data import (
     colour_of,
     dynamics,
     keep_samples,
+    people_of,
+    person_fields,
+    vehicle_colours,
 )
 from crashsim.io.viewer.meshes import pack_array
 
@@ -317,6 +320,8 @@ def report_page_data(path: Path, *, max_triangles: int, max_samples: int) -> dic
     events = [x for i in impacts for x in (i["first_contact_time"], i["time"])]
     events += [float(c["time"]) for c in contacts if isinstance(c, dict) and "time" in c]
     keep = keep_samples(t, events, max_samples)
+    people = people_of(doc)
+    colours = vehicle_colours(names, people)
     bodies = []
     lengths = []
     for j, name in enumerate(names):
@@ -327,7 +332,7 @@ def report_page_data(path: Path, *, max_triangles: int, max_samples: int) -> dic
         body = body_entry(
             name,
             "vehicle",
-            colour_of(j, False),
+            colours[j],
             mesh,
             {key: motion[name][key][keep] for key in SAMPLE_KEYS},
             max_triangles,
@@ -335,6 +340,7 @@ def report_page_data(path: Path, *, max_triangles: int, max_samples: int) -> dic
         body.update(dynamics(mass, inertia))
         body["tyre_marks"] = []
         body["rest"] = None
+        body.update(person_fields(name, people))
         bodies.append(body)
     for j, o in enumerate(doc["scene"].get("obstacles") or []):
         base = f"scene.obstacles.{j}"
@@ -364,7 +370,9 @@ def report_page_data(path: Path, *, max_triangles: int, max_samples: int) -> dic
         "format": FORMAT,
         "version": FORMAT_VERSION,
         "crashsim_version": str(__version__),
-        "title": f"crashsim case: {', '.join(names)} ({path.name})",
+        "title": "crashsim case: "
+        + ", ".join(dict.fromkeys(people.get(n, (n, ""))[0] for n in names))
+        + f" ({path.name})",
         "source": "report",
         "interpolation": "hermite" if on_ground else "torque-free",
         "samples": {"total": int(t.size), "kept": int(keep.size), "t": pack_array(t[keep], "f8")},

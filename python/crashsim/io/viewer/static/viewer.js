@@ -199,7 +199,8 @@
   // ---------------------------------------------------------------- the 3-D scene
 
   let renderer, scene, camera, controls;
-  const bodies = [];           // {name, kind, colour, object, ...dynamics, arrays}
+  const bodies = [];           // {name, kind, colour, object, ...dynamics, arrays, person, role}
+  let people, persons = [];    // people.js's helpers; the pedestrians and cyclists (one each)
   const overlays = [];         // per impact: {impact, group, labels}
   const labels = [];           // HTML labels: {div, point() -> [x,y,z] | null, visible() -> bool}
   let pathsGroup;
@@ -328,6 +329,7 @@
       }
       body.radius = r;
       bodies.push(body);
+      if (b.person) continue;  // one label per person (below)
       addLabel(b.name, () => {
         const s = stateAt(body, currentTime).position;
         return [s[0], s[1], s[2] + (b.kind === 'obstacle' ? r * 0.6 : 1.2)];
@@ -335,19 +337,36 @@
     }
   }
 
-  // CG paths, tyre marks and rest positions.
+  // The pedestrians and cyclists: one label each, at its whole-body CG.
+  function buildPersons() {
+    people = window.crashsimPeople({ data: data, el: el, fmt: fmt, numCell: numCell, kvTable: kvTable });
+    persons = people.group(bodies);
+    for (const p of persons) {
+      addLabel(p.name, () => { const c = people.centreNow(p); return c && add(c, [0, 0, 1.0]); });
+    }
+  }
+
+  // A dashed path on the ground through the positions P (3 per sample).
+  function groundPath(P, colour) {
+    const z0 = data.ground.height;
+    const pts = [];
+    for (let k = 0; k < P.length; k += 3) pts.push(new THREE.Vector3(P[k], P[k + 1], z0 + 0.01));
+    const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts),
+      new THREE.LineDashedMaterial({ color: colour, dashSize: 0.2, gapSize: 0.12 }));
+    line.computeLineDistances();
+    pathsGroup.add(line);
+  }
+
+  // CG paths (a person's whole-body CG, a bicycle's frame), tyre marks and rest positions.
   function buildPaths() {
     pathsGroup = new THREE.Group();
-    const z0 = data.ground.height;
+    for (const p of persons) {
+      groundPath(people.cgPath(p), p.colour);
+      if (p.bicycle.length) groundPath(people.frame(p).arrays.position, p.shade);
+    }
     for (const body of bodies) {
-      if (body.kind === 'obstacle') continue;
-      const P = body.arrays.position;
-      const pts = [];
-      for (let k = 0; k < P.length; k += 3) pts.push(new THREE.Vector3(P[k], P[k + 1], z0 + 0.01));
-      const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts),
-        new THREE.LineDashedMaterial({ color: body.colour, dashSize: 0.2, gapSize: 0.12 }));
-      line.computeLineDistances();
-      pathsGroup.add(line);
+      if (body.kind === 'obstacle' || body.person) continue;
+      groundPath(body.arrays.position, body.colour);
       for (const mark of body.tyre_marks || []) {
         const m = new THREE.Line(new THREE.BufferGeometry().setFromPoints(
           mark.map((p) => new THREE.Vector3(p[0], p[1], p[2] + 0.004))),
@@ -501,6 +520,26 @@
     render();
   }
 
+  // The camera to a point p (m), from its present direction, about r m around it in view.
+  function focus(p, r) {
+    const d = r / Math.tan((camera.fov * Math.PI) / 360);
+    const dir = camera.position.clone().sub(controls.target).normalize();
+    controls.target.set(p[0], p[1], p[2]);
+    camera.position.set(p[0] + dir.x * d, p[1] + dir.y * d, p[2] + dir.z * d);
+    camera.near = d / 1000; camera.far = d * 50;
+    camera.updateProjectionMatrix();
+    controls.update();
+    render();
+  }
+
+  // The camera to a person (its whole-body CG) or a body (its CG) as drawn now.
+  function focusOn(name, r) {
+    const p = persons.find((q) => q.name === name);
+    const body = bodies.find((b) => b.name === name);
+    if (!p && !body) throw new Error('no person or body named ' + name);
+    focus(p ? people.centreNow(p) : body.current.position, r || 3);
+  }
+
   // ---------------------------------------------------------------- timeline
 
   let playing = false, lastFrame = null;
@@ -595,10 +634,17 @@
 
   function buildLegend() {
     const legend = document.getElementById('legend');
+    const swatch = (colour) => { const sw = el('span', { class: 'swatch' }); sw.style.background = colour; return sw; };
     for (const b of bodies) {
-      const sw = el('span', { class: 'swatch' });
-      sw.style.background = b.colour;
-      legend.appendChild(el('span', {}, [sw, b.name + (b.kind === 'obstacle' ? ' (fixed) ' : ' ')]));
+      if (b.person) {  // a person once, at its first body
+        const p = persons.find((q) => q.name === b.person);
+        if (p.members[0] !== b) continue;
+        const parts = [swatch(p.colour), p.name + ' (' + p.kind + (p.bicycle.length ? ', ' : ') ')];
+        if (p.bicycle.length) parts.push(swatch(p.shade), 'bicycle) ');
+        legend.appendChild(el('span', { class: 'person' }, parts));
+        continue;
+      }
+      legend.appendChild(el('span', {}, [swatch(b.colour), b.name + (b.kind === 'obstacle' ? ' (fixed) ' : ' ')]));
     }
     legend.appendChild(el('br'));
     legend.appendChild(document.createTextNode(
@@ -696,17 +742,21 @@
     return sec;
   }
 
-  // Speed of a vehicle's CG over the run (an inline SVG), with the exchanges and a cursor.
-  function speedPlot(body) {
+  // Speeds over the run (an inline SVG) of a vehicle's CG, or a person's (lines: {velocity (3
+  // per sample), colour}), with the exchanges of the bodies `names` and a cursor.
+  function speedPlot(name, lines, names) {
     const NS = 'http://www.w3.org/2000/svg';
     const svg = document.createElementNS(NS, 'svg');
     svg.setAttribute('class', 'plot');
     svg.setAttribute('viewBox', '0 0 600 170');
-    svg.setAttribute('data-vehicle', body.name);
-    const V = body.arrays.velocity, T = samples.t;
-    const speed = new Float64Array(T.length);
-    for (let k = 0; k < T.length; k++) speed[k] = Math.hypot(V[3 * k], V[3 * k + 1], V[3 * k + 2]);
-    const vmax = Math.max(1e-3, ...speed);
+    svg.setAttribute('data-vehicle', name);
+    const T = samples.t;
+    const speeds = lines.map((line) => {
+      const V = line.velocity, speed = new Float64Array(T.length);
+      for (let k = 0; k < T.length; k++) speed[k] = Math.hypot(V[3 * k], V[3 * k + 1], V[3 * k + 2]);
+      return speed;
+    });
+    const vmax = Math.max(1e-3, ...speeds.map((s) => s.reduce((a, b) => Math.max(a, b), 0)));
     const step = niceStep(vmax, 4), top = Math.ceil(vmax / step) * step;
     const L = 44, R = 590, Tp = 10, B = 145;
     const x = (t) => L + ((t - T0()) / (T1() - T0() || 1)) * (R - L);
@@ -728,13 +778,15 @@
       add('text', { x: x(t), y: B + 12, 'text-anchor': 'middle' }, String(+t.toFixed(6)));
     }
     for (const i of data.impacts) {
-      if (!i.vehicles.includes(body.name)) continue;
+      if (!i.vehicles.some((v) => names.includes(v))) continue;
       add('line', { x1: x(i.time), x2: x(i.time), y1: Tp, y2: B, stroke: '#000', 'stroke-dasharray': '3 2' });
       add('text', { x: x(i.time) + 3, y: Tp + 9 }, String(i.number));
     }
-    let d = '';
-    for (let k = 0; k < T.length; k++) d += (k ? 'L' : 'M') + x(T[k]).toFixed(2) + ' ' + y(speed[k]).toFixed(2);
-    add('path', { d: d, fill: 'none', stroke: body.colour, 'stroke-width': 1.6 });
+    speeds.forEach((speed, j) => {
+      let d = '';
+      for (let k = 0; k < T.length; k++) d += (k ? 'L' : 'M') + x(T[k]).toFixed(2) + ' ' + y(speed[k]).toFixed(2);
+      add('path', { d: d, fill: 'none', stroke: lines[j].colour, 'stroke-width': 1.6 });
+    });
     add('line', { x1: L, x2: R, y1: B, y2: B, stroke: '#333' });
     add('line', { x1: L, x2: L, y1: Tp, y2: B, stroke: '#333' });
     add('text', { x: R, y: B + 24, 'text-anchor': 'end' }, 't (s)');
@@ -769,13 +821,14 @@
   function inputsSection(report) {
     const sec = el('section', { id: 'inputs' });
     sec.appendChild(el('h2', { text: 'Scene inputs' }));
-    const vs = report.scene.vehicles;
+    // a person's bodies are listed as the person (below), not as vehicles
+    const vs = report.scene.vehicles.filter((v) => !persons.some((p) => p.members.some((b) => b.name === v.name)));
     const table = el('table', { class: 'data' });
     table.appendChild(el('tr', {}, [el('th', { text: 'vehicle' }), ...vs.map((v) => el('th', { text: v.name })), el('th', { text: 'unit' })]));
     const row = (label, unit, f) => table.appendChild(el('tr', {}, [el('th', { text: label }),
       ...vs.map((v, j) => { const c = f(v, j); return typeof c === 'string' ? el('td', { class: 'num', text: c }) : c; }),
       el('td', { class: 'unit', text: unit })]));
-    const path = (j, key) => 'scene.vehicles.' + j + '.' + key;
+    const path = (j, key) => 'scene.vehicles.' + report.scene.vehicles.indexOf(vs[j]) + '.' + key;
     row('mass', 'kg', (v, j) => numCell(v.mass, 1, path(j, 'mass')));
     row('mass from', '', (v) => v.mass_source);
     row('length x width x height', 'm', (v) => {
@@ -828,6 +881,10 @@
       row('ABS', '', w((x) => (x.abs ? 'on' : 'off')));
     }
     sec.appendChild(table);
+    if (persons.length) {
+      sec.appendChild(el('h3', { text: 'Pedestrians and cyclists' }));
+      sec.appendChild(people.inputs(persons));
+    }
     if (report.scene.obstacles && report.scene.obstacles.length) {
       sec.appendChild(el('h3', { text: 'Fixed obstacles' }));
       sec.appendChild(kvTable(report.scene.obstacles.map((o) => [o.name + ' (' + o.kind + ')',
@@ -836,9 +893,9 @@
     sec.appendChild(el('h3', { text: 'Contact parameters' }));
     sec.appendChild(el('p', { class: 'muted', text: 'defaults (every pair unless overridden):' }));
     sec.appendChild(kvTable(parameterRows(report.scene.contact.defaults)));
-    for (const p of report.scene.contact.pairs) {
-      sec.appendChild(el('p', { class: 'muted', text: 'pair ' + p.vehicles[0] + ' \u2192 ' + p.vehicles[1] + ' (the normal points from the first into the second):' }));
-      sec.appendChild(kvTable(parameterRows(p.parameters)));
+    for (const g of people.pairGroups(report.scene.contact.pairs, persons)) {
+      sec.appendChild(el('p', { class: 'muted', text: g.title + ' (the normal points from the first into the second):' }));
+      sec.appendChild(kvTable(parameterRows(g.parameters)));
     }
     const g = data.ground;
     sec.appendChild(el('h3', { text: 'Run' }));
@@ -862,11 +919,25 @@
       'EDR axes: longitudinal +forward, lateral +right; PDOF: the direction the force comes from, clockwise from ahead.' }));
     if (!report.impacts.length) aside.appendChild(el('p', { text: 'No impulse exchange in this run.' }));
     report.impacts.forEach((imp, i) => aside.appendChild(impactSection(imp, i)));
+    if (persons.length) {
+      aside.appendChild(el('h2', { text: 'Pedestrians and cyclists' }));
+      aside.appendChild(el('p', { class: 'muted', text: 'The report\'s pedestrians[] section: each person\'s bodies drawn ' +
+        'as one. Throw distance: the horizontal travel of the centre of mass from the vehicle\'s first contact to the end ' +
+        'of the run; head contact: the first overlap of the head with the vehicle, its wrap-around distance and speed relative to it.' }));
+      for (const p of persons) aside.appendChild(people.panel(p, setTime, (name) => focusOn(name)));
+    }
     aside.appendChild(el('h2', { text: 'Speed of each vehicle' }));
     for (const b of bodies) {
-      if (b.kind === 'obstacle') continue;
+      if (b.kind === 'obstacle' || b.person) continue;
       aside.appendChild(el('h3', { text: b.name + ': speed of the CG (m/s; dashed: its exchanges, red: now)' }));
-      aside.appendChild(speedPlot(b));
+      aside.appendChild(speedPlot(b.name, [{ velocity: b.arrays.velocity, colour: b.colour }], [b.name]));
+    }
+    for (const p of persons) {
+      const lines = [{ velocity: people.cgVelocity(p), colour: p.colour }];
+      if (p.bicycle.length) lines.push({ velocity: people.frame(p).arrays.velocity, colour: p.shade });
+      aside.appendChild(el('h3', { text: p.name + ': speed of the whole-body CG' + (p.bicycle.length
+        ? ' and (darker) of the bicycle\'s frame' : '') + ' (m/s; dashed: its exchanges, red: now)' }));
+      aside.appendChild(speedPlot(p.name, lines, p.members.map((b) => b.name)));
     }
     aside.appendChild(inputsSection(report));
   }
@@ -888,6 +959,7 @@
     sun.position.set(-3, -5, 8);
     scene.add(sun);
     await buildBodies();
+    buildPersons();
     for (const body of bodies) if (body.kind !== 'obstacle') for (const m of body.tyre_marks || []) for (const p of m) grow(p);
     for (const zone of data.ground.zones) for (const p of zone.polygon) grow([p[0], p[1], data.ground.height]);
     await buildGround();
@@ -913,6 +985,8 @@
   api.time = () => currentTime;
   api.setTime = (t) => { setTime(t); return currentTime; };
   api.setView = (kind) => setView(kind);
+  api.focus = (name, r) => focusOn(name, r);
+  api.focusTarget = () => [controls.target.x, controls.target.y, controls.target.z];
   api.state = (name, t) => {
     const body = bodies.find((b) => b.name === name);
     if (!body) throw new Error('no body named ' + name);
