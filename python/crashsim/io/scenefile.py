@@ -90,7 +90,8 @@ from crashsim.io.tomlvalues import (
 )
 from crashsim.names import check_name
 from crashsim.result import Result
-from crashsim.scene import DEFAULT_MAX_DURATION, Scene
+from crashsim.scene import Scene
+from crashsim.spec import DEFAULT_MAX_DURATION
 from crashsim.vehicles.generator.presets import PRESETS
 from crashsim.vehicles.stiffness import FACES
 from crashsim.vehicles.trucks import RIGID_PRESETS, TRACTOR_PRESETS

@@ -257,7 +257,7 @@ def _check_options(
     if until is not None and until != "rest":
         raise StudyError(f'until = {until!r} is unknown: use until="rest" or None')
     if duration is None:
-        from crashsim.scene import DEFAULT_MAX_DURATION
+        from crashsim.spec import DEFAULT_MAX_DURATION
 
         duration = DEFAULT_MAX_DURATION if until == "rest" else 1.0
     for name, x in (("duration", duration), ("dt", dt)):
