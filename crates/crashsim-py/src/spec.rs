@@ -105,6 +105,49 @@ impl Joint {
             .collect()
     }
 
+    /// Pickled as its constructor's arguments (every number exact): a scene with joints
+    /// (a trailer, a pedestrian) pickles, for studies on other processes.
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(
+        Bound<'py, PyAny>,
+        (
+            &'static str,
+            Vec<(&'static str, f64, f64)>,
+            f64,
+            f64,
+            f64,
+            bool,
+        ),
+    )> {
+        let j = slf.get();
+        let from = slf.get_type().getattr("_from_parts")?;
+        Ok((
+            from,
+            (
+                j.inner.kind.name(),
+                j.limits(),
+                j.inner.stiffness,
+                j.inner.damping,
+                j.inner.friction,
+                j.inner.collide,
+            ),
+        ))
+    }
+
+    #[staticmethod]
+    fn _from_parts(
+        kind: &str,
+        limits: Vec<(String, f64, f64)>,
+        stiffness: f64,
+        damping: f64,
+        friction: f64,
+        collide: bool,
+    ) -> PyResult<Joint> {
+        Joint::new(kind, limits, stiffness, damping, friction, collide)
+    }
+
     fn __repr__(&self) -> String {
         let j = &self.inner;
         format!(

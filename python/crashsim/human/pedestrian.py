@@ -252,11 +252,21 @@ class Pedestrian:
         ]  # fmt: skip
         return bodies, joints
 
+    def __reduce__(self) -> tuple[Any, tuple[dict[str, Any]]]:
+        """Pickled as the arguments it was made with (:attr:`arguments`): rebuilt bit for bit
+        (a scene with a pedestrian pickles, for studies on other processes)."""
+        return (_rebuilt, (dict(self._arguments),))
+
     def __repr__(self) -> str:
         return (
             f"Pedestrian(height={self._height:.3f}, mass={self._mass:.1f}, sex={self._sex!r}, "
             f"pose={self._pose!r}, name={self._name!r})"
         )
+
+
+def _rebuilt(arguments: dict[str, Any]) -> Pedestrian:
+    """A pickled pedestrian, made again from its arguments."""
+    return Pedestrian(**arguments)
 
 
 def _to_posed(p: _Posed, x: Array) -> Array:
