@@ -233,7 +233,7 @@ def test_check_fails_with_exit_1_when_fcl_disagrees(
         def __str__(self) -> str:
             return "first_overlap red - blue FAIL"
 
-    monkeypatch.setattr(cli, "cross_check", lambda result: Disagrees())
+    monkeypatch.setattr(cli.scenes, "cross_check", lambda result: Disagrees())
     assert main(["check", str(SEED)]) == 1
     assert "FAIL" in capsys.readouterr().out
 
@@ -321,7 +321,7 @@ def test_an_output_that_cannot_be_written_exits_1(
     def full(*args: object, **kwargs: object) -> None:
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr(cli, "write_csv", full)
+    monkeypatch.setattr(cli.output, "write_csv", full)
     assert main(["run", str(SEED), "--out", str(tmp_path), "--no-pictures"]) == 1
     assert capsys.readouterr().err == "crashsim: error: [Errno 28] No space left on device\n"
 
