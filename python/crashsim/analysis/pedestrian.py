@@ -9,9 +9,9 @@ left, z up from the road: the mesh's own coordinates). Speeds in m/s, times in s
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 import trimesh
@@ -23,10 +23,20 @@ from crashsim.result import Result, rotation_matrix
 if TYPE_CHECKING:
     from crashsim.human.bicycle import Bicycle
     from crashsim.human.pedestrian import Pedestrian
-    from crashsim.scene import Scene
     from crashsim.vehicles.vehicle import Vehicle
 
 Array = np.ndarray
+
+
+class PeopleOf(Protocol):
+    """What the analysis reads of a scene (a crashsim.Scene is one): its people by name. A
+    protocol, so that the analysis (downstream of the scene) does not import it."""
+
+    @property
+    def pedestrians(self) -> Mapping[str, Any]: ...
+
+    @property
+    def cyclists(self) -> Mapping[str, Any]: ...
 
 __all__ = [
     "BicycleReport",
@@ -334,7 +344,7 @@ class PedestrianReport:
         return out
 
 
-def person_bodies(scene: Scene | None) -> dict[str, str]:
+def person_bodies(scene: PeopleOf | None) -> dict[str, str]:
     """Every body of the scene's pedestrians and cyclists (a cyclist's rider segments and its
     bicycle's bodies): its vehicle name -> the person's name ({} without a scene). A bicycle
     added on its own is not a person."""

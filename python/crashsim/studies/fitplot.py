@@ -16,7 +16,7 @@ import numpy as np
 from crashsim.studies.evidence import ImpactPoint, RestHeading, RestPosition, TyreMark
 
 if TYPE_CHECKING:
-    from crashsim.studies.fit import FitResult
+    from crashsim.studies.fit.result import FitResult
 
 EVIDENCE = "#d62728"  # colour of the evidence (red); the fitted run in the vehicles' colours
 
