@@ -235,7 +235,7 @@ def test_evidence_of_a_pedestrian_is_checked() -> None:
     with pytest.raises(FitError, match="is a segment of 'pedestrian'"):
         cs.fit(scene, bounds, [WrapAround("pedestrian", "pedestrian/head", 2.0, 0.1)],
                until=None, duration=0.1)
-    with pytest.raises(FitError, match="never ends for a pedestrian"):
+    with pytest.raises(FitError, match="is not taken for a pedestrian"):
         cs.fit(scene, bounds, [ThrowDistance("pedestrian", "car", 10.0, 0.5)])
     # a run too short for the head to touch: the items say why they are absent
     result = run(scene, 0.05)

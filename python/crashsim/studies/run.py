@@ -359,8 +359,9 @@ def _check_pedestrian_study(backend: str, until: str | None) -> None:
         )
     if until is not None:
         raise StudyError(
-            'until="rest" never ends for a pedestrian (its segments do not pass the engine\'s '
-            "rest test, docs/human.md): give duration= (s) and until=None; the study records "
+            'until="rest" is not taken for a pedestrian: its segments creep on the road for '
+            "seconds after the body has stopped, and some runs never pass the engine's rest "
+            "test (docs/human.md, item 7a): give duration= (s) and until=None; the study records "
             "the person's rest position when it is slower than 0.1 m/s at the end"
         )
 

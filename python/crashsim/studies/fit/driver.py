@@ -132,8 +132,9 @@ def fit(
         raise FitError('until="rest" needs a ground: give duration and until=None instead')
     if until == "rest" and scene.pedestrians:
         raise FitError(
-            'until="rest" never ends for a pedestrian (its segments do not pass the engine\'s '
-            "rest test, docs/human.md): give duration= (s, long enough for the person to stop: "
+            'until="rest" is not taken for a pedestrian: its segments creep on the road for '
+            "seconds after the body has stopped, and some runs never pass the engine's rest "
+            "test (docs/human.md, item 7a): give duration= (s, long enough for the person to stop: "
             "a PedestrianRest item says when it did not) and until=None"
         )
     for what, v in (("dt", dt), ("max_duration", max_duration), ("step", step)):
