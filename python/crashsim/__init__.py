@@ -38,15 +38,15 @@ from crashsim.io.export import export_frames, export_glb
 from crashsim.io.viewer import view
 from crashsim.joints import JointEvent, JointRecord
 from crashsim.plots import plot_impact, plot_trajectories
-from crashsim.result import (
+from crashsim.records import (
     ContactEvent,
     Impact,
     RestState,
-    Result,
     SeparationState,
     Trajectory,
     WheelRecord,
 )
+from crashsim.result import Result
 from crashsim.scene import DepthOfPenetrationWarning, RestNotReachedWarning, Scene
 from crashsim.studies import Study, monte_carlo, sobol, sweep, tornado
 from crashsim.studies.fit import FitError, FitResult, fit

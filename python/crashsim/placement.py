@@ -21,7 +21,7 @@ from crashsim import _core
 from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import ParameterError, SceneError
-from crashsim.result import rotation_matrix
+from crashsim.records import rotation_matrix
 from crashsim.vehicles.checks import _as_float, _probe_shape
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.vehicle import Vehicle

@@ -48,7 +48,8 @@ from crashsim.placement import (
     _read_only,
     _resting,
 )
-from crashsim.result import Result, rotation_matrix
+from crashsim.records import rotation_matrix
+from crashsim.result import Result
 from crashsim.spec import (
     DEFAULT_MAX_DURATION,
     _build_spec,

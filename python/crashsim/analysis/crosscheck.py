@@ -34,7 +34,8 @@ from numpy.typing import NDArray
 
 from crashsim import _core
 from crashsim.errors import ParameterError, SceneError
-from crashsim.result import Impact, Result, rotation_matrix
+from crashsim.records import Impact, rotation_matrix
+from crashsim.result import Result
 
 if TYPE_CHECKING:
     from crashsim.vehicles.vehicle import Vehicle

@@ -21,7 +21,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 if TYPE_CHECKING:
-    from crashsim.result import Impact, Result
+    from crashsim.records import Impact
+    from crashsim.result import Result
 
 __all__ = ["Engagement", "WHY_SECONDARY", "engagement_of", "engagements", "secondary_cause"]
 

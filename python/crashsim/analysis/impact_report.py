@@ -32,7 +32,8 @@ from crashsim.analysis.report_common import (
 from crashsim.errors import ParameterError, SceneError
 
 if TYPE_CHECKING:
-    from crashsim.result import Impact, Result
+    from crashsim.records import Impact
+    from crashsim.result import Result
 
 
 # -- PDOF and clock -------------------------------------------------------------------------

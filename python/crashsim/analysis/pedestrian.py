@@ -18,7 +18,8 @@ import trimesh
 from numpy.typing import ArrayLike
 
 from crashsim.errors import ParameterError
-from crashsim.result import Result, rotation_matrix
+from crashsim.records import rotation_matrix
+from crashsim.result import Result
 
 if TYPE_CHECKING:
     from crashsim.human.bicycle import Bicycle

@@ -61,7 +61,7 @@ def _deg(angle_rad: float) -> float:
 
 def _yaw(q: Array) -> float:
     """Yaw of the body x axis from world x (rad), counter-clockwise seen from above."""
-    from crashsim.result import rotation_matrix
+    from crashsim.records import rotation_matrix
 
     r = rotation_matrix(q)
     return math.atan2(float(r[1, 0]), float(r[0, 0]))
@@ -283,7 +283,7 @@ def run_out(result: Result, vehicle: Any) -> RunOutReport:
     moving = speed >= dynamics_defaults()["rest_speed"]
     rest = result.rest(name)
     end_v = tr.velocity[-1]
-    from crashsim.result import rotation_matrix
+    from crashsim.records import rotation_matrix
 
     up = float(rotation_matrix(tr.orientation[-1])[2, 2])  # body z . world z
     tilt = math.degrees(math.acos(max(-1.0, min(1.0, up))))

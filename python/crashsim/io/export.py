@@ -53,7 +53,7 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim._core import __version__
 from crashsim.errors import ParameterError, SceneError
 from crashsim.plots import VEHICLE_COLOURS, ZONE_COLOURS
-from crashsim.result import rotation_matrix
+from crashsim.records import rotation_matrix
 
 if TYPE_CHECKING:
     from crashsim.result import Result

@@ -36,7 +36,8 @@ from crashsim.plots.outline import _draw_vehicle, _label, _Pose
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from crashsim.result import Impact, Result
+    from crashsim.records import Impact
+    from crashsim.result import Result
 
 IMPACT_FIGSIZE = (15.0, 8.2)  # inches: plot_impact's figure
 

@@ -31,7 +31,7 @@ def plot_fit(
     from matplotlib.patches import Circle
 
     from crashsim.plots import _new_figure, silhouette, vehicle_colour
-    from crashsim.result import rotation_matrix
+    from crashsim.records import rotation_matrix
 
     k = len(fit.names)
     fig = _new_figure((12.0, max(5.0, 2.2 * k)))

@@ -68,7 +68,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim.errors import StudyError
-from crashsim.result import rotation_matrix
+from crashsim.records import rotation_matrix
 
 if TYPE_CHECKING:
     from crashsim.scene import Scene
