@@ -213,6 +213,9 @@ class Setup:
     def set_contact(self, body1: int, body2: int, **params: Any) -> None:
         self.spec.set_contact(body1, body2, self.core.ContactParams(**params))
 
+    def set_ground(self, **kwargs: Any) -> None:
+        self.spec.set_ground(self.core.Ground(**kwargs))
+
     def ready(self) -> Any:
         return self.spec.build()
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+import pickle
 import tomllib
 from importlib import resources
 
@@ -75,12 +76,20 @@ def test_ground_frictions_zones_and_heights() -> None:
     g = cs.Ground(height=0.5, friction="wet asphalt", zones=[(square(0, 0, 10), "grass")])
     assert g.height_at(3.0, 4.0) == 0.5
     assert g.friction_at(5.0, 5.0) == 0.35 and g.friction_at(20.0, 5.0) == 0.5
-    kwargs = g.core_kwargs()
-    assert kwargs["height"] == 0.5 and kwargs["tyre_friction"] == 0.5
+    assert g.core.tyre_friction == 0.5 and g.core.friction_at(5.0, 5.0) == 0.35
     default = cs.Ground()
     d = cs.vehicles.wheels.dynamics_defaults()
     assert default.tyre_friction == d["tyre_friction"]
-    assert default.core_kwargs()["body_friction"] == d["body_friction"]
+    assert default.core.body_friction == d["body_friction"]
+    # a study's variant: another friction, checked by the engine, the zones kept
+    wet = g.with_friction(0.3, body_friction=0.4)
+    assert wet.friction_at(20.0, 5.0) == 0.3 and wet.friction_at(5.0, 5.0) == 0.35
+    assert wet.core.body_friction == 0.4 and g.friction_at(20.0, 5.0) == 0.5
+    with pytest.raises(cs.ParameterError, match="friction"):
+        g.with_friction(-1.0)
+    # the engine's value is rebuilt when a ground is unpickled
+    back = pickle.loads(pickle.dumps(g))
+    assert back.friction_at(5.0, 5.0) == 0.35 and back.core.tyre_friction == 0.5
 
 
 @pytest.mark.parametrize("height", [1e30, -2e6])
@@ -108,7 +117,7 @@ def test_overlapping_zones_are_an_error_naming_them() -> None:
         cs.FrictionZone(square(0, 0, 10), "wet asphalt", name="puddle"),
         cs.FrictionZone(square(5, 5, 10), 0.3),
     ]
-    with pytest.raises(cs.ParameterError, match="friction zones 'puddle' and 1 overlap"):
+    with pytest.raises(cs.ParameterError, match="friction zones 'puddle' and 1: they overlap"):
         cs.Ground(zones=zones)
     # sharing an edge is fine
     cs.Ground(zones=[(square(0, 0, 10), 0.5), (square(10, 0, 10), 0.35)])
@@ -117,8 +126,8 @@ def test_overlapping_zones_are_an_error_naming_them() -> None:
 @pytest.mark.parametrize(
     "zone, match",
     [
-        (([(0, 0), (1, 0)], 0.5), "zone 0 has 2 corners"),
-        (([(0, 0), (2, 2), (2, 0), (0, 1)], 0.5), "zone 0 crosses itself"),
+        (([(0, 0), (1, 0)], 0.5), "zone 0: it has 2 corners"),
+        (([(0, 0), (2, 2), (2, 0), (0, 1)], 0.5), "zone 0: it crosses itself"),
         ((square(0, 0, 1), 3.0), "must lie in \\(0, 2\\]"),
         ((square(0, 0, 1), "lava"), "unknown surface 'lava'"),
         (([(0, 0, 0), (1, 0, 0), (1, 1, 0)], 0.5), "shape \\(k, 2\\)"),
@@ -132,7 +141,7 @@ def test_bad_zones_are_parameter_errors(zone, match) -> None:
 def test_a_bow_tie_zone_is_said_to_cross_itself() -> None:
     # a bow-tie's two lobes cancel: its signed area is 0, and the core says "its corners are
     # in a line", which they are not
-    with pytest.raises(cs.ParameterError, match="zone 'bow' crosses itself"):
+    with pytest.raises(cs.ParameterError, match="zone 'bow': it crosses itself"):
         cs.Ground(zones=[cs.FrictionZone([(0, 0), (1, 1), (1, 0), (0, 1)], 0.5, name="bow")])
     with pytest.raises(cs.ParameterError, match="in a line"):  # collinear corners still are
         cs.Ground(zones=[cs.FrictionZone([(0, 0), (1, 1), (2, 2)], 0.5)])
@@ -179,7 +188,8 @@ def test_a_wheel_over_a_hole_in_the_terrain_is_named_before_the_run() -> None:
 def test_a_wheel_leaving_the_terrain_names_the_vehicle_and_wheel() -> None:
     scene = cs.Scene(ground=cs.Ground(terrain=terrain(size=40.0)))
     scene.add(wheeled(), (10.0, 0.0), heading=0.0, velocity=(10.0, 0.0, 0.0))
-    with pytest.raises(cs.SimulationError, match="vehicle 'car' \\(front_left\\) left the terrain"):
+    left = "vehicle 'car': wheel 'front_left': it left the terrain"
+    with pytest.raises(cs.SimulationError, match=left):
         scene.run(2.0)
 
 
@@ -393,6 +403,6 @@ def test_a_vehicle_placed_into_the_ground_is_refused_by_name() -> None:
     )  # the body reaches 0.7 m below the CG, which is 0.55 m up
     scene = cs.Scene(ground=cs.Ground())
     scene.add(car, (0.0, 0.0), heading=0.0)
-    into = r"vehicle 'red' starts 0\.150 m into the ground"
+    into = r"vehicle 'red': it starts 0\.150 m into the ground"
     with pytest.raises(cs.InitialOverlapError, match=into):
         scene.run(0.1)

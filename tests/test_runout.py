@@ -356,11 +356,11 @@ MISTAKES = [
     (
         'radius = "0.3 m"',
         "\ndamping = [1, 1, -1, 1]",
-        r"vehicles\[0\].wheels: .*wheel 'rear_left' damping = -1 is invalid",
+        r"vehicles\[0\].wheels: .*wheel 'rear_left': damping = -1 is invalid",
     ),
     ('track = ["1.55 m", "1.52 m"]', '\ntrack = "2.5 m"', r"wheels: .*lies outside the body"),
     ('time = "0 s"\n', STATE2, r"wheel_states\[1\].time"),
-    ('friction = "wet asphalt"', ZONE2, r"ground: .*friction zones 'puddle' and 1 overlap"),
+    ('friction = "wet asphalt"', ZONE2, r"ground: .*friction zones 'puddle' and 1: they overlap"),
     ('until = "rest"\n', 'duration = "2 s"\n', r"run.duration: with until"),
     ('pole = { diameter = "0.3 m", height = "5 m" }', "", r"obstacles\[0\]: give exactly one"),
     ('name = "pole"', '\nname = "red"', r"obstacles\[0\].name: .*already in the scene"),

@@ -274,7 +274,7 @@ def test_a_sweep_lists_failed_variants_and_the_rest_finish(tmp_path: Path) -> No
     assert first.message.startswith("variant 1 (red.position_x = -3.65 m, restitution = 1.5): ")
     assert "restitution" in first.message and first.inputs == {"red.position_x": -3.65,
                                                                 "restitution": 1.5}
-    assert '("red") and 1 ("blue") already overlap' in study.errors[1].message
+    assert '("red") and 1 ("blue"): they already overlap' in study.errors[1].message
     assert np.isfinite(study["impact1.red.delta_v"][0])
     frame = study.frame
     assert list(frame.columns[:2]) == ["red.position_x", "restitution"]

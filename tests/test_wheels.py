@@ -130,17 +130,20 @@ def test_tyre_defaults_come_from_the_engine_and_bad_tyres_are_named() -> None:
 @pytest.mark.parametrize(
     "kwargs, match",
     [
-        ({"track": 2.5}, r"vehicle 'car': wheel 'front_left' at \(1.100, 1.250\) m .* outside"),
+        (
+            {"track": 2.5},
+            r"vehicle 'car': wheel 'front_left': its centre at \(1.100, 1.250\) m .* outside",
+        ),
         ({"cg_to_front_axle": 3.0}, "vehicle 'car': .* the CG is not over the wheels"),
-        ({"spring_rates": -5.0}, "wheel 'front_left' spring_rate = -5 is invalid"),
-        ({"damping": (-1.0, 10.0)}, "wheel 'front_left' damping = -1 is invalid"),
-        ({"radius": 0.0}, "wheel 'front_left' radius = 0 is invalid"),
+        ({"spring_rates": -5.0}, "wheel 'front_left': spring_rate = -5 is invalid"),
+        ({"damping": (-1.0, 10.0)}, "wheel 'front_left': damping = -1 is invalid"),
+        ({"radius": 0.0}, "wheel 'front_left': radius = 0 is invalid"),
         ({"natural_frequency": -1.0}, "wheel 'front_left': natural_frequency = -1"),
         # issue 24: 1e4 ran a locked car 47 m, 1e6 flipped it; 1000 Hz left it at 3 m/s
         ({"damping_ratio": 1e4}, r"wheel 'front_left': damping_ratio = 10000 .* \[0, 5\]"),
         ({"natural_frequency": 1000.0}, r"natural_frequency = 1000 Hz .* \(0, 20\] Hz"),
-        ({"damping": 1e6}, r"wheel 'front_left' damping ratio = [0-9.]+ .* \[0, 5\]"),
-        ({"spring_rates": 1e8}, r"wheel 'front_left' natural frequency = [0-9.]+ Hz"),
+        ({"damping": 1e6}, r"wheel 'front_left': damping ratio = [0-9.]+ .* \[0, 5\]"),
+        ({"spring_rates": 1e8}, r"wheel 'front_left': natural frequency = [0-9.]+ Hz"),
         ({"track": float("nan")}, "track = nan is invalid"),
         ({"steer": "all"}, "steer = 'all' is unknown"),
     ],
@@ -156,7 +159,8 @@ def test_bad_wheels_are_parameter_errors_naming_vehicle_and_wheel(kwargs, match)
 
 def test_a_cg_beside_the_wheels_names_the_wheel_that_would_lift() -> None:
     # three wheels all ahead of the CG: the engine's static loads refuse it
-    with pytest.raises(cs.ParameterError, match="not over the wheels: wheel 'wheel_2'"):
+    lifts = "wheel 'wheel_2': the centre of gravity is not over the wheels"
+    with pytest.raises(cs.ParameterError, match=lifts):
         Wheels.custom([[1, 0.7, -0.2], [1, -0.7, -0.2], [2, 0, -0.2]], 0.3, [True] * 3)
 
 
@@ -290,7 +294,7 @@ def test_bad_input_tables_are_errors_naming_the_table(kwargs, match) -> None:
     [
         ({"steer": 1.2}, "'car' inputs: the road-wheel steering angle reaches 68.8 deg"),
         ({"steering_wheel": [(0.0, 0.0), (1.0, 3.0)]}, "needs the vehicle's steering ratio"),
-        ({"steer": {"RL": 0.1}}, "wheel 'rear_left' has a steering table but does not steer"),
+        ({"steer": {"RL": 0.1}}, "wheel 'rear_left': it has a steering table but does not steer"),
         ({"brake": 1.5}, "wheel 'front_left': a braking fraction must lie in"),
         # issue 24: 100 m/s^2 was accepted and ran as full braking
         ({"brake": cs.Brake.deceleration(100.0)}, r"a braking deceleration must lie in \[0, 20\]"),

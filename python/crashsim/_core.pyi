@@ -28,6 +28,7 @@ __all__ = [
     "World",
     "__version__",
     "Tyre",
+    "Ground",
     "check_soft_contact",
     "dynamics_defaults",
     "free_motion",
@@ -38,10 +39,17 @@ __all__ = [
     "static_loads",
     "suspension",
     "wheel_loads",
+    "check_table",
+    "point_in_polygon",
 ]
 
 class CrashsimError(Exception):
-    """Root of every error the engine raises."""
+    """Root of every error the engine raises. ``loc``: where it happened, outermost first,
+    (kind, index, name) places; ``message``: the text without the places (None when the
+    engine gave no places)."""
+
+    loc: tuple[tuple[Any, Any, Any], ...]
+    message: str | None
 
 class InputError(CrashsimError, ValueError):
     """The input is at fault (a value, a mesh, a parameter)."""
@@ -130,6 +138,14 @@ def static_loads(
     weight (N) on level ground (each axle its share), and with ``towed`` ((x, y), N) the load
     a trailer puts on the hitch there."""
 
+def point_in_polygon(x: float, y: float, polygon: Any) -> bool:
+    """True when (x, y) (m) lies inside the polygon ((k, 2) corners, m) or on its edge: the
+    engine's friction-zone test."""
+
+def check_table(table: Any, name: str) -> None:
+    """Checks a (k, 2) table of (time s, value) by the core's rules (increasing times,
+    finite numbers, at least one row): a ParameterError naming it ``name`` otherwise."""
+
 def wheel_loads(
     xy: Sequence[tuple[float, float]],
     weight: float,
@@ -182,6 +198,32 @@ def dynamics_defaults() -> dict[str, float]:
     rolling_resistance, tyre_friction, body_friction, magic_formula_b, magic_formula_c,
     magic_formula_e) and its rest thresholds (rest_speed m/s, rest_yaw_rate rad/s,
     rest_turn_speed m/s: a small body's yaw limit times its reach, rest_time s)."""
+
+@final
+class Ground:
+    """The ground, checked by the core once, when it is made."""
+
+    def __new__(
+        cls,
+        *,
+        height: float = 0.0,
+        terrain: Shape | None = None,
+        tyre_friction: float | None = None,
+        body_friction: float | None = None,
+        zones: list[tuple[ArrayLike, float]] = ...,
+    ) -> Ground:
+        """The plane z = height (m), or a terrain mesh in world coordinates; tyre-road and
+        body-ground friction (None: the engine's 0.8 and 0.45); friction zones as ((k, 2)
+        polygon in m, friction)."""
+    @property
+    def tyre_friction(self) -> float: ...
+    @property
+    def body_friction(self) -> float: ...
+    def friction_at(self, x: float, y: float) -> float:
+        """Tyre-road friction at (x, y) (m, world): the first zone holding the point, else
+        the ground's."""
+    def with_friction(self, tyre_friction: float, body_friction: float) -> Ground:
+        """The same ground with other frictions, checked by the core."""
 
 @final
 class Tyre:
@@ -317,18 +359,8 @@ class SceneSpec:
         """Add a fixed obstacle (infinite mass and inertia, never moves) with its mesh at a
         pose (position m, quaternion (w, x, y, z)); returns its index. Obstacles form no pair
         with each other."""
-    def set_ground(
-        self,
-        *,
-        height: float = 0.0,
-        terrain: Shape | None = None,
-        tyre_friction: float | None = None,
-        body_friction: float | None = None,
-        zones: list[tuple[ArrayLike, float]] = ...,
-    ) -> None:
-        """Put the scene on the ground (gravity along -z): the plane z = height (m), or a
-        terrain mesh in world coordinates; tyre-road and body-ground friction (None: the
-        engine's 0.8 and 0.45); friction zones as ((k, 2) polygon in m, friction)."""
+    def set_ground(self, ground: Ground) -> None:
+        """Put the scene on the ground (gravity along -z), checked when it was made."""
     def set_vehicle(
         self,
         body: int,
@@ -527,7 +559,8 @@ def run_batch(
     shapes of python/crashsim/batch.py; an unknown key or a wrong shape is a ParameterError
     naming it). progress(done, n) is called from the caller's thread; Ctrl-C stops the
     batch and keeps what finished. Returns ``columns`` [(name, (n,) array)], ``errors``
-    [(index, kind, message)], ``finished`` (n,) bool, ``interrupted`` bool."""
+    [(index, kind, message, loc, message without the places)], ``finished`` (n,) bool,
+    ``interrupted`` bool."""
 
 @final
 class World:

@@ -54,7 +54,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
-from crashsim.errors import ParameterError
+from crashsim.errors import CrashsimError, ParameterError, Place, describe
 from crashsim.vehicles.checks import _as_float
 
 if TYPE_CHECKING:
@@ -66,12 +66,39 @@ __all__ = ["BatchResult", "VariantError", "run_batch"]
 @dataclass(frozen=True)
 class VariantError:
     """A variant that failed: its ``index``, ``kind`` (the crashsim exception class name,
-    e.g. "InitialOverlapError", "ParameterError", "SimulationError") and ``message``
-    ("variant 17: ...")."""
+    e.g. "InitialOverlapError", "ParameterError", "SimulationError"), ``message``
+    ("variant 17: body 0 ("red"): ..."), ``loc``, where it happened (the exceptions'
+    ``.loc``: (kind, index, name) places, outermost first, the variant's own first) and
+    ``reason``, the message without the places."""
 
     index: int
     kind: str
     message: str
+    loc: tuple[Place, ...] = ()
+    reason: str = ""
+
+    @classmethod
+    def of(cls, index: int, error: CrashsimError) -> VariantError:
+        """Variant ``index`` failed with ``error`` (raised in Python, for a variant run
+        outside the engine's batch)."""
+        loc = (("variant", index, None), *error.loc)
+        reason = str(error) if error.message is None else error.message
+        message = "".join(f"{describe(p)}: " for p in loc) + reason
+        return cls(index, type(error).__name__, message, loc, reason)
+
+    def within(self) -> str:
+        """The text without the variant's own place: the places inside it, then the
+        reason."""
+        inner = tuple(p for p in self.loc if p[0] != "variant")
+        return "".join(f"{describe(p)}: " for p in inner) + self.reason
+
+    def shifted(self, start: int) -> VariantError:
+        """The same error as variant ``index + start`` (a chunk's variant in its study),
+        its text rebuilt from its places."""
+        loc = tuple(("variant", i + start, n) if k == "variant" else (k, i, n)
+                    for k, i, n in self.loc)
+        message = "".join(f"{describe(p)}: " for p in loc) + self.reason
+        return VariantError(self.index + start, self.kind, message, loc, self.reason)
 
 
 @dataclass(frozen=True)
@@ -160,7 +187,10 @@ def run_batch(
         spec, given, n, threads=threads, progress=progress, max_impacts=max_impacts
     )
     columns = {str(name): np.asarray(values) for name, values in raw["columns"]}
-    errors = [VariantError(int(i), str(kind), str(message)) for i, kind, message in raw["errors"]]
+    errors = [
+        VariantError(int(i), str(kind), str(message), tuple(loc), str(reason))
+        for i, kind, message, loc, reason in raw["errors"]
+    ]
     return BatchResult(
         n=n,
         columns=columns,

@@ -11,7 +11,17 @@ CrashsimError
 
 PlausibilityWarning (a UserWarning): input that is possible but unlikely for a road vehicle
 (a size or density outside road vehicles' ranges: a wrong unit or up axis?).
+
+Every error carries ``loc``, where it happened, outermost first: a tuple of (kind, index,
+name) places the engine sets (kinds: "variant", "body", "bodies", "wheel", "zone", "zones",
+"part"; empty when the error is the whole input's), and ``message``, the text without the
+places (None for errors raised with a text alone). A layer that knows the names of what the
+engine numbers (a vehicle's wheels, the ground's zones, the scene's bodies) gives them with
+:func:`renamed`, which rebuilds the text from ``loc`` and ``message``: no text is parsed.
 """
+
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 from crashsim._core import (
     CrashsimError,
@@ -49,6 +59,66 @@ class PlausibilityWarning(UserWarning):
     any material's) is an error instead."""
 
 
+Place = tuple[str, Any, Any]
+"""One step of an error's ``loc``: (kind, index, name)."""
+
+_E = TypeVar("_E", bound=CrashsimError)
+
+
+def describe(place: Place) -> str:
+    """The engine's text of one place: "wheel 2", "body 0 ("red")", "friction zones 1 and 3",
+    "variant 7" (as the engine writes it)."""
+    kind, index, name = place
+    if kind == "body":
+        return f'body {index}' + ("" if name is None else f' ("{name}")')
+    if kind == "bodies":
+        names = name if name is not None else (None,) * len(index)
+        parts = [
+            f"{i}" + ("" if n is None else f' ("{n}")')
+            for i, n in zip(index, names, strict=True)
+        ]
+        return "bodies " + (", ".join(parts[:-1]) + " and " if len(parts) > 1 else "") + parts[-1]
+    if kind == "zone":
+        return f"friction zone {index}"
+    if kind == "zones":
+        return f"friction zones {index[0]} and {index[1]}"
+    if kind == "part":
+        return str(name)
+    return f"{kind} {index}"
+
+
+Naming = Callable[[Place, tuple[Place, ...]], "str | None"]
+"""Gives a place's text from the place and the places outside it (a wheel's name depends on
+its vehicle); None keeps the engine's text (:func:`describe`), "" drops the place."""
+
+
+def renamed(error: _E, name: Naming, prefix: str = "", suffix: str = "") -> _E:
+    """``error`` again (the same class, ``loc`` and ``message``) with its text rebuilt from
+    its places, each named by ``name`` (:data:`Naming`), then the message; ``prefix`` and
+    ``suffix`` around it. An error without places keeps its text."""
+    if error.message is None:
+        text = str(error)
+    else:
+        parts = [name(p, error.loc[:k]) for k, p in enumerate(error.loc)]
+        where = [describe(p) if t is None else t for p, t in zip(error.loc, parts, strict=True)]
+        text = "".join(f"{w}: " for w in where if w) + error.message
+    out = type(error)(prefix + text + suffix)
+    out.loc = error.loc
+    out.message = error.message
+    return out
+
+
+def naming(**names: Callable[[Any], str | None]) -> Naming:
+    """A :data:`Naming` from one function per kind, each given the place's index:
+    ``naming(wheel=lambda k: f"wheel {names[k]!r}")``."""
+
+    def name(place: Place, outer: tuple[Place, ...]) -> str | None:
+        f = names.get(place[0])
+        return None if f is None else f(place[1])
+
+    return name
+
+
 __all__ = [
     "CrashsimError",
     "InputError",
@@ -59,4 +129,9 @@ __all__ = [
     "SimulationError",
     "StudyError",
     "PlausibilityWarning",
+    "Place",
+    "Naming",
+    "describe",
+    "renamed",
+    "naming",
 ]

@@ -31,7 +31,13 @@ from crashsim.contacts import (
 )
 from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
-from crashsim.errors import InitialOverlapError, ParameterError, SceneError, SimulationError
+from crashsim.errors import (
+    CrashsimError,
+    InitialOverlapError,
+    ParameterError,
+    SceneError,
+    renamed,
+)
 from crashsim.human.bicycle import Bicycle
 from crashsim.human.cyclist import Cyclist
 from crashsim.human.pedestrian import Pedestrian
@@ -54,8 +60,8 @@ from crashsim.spec import (
     DEFAULT_MAX_DURATION,
     _build_spec,
     _named_overlap_error,
-    _named_simulation_error,
     _run_settings,
+    _scene_naming,
 )
 from crashsim.vehicles.checks import _as_float
 from crashsim.vehicles.coupling import JOINT_OF, check_coupling
@@ -696,8 +702,8 @@ class Scene(_Contacts):
             raw = spec.run(progress)
         except InitialOverlapError as e:
             raise _named_overlap_error(e, self._placements, self._obstacles, self.pairs) from e
-        except SimulationError as e:
-            raise _named_simulation_error(e, self._placements) from e
+        except CrashsimError as e:
+            raise renamed(e, _scene_naming(self._placements, self._obstacles)) from e
         result = Result(
             raw,
             [b.name for b in self._bodies()],

@@ -6,7 +6,6 @@ the obstacles).
 
 from __future__ import annotations
 
-import re
 from collections.abc import Callable
 from itertools import combinations
 from typing import Any
@@ -17,7 +16,14 @@ from crashsim import _core
 from crashsim.contacts import VehicleRef, _check_stiffness, _core_params
 from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
-from crashsim.errors import InitialOverlapError, ParameterError, SceneError, SimulationError
+from crashsim.errors import (
+    InitialOverlapError,
+    Naming,
+    ParameterError,
+    Place,
+    SceneError,
+    renamed,
+)
 from crashsim.joints import Joint
 from crashsim.placement import _check_terrain_under, _ObstaclePlacement, _Placement
 from crashsim.vehicles.checks import _as_float
@@ -78,7 +84,7 @@ def _build_spec(
         a, b = sorted(index(n) for n in names)
         spec.set_soft_contact(a, b, k, zeta)
     if ground is not None:
-        spec.set_ground(**ground.core_kwargs())
+        spec.set_ground(ground.core)
         for i, p in enumerate(placements):
             w = p.vehicle.wheels
             if w is None:
@@ -155,20 +161,31 @@ def _run_settings(
     return duration, dt, until == "rest", record_interval, max_history_bytes
 
 
-def _named_simulation_error(
-    error: SimulationError, placements: list[_Placement]
-) -> SimulationError:
-    """The engine's error with the vehicle's and wheel's names ("body i: wheel k left the
-    terrain ...": the bodies are the placements in order)."""
-    m = re.match(r"body (\d+): wheel (\d+) left the terrain (.*)", str(error), re.DOTALL)
-    if m is None:
-        return error
-    i, k = int(m.group(1)), int(m.group(2))
-    if i >= len(placements):
-        return error
-    vehicle = placements[i].vehicle
-    wheel = vehicle.wheels.names[k] if vehicle.wheels is not None else f"wheel {k}"
-    return SimulationError(f"vehicle {vehicle.name!r} ({wheel}) left the terrain {m.group(3)}")
+def _scene_naming(
+    placements: list[_Placement], obstacles: list[_ObstaclePlacement]
+) -> Naming:
+    """Names the engine's places in a scene's run: body i is the i-th vehicle placed, then
+    the obstacles; a wheel is named by the vehicle around it."""
+    names = [f"vehicle {p.vehicle.name!r}" for p in placements]
+    names += [f"obstacle {o.obstacle.name!r}" for o in obstacles]
+
+    def body(i: int) -> str | None:
+        return names[i] if 0 <= i < len(names) else None
+
+    def name(place: Place, outer: tuple[Place, ...]) -> str | None:
+        kind, index, _ = place
+        if kind == "body":
+            return body(index)
+        if kind == "bodies" and all(0 <= i < len(names) for i in index):
+            return " and ".join(names[i] for i in index)
+        if kind == "wheel" and outer and outer[-1][0] == "body":
+            i = outer[-1][1]
+            wheels = placements[i].vehicle.wheels if 0 <= i < len(placements) else None
+            if wheels is not None and 0 <= index < len(wheels.names):
+                return f"wheel {wheels.names[index]!r}"
+        return None
+
+    return name
 
 
 def _named_overlap_error(
@@ -177,11 +194,10 @@ def _named_overlap_error(
     obstacles: list[_ObstaclePlacement],
     scene_pairs: Callable[[], list[tuple[str, str, dict[str, Any]]]],
 ) -> InitialOverlapError:
-    """The engine's error with the vehicles' names instead of body indices."""
-    m = re.match(r"body (\d+) starts (.*)", str(error), re.DOTALL)
-    if m is not None and int(m.group(1)) < len(placements):
-        name = placements[int(m.group(1))].vehicle.name
-        return InitialOverlapError(f"vehicle {name!r} starts {m.group(2)}")
+    """The engine's error with the bodies' names; two bodies overlapping at the start list
+    every pair of the scene that does."""
+    if not any(p[0] == "bodies" for p in error.loc):
+        return renamed(error, _scene_naming(placements, obstacles))
     pairs = []
     placed = [(p.vehicle, p.position, p.orientation) for p in placements]
     placed += [(o.obstacle, o.position, o.orientation) for o in obstacles]
@@ -193,7 +209,7 @@ def _named_overlap_error(
         if _core.shapes_overlap(a[0].shape, a[1], a[2], b[0].shape, b[1], b[2]):
             pairs.append(f"{a[0].name!r} and {b[0].name!r}")
     if not pairs:
-        return error
+        return renamed(error, _scene_naming(placements, obstacles))
     return InitialOverlapError(
         f"vehicles {', '.join(pairs)} already overlap at t = 0: place them apart (the "
         "engine starts every contact at a first overlap it observes)"

@@ -23,7 +23,7 @@ use rayon::prelude::*;
 
 use crate::body::MassProperties;
 use crate::contact::{DepthOfPenetration, NormalMode};
-use crate::error::{Error, Result};
+use crate::error::{Error, Place, Result};
 use crate::math::{Real, Rotation, Vector};
 use crate::spec::{BodyMotion, SceneSpec};
 use crate::world::{degrees, heading, magnitude, RunOutput};
@@ -82,7 +82,7 @@ impl Key {
             .map(|(k, _)| *k)
             .ok_or_else(|| {
                 let known: Vec<&str> = Key::ALL.iter().map(|(_, n)| *n).collect();
-                Error::Parameter(format!(
+                Error::invalid(format!(
                     "unknown override {name:?}: the overrides are {}",
                     known.join(", ")
                 ))
@@ -147,7 +147,7 @@ impl Overrides {
             let mut want = vec![n];
             want.extend(key.variant_shape(v, p));
             if shape != want {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "override {name:?} has shape {} but needs {} (n = {n} variants{})",
                     shape_text(&shape),
                     shape_text(&want),
@@ -161,19 +161,17 @@ impl Overrides {
                 )));
             }
             if values.len() != want.iter().product::<usize>() {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "override {name:?} has {} values for shape {}",
                     values.len(),
                     shape_text(&want)
                 )));
             }
             if entries.iter().any(|(k, _)| *k == key) {
-                return Err(Error::Parameter(format!(
-                    "override {name:?} is given twice"
-                )));
+                return Err(Error::invalid(format!("override {name:?} is given twice")));
             }
             if matches!(key, Key::TyreFriction | Key::BodyFriction) && base.ground.is_none() {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "override {name:?} needs a ground: the scene has none"
                 )));
             }
@@ -183,7 +181,7 @@ impl Overrides {
                     .iter()
                     .find(|c| !matches!(c.params.normal, NormalMode::Horizontal { .. }))
                 {
-                    return Err(Error::Parameter(format!(
+                    return Err(Error::invalid(format!(
                         "override {name:?}: the pair ({}, {}) has no horizontal normal, so no \
                          pitch (the pitch tilts the horizontal normal only)",
                         base.bodies[c.body1].name, base.bodies[c.body2].name
@@ -235,13 +233,14 @@ impl Overrides {
                             Key::AngularVelocity => state.angular_velocity = v3(slot),
                             Key::Orientation => {
                                 let q = &row[4 * slot..4 * slot + 4];
-                                state.orientation = rotation(q, &body.name)?;
+                                state.orientation =
+                                    rotation(q).map_err(|e| at_body(e, b, &body.name))?;
                             }
                             Key::Mass => {
                                 let m = row[slot];
                                 let ratio = m / props.mass();
                                 *props = MassProperties::new(m, props.inertia() * ratio)
-                                    .map_err(|e| named(e, &body.name))?;
+                                    .map_err(|e| at_body(e, b, &body.name))?;
                                 if let Some(v) = vehicle {
                                     for w in &mut v.wheels {
                                         w.static_load *= ratio;
@@ -252,7 +251,7 @@ impl Overrides {
                             }
                             _ => unreachable!("a per-vehicle key"),
                         }
-                        state.validate().map_err(|e| named(e, &body.name))?;
+                        state.validate().map_err(|e| at_body(e, b, &body.name))?;
                     }
                 }
                 Key::Restitution | Key::Friction | Key::DepthOfPenetration | Key::Pitch => {
@@ -286,43 +285,30 @@ impl Overrides {
         // Ranges of the pairs' parameters (and every other value) are the build's checks.
         for c in &spec.contacts {
             c.params.validate().map_err(|e| {
-                prefixed(
-                    e,
-                    &format!(
-                        "pair ({}, {})",
-                        spec.bodies[c.body1].name, spec.bodies[c.body2].name
-                    ),
-                )
+                e.at(Place::bodies(c.body1, c.body2))
+                    .with_body_names(&spec.body_names())
             })?;
         }
         Ok(spec)
     }
 }
 
-fn rotation(q: &[Real], name: &str) -> Result<Rotation> {
+fn rotation(q: &[Real]) -> Result<Rotation> {
     let q = nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]);
     let norm = q.norm();
     if !norm.is_finite() || norm == 0.0 {
-        return Err(Error::Parameter(format!(
-            "{name}: orientation must be a finite, non-zero quaternion (w, x, y, z)"
-        )));
+        return Err(Error::invalid(
+            "orientation must be a finite, non-zero quaternion (w, x, y, z)",
+        ));
     }
     // As the bindings read a quaternion (convert.rs), so a variant equals the same scene run
     // alone.
     Ok(Rotation::new_normalize(q))
 }
 
-fn prefixed(e: Error, what: &str) -> Error {
-    match e {
-        Error::Mesh(m) => Error::Mesh(format!("{what}: {m}")),
-        Error::Parameter(m) => Error::Parameter(format!("{what}: {m}")),
-        Error::InitialOverlap(m) => Error::InitialOverlap(format!("{what}: {m}")),
-        Error::Simulation(m) => Error::Simulation(format!("{what}: {m}")),
-    }
-}
-
-fn named(e: Error, name: &str) -> Error {
-    prefixed(e, &format!("vehicle {name:?}"))
+/// The error at body `b`, named.
+fn at_body(e: Error, b: usize, name: &str) -> Error {
+    e.at(Place::Body(b, Some(name.to_string())))
 }
 
 /// One column of a batch's summary, one value per variant.
@@ -488,60 +474,7 @@ fn summary(spec: &SceneSpec, out: &RunOutput, max_impacts: usize) -> (i64, Vec<R
 
 /// The engine's error class name of an error (as the Python exception tree names it).
 pub fn kind_name(e: &Error) -> &'static str {
-    match e {
-        Error::Mesh(_) => "MeshError",
-        Error::Parameter(_) => "ParameterError",
-        Error::InitialOverlap(_) => "InitialOverlapError",
-        Error::Simulation(_) => "SimulationError",
-    }
-}
-
-/// The message with each "body i" / "bodies i and j" given its name from the spec.
-fn with_names(message: &str, spec: &SceneSpec) -> String {
-    let name = |i: usize| spec.bodies.get(i).map(|b| b.name.as_str());
-    let mut out = String::with_capacity(message.len() + 16);
-    let mut rest = message;
-    while let Some(at) = rest.find("bod") {
-        out.push_str(&rest[..at]);
-        let after_letter = out.chars().last().is_some_and(char::is_alphabetic);
-        rest = &rest[at..];
-        let word = if after_letter {
-            out.push_str("bod");
-            rest = &rest[3..];
-            continue;
-        } else if rest.starts_with("bodies ") {
-            "bodies "
-        } else if rest.starts_with("body ") {
-            "body "
-        } else {
-            out.push_str("bod");
-            rest = &rest[3..];
-            continue;
-        };
-        out.push_str(word);
-        rest = &rest[word.len()..];
-        // the indices: "i" or "i and j"
-        loop {
-            let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
-            if digits == 0 {
-                break;
-            }
-            let i: usize = rest[..digits].parse().unwrap_or(usize::MAX);
-            out.push_str(&rest[..digits]);
-            if let Some(n) = name(i) {
-                out.push_str(&format!(" ({n:?})"));
-            }
-            rest = &rest[digits..];
-            if rest.starts_with(" and ") && rest[5..].starts_with(|c: char| c.is_ascii_digit()) {
-                out.push_str(" and ");
-                rest = &rest[5..];
-            } else {
-                break;
-            }
-        }
-    }
-    out.push_str(rest);
-    out
+    e.kind.class_name()
 }
 
 enum Outcome {
@@ -578,7 +511,7 @@ fn run_variant(
                 .cloned()
                 .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
                 .unwrap_or_else(|| "unknown".into());
-            Outcome::Failed(Error::Simulation(format!(
+            Outcome::Failed(Error::simulation(format!(
                 "internal engine error ({what}); please report it with the scene that caused it"
             )))
         }
@@ -608,7 +541,7 @@ pub fn run_batch(
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.threads)
         .build()
-        .map_err(|e| Error::Simulation(format!("the batch's thread pool failed to start: {e}")))?;
+        .map_err(|e| Error::simulation(format!("the batch's thread pool failed to start: {e}")))?;
     let outcomes: Vec<Outcome> = pool.install(|| {
         (0..n)
             .into_par_iter()
@@ -644,15 +577,7 @@ pub fn run_batch(
             }
             Outcome::Failed(e) => {
                 finished[i] = true;
-                let e = prefixed(
-                    match e {
-                        Error::Mesh(m) => Error::Mesh(with_names(&m, base)),
-                        Error::Parameter(m) => Error::Parameter(with_names(&m, base)),
-                        Error::InitialOverlap(m) => Error::InitialOverlap(with_names(&m, base)),
-                        Error::Simulation(m) => Error::Simulation(with_names(&m, base)),
-                    },
-                    &format!("variant {i}"),
-                );
+                let e = e.with_body_names(&base.body_names()).at(Place::Variant(i));
                 errors.push(VariantError { index: i, error: e });
             }
             Outcome::NotRun => {}
@@ -665,22 +590,4 @@ pub fn run_batch(
         finished,
         interrupted,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn messages_get_the_bodies_names() {
-        let spec = crate::spec::tests::head_on();
-        assert_eq!(
-            with_names(
-                "bodies 0 and 1 already overlap; body 1: wheel 2 left",
-                &spec
-            ),
-            "bodies 0 (\"a\") and 1 (\"b\") already overlap; body 1 (\"b\"): wheel 2 left"
-        );
-        assert_eq!(with_names("nobody 1", &spec), "nobody 1");
-    }
 }

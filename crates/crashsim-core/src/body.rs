@@ -36,14 +36,14 @@ impl MassProperties {
             ));
         }
         if !inertia.iter().all(|x| x.is_finite()) {
-            return Err(Error::Parameter(
-                "the inertia tensor has a non-finite entry: give finite kg m^2 values".into(),
+            return Err(Error::invalid(
+                "the inertia tensor has a non-finite entry: give finite kg m^2 values",
             ));
         }
         let scale = inertia.abs().max();
         if (inertia - inertia.transpose()).abs().max() > 1e-9 * scale {
-            return Err(Error::Parameter(
-                "the inertia tensor is not symmetric: I[i][j] must equal I[j][i]".into(),
+            return Err(Error::invalid(
+                "the inertia tensor is not symmetric: I[i][j] must equal I[j][i]",
             ));
         }
         let sym = (inertia + inertia.transpose()) * 0.5;
@@ -52,7 +52,7 @@ impl MassProperties {
         principal.sort_by(|a, b| a.total_cmp(b));
         let min_moment = principal[0];
         if min_moment <= 0.0 {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "the inertia tensor is not positive definite (principal moments {:.6e}, {:.6e}, \
                  {:.6e} kg m^2): every principal moment must be positive",
                 eig[0], eig[1], eig[2]
@@ -62,7 +62,7 @@ impl MassProperties {
         // m (x^2 + y^2) <= I_x + I_y = sum of m (x^2 + y^2 + 2 z^2)); equality for a flat body.
         let [a, b, c] = principal;
         if c - (a + b) > 1e-6 * c {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "the inertia tensor is impossible: its largest principal moment {c:.6e} kg m^2 \
                  exceeds the sum of the other two ({a:.6e} + {b:.6e}); a body's principal \
                  moments each lie within the sum of the other two (check the axes and units)"
@@ -70,7 +70,7 @@ impl MassProperties {
         }
         let inverse_inertia = sym
             .try_inverse()
-            .ok_or_else(|| Error::Parameter("the inertia tensor is singular".into()))?;
+            .ok_or_else(|| Error::invalid("the inertia tensor is singular"))?;
         Ok(MassProperties {
             mass,
             inertia: sym,
@@ -140,9 +140,7 @@ impl BodyState {
         require_finite_vector("angular_velocity", &self.angular_velocity)?;
         let q = self.orientation.coords;
         if !q.iter().all(|x| x.is_finite()) {
-            return Err(Error::Parameter(
-                "the orientation quaternion is not finite".into(),
-            ));
+            return Err(Error::invalid("the orientation quaternion is not finite"));
         }
         Ok(())
     }

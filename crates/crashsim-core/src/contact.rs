@@ -225,9 +225,8 @@ impl ContactParams {
             NormalMode::Fixed(v) => {
                 require_finite_vector("normal", v)?;
                 if v.norm() == 0.0 {
-                    return Err(Error::Parameter(
-                        "the normal vector is zero: give a direction from vehicle 1 into vehicle 2"
-                            .into(),
+                    return Err(Error::invalid(
+                        "the normal vector is zero: give a direction from vehicle 1 into vehicle 2",
                     ));
                 }
             }
@@ -240,6 +239,7 @@ impl ContactParams {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::ErrorKind;
 
     #[test]
     fn out_of_range_parameters_are_refused() {
@@ -280,7 +280,13 @@ mod tests {
             },
         ] {
             assert!(
-                matches!(bad.validate(), Err(Error::Parameter(_))),
+                matches!(
+                    bad.validate(),
+                    Err(Error {
+                        kind: ErrorKind::Parameter,
+                        ..
+                    })
+                ),
                 "{bad:?}"
             );
         }

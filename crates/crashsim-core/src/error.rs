@@ -1,34 +1,182 @@
 //! Errors of the engine. Every fallible public function returns [`Result`].
 //!
-//! The variants map one to one onto the Python exception tree in crashsim-py
-//! (`MeshError`, `ParameterError`, `InitialOverlapError`, `SimulationError`).
+//! An error is a kind, a place and a message. The kinds map one to one onto the Python
+//! exception tree in crashsim-py (`MeshError`, `ParameterError`, `InitialOverlapError`,
+//! `SimulationError`); the place travels as data (`.loc` in Python), so no layer reads an
+//! index back out of the text.
 
 use crate::math::Real;
+use std::fmt;
 
-/// What went wrong, with a message that says how to fix it.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum Error {
+/// Which kind of mistake an error is; one Python exception class per kind (the binding's
+/// errors.rs maps them, in one place).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ErrorKind {
     /// A mesh is empty, has non-finite vertices or out-of-range indices.
-    #[error("{0}")]
-    Mesh(String),
+    Mesh,
     /// A number is non-finite or outside its accepted range.
-    #[error("{0}")]
-    Parameter(String),
+    Parameter,
     /// Two bodies of a contact pair already overlap when a run starts.
-    #[error("{0}")]
-    InitialOverlap(String),
+    InitialOverlap,
     /// The engine could not complete a run.
-    #[error("{0}")]
-    Simulation(String),
+    Simulation,
 }
+
+impl ErrorKind {
+    /// The Python exception class's name of this kind.
+    pub fn class_name(self) -> &'static str {
+        match self {
+            ErrorKind::Mesh => "MeshError",
+            ErrorKind::Parameter => "ParameterError",
+            ErrorKind::InitialOverlap => "InitialOverlapError",
+            ErrorKind::Simulation => "SimulationError",
+        }
+    }
+}
+
+/// One step of the path to where an error happened, outermost first in [`Error::loc`].
+/// Indices are the scene spec's: bodies in the order added, wheels in a vehicle's order,
+/// friction zones in the ground's order. A body's name is filled in by the scene spec's run
+/// and the batch ([`Error::with_body_names`]); the layers above (Python) give wheels and
+/// zones their names from the same indices, never by reading the message.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Place {
+    /// A batch's variant.
+    Variant(usize),
+    /// A body, with its name when known.
+    Body(usize, Option<String>),
+    /// A pair of bodies (a contact pair, a soft contact, a joined mechanism's members).
+    Bodies(Vec<usize>, Vec<Option<String>>),
+    /// A wheel of the vehicle named before it (or of the only vehicle).
+    Wheel(usize),
+    /// A friction zone of the ground.
+    Zone(usize),
+    /// Two friction zones (that overlap).
+    Zones(usize, usize),
+    /// A named part or parameter group: "ground", "towing", "inputs".
+    Part(String),
+}
+
+impl fmt::Display for Place {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let body = |f: &mut fmt::Formatter<'_>, i: usize, name: &Option<String>| match name {
+            Some(n) => write!(f, "{i} ({n:?})"),
+            None => write!(f, "{i}"),
+        };
+        match self {
+            Place::Variant(i) => write!(f, "variant {i}"),
+            Place::Body(i, name) => {
+                f.write_str("body ")?;
+                body(f, *i, name)
+            }
+            Place::Bodies(ids, names) => {
+                f.write_str("bodies ")?;
+                for (k, (i, n)) in ids.iter().zip(names).enumerate() {
+                    if k > 0 {
+                        f.write_str(if k + 1 == ids.len() { " and " } else { ", " })?;
+                    }
+                    body(f, *i, n)?;
+                }
+                Ok(())
+            }
+            Place::Wheel(k) => write!(f, "wheel {k}"),
+            Place::Zone(k) => write!(f, "friction zone {k}"),
+            Place::Zones(a, b) => write!(f, "friction zones {a} and {b}"),
+            Place::Part(name) => f.write_str(name),
+        }
+    }
+}
+
+/// What went wrong ([`ErrorKind`]), where ([`Place`]s, outermost first) and a message that
+/// says how to fix it. Displayed as "place: place: message".
+#[derive(Debug, Clone, PartialEq)]
+pub struct Error {
+    /// The kind of mistake.
+    pub kind: ErrorKind,
+    /// Where it happened, outermost first (empty: the whole input).
+    pub loc: Vec<Place>,
+    /// What is wrong and how to fix it, without the place.
+    pub message: String,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for p in &self.loc {
+            write!(f, "{p}: ")?;
+        }
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Error {}
 
 /// The engine's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
 impl Error {
+    /// An error of `kind` with no place yet.
+    pub fn new(kind: ErrorKind, message: impl Into<String>) -> Self {
+        Error {
+            kind,
+            loc: Vec::new(),
+            message: message.into(),
+        }
+    }
+
+    /// A mesh error.
+    pub fn mesh(message: impl Into<String>) -> Self {
+        Error::new(ErrorKind::Mesh, message)
+    }
+
+    /// A parameter error with a free message.
+    pub fn invalid(message: impl Into<String>) -> Self {
+        Error::new(ErrorKind::Parameter, message)
+    }
+
+    /// An initial-overlap error.
+    pub fn initial_overlap(message: impl Into<String>) -> Self {
+        Error::new(ErrorKind::InitialOverlap, message)
+    }
+
+    /// A simulation error.
+    pub fn simulation(message: impl Into<String>) -> Self {
+        Error::new(ErrorKind::Simulation, message)
+    }
+
     /// A parameter error naming the parameter, its value and the accepted range.
-    pub fn parameter(name: &str, value: impl std::fmt::Display, expected: &str) -> Self {
-        Error::Parameter(format!("{name} = {value} is invalid: {expected}"))
+    pub fn parameter(name: &str, value: impl fmt::Display, expected: &str) -> Self {
+        Error::invalid(format!("{name} = {value} is invalid: {expected}"))
+    }
+
+    /// The same error, happened inside `place` (put before the places it has).
+    pub fn at(mut self, place: Place) -> Self {
+        self.loc.insert(0, place);
+        self
+    }
+
+    /// The same error with every body place given its name from `names` (by index).
+    pub fn with_body_names(mut self, names: &[&str]) -> Self {
+        let name = |i: usize| names.get(i).map(|n| n.to_string());
+        for p in &mut self.loc {
+            match p {
+                Place::Body(i, n) => *n = name(*i),
+                Place::Bodies(ids, ns) => *ns = ids.iter().map(|&i| name(i)).collect(),
+                _ => {}
+            }
+        }
+        self
+    }
+}
+
+impl Place {
+    /// Body `i` (unnamed).
+    pub fn body(i: usize) -> Place {
+        Place::Body(i, None)
+    }
+
+    /// Bodies `i` and `j` (unnamed).
+    pub fn bodies(i: usize, j: usize) -> Place {
+        Place::Bodies(vec![i, j], vec![None, None])
     }
 }
 
@@ -73,5 +221,37 @@ pub fn require_finite_vector(name: &str, v: &crate::math::Vector) -> Result<()> 
             format!("[{}, {}, {}]", v.x, v.y, v.z),
             "every component must be a finite number",
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn places_read_outermost_first_and_take_the_bodies_names() {
+        let e = Error::initial_overlap("they already overlap")
+            .at(Place::bodies(0, 1))
+            .at(Place::Variant(3));
+        assert_eq!(
+            e.to_string(),
+            "variant 3: bodies 0 and 1: they already overlap"
+        );
+        let named = e.with_body_names(&["a", "b"]);
+        assert_eq!(
+            named.to_string(),
+            "variant 3: bodies 0 (\"a\") and 1 (\"b\"): they already overlap"
+        );
+        assert_eq!(named.message, "they already overlap");
+        assert_eq!(named.kind, ErrorKind::InitialOverlap);
+        let wheel = Error::parameter("damping ratio", 30, "it must lie in [0, 2]")
+            .at(Place::Wheel(2))
+            .at(Place::body(1))
+            .with_body_names(&["a"]);
+        // a body the names do not cover stays unnamed
+        assert_eq!(
+            wheel.to_string(),
+            "body 1: wheel 2: damping ratio = 30 is invalid: it must lie in [0, 2]"
+        );
     }
 }

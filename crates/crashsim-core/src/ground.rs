@@ -7,7 +7,7 @@
 use std::sync::Arc;
 
 use crate::bvh::MAX_DEPTH;
-use crate::error::{require_coordinate, require_finite, Error, Result};
+use crate::error::{require_coordinate, require_finite, Error, Place, Result};
 use crate::math::{Point, Real, Vector};
 use crate::shape::MeshShape;
 
@@ -114,9 +114,8 @@ impl Ground {
             require_coordinate("a terrain vertex coordinate", *x)?;
         }
         if b.maxs.x - b.mins.x <= 0.0 || b.maxs.y - b.mins.y <= 0.0 {
-            return Err(Error::Mesh(
-                "the terrain mesh has no extent seen from above: give a surface spread in x and y"
-                    .into(),
+            return Err(Error::mesh(
+                "the terrain mesh has no extent seen from above: give a surface spread in x and y",
             ));
         }
         Ok(Ground {
@@ -139,16 +138,18 @@ impl Ground {
     /// Adds friction zones: each a simple polygon; zones may share edges but not overlap.
     pub fn with_zones(mut self, zones: Vec<FrictionZone>) -> Result<Ground> {
         for (k, z) in zones.iter().enumerate() {
-            check_friction(&format!("friction zone {k} friction"), z.friction)?;
-            check_polygon(k, &z.polygon)?;
+            check_friction("friction", z.friction)
+                .and_then(|()| check_polygon(&z.polygon))
+                .map_err(|e| e.at(Place::Zone(k)))?;
         }
         for i in 0..zones.len() {
             for j in 0..i {
                 if polygons_overlap(&zones[i].polygon, &zones[j].polygon) {
-                    return Err(Error::Parameter(format!(
-                        "friction zones {j} and {i} overlap: a point of the road must have one \
-                         friction (split them so they only share edges)"
-                    )));
+                    return Err(Error::invalid(
+                        "they overlap: a point of the road must have one friction (split them \
+                         so they only share edges)",
+                    )
+                    .at(Place::Zones(j, i)));
                 }
             }
         }
@@ -411,17 +412,17 @@ fn segments_cross(a: [Real; 2], b: [Real; 2], c: [Real; 2], d: [Real; 2]) -> boo
     o1 * o2 < 0.0 && o3 * o4 < 0.0
 }
 
-fn check_polygon(k: usize, poly: &[[Real; 2]]) -> Result<()> {
+fn check_polygon(poly: &[[Real; 2]]) -> Result<()> {
     if poly.len() < 3 {
-        return Err(Error::Parameter(format!(
-            "friction zone {k} has {} corners: a polygon needs at least 3",
+        return Err(Error::invalid(format!(
+            "it has {} corners: a polygon needs at least 3",
             poly.len()
         )));
     }
     if poly.iter().flatten().any(|v| !v.is_finite()) {
-        return Err(Error::Parameter(format!(
-            "friction zone {k} has a corner that is not a finite number"
-        )));
+        return Err(Error::invalid(
+            "it has a corner that is not a finite number",
+        ));
     }
     let n = poly.len();
     // Crossing edges first: a symmetric bow-tie also has no signed area, and "its corners
@@ -434,9 +435,8 @@ fn check_polygon(k: usize, poly: &[[Real; 2]]) -> Result<()> {
             let (a, b) = (poly[i], poly[(i + 1) % n]);
             let (c, d) = (poly[j], poly[(j + 1) % n]);
             if segments_cross(a, b, c, d) {
-                return Err(Error::Parameter(format!(
-                    "friction zone {k} crosses itself (edges {i} and {j}): give its corners in \
-                     order around it"
+                return Err(Error::invalid(format!(
+                    "it crosses itself (edges {i} and {j}): give its corners in order around it"
                 )));
             }
         }
@@ -445,9 +445,9 @@ fn check_polygon(k: usize, poly: &[[Real; 2]]) -> Result<()> {
         .map(|i| orient([0.0, 0.0], poly[i], poly[(i + 1) % n]))
         .sum();
     if area == 0.0 {
-        return Err(Error::Parameter(format!(
-            "friction zone {k} encloses no area (its corners are in a line)"
-        )));
+        return Err(Error::invalid(
+            "it encloses no area (its corners are in a line)",
+        ));
     }
     Ok(())
 }

@@ -32,16 +32,14 @@ pub struct SolidProperties {
 /// is undefined), or a result that overflows.
 pub fn solid_properties(vertices: &[Point], triangles: &[[u32; 3]]) -> Result<SolidProperties> {
     if triangles.is_empty() {
-        return Err(Error::Mesh(
-            "the mesh has no triangles: it bounds no solid".into(),
-        ));
+        return Err(Error::mesh("the mesh has no triangles: it bounds no solid"));
     }
     let n = vertices.len();
     if let Some(t) = triangles
         .iter()
         .find(|t| t.iter().any(|&k| k as usize >= n))
     {
-        return Err(Error::Mesh(format!(
+        return Err(Error::mesh(format!(
             "triangle {t:?} refers to a vertex beyond the mesh's {n} vertices"
         )));
     }
@@ -50,7 +48,7 @@ pub fn solid_properties(vertices: &[Point], triangles: &[[u32; 3]]) -> Result<So
     for &k in triangles.iter().flatten() {
         let v = &vertices[k as usize];
         if !v.iter().all(|c| c.is_finite()) {
-            return Err(Error::Mesh(format!(
+            return Err(Error::mesh(format!(
                 "vertex {k} is not finite ({:?}): remove or repair NaN/inf vertices",
                 v.coords.as_slice()
             )));
@@ -78,7 +76,7 @@ pub fn solid_properties(vertices: &[Point], triangles: &[[u32; 3]]) -> Result<So
     // The sum's round-off is at most a few ulps of the sum of the magnitudes per term.
     let resolved = six_volume.abs() > 64.0 * Real::EPSILON * six_volume_abs;
     if !resolved {
-        return Err(Error::Mesh(format!(
+        return Err(Error::mesh(format!(
             "the mesh encloses no volume ({} m^3 with round-off {:.3e} m^3): it is open or \
              flat, so its centroid and inertia are undefined; close it",
             six_volume / 6.0,
@@ -101,7 +99,7 @@ pub fn solid_properties(vertices: &[Point], triangles: &[[u32; 3]]) -> Result<So
         && props.centroid.iter().all(|c| c.is_finite())
         && props.inertia.iter().all(|c| c.is_finite()))
     {
-        return Err(Error::Mesh(format!(
+        return Err(Error::mesh(format!(
             "the mass properties of the mesh overflow (volume {volume} m^3): its coordinates \
              are too large; give them in metres"
         )));

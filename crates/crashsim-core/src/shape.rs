@@ -164,16 +164,15 @@ impl MeshShape {
     /// out of range, or no triangle with a non-zero area.
     pub fn new(vertices: Vec<Point>, triangles: Vec<[u32; 3]>) -> Result<MeshShape> {
         if triangles.is_empty() {
-            return Err(Error::Mesh(
-                "the mesh has no triangles: give at least one face (a vehicle needs a surface)"
-                    .into(),
+            return Err(Error::mesh(
+                "the mesh has no triangles: give at least one face (a vehicle needs a surface)",
             ));
         }
         if let Some(i) = vertices
             .iter()
             .position(|v| !v.iter().all(|c| c.is_finite()))
         {
-            return Err(Error::Mesh(format!(
+            return Err(Error::mesh(format!(
                 "vertex {i} is not finite ({:?}): remove or repair NaN/inf vertices",
                 vertices[i].coords.as_slice()
             )));
@@ -182,7 +181,7 @@ impl MeshShape {
             .iter()
             .position(|v| v.iter().any(|c| c.abs() > MAX_COORDINATE))
         {
-            return Err(Error::Mesh(format!(
+            return Err(Error::mesh(format!(
                 "vertex {i} ({:?}) lies beyond {MAX_COORDINATE:e} m of the body origin: give \
                  the mesh in metres, about its own centre",
                 vertices[i].coords.as_slice()
@@ -194,7 +193,7 @@ impl MeshShape {
             .enumerate()
             .find(|(_, t)| t.iter().any(|&k| k as u64 >= n))
         {
-            return Err(Error::Mesh(format!(
+            return Err(Error::mesh(format!(
                 "triangle {i} refers to vertex {:?} but the mesh has only {n} vertices",
                 t
             )));
@@ -210,8 +209,8 @@ impl MeshShape {
             .iter()
             .all(|t| scaled_normal(&tri(t)).norm_squared() == 0.0)
         {
-            return Err(Error::Mesh(
-                "every triangle of the mesh has zero area: the mesh has no surface".into(),
+            return Err(Error::mesh(
+                "every triangle of the mesh has zero area: the mesh has no surface",
             ));
         }
         let boxes: Vec<Aabb> = triangles
@@ -597,6 +596,7 @@ fn find_shells(vertices: &[Point], triangles: &[[u32; 3]]) -> Vec<Shell> {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::error::ErrorKind;
 
     /// A closed, outward-oriented box with its centre at `c` and half extents `h`.
     pub fn box_mesh(c: Vector, h: Vector) -> MeshShape {
@@ -618,20 +618,32 @@ pub(crate) mod tests {
         let p = Point::origin();
         assert!(matches!(
             MeshShape::new(vec![p; 3], vec![]),
-            Err(Error::Mesh(_))
+            Err(Error {
+                kind: ErrorKind::Mesh,
+                ..
+            })
         ));
         let nan = Point::new(Real::NAN, 0.0, 0.0);
         assert!(matches!(
             MeshShape::new(vec![nan, p, p], vec![[0, 1, 2]]),
-            Err(Error::Mesh(_))
+            Err(Error {
+                kind: ErrorKind::Mesh,
+                ..
+            })
         ));
         assert!(matches!(
             MeshShape::new(vec![p, p, p], vec![[0, 1, 3]]),
-            Err(Error::Mesh(_))
+            Err(Error {
+                kind: ErrorKind::Mesh,
+                ..
+            })
         ));
         assert!(matches!(
             MeshShape::new(vec![p, p, p], vec![[0, 1, 2]]),
-            Err(Error::Mesh(_))
+            Err(Error {
+                kind: ErrorKind::Mesh,
+                ..
+            })
         ));
     }
 

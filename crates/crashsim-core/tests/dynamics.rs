@@ -378,7 +378,10 @@ fn a_body_placed_into_the_ground_is_refused_with_its_depth() {
         .unwrap();
     w.set_ground(Ground::default()).unwrap();
     let e = w.run(0.1, 1e-3).unwrap_err().to_string();
-    assert!(e.contains("body 0 starts 0.150 m into the ground"), "{e}");
+    assert!(
+        e.contains("body 0: it starts 0.150 m into the ground"),
+        "{e}"
+    );
     // 1 cm in (a mesh's detail, a resting body's sinking) is accepted.
     let mut w = World::new();
     let state = BodyState {

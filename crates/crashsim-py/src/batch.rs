@@ -107,8 +107,8 @@ pub fn run_batch<'py>(
     let out = match out {
         Ok(r) => r.map_err(errors::to_py)?,
         Err(_) => {
-            return Err(errors::to_py(core::Error::Simulation(
-                "internal engine error (the batch's thread panicked); please report it".into(),
+            return Err(errors::to_py(core::Error::simulation(
+                "internal engine error (the batch's thread panicked); please report it",
             )))
         }
     };
@@ -128,6 +128,8 @@ pub fn run_batch<'py>(
             e.index,
             core::batch::kind_name(&e.error),
             e.error.to_string(),
+            errors::loc_tuple(py, &e.error.loc)?,
+            e.error.message.as_str(),
         ))?;
     }
     d.set_item("errors", errs)?;

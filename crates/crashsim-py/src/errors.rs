@@ -9,7 +9,7 @@
 //! └── SimulationError(CrashsimError, RuntimeError)
 //! ```
 
-use crashsim_core::Error;
+use crashsim_core::{Error, ErrorKind, Place};
 use pyo3::exceptions::{PyException, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
@@ -42,12 +42,18 @@ fn new_class<'py>(
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     let root = CRASHSIM_ERROR.get_or_try_init(py, || {
-        new_class(
+        let class = new_class(
             py,
             "CrashsimError",
-            "Root of every error crashsim raises.",
+            "Root of every error crashsim raises. ``loc`` is where it happened, outermost \
+             first: a tuple of (kind, index, name) places (kinds: variant, body, bodies, wheel, \
+             zone, zones, part), empty when the error is the whole input's; ``message`` is the \
+             text without the places (None when the text has none).",
             vec![py.get_type::<PyException>()],
-        )
+        )?;
+        class.bind(py).setattr("loc", PyTuple::empty(py))?;
+        class.bind(py).setattr("message", py.None())?;
+        Ok::<_, PyErr>(class)
     })?;
     let input = INPUT_ERROR.get_or_try_init(py, || {
         new_class(
@@ -101,14 +107,58 @@ fn raise(cell: &PyOnceLock<Py<PyType>>, message: String) -> PyErr {
     })
 }
 
-/// Maps a core error onto its Python class.
+/// A place as Python sees it: (kind, index, name), with index and name None where they do
+/// not apply ("part" has a name and no index; a pair of bodies has two of each).
+fn place_tuple<'py>(py: Python<'py>, place: &Place) -> PyResult<Bound<'py, PyTuple>> {
+    let none = py.None().into_bound(py);
+    let (kind, index, name): (&str, Bound<'py, PyAny>, Bound<'py, PyAny>) = match place {
+        Place::Variant(i) => ("variant", i.into_pyobject(py)?.into_any(), none),
+        Place::Body(i, n) => (
+            "body",
+            i.into_pyobject(py)?.into_any(),
+            n.clone().into_pyobject(py)?.into_any(),
+        ),
+        Place::Bodies(ids, names) => (
+            "bodies",
+            PyTuple::new(py, ids)?.into_any(),
+            PyTuple::new(py, names.clone())?.into_any(),
+        ),
+        Place::Wheel(k) => ("wheel", k.into_pyobject(py)?.into_any(), none),
+        Place::Zone(k) => ("zone", k.into_pyobject(py)?.into_any(), none),
+        Place::Zones(a, b) => ("zones", PyTuple::new(py, [a, b])?.into_any(), none),
+        Place::Part(n) => ("part", none, n.into_pyobject(py)?.into_any()),
+    };
+    PyTuple::new(py, [kind.into_pyobject(py)?.into_any(), index, name])
+}
+
+/// The error's place as a tuple of [`place_tuple`]s, outermost first.
+pub fn loc_tuple<'py>(py: Python<'py>, loc: &[Place]) -> PyResult<Bound<'py, PyTuple>> {
+    let places = loc
+        .iter()
+        .map(|p| place_tuple(py, p))
+        .collect::<PyResult<Vec<_>>>()?;
+    PyTuple::new(py, places)
+}
+
+/// Maps a core error onto its Python class. The exception's text is the core's rendering
+/// ("place: place: message"); it also carries `.loc` (the places, see [`place_tuple`]) and
+/// `.message` (the text without the places), so the layers above name a wheel or a zone
+/// from its index instead of reading the text.
 pub fn to_py(e: Error) -> PyErr {
-    match e {
-        Error::Mesh(m) => raise(&MESH_ERROR, m),
-        Error::Parameter(m) => raise(&PARAMETER_ERROR, m),
-        Error::InitialOverlap(m) => raise(&INITIAL_OVERLAP_ERROR, m),
-        Error::Simulation(m) => raise(&SIMULATION_ERROR, m),
-    }
+    let cell = match e.kind {
+        ErrorKind::Mesh => &MESH_ERROR,
+        ErrorKind::Parameter => &PARAMETER_ERROR,
+        ErrorKind::InitialOverlap => &INITIAL_OVERLAP_ERROR,
+        ErrorKind::Simulation => &SIMULATION_ERROR,
+    };
+    let err = raise(cell, e.to_string());
+    Python::attach(|py| {
+        let value = err.value(py);
+        // Setting attributes on a fresh exception instance cannot fail but for memory.
+        let _ = loc_tuple(py, &e.loc).and_then(|loc| value.setattr("loc", loc));
+        let _ = value.setattr("message", e.message.as_str());
+    });
+    err
 }
 
 /// An input-shape error (wrong array shape or type) as a ParameterError or MeshError.

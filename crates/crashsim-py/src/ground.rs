@@ -6,6 +6,7 @@ use core::vehicle::{
     AntiRollBar, Braking, CombinedSlip, DriverInputs, SteerInput, Steering, Table, Trigger,
     TyreModel, VehicleSpec, WheelSpec, WheelState, WheelSwitch,
 };
+use core::{Error, Place};
 use crashsim_core as core;
 use numpy::{AllowTypeChange, PyArrayLike1, PyArrayLike2};
 use pyo3::prelude::*;
@@ -14,13 +15,13 @@ use pyo3::types::PyDict;
 use crate::errors;
 
 /// An (n, k) float array-like with `k` columns.
-fn rows(obj: &Bound<'_, PyAny>, k: usize, name: &str) -> PyResult<Vec<Vec<Real>>> {
-    let a: PyArrayLike2<'_, f64, AllowTypeChange> = obj
-        .extract()
-        .map_err(|_| errors::parameter(format!("{name} must be an (n, {k}) array of numbers")))?;
+fn rows(obj: &Bound<'_, PyAny>, k: usize, name: &str) -> core::Result<Vec<Vec<Real>>> {
+    let a: PyArrayLike2<'_, f64, AllowTypeChange> = obj.extract().map_err(|_| {
+        core::Error::invalid(format!("{name} must be an (n, {k}) array of numbers"))
+    })?;
     let a = a.as_array();
     if a.ncols() != k {
-        return Err(errors::parameter(format!(
+        return Err(core::Error::invalid(format!(
             "{name} must have shape (n, {k}), got {:?}",
             a.shape()
         )));
@@ -45,9 +46,21 @@ fn values(obj: &Bound<'_, PyAny>, n: usize, name: &str) -> PyResult<Vec<Real>> {
 
 /// A (k, 2) table of (time s, value).
 pub fn table(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Table> {
-    let r = rows(obj, 2, name)?;
-    let points: Vec<(Real, Real)> = r.iter().map(|p| (p[0], p[1])).collect();
-    Table::new(name, &points).map_err(errors::to_py)
+    table_at(obj, name, None)
+}
+
+/// [`table`] of one wheel: an error is placed at wheel `k`.
+fn wheel_table(obj: &Bound<'_, PyAny>, name: &str, k: usize) -> PyResult<Table> {
+    table_at(obj, name, Some(Place::Wheel(k)))
+}
+
+fn table_at(obj: &Bound<'_, PyAny>, name: &str, place: Option<Place>) -> PyResult<Table> {
+    rows(obj, 2, name)
+        .and_then(|r| {
+            let points: Vec<(Real, Real)> = r.iter().map(|p| (p[0], p[1])).collect();
+            Table::new(name, &points)
+        })
+        .map_err(|e| errors::to_py(place.into_iter().fold(e, Error::at)))
 }
 
 /// The ground from the keywords of `World.set_ground`.
@@ -65,7 +78,8 @@ pub fn ground(
     .map_err(errors::to_py)?;
     let mut z = Vec::with_capacity(zones.len());
     for (k, (poly, friction)) in zones.iter().enumerate() {
-        let corners = rows(poly, 2, &format!("friction zone {k}"))?;
+        let corners =
+            rows(poly, 2, "its corners").map_err(|e| errors::to_py(e.at(Place::Zone(k))))?;
         z.push(FrictionZone {
             polygon: corners.iter().map(|c| [c[0], c[1]]).collect(),
             friction: *friction,
@@ -74,6 +88,66 @@ pub fn ground(
     base.with_friction(tyre_friction, body_friction)
         .and_then(|g| g.with_zones(z))
         .map_err(errors::to_py)
+}
+
+/// The ground, checked by the core once, when it is made (crashsim.Ground builds one and
+/// SceneSpec.set_ground takes it as it is).
+#[pyclass(frozen, module = "crashsim._core", name = "Ground")]
+pub struct GroundValue {
+    pub inner: Ground,
+}
+
+#[pymethods]
+impl GroundValue {
+    /// The plane z = height (m), or a terrain mesh (world coordinates), with tyre-road and
+    /// body-ground friction (None: the engine's defaults) and friction zones ((k, 2) polygon
+    /// m, friction), checked by the core.
+    #[new]
+    #[pyo3(signature = (*, height = 0.0, terrain = None, tyre_friction = None, body_friction = None, zones = Vec::new()))]
+    fn new(
+        height: Real,
+        terrain: Option<&crate::Shape>,
+        tyre_friction: Option<Real>,
+        body_friction: Option<Real>,
+        zones: Vec<(Bound<'_, PyAny>, Real)>,
+    ) -> PyResult<GroundValue> {
+        let inner = ground(
+            height,
+            terrain.map(|t| t.inner.clone()),
+            tyre_friction.unwrap_or(core::ground::DEFAULT_TYRE_FRICTION),
+            body_friction.unwrap_or(core::ground::DEFAULT_BODY_FRICTION),
+            &zones,
+        )?;
+        Ok(GroundValue { inner })
+    }
+
+    /// Tyre-road friction outside every zone.
+    #[getter]
+    fn tyre_friction(&self) -> Real {
+        self.inner.tyre_friction()
+    }
+
+    /// Body-ground friction.
+    #[getter]
+    fn body_friction(&self) -> Real {
+        self.inner.body_friction()
+    }
+
+    /// Tyre-road friction at (x, y) (m, world): the first zone holding the point, else the
+    /// ground's (the engine's own lookup).
+    fn friction_at(&self, x: Real, y: Real) -> Real {
+        self.inner.tyre_friction_at(x, y)
+    }
+
+    /// The same ground with other frictions (a study's variant), checked by the core.
+    fn with_friction(&self, tyre_friction: Real, body_friction: Real) -> PyResult<GroundValue> {
+        let inner = self
+            .inner
+            .clone()
+            .with_friction(tyre_friction, body_friction)
+            .map_err(errors::to_py)?;
+        Ok(GroundValue { inner })
+    }
 }
 
 /// A tyre, checked by the core when it is made (crashsim.Tyre builds one).
@@ -300,7 +374,7 @@ pub fn vehicle(
     drive: Vec<Option<Bound<'_, PyAny>>>,
     switches: Vec<Bound<'_, PyAny>>,
 ) -> PyResult<VehicleSpec> {
-    let c = rows(centers, 3, "wheel centres")?;
+    let c = rows(centers, 3, "wheel centres").map_err(errors::to_py)?;
     let n = c.len();
     let radii = values(radii, n, "wheel radii")?;
     let loads = values(static_loads, n, "wheel static loads")?;
@@ -330,7 +404,7 @@ pub fn vehicle(
         brakes.push(match b {
             None => None,
             Some((kind, t, share)) => {
-                let t = table(&t, &format!("wheel {k} braking"))?;
+                let t = wheel_table(&t, "braking", k)?;
                 Some(match (kind.as_str(), share) {
                     ("fraction", None) => Braking::Fraction(t),
                     ("deceleration", None) => Braking::Deceleration(t),
@@ -364,7 +438,7 @@ pub fn vehicle(
                     for (k, t) in tables.iter().enumerate() {
                         out.push(match t {
                             None => None,
-                            Some(t) => Some(table(t, &format!("wheel {k} steering"))?),
+                            Some(t) => Some(wheel_table(t, "steering", k)?),
                         });
                     }
                     SteerInput::PerWheel(out)
@@ -378,7 +452,8 @@ pub fn vehicle(
                                 .into(),
                         )
                     })?;
-                    let points = rows(&points, 2, "the driver's path")?
+                    let points = rows(&points, 2, "the driver's path")
+                        .map_err(errors::to_py)?
                         .into_iter()
                         .map(|p| [p[0], p[1]])
                         .collect();
@@ -402,7 +477,7 @@ pub fn vehicle(
     for (k, d) in drive.into_iter().enumerate() {
         drives.push(match d {
             None => None,
-            Some(t) => Some(table(&t, &format!("wheel {k} drive force"))?),
+            Some(t) => Some(wheel_table(&t, "drive force", k)?),
         });
     }
     let inputs = DriverInputs {

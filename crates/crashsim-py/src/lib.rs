@@ -31,7 +31,7 @@ fn guarded<T>(f: impl FnOnce() -> core::Result<T>) -> core::Result<T> {
             .cloned()
             .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
             .unwrap_or_else(|| "unknown".into());
-        Err(core::Error::Simulation(format!(
+        Err(core::Error::simulation(format!(
             "internal engine error ({what}); please report it with the scene that caused it"
         )))
     })
@@ -603,6 +603,20 @@ fn static_loads<'py>(
     Ok(Array1::from_vec(loads).into_pyarray(py))
 }
 
+/// True when (x, y) (m) lies inside the polygon ((k, 2) corners, m) or on its edge: the
+/// engine's friction-zone test.
+#[pyfunction]
+fn point_in_polygon(x: f64, y: f64, polygon: Vec<[f64; 2]>) -> bool {
+    core::ground::point_in_polygon(x, y, &polygon)
+}
+
+/// Checks a (k, 2) table of (time s, value) by the core's rules (increasing times, finite
+/// numbers, at least one row): a ParameterError naming it `name` otherwise.
+#[pyfunction]
+fn check_table(table: &Bound<'_, PyAny>, name: &str) -> PyResult<()> {
+    ground::table(table, name).map(|_| ())
+}
+
 /// Static loads (N) of wheels at body-frame (x, y) positions carrying `weight` N at rest
 /// with `groups` of wheels sharing their load (index lists), a trailer's `coupling` (x, y)
 /// and a `towed` load ((x, y), N) on its hitch: each wheel's load and the coupling's.
@@ -682,6 +696,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<spec::Joint>()?;
     m.add_class::<records::Impact>()?;
     m.add_class::<ground::Tyre>()?;
+    m.add_class::<ground::GroundValue>()?;
     m.add_function(wrap_pyfunction!(batch::run_batch, m)?)?;
     m.add_function(wrap_pyfunction!(shapes_overlap, m)?)?;
     m.add_function(wrap_pyfunction!(check_soft_contact, m)?)?;
@@ -690,6 +705,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solid_properties, m)?)?;
     m.add_function(wrap_pyfunction!(static_loads, m)?)?;
     m.add_function(wrap_pyfunction!(wheel_loads, m)?)?;
+    m.add_function(wrap_pyfunction!(check_table, m)?)?;
+    m.add_function(wrap_pyfunction!(point_in_polygon, m)?)?;
     m.add_function(wrap_pyfunction!(suspension, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics_defaults, m)?)?;
     Ok(())

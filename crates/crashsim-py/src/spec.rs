@@ -380,27 +380,9 @@ impl SceneSpec {
             .map_err(errors::to_py)
     }
 
-    /// Puts the scene on the ground: the plane z = height, or a terrain mesh (world
-    /// coordinates), with tyre-road and body-ground friction and friction zones
-    /// ((k, 2) polygon, friction).
-    #[pyo3(signature = (*, height = 0.0, terrain = None, tyre_friction = None, body_friction = None, zones = Vec::new()))]
-    fn set_ground(
-        &mut self,
-        height: f64,
-        terrain: Option<&Shape>,
-        tyre_friction: Option<f64>,
-        body_friction: Option<f64>,
-        zones: Vec<(Bound<'_, PyAny>, f64)>,
-    ) -> PyResult<()> {
-        let g = ground::ground(
-            height,
-            terrain.map(|t| t.inner.clone()),
-            tyre_friction.unwrap_or(core::ground::DEFAULT_TYRE_FRICTION),
-            body_friction.unwrap_or(core::ground::DEFAULT_BODY_FRICTION),
-            &zones,
-        )?;
-        self.inner.set_ground(g);
-        Ok(())
+    /// Puts the scene on the ground (a Ground, checked when it was made).
+    fn set_ground(&mut self, ground: &ground::GroundValue) {
+        self.inner.set_ground(ground.inner.clone());
     }
 
     /// Gives a body wheels, a tyre, the steering linkage, anti-roll bars and driver inputs

@@ -16,7 +16,7 @@ overlap, a terrain spread in x and y); its messages are passed on with the zones
 
 from __future__ import annotations
 
-import re
+import copy
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.environment.surfaces import friction as as_friction
-from crashsim.errors import MeshError, ParameterError
+from crashsim.errors import MeshError, ParameterError, naming, renamed
 from crashsim.names import check_name
 from crashsim.vehicles.meshio import MeshSource, describe, load_mesh
 
@@ -77,18 +77,8 @@ class FrictionZone:
         return f"zone {index}"
 
     def contains(self, x: float, y: float) -> bool:
-        """True when (x, y) (m) lies inside the polygon or on its edge."""
-        inside = False
-        p = self.polygon
-        n = len(p)
-        for i in range(n):
-            (x1, y1), (x2, y2) = p[i], p[(i + 1) % n]
-            cross = (x2 - x1) * (y - y1) - (y2 - y1) * (x - x1)
-            if cross == 0.0 and min(x1, x2) <= x <= max(x1, x2) and min(y1, y2) <= y <= max(y1, y2):
-                return True
-            if (y1 > y) != (y2 > y) and x < x1 + (y - y1) * (x2 - x1) / (y2 - y1):
-                inside = not inside
-        return inside
+        """True when (x, y) (m) lies inside the polygon or on its edge (the engine's test)."""
+        return _core.point_in_polygon(float(x), float(y), self.polygon)
 
 
 def _zone(value: Any, index: int) -> FrictionZone:
@@ -155,35 +145,54 @@ class Ground:
             None if body_friction is None else as_friction(body_friction, "body_friction")
         )
         self.zones: tuple[FrictionZone, ...] = tuple(_zone(z, k) for k, z in enumerate(zones))
+        self.core = self._checked(self._core_kwargs())
+
+    def _checked(self, kwargs: dict[str, Any]) -> _core.Ground:
+        """The engine's ground of these keywords, checked once by the core."""
         try:
-            _core.SceneSpec().set_ground(**self.core_kwargs())
+            return _core.Ground(**kwargs)
         except MeshError as e:
             raise MeshError(f"the terrain ({self.terrain_source}): {e}") from e
         except ParameterError as e:
             raise self._named(e) from e
 
+    def with_friction(
+        self, friction: float | None = None, body_friction: float | None = None
+    ) -> Ground:
+        """A copy with another tyre-road and/or body-ground friction (a study's variant),
+        checked by the engine; the terrain and zones are shared."""
+        new = copy.copy(self)
+        if friction is not None:
+            new.friction, new.surface = float(friction), None
+        if body_friction is not None:
+            new.body_friction = float(body_friction)
+        new.core = self._checked(new._core_kwargs())
+        return new
+
+    def __getstate__(self) -> dict[str, Any]:  # the engine's value is rebuilt, not pickled
+        return {k: v for k, v in self.__dict__.items() if k != "core"}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self.core = self._checked(self._core_kwargs())
+
     def _named(self, error: ParameterError) -> ParameterError:
-        """The engine's message with the zones' names."""
+        """The engine's error with its zone places named."""
 
-        def one(m: re.Match[str]) -> str:
-            return self.zones[int(m.group(1))].label(int(m.group(1)))
+        def label(k: int) -> str:  # "zone 'wet'" or "zone 2"
+            return self.zones[k].label(k)[5:]
 
-        def two(m: re.Match[str]) -> str:
-            a, b = int(m.group(1)), int(m.group(2))
-            return f"friction zones {self.zones[a].label(a)[5:]} and {self.zones[b].label(b)[5:]}"
+        name = naming(
+            zone=lambda k: "friction " + self.zones[k].label(k),
+            zones=lambda ab: f"friction zones {label(ab[0])} and {label(ab[1])}",
+        )
+        return renamed(error, name, "ground: ")
 
-        text = re.sub(r"friction zones (\d+) and (\d+)", two, str(error))
-        text = re.sub(r"friction zone (\d+)", lambda m: "friction " + one(m), text)
-        return ParameterError(f"ground: {text}")
-
-    def core_kwargs(self) -> dict[str, Any]:
-        """SceneSpec.set_ground keywords (frictions left None take the engine's defaults)."""
-        defaults = _core.dynamics_defaults()
+    def _core_kwargs(self) -> dict[str, Any]:
+        """_core.Ground keywords (frictions left None take the engine's defaults there)."""
         out: dict[str, Any] = {
-            "tyre_friction": defaults["tyre_friction"] if self.friction is None else self.friction,
-            "body_friction": defaults["body_friction"]
-            if self.body_friction is None
-            else self.body_friction,
+            "tyre_friction": self.friction,
+            "body_friction": self.body_friction,
             "zones": [(z.polygon, z.friction) for z in self.zones],
         }
         if self._shape is not None:
@@ -195,7 +204,7 @@ class Ground:
     @property
     def tyre_friction(self) -> float:
         """Tyre-road friction outside every zone (the engine's default when not given)."""
-        return float(self.core_kwargs()["tyre_friction"])
+        return self.core.tyre_friction
 
     def height_at(self, x: float, y: float) -> float | None:
         """The ground's height at (x, y) (m, world): the plane's, or the terrain's highest
@@ -208,11 +217,8 @@ class Ground:
 
     def friction_at(self, x: float, y: float) -> float:
         """Tyre-road friction at (x, y): the first zone holding the point, else the
-        ground's (as the engine reads it)."""
-        for z in self.zones:
-            if z.contains(float(x), float(y)):
-                return z.friction
-        return self.tyre_friction
+        ground's (the engine's lookup)."""
+        return self.core.friction_at(float(x), float(y))
 
     def holes(self, points: Sequence[ArrayLike]) -> list[int]:
         """Indices of the world points (x, y[, z]) with no ground under or over them."""

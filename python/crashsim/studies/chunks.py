@@ -1,7 +1,8 @@
 """A study's variants in chunks, for the local and the Dask backends alike: the chunk
 bounds (fixed, or shrinking towards the end for workers that run chunks side by side), a
-chunk's columns placed into the study's, its error messages renumbered, and the empty
-columns of a study stopped before any chunk returned."""
+chunk's columns placed into the study's, and the empty columns of a study stopped before
+any chunk returned (a chunk's errors move to the study's variants by
+``VariantError.shifted``)."""
 
 from __future__ import annotations
 
@@ -33,14 +34,6 @@ def shrinking_bounds(n: int, size: int, workers: int) -> list[tuple[int, int]]:
         bounds.append((start, min(n, start + s)))
         start += s
     return bounds
-
-
-def renumbered(message: str, index: int, start: int) -> str:
-    """A chunk's "variant i: ..." renumbered to the study's variant."""
-    prefix = f"variant {index}: "
-    if start and message.startswith(prefix):
-        return f"variant {index + start}: " + message[len(prefix):]
-    return message
 
 
 def place_chunk(columns: dict[str, np.ndarray], chunk: Mapping[str, np.ndarray], start: int,

@@ -129,7 +129,6 @@ def run_dask(
         chunk_bounds,
         empty_columns,
         place_chunk,
-        renumbered,
         shrinking_bounds,
     )
 
@@ -162,10 +161,7 @@ def run_dask(
                 start, stop = chunks[k]
                 place_chunk(columns, b.columns, start, n)
                 finished[start:stop] = b.finished
-                errors += [
-                    type(e)(e.index + start, e.kind, renumbered(e.message, e.index, start))
-                    for e in b.errors
-                ]
+                errors += [e.shifted(start) for e in b.errors]
                 taken.add(k)
                 done += stop - start
                 if progress is not None:

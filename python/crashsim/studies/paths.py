@@ -702,13 +702,12 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
                     new._overrides.setdefault((a, b), {})[parameter] = value
     ground_keys = [k for k in ("ground.tyre_friction", "ground.body_friction") if k in arrays]
     if ground_keys:
-        g = copy.copy(scene.ground)
-        if "ground.tyre_friction" in arrays:
-            g.friction = float(arrays["ground.tyre_friction"][i])
-            g.surface = None
-        if "ground.body_friction" in arrays:
-            g.body_friction = float(arrays["ground.body_friction"][i])
-        new._ground = g
+        def value(key: str) -> float | None:
+            return float(arrays[key][i]) if key in arrays else None
+
+        new._ground = scene.ground.with_friction(
+            value("ground.tyre_friction"), value("ground.body_friction")
+        )
     return new
 
 
@@ -754,8 +753,8 @@ def base_value(scene: Scene, name: str) -> float:
         )
     if p.kind == "ground":
         assert scene.ground is not None
-        kwargs = scene.ground.core_kwargs()
-        return float(kwargs["tyre_friction" if p.parameter == "friction" else "body_friction"])
+        core = scene.ground.core
+        return core.tyre_friction if p.parameter == "friction" else core.body_friction
     if p.kind == "pedestrian":
         return _pedestrian_value(scene, str(p.target), p.parameter)
     if p.kind == "pedestrian pair" and p.parameter in SOFT_PARAMETERS:

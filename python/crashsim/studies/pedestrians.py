@@ -355,7 +355,7 @@ def run_scenes(
         except _Stopped:
             return None
         except CrashsimError as e:
-            return VariantError(i, type(e).__name__, f"variant {i}: {e}")
+            return VariantError.of(i, e)
 
     workers = (os.cpu_count() or 1) if threads is None else threads
     pool = concurrent.futures.ThreadPoolExecutor(max_workers=max(1, min(workers, n)))

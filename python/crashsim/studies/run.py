@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 
 from crashsim.errors import StudyError
 from crashsim.studies import design, paths
-from crashsim.studies.chunks import chunk_bounds, empty_columns, place_chunk, renumbered
+from crashsim.studies.chunks import chunk_bounds, empty_columns, place_chunk
 from crashsim.studies.distributions import Distribution
 
 if TYPE_CHECKING:
@@ -329,11 +329,8 @@ def run_study(
             f"{k} = {_fmt(x)}" + ("" if units[k] == "1" else f" {units[k]}")
             for k, x in inputs.items()
         )
-        text = str(e.message)
-        prefix = f"variant {e.index}: "
-        text = text[len(prefix):] if text.startswith(prefix) else text
-        failed.append(FailedVariant(e.index, e.kind, f"variant {e.index} ({given}): {text}",
-                                    inputs))
+        failed.append(FailedVariant(e.index, e.kind,
+                                    f"variant {e.index} ({given}): {e.within()}", inputs))
     return Study(
         kind=kind,
         inputs={k: np.asarray(v, dtype=np.float64) for k, v in values.items()},
@@ -394,8 +391,7 @@ def _run_local(
             break
         place_chunk(columns, b.columns, start, n)
         finished[start:stop] = b.finished
-        errors += [type(e)(e.index + start, e.kind, renumbered(e.message, e.index, start))
-                   for e in b.errors]
+        errors += [e.shifted(start) for e in b.errors]
         if b.interrupted:
             interrupted = True
             break

@@ -28,8 +28,9 @@ from typing import Any, TypeAlias
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from crashsim.errors import ParameterError
-from crashsim.vehicles.wheels import Wheels, check_with_engine
+from crashsim import _core
+from crashsim.errors import ParameterError, renamed
+from crashsim.vehicles.wheels import Wheels, wheel_naming
 
 __all__ = ["Brake", "DriverInputs", "TableLike", "WheelStateSwitch"]
 
@@ -57,11 +58,7 @@ def _table(value: Any, name: str) -> Array:
         raise ParameterError(
             f"the {name} table must be rows of (time s, value), got shape {a.shape}"
         )
-    try:
-        check_with_engine(drive=[a, None, None, None])
-    except ParameterError as e:
-        text = str(e).replace("wheel 0 drive force", name)
-        raise ParameterError(text) from e
+    _core.check_table(a, name)
     a.setflags(write=False)
     return a
 
@@ -370,11 +367,11 @@ class DriverInputs:
         try:
             wheels.check_inputs(**out)
         except ParameterError as e:
-            text = str(e)
-            if self.steering_wheel is not None and "steering angle" in text:
+            note = ""
+            if self.steering_wheel is not None and "steering angle" in str(e):
                 ratio = self.steering_ratio or wheels.steering_ratio
-                text += f" (steering_wheel / steering_ratio {ratio:g})"
-            raise ParameterError(f"{what}: {_named(text, wheels)}") from e
+                note = f" (steering_wheel / steering_ratio {ratio:g})"
+            raise renamed(e, wheel_naming(wheels.names), f"{what}: ", note) from e
         return out
 
     def __repr__(self) -> str:
@@ -423,10 +420,3 @@ def _rank(key: str | int) -> int:
         return 1
     return 2
 
-
-def _named(text: str, wheels: Wheels) -> str:
-    def name(m: re.Match[str]) -> str:
-        k = int(m.group(1))
-        return f"wheel {wheels.names[k]!r}" if 0 <= k < len(wheels) else m.group(0)
-
-    return re.sub(r"\bwheel (\d+)\b", name, text)

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import functools
 import math
-import re
 from collections.abc import Iterator, Sequence
 from typing import Any
 
@@ -29,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
-from crashsim.errors import ParameterError
+from crashsim.errors import Naming, ParameterError, naming, renamed
 from crashsim.names import check_name
 from crashsim.vehicles.numbers import finite as _number
 from crashsim.vehicles.tyre import TYRE_MODELS, Tyre
@@ -91,15 +90,14 @@ def wheel_index(names: Sequence[str], wheel: str | int) -> int:
     )
 
 
+def wheel_naming(names: Sequence[str]) -> Naming:
+    """Names the engine's wheel places ("wheel k") by the wheels' names."""
+    return naming(wheel=lambda k: f"wheel {names[k]!r}" if 0 <= k < len(names) else None)
+
+
 def _renamed(error: ParameterError, names: Sequence[str], prefix: str = "") -> ParameterError:
-    """The engine's message with 'wheel k' replaced by the wheel's name."""
-
-    def name(m: re.Match[str]) -> str:
-        k = int(m.group(1))
-        return f"wheel {names[k]!r}" if 0 <= k < len(names) else m.group(0)
-
-    text = re.sub(r"\bwheel (\d+)\b", name, str(error))
-    return ParameterError(prefix + text)
+    """The engine's error with its wheel places named."""
+    return renamed(error, wheel_naming(names), prefix)
 
 
 # -- the engine as a checker --------------------------------------------------------------------

@@ -81,7 +81,7 @@ impl JointKind {
             "revolute" | "hinge" => Ok(JointKind::Revolute),
             "fixed" => Ok(JointKind::Fixed),
             "fifth_wheel" => Ok(JointKind::FifthWheel),
-            other => Err(Error::Parameter(format!(
+            other => Err(Error::invalid(format!(
                 "joint kind {other:?} is unknown: give spherical (ball), revolute (hinge), \
                  fixed or fifth_wheel"
             ))),
@@ -181,7 +181,7 @@ impl JointSpec {
     /// the messages).
     pub fn validate(&self, name: &str) -> Result<()> {
         if self.body2 == Some(self.body1) {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "{name} joins body {} to itself: a joint needs two different bodies (or one \
                  body and the world)",
                 self.body1
@@ -190,7 +190,7 @@ impl JointSpec {
         for (which, (p, q)) in [("body 1", &self.frame1), ("body 2", &self.frame2)] {
             require_finite_vector(&format!("{name}'s anchor in {which}"), &p.coords)?;
             if !q.coords.iter().all(|c| c.is_finite()) {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "{name}'s axes in {which} have a non-finite number"
                 )));
             }
@@ -212,14 +212,14 @@ impl JointSpec {
         if self.kind == JointKind::Fixed
             && (self.stiffness, self.damping, self.friction) != (0.0, 0.0, 0.0)
         {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "{name} is fixed: it has no free rotation for a stiffness, damping or friction"
             )));
         }
         let names = self.kind.limit_names();
         for (k, limit) in self.limits.iter().enumerate() {
             let Some(angle) = names.get(limit.angle) else {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "{name} is {}: it has {}",
                     self.kind.name(),
                     if names.is_empty() {
@@ -234,7 +234,7 @@ impl JointSpec {
             if !(-std::f64::consts::PI..=0.0).contains(&limit.lower)
                 || !(0.0..=std::f64::consts::PI).contains(&limit.upper)
             {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "{name}'s {angle} limit [{:.2}, {:.2}] deg is invalid: the lower limit \
                      must lie in [-180, 0] deg and the upper in [0, 180] deg (the joint starts \
                      at 0, between them)",
@@ -243,7 +243,7 @@ impl JointSpec {
                 )));
             }
             if self.kind == JointKind::Spherical && *angle == "swing" && limit.lower != 0.0 {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "{name}'s swing limit has the lower bound {:.2} deg: a swing (the angle \
                      between the frames' z axes) is never negative; give [0, the cone's \
                      half-angle]",
@@ -251,7 +251,7 @@ impl JointSpec {
                 )));
             }
             if self.limits[..k].iter().any(|l| l.angle == limit.angle) {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "{name} has two limits on its {angle}: give one"
                 )));
             }

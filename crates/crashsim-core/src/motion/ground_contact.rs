@@ -79,7 +79,7 @@ impl BodyContact {
         wheels: Option<&VehicleSpec>,
     ) -> Result<BodyContact> {
         let (vertices, triangles) = shape.convex_hull().map_err(|e| {
-            Error::Mesh(format!(
+            Error::mesh(format!(
                 "the body's convex hull (its contact with the ground) failed: {e}; the mesh \
                  may be flat or degenerate"
             ))

@@ -110,7 +110,7 @@ pub fn advance_mechanism(
         .fold(0.0, Real::max);
     let by_joints = (dt * fastest / MAX_SUBSTEP_SUSPENSION).ceil();
     if by_joints > (dt * MAX_SUBSTEPS_PER_SECOND).max(1.0) {
-        return Err(Error::Simulation(format!(
+        return Err(Error::simulation(format!(
             "the joints' stiffness and damping need {by_joints:.0} integration sub-steps for \
              {dt} s, more than {MAX_SUBSTEPS_PER_SECOND:.0} per simulated second: give them \
              less stiffness or damping for the bodies' inertia"
@@ -167,7 +167,7 @@ pub fn advance_mechanism(
                     .all(|c| c.is_finite())
                     && st.u.iter().flatten().all(|c| c.is_finite());
             if !finite {
-                return Err(Error::Simulation(format!(
+                return Err(Error::simulation(format!(
                     "the motion of jointed body {k} became non-finite at t = {:.6} s: the \
                      joints, wheels or inputs ask for more than the integration can follow; \
                      check them",

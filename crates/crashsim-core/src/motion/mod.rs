@@ -17,7 +17,7 @@
 use std::sync::Arc;
 
 use crate::body::{MassProperties, RigidBody};
-use crate::error::{Error, Result};
+use crate::error::{Error, Place, Result};
 use crate::ground::Ground;
 use crate::math::{Point, Real, Rotation, Vector};
 use crate::vehicle::{Braking, VehicleSpec, WheelAction, WheelState, GRAVITY};
@@ -294,12 +294,13 @@ impl OnGround {
             for (k, wheel) in spec.wheels.iter().enumerate() {
                 let c = x + r * wheel.center.coords;
                 let g = ground.below(&c).ok_or_else(|| {
-                    Error::Simulation(format!(
-                        "wheel {k} left the terrain at ({:.2}, {:.2}) m, t = {t:.4} s: the \
-                         terrain mesh has no surface there (extend it or add ground under the \
+                    Error::simulation(format!(
+                        "it left the terrain at ({:.2}, {:.2}) m, t = {t:.4} s: the terrain \
+                         mesh has no surface there (extend it or add ground under the \
                          vehicle's path)",
                         c.x, c.y
                     ))
+                    .at(Place::Wheel(k))
                 })?;
                 let h = (c - g.point).dot(&g.normal);
                 below.push((c, g, h));
@@ -423,7 +424,7 @@ impl OnGround {
             .max(by_suspension)
             .max(1.0);
         if n > (dt * MAX_SUBSTEPS_PER_SECOND).max(1.0) {
-            return Err(Error::Simulation(format!(
+            return Err(Error::simulation(format!(
                 "the motion on the ground needs {n:.0} integration sub-steps for {dt} s, more \
                  than {MAX_SUBSTEPS_PER_SECOND:.0} per simulated second (angular speed \
                  {w:.1} rad/s, speed {:.1} m/s): the run was stopped; check the vehicle's \
@@ -518,7 +519,7 @@ impl OnGround {
                     .all(|c| c.is_finite())
                     && s.u.iter().flatten().all(|c| c.is_finite());
             if !finite {
-                return Err(Error::Simulation(format!(
+                return Err(Error::simulation(format!(
                     "the motion on the ground became non-finite at t = {:.6} s: the wheels, \
                      tyre or inputs ask for more than the integration can follow (a very short \
                      relaxation length or very stiff springs); check them",

@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 use super::{BodyMotion, RunSpec, SceneSpec};
 use crate::body::{BodyState, MassProperties};
 use crate::contact::{CentroidMode, ContactParams, DepthOfPenetration, NormalMode};
-use crate::error::{Error, Result};
+use crate::error::{Error, Place, Result};
 use crate::ground::{FrictionZone, Ground, Surface};
 use crate::impulse::RestitutionMode;
 use crate::joint::{AngleLimit, JointKind, JointSpec};
@@ -483,8 +483,8 @@ fn rotation(q: [Real; 4]) -> Result<Rotation> {
     let q = nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]);
     let norm = q.norm();
     if !norm.is_finite() || norm == 0.0 {
-        return Err(Error::Parameter(
-            "orientation must be a finite, non-zero quaternion (w, x, y, z)".into(),
+        return Err(Error::invalid(
+            "orientation must be a finite, non-zero quaternion (w, x, y, z)",
         ));
     }
     if (norm - 1.0).abs() <= 1e-12 {
@@ -518,7 +518,7 @@ fn vehicle(v: VehicleDoc) -> Result<VehicleSpec> {
     for (k, d) in v.drive.iter().enumerate() {
         drive.push(match d {
             None => None,
-            Some(t) => Some(points(&format!("wheel {k} drive force"), t)?),
+            Some(t) => Some(points("drive force", t).map_err(|e| e.at(Place::Wheel(k)))?),
         });
     }
     let inputs = DriverInputs {
@@ -586,7 +586,7 @@ fn params(p: ParamsDoc) -> ContactParams {
 
 fn spec(doc: Document) -> Result<SceneSpec> {
     if doc.format != FORMAT || !(2..=VERSION).contains(&doc.version) {
-        return Err(Error::Parameter(format!(
+        return Err(Error::invalid(format!(
             "not a scene spec this engine reads: format {:?} version {} (expected {FORMAT:?} \
              version {VERSION})",
             doc.format, doc.version
@@ -596,12 +596,12 @@ fn spec(doc: Document) -> Result<SceneSpec> {
     for (k, m) in doc.meshes.into_iter().enumerate() {
         let v = m.vertices.into_iter().map(point).collect();
         let shape = MeshShape::new(v, m.triangles)
-            .map_err(|e| Error::Mesh(format!("scene spec mesh {k}: {e}")))?;
+            .map_err(|e| Error::mesh(format!("scene spec mesh {k}: {e}")))?;
         shapes.push(Arc::new(shape));
     }
     let mesh = |k: usize| -> Result<Arc<MeshShape>> {
         shapes.get(k).cloned().ok_or_else(|| {
-            Error::Parameter(format!(
+            Error::invalid(format!(
                 "the scene spec refers to mesh {k} but has {} meshes",
                 shapes.len()
             ))
@@ -730,7 +730,7 @@ pub fn to_json(spec: &SceneSpec) -> String {
 /// wrong).
 pub fn from_json(text: &str) -> Result<SceneSpec> {
     let doc: Document = serde_json::from_str(text)
-        .map_err(|e| Error::Parameter(format!("the scene spec JSON is invalid: {e}")))?;
+        .map_err(|e| Error::invalid(format!("the scene spec JSON is invalid: {e}")))?;
     spec(doc)
 }
 
@@ -750,6 +750,7 @@ impl<'de> Deserialize<'de> for SceneSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::ErrorKind;
 
     #[test]
     fn json_round_trip_runs_the_same_bits() {
@@ -794,9 +795,17 @@ mod tests {
 
     #[test]
     fn a_bad_document_is_a_typed_error() {
-        assert!(matches!(from_json("{"), Err(Error::Parameter(_))));
+        assert!(matches!(
+            from_json("{"),
+            Err(Error {
+                kind: ErrorKind::Parameter,
+                ..
+            })
+        ));
         let s = crate::spec::tests::head_on();
         let text = to_json(&s).replace("\"restitution\":0.1", "\"restitution\":3.0");
-        assert!(matches!(from_json(&text), Err(Error::Parameter(m)) if m.contains("restitution")));
+        assert!(
+            matches!(from_json(&text), Err(e @ Error { kind: ErrorKind::Parameter, .. }) if e.message.contains("restitution"))
+        );
     }
 }

@@ -17,7 +17,7 @@ use std::sync::Arc;
 
 use crate::body::{BodyState, MassProperties};
 use crate::contact::{CentroidMode, ContactParams};
-use crate::error::{Error, Result};
+use crate::error::{Error, Place, Result};
 use crate::ground::Ground;
 use crate::joint::JointSpec;
 use crate::math::{Isometry, Real};
@@ -138,9 +138,8 @@ impl SceneSpec {
     fn body_mut(&mut self, i: usize) -> Result<&mut BodySpec> {
         let n = self.bodies.len();
         self.bodies.get_mut(i).ok_or_else(|| {
-            Error::Parameter(format!(
-                "body {i} does not exist (the scene has {n} bodies)"
-            ))
+            Error::invalid(format!("it does not exist (the scene has {n} bodies)"))
+                .at(Place::body(i))
         })
     }
 
@@ -177,9 +176,7 @@ impl SceneSpec {
         let t = pose.translation.vector;
         let q = pose.rotation.coords;
         if !(t.iter().all(|x| x.is_finite()) && q.iter().all(|x| x.is_finite())) {
-            return Err(Error::Parameter(
-                "an obstacle's pose has a non-finite number".into(),
-            ));
+            return Err(Error::invalid("an obstacle's pose has a non-finite number"));
         }
         let name = self.name_or_default(name);
         self.bodies.push(BodySpec {
@@ -201,9 +198,10 @@ impl SceneSpec {
     pub fn set_vehicle(&mut self, i: usize, spec: VehicleSpec) -> Result<()> {
         let body = self.body_mut(i)?;
         match &mut body.motion {
-            BodyMotion::Fixed { .. } => Err(Error::Parameter(format!(
-                "body {i} is a fixed obstacle: it has no wheels"
-            ))),
+            BodyMotion::Fixed { .. } => Err(Error::invalid(
+                "it is a fixed obstacle: it has no wheels".to_string(),
+            )
+            .at(Place::body(i))),
             BodyMotion::Moving { props, vehicle, .. } => {
                 spec.validate(body.shape.aabb(), props.mass())?;
                 *vehicle = Some(spec);
@@ -224,28 +222,31 @@ impl SceneSpec {
     pub fn set_contact(&mut self, body1: usize, body2: usize, params: ContactParams) -> Result<()> {
         let n = self.bodies.len();
         if body1 >= n || body2 >= n || body1 == body2 {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "contact ({body1}, {body2}) must name two different bodies among 0..{n}"
             )));
         }
         if self.bodies[body1].is_fixed() && self.bodies[body2].is_fixed() {
-            return Err(Error::Parameter(format!(
-                "bodies {body1} and {body2} are both fixed obstacles: two obstacles never meet"
-            )));
+            return Err(Error::invalid(
+                "they are both fixed obstacles: two obstacles never meet".to_string(),
+            )
+            .at(Place::bodies(body1, body2)));
         }
         if self
             .no_contact
             .contains(&(body1.min(body2), body1.max(body2)))
         {
-            return Err(Error::Parameter(format!(
-                "bodies {body1} and {body2} never collide (a no-contact pair): they take no \
+            return Err(Error::invalid(
+                "they never collide (a no-contact pair): they take no \
                  contact parameters"
-            )));
+                    .to_string(),
+            )
+            .at(Place::bodies(body1, body2)));
         }
         params.validate()?;
         if let CentroidMode::Body { body, .. } = params.centroid {
             if body != body1 && body != body2 {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "the centroid is fixed in body {body}, which is not in the pair ({body1}, {body2})"
                 )));
             }
@@ -272,14 +273,15 @@ impl SceneSpec {
     pub fn set_no_contact(&mut self, body1: usize, body2: usize) -> Result<()> {
         let n = self.bodies.len();
         if body1 >= n || body2 >= n || body1 == body2 {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "no-contact pair ({body1}, {body2}) must name two different bodies among 0..{n}"
             )));
         }
         if self.bodies[body1].is_fixed() && self.bodies[body2].is_fixed() {
-            return Err(Error::Parameter(format!(
-                "bodies {body1} and {body2} are both fixed obstacles: two obstacles never meet"
-            )));
+            return Err(Error::invalid(
+                "they are both fixed obstacles: two obstacles never meet".to_string(),
+            )
+            .at(Place::bodies(body1, body2)));
         }
         let key = (body1.min(body2), body1.max(body2));
         if self
@@ -287,16 +289,20 @@ impl SceneSpec {
             .iter()
             .any(|c| (c.body1.min(c.body2), c.body1.max(c.body2)) == key)
         {
-            return Err(Error::Parameter(format!(
-                "bodies {body1} and {body2} have contact parameters of their own: a pair that \
+            return Err(Error::invalid(
+                "they have contact parameters of their own: a pair that \
                  never collides takes none"
-            )));
+                    .to_string(),
+            )
+            .at(Place::bodies(body1, body2)));
         }
         if self.soft_contacts.iter().any(|&(a, b, _)| (a, b) == key) {
-            return Err(Error::Parameter(format!(
-                "bodies {body1} and {body2} have a soft contact: a pair that never collides \
+            return Err(Error::invalid(
+                "they have a soft contact: a pair that never collides \
                  takes none"
-            )));
+                    .to_string(),
+            )
+            .at(Place::bodies(body1, body2)));
         }
         if !self.no_contact.contains(&key) {
             self.no_contact.push(key);
@@ -315,22 +321,25 @@ impl SceneSpec {
     ) -> Result<()> {
         let n = self.bodies.len();
         if body1 >= n || body2 >= n || body1 == body2 {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "soft contact ({body1}, {body2}) must name two different bodies among 0..{n}"
             )));
         }
         if self.bodies[body1].is_fixed() && self.bodies[body2].is_fixed() {
-            return Err(Error::Parameter(format!(
-                "bodies {body1} and {body2} are both fixed obstacles: two obstacles never meet"
-            )));
+            return Err(Error::invalid(
+                "they are both fixed obstacles: two obstacles never meet".to_string(),
+            )
+            .at(Place::bodies(body1, body2)));
         }
         soft.validate()?;
         let (a, b) = (body1.min(body2), body1.max(body2));
         if self.no_contact.contains(&(a, b)) {
-            return Err(Error::Parameter(format!(
-                "bodies {body1} and {body2} never collide (a no-contact pair): they take no \
+            return Err(Error::invalid(
+                "they never collide (a no-contact pair): they take no \
                  soft contact"
-            )));
+                    .to_string(),
+            )
+            .at(Place::bodies(body1, body2)));
         }
         self.soft_contacts.retain(|&(x, y, _)| (x, y) != (a, b));
         self.soft_contacts.push((a, b, soft));
@@ -346,12 +355,12 @@ impl SceneSpec {
         for b in std::iter::once(joint.body1).chain(joint.body2) {
             match self.bodies.get(b) {
                 None => {
-                    return Err(Error::Parameter(format!(
+                    return Err(Error::invalid(format!(
                         "{name} names body {b}, which does not exist (the scene has {n} bodies)"
                     )))
                 }
                 Some(body) if body.is_fixed() => {
-                    return Err(Error::Parameter(format!(
+                    return Err(Error::invalid(format!(
                         "{name} names body {b} ({}), a fixed obstacle: join the body to the \
                          world instead (a joint with no second body)",
                         body.name
@@ -362,6 +371,11 @@ impl SceneSpec {
         }
         self.joints.push(joint);
         Ok(self.joints.len() - 1)
+    }
+
+    /// The bodies' names in index order (for errors' places).
+    pub fn body_names(&self) -> Vec<&str> {
+        self.bodies.iter().map(|b| b.name.as_str()).collect()
     }
 
     /// Indices of the moving bodies (the vehicles), in order.
@@ -428,6 +442,7 @@ pub use document::{from_json, to_json};
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::error::ErrorKind;
     use crate::math::{Point, Rotation, Vector};
 
     fn cube(h: Real) -> Arc<MeshShape> {
@@ -516,15 +531,24 @@ pub(crate) mod tests {
         };
         assert!(matches!(
             spec.set_contact(0, 1, bad),
-            Err(Error::Parameter(_))
+            Err(Error {
+                kind: ErrorKind::Parameter,
+                ..
+            })
         ));
         assert!(matches!(
             spec.set_contact(0, 0, ContactParams::default()),
-            Err(Error::Parameter(_))
+            Err(Error {
+                kind: ErrorKind::Parameter,
+                ..
+            })
         ));
         assert!(matches!(
             spec.set_stiffness(5, Stiffness::none()),
-            Err(Error::Parameter(_))
+            Err(Error {
+                kind: ErrorKind::Parameter,
+                ..
+            })
         ));
         // the pair replaced whichever its order
         spec.set_contact(1, 0, ContactParams::default()).unwrap();

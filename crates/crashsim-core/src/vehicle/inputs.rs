@@ -1,7 +1,7 @@
 //! Driver inputs and wheel states as functions of time: steering, braking, drive force, and
 //! the switches of a wheel's state (free, locked, braked) at a time or at an exchange.
 
-use crate::error::{require_finite, Error, Result};
+use crate::error::{require_finite, Error, Place, Result};
 use crate::math::Real;
 
 use super::steering::SteerInput;
@@ -24,7 +24,7 @@ impl Table {
     /// increasing. `what` names the quantity in errors.
     pub fn new(what: &str, points: &[(Real, Real)]) -> Result<Table> {
         if points.is_empty() {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "the {what} table is empty: give at least one (time, value) point"
             )));
         }
@@ -32,7 +32,7 @@ impl Table {
             require_finite(&format!("{what} table time at row {k}"), t)?;
             require_finite(&format!("{what} table value at row {k}"), v)?;
             if k > 0 && t <= points[k - 1].0 {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "the {what} table's times must increase: row {k} has t = {t} s after \
                      t = {} s (sort the rows and drop duplicates)",
                     points[k - 1].0
@@ -181,13 +181,13 @@ impl DriverInputs {
     /// Checks the inputs against a vehicle with `wheels` wheels.
     pub fn validate(&self, wheels: usize) -> Result<()> {
         if !self.brake.is_empty() && self.brake.len() != wheels {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "braking is given for {} wheels but the vehicle has {wheels}",
                 self.brake.len()
             )));
         }
         if !self.drive.is_empty() && self.drive.len() != wheels {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "drive force is given for {} wheels but the vehicle has {wheels}",
                 self.drive.len()
             )));
@@ -197,9 +197,10 @@ impl DriverInputs {
                 Some(Braking::Fraction(t)) => {
                     let (lo, hi) = t.range();
                     if lo < 0.0 || hi > 1.0 {
-                        return Err(Error::Parameter(format!(
-                            "wheel {k}: a braking fraction must lie in [0, 1] (got {lo} to {hi})"
-                        )));
+                        return Err(Error::invalid(format!(
+                            "a braking fraction must lie in [0, 1] (got {lo} to {hi})"
+                        ))
+                        .at(Place::Wheel(k)));
                     }
                 }
                 Some(Braking::Deceleration(t))
@@ -207,18 +208,20 @@ impl DriverInputs {
                     deceleration: t, ..
                 }) if t.range().0 < 0.0 || t.range().1 > MAX_BRAKING_DECELERATION => {
                     let (lo, hi) = t.range();
-                    return Err(Error::Parameter(format!(
-                        "wheel {k}: a braking deceleration must lie in [0, 20] m/s^2 (got {lo} \
-                         to {hi}): no tyre brakes harder than about 1.2 g; to brake at the \
-                         friction limit give a braking fraction of 1"
-                    )));
+                    return Err(Error::invalid(format!(
+                        "a braking deceleration must lie in [0, 20] m/s^2 (got {lo} to {hi}): \
+                         no tyre brakes harder than about 1.2 g; to brake at the friction \
+                         limit give a braking fraction of 1"
+                    ))
+                    .at(Place::Wheel(k)));
                 }
                 Some(Braking::Distributed { share, .. }) if !(0.0..=1.0).contains(share) => {
                     return Err(Error::parameter(
-                        &format!("wheel {k} brake share"),
+                        "brake share",
                         share,
                         "a wheel's share of the vehicle's brake force must lie in [0, 1]",
-                    ));
+                    )
+                    .at(Place::Wheel(k)));
                 }
                 Some(Braking::Deceleration(_)) | Some(Braking::Distributed { .. }) => {}
                 None => {}
@@ -234,7 +237,7 @@ impl DriverInputs {
             .collect();
         let total: Real = shares.iter().sum();
         if !shares.is_empty() && (total - 1.0).abs() > 1e-9 {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "the wheels' shares of the vehicle's brake force add up to {total}: they must \
                  add up to 1 (a front/rear split of 0.7 gives each front wheel 0.35, each rear \
                  wheel 0.15)"
@@ -242,7 +245,7 @@ impl DriverInputs {
         }
         for s in &self.switches {
             if s.wheel >= wheels {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "a wheel-state switch names wheel {} but the vehicle has {wheels} wheels",
                     s.wheel
                 )));
@@ -250,8 +253,8 @@ impl DriverInputs {
             match s.at {
                 Trigger::Time(t) => require_finite("wheel-state switch time", t)?,
                 Trigger::Exchange(0) => {
-                    return Err(Error::Parameter(
-                        "a wheel-state switch at exchange 0: exchanges count from 1".into(),
+                    return Err(Error::invalid(
+                        "a wheel-state switch at exchange 0: exchanges count from 1",
                     ))
                 }
                 Trigger::Exchange(_) => {}

@@ -23,7 +23,7 @@ pub use wheel::{
     MAX_DAMPING_RATIO, MAX_NATURAL_FREQUENCY,
 };
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Place, Result};
 use crate::math::{Aabb, Matrix, Point, Real, Vector};
 
 /// Wheels may stick out of the body's box by this much (m) before they count as outside it.
@@ -72,7 +72,7 @@ impl VehicleSpec {
     pub fn validate(&self, body_box: &Aabb, mass: Real) -> Result<()> {
         let least = if self.coupling.is_some() { 2 } else { 3 };
         if self.wheels.len() < least {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "a vehicle on the ground needs at least 3 wheels, a coupled one (a trailer) 2 \
                  (got {})",
                 self.wheels.len()
@@ -84,12 +84,13 @@ impl VehicleSpec {
             let (lo, hi) = (body_box.mins, body_box.maxs);
             let m = WHEEL_OUTSIDE_MARGIN;
             if c.x < lo.x - m || c.x > hi.x + m || c.y < lo.y - m || c.y > hi.y + m {
-                return Err(Error::Parameter(format!(
-                    "wheel {k} at ({:.3}, {:.3}) m (body frame, from the CG) lies outside the \
+                return Err(Error::invalid(format!(
+                    "its centre at ({:.3}, {:.3}) m (body frame, from the CG) lies outside the \
                      body, whose outline spans x {:.3} to {:.3} m and y {:.3} to {:.3} m: \
                      wheel positions are measured from the CG, x forward, y left",
                     c.x, c.y, lo.x, hi.x, lo.y, hi.y
-                )));
+                ))
+                .at(Place::Wheel(k)));
             }
         }
         self.checked_groups()?;
@@ -115,7 +116,7 @@ impl VehicleSpec {
         }
         let carried: Real = self.wheels.iter().map(|w| w.static_load).sum();
         if (carried - weight).abs() > 0.01 * weight {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "the wheels' static loads add up to {carried:.1} N but the vehicle weighs \
                  {weight:.1} N: they must carry its weight (leave them to the engine)"
             )));
@@ -130,7 +131,7 @@ impl VehicleSpec {
                     .any(|w| *w == bar.left || *w == bar.right)
             });
             if shared {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "anti-roll bar {k} shares a wheel with another bar: one bar per wheel"
                 )));
             }

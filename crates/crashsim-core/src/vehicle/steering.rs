@@ -24,7 +24,7 @@
 //! Per-wheel tables (the angles a program or a test measured at each wheel) replace the
 //! linkage.
 
-use crate::error::{require_finite, Error, Result};
+use crate::error::{require_finite, Error, Place, Result};
 use crate::math::Real;
 
 use super::inputs::Table;
@@ -132,7 +132,7 @@ impl DriverPath {
     /// Checks the numbers.
     pub fn validate(&self) -> Result<()> {
         if self.points.len() < 2 {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "a driver's path needs at least 2 points (got {})",
                 self.points.len()
             )));
@@ -144,7 +144,7 @@ impl DriverPath {
             if k > 0 {
                 let q = self.points[k - 1];
                 if (p[0] - q[0]).hypot(p[1] - q[1]) < 1e-6 {
-                    return Err(Error::Parameter(format!(
+                    return Err(Error::invalid(format!(
                         "path points {} and {k} are the same point: drop one",
                         k - 1
                     )));
@@ -388,7 +388,7 @@ impl Steering {
                 } else {
                     "a steering-wheel angle goes with the steering ratio"
                 };
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "{what} reaches {:.1} deg: road wheels turn at most 60 deg ({advice})",
                     if hi > MAX_ROAD_WHEEL_ANGLE { hi } else { lo }.to_degrees()
                 )));
@@ -402,10 +402,9 @@ impl Steering {
             }
             SteerInput::SteeringWheel(table) => {
                 let Some(ratio) = self.ratio else {
-                    return Err(Error::Parameter(
+                    return Err(Error::invalid(
                         "a steering-wheel angle needs the vehicle's steering ratio (about 16 for \
-                         a car)"
-                            .into(),
+                         a car)",
                     ));
                 };
                 let (lo, hi) = table.range();
@@ -419,17 +418,16 @@ impl Steering {
                 path.validate()?;
                 let g = LinkageGeometry::of(wheels);
                 if g.x_ref.is_none_or(|x0| g.x_s <= x0) {
-                    return Err(Error::Parameter(
+                    return Err(Error::invalid(
                         "a driver's path needs steered wheels ahead of wheels that do not steer \
-                         (the pure pursuit steers the front axle about the rear one)"
-                            .into(),
+                         (the pure pursuit steers the front axle about the rear one)",
                     ));
                 }
                 return Ok(());
             }
             SteerInput::PerWheel(tables) => {
                 if tables.len() != wheels.len() {
-                    return Err(Error::Parameter(format!(
+                    return Err(Error::invalid(format!(
                         "per-wheel steering is given for {} wheels but the vehicle has {}",
                         tables.len(),
                         wheels.len()
@@ -438,13 +436,13 @@ impl Steering {
                 for (k, (t, w)) in tables.iter().zip(wheels).enumerate() {
                     let Some(t) = t else { continue };
                     if !w.steerable {
-                        return Err(Error::Parameter(format!(
-                            "wheel {k} has a steering table but does not steer (make it \
-                             steerable)"
-                        )));
+                        return Err(Error::invalid(
+                            "it has a steering table but does not steer (make it steerable)",
+                        )
+                        .at(Place::Wheel(k)));
                     }
                     let (lo, hi) = t.range();
-                    check(&format!("wheel {k} steering angle"), lo, hi)?;
+                    check("steering angle", lo, hi).map_err(|e| e.at(Place::Wheel(k)))?;
                 }
                 return Ok(());
             }
@@ -470,12 +468,13 @@ impl Steering {
                 .max((w.center.y - geometry.y_left).abs());
             let inward = self.ackermann * span * tan;
             if lever - inward <= 0.0 {
-                return Err(Error::Parameter(format!(
-                    "wheel {k} would turn past 90 deg at the largest steering angle ({:.1} deg \
-                     at the reference): the steering input is too large for the vehicle's \
-                     wheelbase and track",
+                return Err(Error::invalid(format!(
+                    "it would turn past 90 deg at the largest steering angle ({:.1} deg at the \
+                     reference): the steering input is too large for the vehicle's wheelbase \
+                     and track",
                     delta_max.to_degrees()
-                )));
+                ))
+                .at(Place::Wheel(k)));
             }
         }
         Ok(())

@@ -268,7 +268,7 @@ impl Tyre {
                     require_finite(&format!("Magic Formula {name}"), v)?;
                 }
                 if b <= 0.0 || !(c > 0.0 && c < 2.0) || e >= 1.0 {
-                    return Err(Error::Parameter(format!(
+                    return Err(Error::invalid(format!(
                         "Magic Formula B = {b}, C = {c}, E = {e} is invalid: B must be > 0, C in \
                          (0, 2), E < 1 (a dry passenger tyre: B 10, C 1.9, E 0.97)"
                     )));

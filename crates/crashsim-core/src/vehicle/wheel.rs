@@ -11,7 +11,7 @@
 //! rate and `c` the damping. A wheel whose centre is higher than `R + F0 / k` carries nothing.
 //! Load transfer, roll and pitch then follow from the 3-D body.
 
-use crate::error::{require_finite, Error, Result};
+use crate::error::{require_finite, Error, Place, Result};
 use crate::math::{Point, Real};
 
 /// Standard gravity (m/s^2), ISO 80000-3.
@@ -85,9 +85,13 @@ impl WheelSpec {
         Ok(spec)
     }
 
-    /// Checks the numbers; `index` names the wheel in errors.
+    /// Checks the numbers; errors are placed at wheel `index`.
     pub fn validate(&self, index: usize) -> Result<()> {
-        let name = |what: &str| format!("wheel {index} {what}");
+        self.check().map_err(|e| e.at(Place::Wheel(index)))
+    }
+
+    fn check(&self) -> Result<()> {
+        let name = |what: &str| what.to_string();
         for (what, v) in [
             ("centre x", self.center.x),
             ("centre y", self.center.y),
@@ -220,7 +224,7 @@ impl AntiRollBar {
     pub fn validate(&self, index: usize, wheels: &[WheelSpec]) -> Result<()> {
         let n = wheels.len();
         if self.left >= n || self.right >= n || self.left == self.right {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "anti-roll bar {index} joins wheels {} and {}: give two different wheels of \
                  the vehicle's {n}",
                 self.left, self.right
@@ -239,7 +243,7 @@ impl AntiRollBar {
         }
         let (l, r) = (&wheels[self.left], &wheels[self.right]);
         if l.center.y - r.center.y <= 0.05 {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "anti-roll bar {index}: wheel {} (left, y = {:.3} m) must lie left of wheel {} \
                  (right, y = {:.3} m) and apart from it (y is left, from the CG)",
                 self.left, l.center.y, self.right, r.center.y
@@ -250,7 +254,7 @@ impl AntiRollBar {
             let f = ((w.spring_rate + 2.0 * rate) / w.sprung_mass()).sqrt()
                 / (2.0 * std::f64::consts::PI);
             if f > MAX_NATURAL_FREQUENCY * (1.0 + 1e-12) {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "anti-roll bar {index}: {:.0} N m/deg makes its wheels roll at {f:.1} Hz on \
                      their springs, past the {MAX_NATURAL_FREQUENCY} Hz a wheel's spring may \
                      have (measured cars' bars: 225-590 N m/deg)",
@@ -285,7 +289,7 @@ fn distribute(
 ) -> Result<Vec<Real>> {
     use nalgebra::{Matrix3, Vector3};
     if xy.len() < 3 {
-        return Err(Error::Parameter(format!(
+        return Err(Error::invalid(format!(
             "a vehicle on the ground needs at least 3 wheels (got {})",
             xy.len()
         )));
@@ -302,8 +306,8 @@ fn distribute(
         None => Vector3::new(weight, 0.0, 0.0),
     };
     let coef = m.try_inverse().ok_or_else(|| {
-        Error::Parameter(
-            "the wheels are in a line: they cannot carry a vehicle (check their positions)".into(),
+        Error::invalid(
+            "the wheels are in a line: they cannot carry a vehicle (check their positions)",
         )
     })? * rhs;
     Ok(xy
@@ -315,15 +319,16 @@ fn distribute(
 /// An error when a wheel's static load is not positive (it would lift off).
 fn check_carried(loads: &[Real], towing: bool) -> Result<()> {
     if let Some((k, f)) = loads.iter().enumerate().find(|(_, f)| **f <= 0.0) {
-        return Err(Error::Parameter(format!(
-            "the centre of gravity is not over the wheels: wheel {k} would carry {f:.1} N (check \
-             the wheel positions, which are measured from the CG{})",
+        return Err(Error::invalid(format!(
+            "the centre of gravity is not over the wheels: this wheel would carry {f:.1} N \
+             (check the wheel positions, which are measured from the CG{})",
             if towing {
                 ", and the trailer's load on the hitch"
             } else {
                 ""
             }
-        )));
+        ))
+        .at(Place::Wheel(k)));
     }
     Ok(())
 }
@@ -346,7 +351,7 @@ pub fn static_loads_coupled(
     towed: Option<([Real; 2], Real)>,
 ) -> Result<(Vec<Real>, Real)> {
     if xy.len() < 2 {
-        return Err(Error::Parameter(format!(
+        return Err(Error::invalid(format!(
             "a coupled vehicle (a trailer) needs at least 2 wheels besides its coupling (got {})",
             xy.len()
         )));
@@ -365,22 +370,23 @@ pub fn static_loads_coupled(
 pub fn check_load_groups(groups: &[Vec<usize>], n: usize) -> Result<()> {
     for (g, set) in groups.iter().enumerate() {
         if set.len() < 2 {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "load group {g} has {} wheel(s): a group shares the load of 2 or more",
                 set.len()
             )));
         }
         for &k in set {
             if k >= n {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "load group {g} names wheel {k}, but the vehicle has {n} wheels"
                 )));
             }
             let elsewhere = groups[..g].iter().any(|o| o.contains(&k));
             if elsewhere || set.iter().filter(|&&j| j == k).count() > 1 {
-                return Err(Error::Parameter(format!(
-                    "wheel {k} is in two load groups: a wheel shares its load in one group"
-                )));
+                return Err(Error::invalid(
+                    "it is in two load groups: a wheel shares its load in one group",
+                )
+                .at(Place::Wheel(k)));
             }
         }
     }
@@ -497,6 +503,6 @@ mod tests {
             .validate(2)
             .unwrap_err()
             .to_string()
-            .contains("wheel 2 spring_rate"));
+            .contains("wheel 2: spring_rate"));
     }
 }

@@ -10,7 +10,7 @@ use super::clearance::{Certificate, Front, PairMotion};
 use super::stepper::interrupted;
 use super::{Motion, Pair, World, TIME_TOLERANCE};
 use crate::bisect::{bisect, bisect_on_grid};
-use crate::error::{Error, Result};
+use crate::error::{Error, Place, Result};
 use crate::math::{Aabb, Isometry, Point, Real, Vector};
 use crate::motion::MotionBound;
 use crate::overlap::{
@@ -42,11 +42,11 @@ impl World {
                 &b.body.pose(),
                 &mut self.ws,
             ) {
-                return Err(Error::InitialOverlap(format!(
-                    "bodies {} and {} already overlap at the start of the run: place them apart \
-                     (the engine starts every contact at a first overlap it observes)",
-                    p.body1, p.body2
-                )));
+                return Err(Error::initial_overlap(
+                    "they already overlap at the start of the run: place them apart (the \
+                     engine starts every contact at a first overlap it observes)",
+                )
+                .at(Place::bodies(p.body1, p.body2)));
             }
         }
         Ok(())
@@ -317,11 +317,12 @@ impl World {
             lo = t;
             t = next.max(t + min_advance).min(span);
         }
-        Err(Error::Simulation(format!(
-            "the first-contact search for bodies {i1} and {i2} did not converge within \
-             {MAX_ADVANCE_ITERATIONS} iterations near t = {} s (please report the scene)",
+        Err(Error::simulation(format!(
+            "the first-contact search did not converge within {MAX_ADVANCE_ITERATIONS} \
+             iterations near t = {} s (please report the scene)",
             self.time
-        )))
+        ))
+        .at(Place::bodies(i1, i2)))
     }
 
     /// The exact first-contact search over the next `span` s: conservative advancement on
@@ -390,10 +391,11 @@ impl World {
             lo = t;
             t = (t + (d / speed).max(min_advance)).min(span);
         }
-        Err(Error::Simulation(format!(
-            "the first-contact search for bodies {} and {} did not converge within \
-             {MAX_ADVANCE_ITERATIONS} iterations near t = {} s (please report the scene)",
-            pair.body1, pair.body2, self.time
-        )))
+        Err(Error::simulation(format!(
+            "the first-contact search did not converge within {MAX_ADVANCE_ITERATIONS} \
+             iterations near t = {} s (please report the scene)",
+            self.time
+        ))
+        .at(Place::bodies(pair.body1, pair.body2)))
     }
 }

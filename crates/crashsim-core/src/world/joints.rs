@@ -6,7 +6,7 @@
 use std::sync::Arc;
 
 use super::{Motion, Prediction, World};
-use crate::error::{Error, Result};
+use crate::error::{Error, Place, Result};
 use crate::joint::{drift_rate, project_positions, project_velocities, JointBody, JointSpec};
 use crate::math::{Matrix, Point, Real, Vector};
 use crate::motion::{advance_mechanism, BodyContact, LimitHit, OnGround};
@@ -58,9 +58,7 @@ impl World {
     /// bodies no longer form a contact pair. Returns its index.
     pub fn add_joint(&mut self, joint: JointSpec) -> Result<usize> {
         if self.started {
-            return Err(Error::Parameter(
-                "joints must be added before the first run".into(),
-            ));
+            return Err(Error::invalid("joints must be added before the first run"));
         }
         let index = self.joints.len();
         let name = joint.label(index);
@@ -68,12 +66,12 @@ impl World {
         let n = self.bodies.len();
         for b in std::iter::once(joint.body1).chain(joint.body2) {
             if b >= n {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "{name} names body {b}, which does not exist (the world has {n} bodies)"
                 )));
             }
             if self.is_obstacle(b) {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "{name} names body {b}, a fixed obstacle: join the body to the world \
                      instead (a joint with no second body)"
                 )));
@@ -95,7 +93,7 @@ impl World {
             .map(outside)
             .fold(Real::INFINITY, Real::min);
         if nearest > ANCHOR_REACH {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "{name}'s anchor at ({:.2}, {:.2}, {:.2}) m lies {nearest:.2} m outside the \
                  box of every body it joins (at most {ANCHOR_REACH} m): put the hitch or \
                  kingpin where the bodies meet",
@@ -143,10 +141,12 @@ impl World {
         }
         for (k, &(w, _, _)) in tows.iter().enumerate() {
             if tows[..k].iter().any(|&(o, _, _)| o == w) {
-                return Err(Error::Parameter(format!(
-                    "body {w} tows two trailers: a vehicle has one hitch (give the second \
+                return Err(Error::invalid(
+                    "it tows two trailers: a vehicle has one hitch (give the second \
                      trailer to the first)"
-                )));
+                        .to_string(),
+                )
+                .at(Place::body(w)));
             }
         }
         // From the chain's end: a vehicle's load is known once its own trailer's is.
@@ -190,10 +190,7 @@ impl World {
             .collect();
         let coupling = spec.coupling.map(|c| [c.x, c.y]);
         let (loads, share) = wheel_loads(&xy, &spec.load_groups, mass * GRAVITY, coupling, towed)
-            .map_err(|e| match e {
-            Error::Parameter(m) => Error::Parameter(format!("body {i}, towing: {m}")),
-            other => other,
-        })?;
+            .map_err(|e| e.at(Place::Part("towing".into())).at(Place::body(i)))?;
         // Each spring keeps its natural frequency and damping ratio with its new load (rate
         // and damping in proportion, as a batch's mass override scales them): a tractor's
         // rear springs are a laden tractor's, not its own weight's.
@@ -216,8 +213,8 @@ impl World {
             return Ok(());
         }
         if self.ground.is_none() {
-            return Err(Error::Parameter(
-                "joints need a ground (its gravity and the bodies' motion on it): set one".into(),
+            return Err(Error::invalid(
+                "joints need a ground (its gravity and the bodies' motion on it): set one",
             ));
         }
         // Connected sets of bodies, by union of each joint's two bodies.
@@ -280,7 +277,7 @@ impl World {
                 let label = joint.label(*id);
                 let (_, apart) = project_positions(std::slice::from_ref(joint), &jb, &[]);
                 if apart > START_TOLERANCE {
-                    return Err(Error::Parameter(format!(
+                    return Err(Error::invalid(format!(
                         "{label}'s frames do not meet at the start ({apart:.4} m or rad \
                          apart): give each body's frame of the joint at the same world point \
                          and axes"
@@ -288,7 +285,7 @@ impl World {
                 }
                 let rate = drift_rate(joint, &jb);
                 if rate > START_TOLERANCE {
-                    return Err(Error::Parameter(format!(
+                    return Err(Error::invalid(format!(
                         "{label}'s bodies move apart at the start ({rate:.4} m/s at the \
                          anchor, or rad/s between its axes): give the joined bodies velocities \
                          that agree (a trailer moving with its tractor)"
@@ -370,12 +367,10 @@ impl World {
         let outcome = match outcome {
             Ok(o) => o,
             Err(e) => {
-                let e = match e {
-                    Error::Simulation(msg) => {
-                        Error::Simulation(format!("bodies {:?} (joined): {msg}", m.members))
-                    }
-                    other => other,
-                };
+                let e = e.at(Place::Bodies(
+                    m.members.clone(),
+                    vec![None; m.members.len()],
+                ));
                 self.deferred.lock().expect("not poisoned").get_or_insert(e);
                 return None;
             }

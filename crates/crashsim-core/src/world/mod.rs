@@ -26,7 +26,7 @@ use std::sync::{Arc, Mutex};
 
 use crate::body::{BodyState, MassProperties, RigidBody};
 use crate::contact::{CentroidMode, ContactParams};
-use crate::error::{Error, Result};
+use crate::error::{Error, Place, Result};
 use crate::ground::Ground;
 use crate::joint::JointSpec;
 use crate::math::{Isometry, Point, Real, Vector};
@@ -253,9 +253,7 @@ impl World {
         state: &BodyState,
     ) -> Result<usize> {
         if self.started {
-            return Err(Error::Parameter(
-                "bodies must be added before the first run".into(),
-            ));
+            return Err(Error::invalid("bodies must be added before the first run"));
         }
         let body = RigidBody::new(props, state)?;
         Ok(self.push_body(shape, body, Motion::Free))
@@ -267,16 +265,14 @@ impl World {
     /// each other. Returns its index.
     pub fn add_obstacle(&mut self, shape: Arc<MeshShape>, pose: &Isometry) -> Result<usize> {
         if self.started {
-            return Err(Error::Parameter(
-                "obstacles must be added before the first run".into(),
+            return Err(Error::invalid(
+                "obstacles must be added before the first run",
             ));
         }
         let t = pose.translation.vector;
         let q = pose.rotation.coords;
         if !(t.iter().all(|x| x.is_finite()) && q.iter().all(|x| x.is_finite())) {
-            return Err(Error::Parameter(
-                "an obstacle's pose has a non-finite number".into(),
-            ));
+            return Err(Error::invalid("an obstacle's pose has a non-finite number"));
         }
         for x in t.iter() {
             crate::error::require_coordinate("an obstacle's position", *x)?;
@@ -341,20 +337,18 @@ impl World {
     /// Gives body `i` wheels, a tyre and driver inputs (used when the world has a ground).
     pub fn set_vehicle(&mut self, i: usize, spec: VehicleSpec) -> Result<()> {
         if self.started {
-            return Err(Error::Parameter(
-                "wheels must be given before the first run".into(),
-            ));
+            return Err(Error::invalid("wheels must be given before the first run"));
         }
         let n = self.bodies.len();
         let wb = self.bodies.get_mut(i).ok_or_else(|| {
-            Error::Parameter(format!(
-                "body {i} does not exist (the world has {n} bodies)"
-            ))
+            Error::invalid(format!("it does not exist (the world has {n} bodies)"))
+                .at(Place::body(i))
         })?;
         if matches!(wb.motion, Motion::Fixed) {
-            return Err(Error::Parameter(format!(
-                "body {i} is a fixed obstacle: it has no wheels"
-            )));
+            return Err(
+                Error::invalid("it is a fixed obstacle: it has no wheels".to_string())
+                    .at(Place::body(i)),
+            );
         }
         spec.validate(wb.shape.aabb(), wb.body.props().mass())?;
         wb.vehicle = Some(Arc::new(spec));
@@ -365,8 +359,8 @@ impl World {
     /// bodies); without it every body moves torque-free.
     pub fn set_ground(&mut self, ground: Ground) -> Result<()> {
         if self.started {
-            return Err(Error::Parameter(
-                "the ground must be set before the first run".into(),
+            return Err(Error::invalid(
+                "the ground must be set before the first run",
             ));
         }
         self.ground = Some(ground);
@@ -401,13 +395,14 @@ impl World {
             let on_ground = OnGround::new(wb.vehicle.clone(), Arc::new(contact));
             if let Some((depth, p)) = on_ground.deepest(&wb.body, ground) {
                 if depth > PLACEMENT_TOLERANCE {
-                    return Err(Error::InitialOverlap(format!(
-                        "body {i} starts {depth:.3} m into the ground (its lowest point outside \
+                    return Err(Error::initial_overlap(format!(
+                        "it starts {depth:.3} m into the ground (its lowest point outside \
                          the wheels at ({:.3}, {:.3}, {:.3}) m): the ground's contact would \
                          throw it out. Place it higher (the CG height), or give its wheels the \
                          CG height and radius that carry the body clear of the road",
                         p.x, p.y, p.z
-                    )));
+                    ))
+                    .at(Place::body(i)));
                 }
             }
             wb.motion = Motion::OnGround(Box::new(on_ground));
@@ -486,10 +481,7 @@ impl World {
                 let bound = match advanced {
                     Ok(bound) => bound,
                     Err(e) => {
-                        let e = match e {
-                            Error::Simulation(m) => Error::Simulation(format!("body {i}: {m}")),
-                            other => other,
-                        };
+                        let e = e.at(Place::body(i));
                         self.deferred.lock().expect("not poisoned").get_or_insert(e);
                         return None;
                     }
@@ -524,9 +516,8 @@ impl World {
     pub fn set_stiffness(&mut self, i: usize, stiffness: Stiffness) -> Result<()> {
         let n = self.bodies.len();
         let body = self.bodies.get_mut(i).ok_or_else(|| {
-            Error::Parameter(format!(
-                "body {i} does not exist (the world has {n} bodies)"
-            ))
+            Error::invalid(format!("it does not exist (the world has {n} bodies)"))
+                .at(Place::body(i))
         })?;
         body.stiffness = stiffness;
         Ok(())
@@ -549,12 +540,13 @@ impl World {
                 } else {
                     "give the vehicle a stiffness, or use a fixed dt_p and the automatic centroid"
                 };
-                return Err(Error::Parameter(format!(
-                    "body {i} has no stiffness on its {} face: depth_of_penetration = auto and \
+                return Err(Error::invalid(format!(
+                    "it has no stiffness on its {} face: depth_of_penetration = auto and \
                      centroid = stiffness need CRASH3 A and B on every face of both bodies, or \
                      none on a fixed obstacle (rigid); {fix}",
                     face.name()
-                )));
+                ))
+                .at(Place::body(i)));
             }
         }
         Ok(())
@@ -565,7 +557,7 @@ impl World {
     pub fn set_no_contact(&mut self, body1: usize, body2: usize) -> Result<()> {
         let n = self.bodies.len();
         if body1 >= n || body2 >= n || body1 == body2 {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "no-contact pair ({body1}, {body2}) must name two different bodies among 0..{n}"
             )));
         }
@@ -590,10 +582,12 @@ impl World {
             .iter_mut()
             .find(|p| (p.body1.min(p.body2), p.body1.max(p.body2)) == key)
             .ok_or_else(|| {
-                Error::Parameter(format!(
-                    "bodies {body1} and {body2} form no pair (joined, never colliding, two \
+                Error::invalid(
+                    "they form no pair (joined, never colliding, two \
                      obstacles or not in the world): they take no soft contact"
-                ))
+                        .to_string(),
+                )
+                .at(Place::bodies(body1, body2))
             })?;
         pair.soft = Some(soft);
         Ok(())
@@ -603,7 +597,7 @@ impl World {
     pub fn set_contact(&mut self, body1: usize, body2: usize, params: ContactParams) -> Result<()> {
         let n = self.bodies.len();
         if body1 >= n || body2 >= n || body1 == body2 {
-            return Err(Error::Parameter(format!(
+            return Err(Error::invalid(format!(
                 "contact ({body1}, {body2}) must name two different bodies among 0..{n}"
             )));
         }
@@ -611,7 +605,7 @@ impl World {
         self.check_stiffness(body1, body2, &params)?;
         if let CentroidMode::Body { body, .. } = params.centroid {
             if body != body1 && body != body2 {
-                return Err(Error::Parameter(format!(
+                return Err(Error::invalid(format!(
                     "the centroid is fixed in body {body}, which is not in the pair ({body1}, {body2})"
                 )));
             }
@@ -621,10 +615,12 @@ impl World {
             .iter_mut()
             .find(|p| (p.body1, p.body2) == (body1, body2) || (p.body1, p.body2) == (body2, body1))
             .ok_or_else(|| {
-                Error::Parameter(format!(
-                    "bodies {body1} and {body2} are joined by a joint and do not collide: give \
+                Error::invalid(
+                    "they are joined by a joint and do not collide: give \
                      the joint collide = true to set their contact"
-                ))
+                        .to_string(),
+                )
+                .at(Place::bodies(body1, body2))
             })?;
         pair.body1 = body1;
         pair.body2 = body2;

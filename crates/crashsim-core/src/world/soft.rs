@@ -3,7 +3,7 @@
 
 use super::events::{ContactEvent, ContactEventKind, RunOutput};
 use super::{Phase, World};
-use crate::error::{Error, Result};
+use crate::error::{Error, Place, Result};
 use crate::math::{Point, Real, Vector};
 use crate::overlap::OverlapRegion;
 use crate::soft::MAX_SOFT_STEP_ANGLE;
@@ -23,13 +23,14 @@ impl World {
             if angle > MAX_SOFT_STEP_ANGLE {
                 let stiffest = mass * (MAX_SOFT_STEP_ANGLE / dt).powi(2);
                 let longest = MAX_SOFT_STEP_ANGLE / (soft.stiffness / mass).sqrt();
-                return Err(Error::Parameter(format!(
-                    "the soft contact of bodies {} and {} is too stiff for the step: {:.3e} \
-                     N/m on {mass:.3} kg turns sqrt(k/m) dt = {angle:.2} rad per step (at most \
+                return Err(Error::invalid(format!(
+                    "their soft contact is too stiff for the step: {:.3e} N/m on {mass:.3} kg \
+                     turns sqrt(k/m) dt = {angle:.2} rad per step (at most \
                      {MAX_SOFT_STEP_ANGLE}); give a stiffness of at most {stiffest:.3e} N/m or \
                      a step of at most {longest:.2e} s",
-                    p.body1, p.body2, soft.stiffness
-                )));
+                    soft.stiffness
+                ))
+                .at(Place::bodies(p.body1, p.body2)));
             }
         }
         Ok(())

@@ -9,7 +9,7 @@
 
 use super::{Motion, Phase, World, WorldBody};
 use crate::body::BodyState;
-use crate::error::{require_finite, Error, Result};
+use crate::error::{require_finite, Error, Place, Result};
 use crate::joint::JointSample;
 use crate::math::Real;
 use crate::motion::{joint_samples, WheelSample};
@@ -151,7 +151,7 @@ impl RunOptions {
             .saturating_sub(2)
             .max(1);
         let interval = dt * steps.div_ceil(fits as usize) as Real;
-        Err(Error::Parameter(format!(
+        Err(Error::invalid(format!(
             "the run would keep {samples} samples of {bodies} bodies ({}), more than the \
              history limit of {}: record less often (record_interval = {interval:.3e} s or \
              more fits), shorten the run, or raise the limit (max_history_bytes)",
@@ -199,8 +199,8 @@ impl World {
             ));
         }
         if options.until_rest && self.ground.is_none() {
-            return Err(Error::Parameter(
-                "a run until rest needs a ground (without one nothing slows the vehicles)".into(),
+            return Err(Error::invalid(
+                "a run until rest needs a ground (without one nothing slows the vehicles)",
             ));
         }
         let steps = (duration / dt).ceil() as usize;
@@ -486,11 +486,12 @@ impl World {
         at_instant.1[pi] += 1;
         if at_instant.1[pi] > MAX_EVENTS_PER_INSTANT {
             let p = &self.pairs[pi];
-            return Err(Error::Simulation(format!(
-                "bodies {} and {} had more than {MAX_EVENTS_PER_INSTANT} contact events at \
-                 t = {} s without time advancing; the run was stopped (please report the scene)",
-                p.body1, p.body2, self.time
-            )));
+            return Err(Error::simulation(format!(
+                "they had more than {MAX_EVENTS_PER_INSTANT} contact events at t = {} s \
+                 without time advancing; the run was stopped (please report the scene)",
+                self.time
+            ))
+            .at(Place::bodies(p.body1, p.body2)));
         }
         Ok(())
     }
@@ -598,11 +599,11 @@ impl World {
 
 /// The error of an interrupted run.
 pub(super) fn interrupted(t: Real) -> Error {
-    Error::Simulation(format!("the run was interrupted at t = {t} s"))
+    Error::simulation(format!("the run was interrupted at t = {t} s"))
 }
 
 fn out_of_memory(t: Real) -> Error {
-    Error::Simulation(format!(
+    Error::simulation(format!(
         "out of memory while recording the run at t = {t} s: record less often \
          (record_interval) or shorten the run"
     ))

@@ -1,0 +1,87 @@
+"""Errors carry where they happened (``.loc``) as data from the core, and the layers above
+name the places from it (issue 20): the text is rebuilt from ``loc`` and ``message``, never
+parsed."""
+
+from __future__ import annotations
+
+import pickle
+
+import crashsim as cs
+import numpy as np
+import pytest
+from crashsim import _core
+from crashsim.batch import run_batch
+from crashsim.errors import describe, naming, renamed
+
+
+def _two_boxes(x_red: float = -3.65) -> cs.Scene:
+    red = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red")
+    blue = cs.Vehicle.box(4.6, 1.8, 1.45, mass=1500.0, name="blue")
+    scene = cs.Scene(depth_of_penetration=0.03, restitution=0.1, friction=0.6)
+    scene.add(red, (x_red, 0.3, 0.7), heading=0.0, velocity=(13.4112, 0.0, 0.0))
+    scene.add(blue, (0.0, 0.0, 0.725), heading=np.pi / 2)
+    return scene
+
+
+def test_the_core_gives_the_place_and_the_message_apart() -> None:
+    zones = [([(0, 0), (10, 0), (10, 10), (0, 10)], 0.5), ([(0, 0), (1, 0)], 0.4)]
+    with pytest.raises(cs.ParameterError) as raised:
+        _core.Ground(height=0.0, tyre_friction=0.8, body_friction=0.5, zones=zones)
+    e = raised.value
+    assert e.loc == (("zone", 1, None),)
+    assert e.message == "it has 2 corners: a polygon needs at least 3"
+    assert str(e) == "friction zone 1: " + e.message
+    # an error raised with a text alone has no places
+    assert cs.ParameterError("x").loc == () and cs.ParameterError("x").message is None
+
+
+def test_renamed_rebuilds_the_text_from_the_places_and_keeps_them() -> None:
+    zones = [
+        cs.FrictionZone([(0, 0), (10, 0), (10, 10), (0, 10)], 0.5, name="puddle"),
+        cs.FrictionZone([(5, 5), (15, 5), (15, 15), (5, 15)], 0.3),
+    ]
+    with pytest.raises(cs.ParameterError) as raised:
+        cs.Ground(zones=zones)
+    e = raised.value
+    assert e.loc == (("zones", (0, 1), None),)
+    assert str(e) == "ground: friction zones 'puddle' and 1: " + e.message
+    # a message that happens to read like a place is left alone: only loc is named
+    fake = cs.ParameterError("wheel 0 is fine")
+    assert str(renamed(fake, naming(wheel=lambda k: "front left"))) == "wheel 0 is fine"
+
+
+def test_a_wheel_is_named_by_its_vehicle_in_a_scene_run() -> None:
+    car = cs.Vehicle.box(4.5, 1.8, 1.25, mass=1450.0, name="car", cg_height=0.55,
+                         ground_clearance=0.15).with_wheels(
+        wheelbase=2.7, track=1.5, radius=0.3, cg_to_front_axle=1.2)
+    import trimesh
+
+    terrain = trimesh.creation.box(extents=(40.0, 40.0, 1.0))
+    terrain.apply_translation((0.0, 0.0, -0.5))
+    scene = cs.Scene(ground=cs.Ground(terrain=terrain))
+    scene.add(car, (10.0, 0.0), heading=0.0, velocity=(10.0, 0.0, 0.0))
+    with pytest.raises(cs.SimulationError) as raised:
+        scene.run(2.0)
+    e = raised.value
+    kinds = [p[0] for p in e.loc]
+    assert kinds == ["body", "wheel"] and e.loc[0][1] == 0
+    assert str(e).startswith(f"vehicle 'car': wheel {car.wheels.names[e.loc[1][1]]!r}: it left")
+    # the place survives pickling (Dask sends errors between processes)
+    back = pickle.loads(pickle.dumps(e))
+    assert back.loc == e.loc and back.message == e.message and str(back) == str(e)
+
+
+def test_a_batch_error_names_the_variant_and_the_bodies_and_shifts_as_data() -> None:
+    scene = _two_boxes()
+    positions = np.array([[[-3.65, 0.3, 0.7], [0.0, 0.0, 0.725]],
+                          [[-2.0, 0.3, 0.7], [0.0, 0.0, 0.725]]])  # (variant, body, xyz) m
+    b = run_batch(scene, {"position": positions}, duration=0.05, dt=1e-3)
+    (err,) = b.errors
+    assert err.index == 1 and err.kind == "InitialOverlapError"
+    assert err.loc == (("variant", 1, None), ("bodies", (0, 1), ("red", "blue")))
+    assert err.message == f'variant 1: bodies 0 ("red") and 1 ("blue"): {err.reason}'
+    assert err.within() == f'bodies 0 ("red") and 1 ("blue"): {err.reason}'
+    moved = err.shifted(40)
+    assert moved.index == 41 and moved.loc[0] == ("variant", 41, None)
+    assert moved.message == f'variant 41: bodies 0 ("red") and 1 ("blue"): {err.reason}'
+    assert describe(("bodies", (0, 1), (None, None))) == "bodies 0 and 1"
