@@ -209,10 +209,10 @@ pub(crate) fn limit_angles(joint: &JointSpec, bodies: &[JointBody]) -> (Vector, 
 }
 
 /// The time derivative of each rate vector g of [`limit_angles`] (1/s, world) as the bodies
-/// turn at their angular velocities: the angle's second derivative is `g.(dw_b/dt - dw_a/dt)
-/// + (w_b - w_a).dg/dt`, whose last term is a limit row's J' nu (the curvature of a cone:
-/// a thigh sliding round its hip's cone at rate w has a swing acceleration about w^2 / tan s
-/// with no torque at all).
+/// turn at their angular velocities: the angle's second derivative is
+/// `g.(dw_b/dt - dw_a/dt) + (w_b - w_a).dg/dt`, whose last term is a limit row's J' nu (the
+/// curvature of a cone: a thigh sliding round its hip's cone at rate w has a swing
+/// acceleration of about w^2 / tan s with no torque at all).
 ///
 /// - An axis fixed in a body turns with it: `dg/dt = w x g` (a hinge's z1, a fifth wheel's).
 /// - The swing's unit axis `n = c / |c|`, `c = z1 x z2`: `dn/dt = (dc/dt - n (n.dc/dt)) / |c|`
