@@ -28,7 +28,7 @@ mod constraint;
 
 pub(crate) use constraint::{
     applied_torques, drift_rate, limit_angles, limit_rows, project_positions, project_velocities,
-    reactions, JointBody,
+    reactions, JointBody, RESTING_ANGLE,
 };
 
 use crate::error::{require_finite, require_finite_vector, Error, Result};

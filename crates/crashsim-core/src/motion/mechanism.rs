@@ -6,9 +6,9 @@
 //! needs) and every Runge-Kutta evaluation adds the joints' torques (stiffness, damping,
 //! friction) and reactions (joint/constraint.rs). After each sub-step the poses and velocities
 //! are projected back onto the joints, so the joints' drift stays at rounding however long the
-//! run; a limit passed is stopped there by the impulse that zeroes its outward rate (an
-//! inelastic stop, [`LimitHit`]). The same start and span give the same bits, as for a
-//! single body.
+//! run; a limit passed (or on its bound, within `RESTING_ANGLE`) is stopped there by the
+//! impulse that zeroes its outward rate (an inelastic stop, [`LimitHit`]). The same start and
+//! span give the same bits, as for a single body.
 
 use super::{MotionBound, OnGround, Stage, MAX_SUBSTEPS_PER_SECOND, MAX_SUBSTEP_SUSPENSION};
 use crate::body::RigidBody;
@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::ground::Ground;
 use crate::joint::{
     applied_torques, limit_angles, limit_rows, project_positions, project_velocities, reactions,
-    JointBody, JointSample, JointSpec,
+    JointBody, JointSample, JointSpec, RESTING_ANGLE,
 };
 use crate::math::{Point, Real, Rotation, Vector};
 
@@ -295,7 +295,7 @@ fn project(
         let jb: Vec<JointBody> = (0..m).map(|k| joint_body(&bodies[k], &s[k])).collect();
         let mut extra = Vec::new();
         for joint in joints {
-            limit_rows(joint, &jb, &mut extra);
+            limit_rows(joint, &jb, 0.0, &mut extra);
         }
         let (shift, worst) = project_positions(joints, &jb, &extra);
         if worst < 1e-13 {
@@ -313,7 +313,13 @@ fn project(
     let mut stopped = Vec::new();
     for (j, joint) in joints.iter().enumerate() {
         let mut rows = Vec::new();
-        let which = limit_rows(joint, &jb, &mut rows);
+        // The limits on their bound too, not only past it: the position projection leaves a
+        // joint a rounding inside its bound as often as outside, and one left inside with its
+        // outward rate passed the bound again every sub-step, its positions held there while
+        // its velocities moved on; the ground's damping and friction, computed from those
+        // velocities, then did work on a motion that did not happen (a lying pedestrian's leg
+        // gained energy at about 22 /s; docs/joints.md, "Limits").
+        let which = limit_rows(joint, &jb, RESTING_ANGLE, &mut rows);
         // A limit the joint has come LIMIT_RELEASE back inside rests against it no more.
         if engaged[j].iter().any(|&flag| flag) {
             let (theta, _) = limit_angles(joint, &jb);
