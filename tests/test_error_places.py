@@ -85,3 +85,21 @@ def test_a_batch_error_names_the_variant_and_the_bodies_and_shifts_as_data() -> 
     assert moved.index == 41 and moved.loc[0] == ("variant", 41, None)
     assert moved.message == f'variant 41: bodies 0 ("red") and 1 ("blue"): {err.reason}'
     assert describe(("bodies", (0, 1), (None, None))) == "bodies 0 and 1"
+
+
+def test_single_values_are_checked_by_the_core_without_a_probe_scene() -> None:
+    eye = np.eye(3)
+    _core.check_mass(1450.0, eye * 2000.0)
+    with pytest.raises(cs.ParameterError, match="mass"):
+        _core.check_mass(-1.0, eye)
+    _core.check_state((0, 0, 0.5), (1, 0, 0, 0), (10, 0, 0), (0, 0, 0))
+    with pytest.raises(cs.ParameterError, match="position"):
+        _core.check_state((float("nan"), 0, 0), (1, 0, 0, 0), (0, 0, 0), (0, 0, 0))
+    with pytest.raises(cs.ParameterError, match="velocity"):
+        _core.check_state((0, 0, 0), (1, 0, 0, 0), (0, float("inf"), 0), (0, 0, 0))
+    _core.check_pose((1, 2, 0), (1, 0, 0, 0))
+    with pytest.raises(cs.ParameterError):
+        _core.check_pose((1, 2, float("nan")), (1, 0, 0, 0))
+    _core.check_table([[0.0, 1.0], [1.0, 2.0]], "throttle")
+    with pytest.raises(cs.ParameterError, match="the throttle table's times must increase"):
+        _core.check_table([[1.0, 1.0], [0.0, 2.0]], "throttle")

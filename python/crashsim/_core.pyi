@@ -41,6 +41,9 @@ __all__ = [
     "wheel_loads",
     "check_table",
     "point_in_polygon",
+    "check_mass",
+    "check_state",
+    "check_pose",
 ]
 
 class CrashsimError(Exception):
@@ -137,6 +140,19 @@ def static_loads(
     """Static loads (N) of wheels at body-frame (x, y) positions (m from the CG) carrying
     weight (N) on level ground (each axle its share), and with ``towed`` ((x, y), N) the load
     a trailer puts on the hitch there."""
+
+def check_mass(mass: float, inertia: ArrayLike) -> None:
+    """The engine's checks of a body's mass (kg, finite, positive) and inertia (kg m^2, a
+    finite, symmetric, positive definite 3x3 tensor): ParameterError otherwise."""
+
+def check_state(
+    position: ArrayLike, orientation: ArrayLike, velocity: ArrayLike, angular_velocity: ArrayLike
+) -> None:
+    """The engine's checks of a moving body's initial state (world frame; m, quaternion
+    (w, x, y, z) or 3x3 rotation, m/s, rad/s): ParameterError otherwise."""
+
+def check_pose(position: ArrayLike, orientation: ArrayLike) -> None:
+    """The engine's checks of a fixed body's pose: ParameterError otherwise."""
 
 def point_in_polygon(x: float, y: float, polygon: Any) -> bool:
     """True when (x, y) (m) lies inside the polygon ((k, 2) corners, m) or on its edge: the

@@ -22,14 +22,13 @@ from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import ParameterError, SceneError
 from crashsim.records import rotation_matrix
-from crashsim.vehicles.checks import _as_float, _probe_shape
+from crashsim.vehicles.checks import _as_float
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.vehicle import Vehicle
 from crashsim.vehicles.wheels import Wheels
 
 Array = NDArray[np.float64]
 
-_EYE3 = np.eye(3)
 
 
 def _quaternion_from_matrix(r: Array) -> Array:
@@ -148,9 +147,7 @@ def _static_height(vehicle: Vehicle) -> float:
 
 def _check_state(position: Any, orientation: Any, velocity: Any, angular_velocity: Any) -> None:
     """The engine's checks of an initial state (ParameterError naming the bad input)."""
-    _core.SceneSpec().add_body(
-        _probe_shape(), 1.0, _EYE3, position, orientation, velocity, angular_velocity
-    )
+    _core.check_state(position, orientation, velocity, angular_velocity)
 
 
 def _ground_height(ground: Ground | None, x: float, y: float, what: str) -> float:

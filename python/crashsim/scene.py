@@ -238,7 +238,7 @@ class Scene(_Contacts):
         pos, flat = _position(position, orientation)
         q = _orientation(heading, orientation)
         try:
-            _core.SceneSpec().add_obstacle(obstacle.shape, pos, q)
+            _core.check_pose(pos, q)
         except ParameterError as e:
             raise ParameterError(f"obstacle {obstacle.name!r}: {e}") from e
         placement = _ObstaclePlacement(obstacle, _read_only(pos), _read_only(q), flat)

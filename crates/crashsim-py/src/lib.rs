@@ -603,6 +603,44 @@ fn static_loads<'py>(
     Ok(Array1::from_vec(loads).into_pyarray(py))
 }
 
+/// The engine's checks of a body's mass (kg, finite and positive) and inertia (kg m^2, a
+/// finite, symmetric, positive definite 3x3 tensor), as a scene spec's add_body makes them.
+#[pyfunction]
+fn check_mass(mass: f64, inertia: &Bound<'_, PyAny>) -> PyResult<()> {
+    let zero = [0.0; 3].into_pyobject(inertia.py())?.into_any();
+    let identity = [1.0, 0.0, 0.0, 0.0].into_pyobject(inertia.py())?.into_any();
+    body_input(mass, inertia, &zero, &identity, &zero, &zero).map(|_| ())
+}
+
+/// The engine's checks of a moving body's initial state (position m, orientation quaternion
+/// (w, x, y, z) or 3x3 rotation, velocity m/s, angular velocity rad/s; world frame), as a
+/// scene spec's add_body makes them.
+#[pyfunction]
+fn check_state(
+    position: &Bound<'_, PyAny>,
+    orientation: &Bound<'_, PyAny>,
+    velocity: &Bound<'_, PyAny>,
+    angular_velocity: &Bound<'_, PyAny>,
+) -> PyResult<()> {
+    let eye = Array2::<f64>::eye(3).into_pyarray(position.py());
+    let (_, state) = body_input(
+        1.0,
+        eye.as_any(),
+        position,
+        orientation,
+        velocity,
+        angular_velocity,
+    )?;
+    state.validate().map_err(errors::to_py)
+}
+
+/// The engine's checks of a fixed body's pose (position m, orientation), as a scene spec's
+/// add_obstacle makes them.
+#[pyfunction]
+fn check_pose(position: &Bound<'_, PyAny>, orientation: &Bound<'_, PyAny>) -> PyResult<()> {
+    core::spec::check_pose(&pose(position, orientation)?).map_err(errors::to_py)
+}
+
 /// True when (x, y) (m) lies inside the polygon ((k, 2) corners, m) or on its edge: the
 /// engine's friction-zone test.
 #[pyfunction]
@@ -707,6 +745,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(wheel_loads, m)?)?;
     m.add_function(wrap_pyfunction!(check_table, m)?)?;
     m.add_function(wrap_pyfunction!(point_in_polygon, m)?)?;
+    m.add_function(wrap_pyfunction!(check_mass, m)?)?;
+    m.add_function(wrap_pyfunction!(check_state, m)?)?;
+    m.add_function(wrap_pyfunction!(check_pose, m)?)?;
     m.add_function(wrap_pyfunction!(suspension, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics_defaults, m)?)?;
     Ok(())

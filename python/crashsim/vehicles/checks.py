@@ -5,7 +5,6 @@ ParameterError that says what is wrong and how to fix it."""
 
 from __future__ import annotations
 
-import functools
 import math
 from typing import Any
 
@@ -19,14 +18,6 @@ from crashsim.vehicles.mass_properties import USER, WEIGHT_LB
 
 Array = NDArray[np.float64]
 
-_ZERO3 = (0.0, 0.0, 0.0)
-_IDENTITY = (1.0, 0.0, 0.0, 0.0)  # quaternion (w, x, y, z)
-
-
-@functools.cache
-def _probe_shape() -> _core.Shape:
-    """A one-triangle shape for asking the engine to validate numbers (never simulated)."""
-    return _core.Shape(np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]), [[0, 1, 2]])
 
 
 def _as_float(value: Any, name: str, unit: str) -> float:
@@ -42,7 +33,7 @@ def _as_float(value: Any, name: str, unit: str) -> float:
 def _check_mass_properties(mass: float, inertia: ArrayLike) -> None:
     """Raises ParameterError unless mass (kg) is finite and positive and inertia (kg m^2) is
     a finite, symmetric, positive definite 3x3 tensor: the engine's own checks."""
-    _core.SceneSpec().add_body(_probe_shape(), mass, inertia, _ZERO3, _IDENTITY, _ZERO3, _ZERO3)
+    _core.check_mass(mass, inertia)
 
 
 def _point(value: ArrayLike, name: str) -> Array:

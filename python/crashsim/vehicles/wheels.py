@@ -115,29 +115,6 @@ def _probe_world(half: Array, mass: float) -> _core.SceneSpec:
     return world
 
 
-def _probe_spec() -> dict[str, Any]:
-    """set_vehicle keywords of a valid four-wheeled probe of 1 kg (checking tyres and
-    inputs)."""
-    xy = np.array([[1.0, 0.5], [1.0, -0.5], [-1.0, 0.5], [-1.0, -0.5]])
-    loads = _core.static_loads(xy, _defaults()["gravity"])
-    rates = [_core.suspension(float(f)) for f in loads]
-    return {
-        "centers": np.c_[xy, np.full(4, -0.2)],
-        "radii": np.full(4, 0.3),
-        "steerable": [True, True, False, False],
-        "static_loads": loads,
-        "spring_rates": [r[0] for r in rates],
-        "damping": [r[1] for r in rates],
-    }
-
-
-def check_with_engine(**kwargs: Any) -> None:
-    """Ask the engine to check a tyre or driver inputs (set_vehicle keywords) on a probe
-    vehicle of four wheels; ParameterError with the engine's message otherwise."""
-    world = _probe_world(np.array([1.5, 1.0, 0.5]), 1.0)
-    world.set_vehicle(0, **{**_probe_spec(), **kwargs})
-
-
 # -- wheels ---------------------------------------------------------------------------------------
 
 

@@ -125,6 +125,17 @@ pub struct SceneSpec {
     pub run: RunSpec,
 }
 
+/// Checks a fixed body's pose (an obstacle's): every number finite.
+pub fn check_pose(pose: &Isometry) -> Result<()> {
+    let t = pose.translation.vector;
+    let q = pose.rotation.coords;
+    if t.iter().all(|x| x.is_finite()) && q.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::invalid("an obstacle's pose has a non-finite number"))
+    }
+}
+
 impl SceneSpec {
     /// An empty scene with the default run (1 s at 1 ms).
     pub fn new() -> SceneSpec {
@@ -173,11 +184,7 @@ impl SceneSpec {
         shape: Arc<MeshShape>,
         pose: Isometry,
     ) -> Result<usize> {
-        let t = pose.translation.vector;
-        let q = pose.rotation.coords;
-        if !(t.iter().all(|x| x.is_finite()) && q.iter().all(|x| x.is_finite())) {
-            return Err(Error::invalid("an obstacle's pose has a non-finite number"));
-        }
+        check_pose(&pose)?;
         let name = self.name_or_default(name);
         self.bodies.push(BodySpec {
             name,
