@@ -203,13 +203,33 @@ def test_a_variant_the_pedestrian_refuses_fails_alone() -> None:
     assert study["pedestrian.car.first_contact_time"][1] < 0.02
 
 
-def test_a_pedestrian_study_refuses_dask_and_until_rest() -> None:
+def test_a_pedestrian_study_refuses_dask() -> None:
     scene = strike()
     with pytest.raises(StudyError, match='backend="local"'):
         cs.sweep(scene, {"pedestrian.height": [1.7]}, duration=0.1, backend="dask",
                  progress=False)
-    with pytest.raises(StudyError, match="give duration="):
-        cs.sweep(scene, {"pedestrian.height": [1.7]}, until="rest", progress=False)
+
+
+def test_a_pedestrian_study_runs_until_the_person_rests() -> None:
+    """A man alone pushed over (0.5 and 1 m/s) lies still: each variant ends when every body
+    rests (issue 22: since the joint limits stopped creating energy, such runs end), and its
+    row is what that variant's own run until rest gives, bit for bit."""
+    ped = cs.Pedestrian(pose="standing")
+    scene = cs.Scene(ground=cs.Ground(friction=0.8), depth_of_penetration=0.0)
+    scene.add(ped, (0.0, 0.0), heading=2.0, velocity=(0.5, 0.0, 0.0))
+    study = cs.sweep(scene, {"pedestrian.speed": [0.5, 1.0]}, until="rest", duration=12.0,
+                     dt=1e-3, progress=False)
+    assert study.ok.all() and not study.errors
+    for i in range(study.n):
+        variant = scene.with_({"pedestrian.speed": float(study["pedestrian.speed"][i])})
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", cs.RestNotReachedWarning)
+            result = variant.run(dt=1e-3, until="rest", max_duration=12.0, record_interval=2e-3)
+        end, speed = rest_of(result, variant.pedestrians["pedestrian"])
+        assert result.trajectory(result.vehicles[0]).t[-1] < 12.0  # the rest test ended it
+        assert speed < 0.1  # m/s, the study's REST_SPEED
+        assert study["pedestrian.rest_x"][i] == end[0] and study["pedestrian.rest_y"][i] == end[1]
+        assert study["pedestrian.final_speed"][i] == speed
 
 
 def test_choice_draws_each_value_by_its_weight() -> None:
@@ -235,8 +255,6 @@ def test_evidence_of_a_pedestrian_is_checked() -> None:
     with pytest.raises(FitError, match="is a segment of 'pedestrian'"):
         cs.fit(scene, bounds, [WrapAround("pedestrian", "pedestrian/head", 2.0, 0.1)],
                until=None, duration=0.1)
-    with pytest.raises(FitError, match="is not taken for a pedestrian"):
-        cs.fit(scene, bounds, [ThrowDistance("pedestrian", "car", 10.0, 0.5)])
     # a run too short for the head to touch: the items say why they are absent
     result = run(scene, 0.05)
     assert HeadStrike("pedestrian", "car", 1.0, 0.0, 0.9, 0.05).absent(result) == (

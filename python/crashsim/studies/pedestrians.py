@@ -20,7 +20,8 @@ pedestrian p and striking vehicle v (units m, m/s, s):
 
 - ``p.final_x``, ``p.final_y``, ``p.final_speed``: the whole-body centre of mass at the last
   sample (world) and its speed; ``p.rest_x``, ``p.rest_y``: the same when that speed is below
-  REST_SPEED, else NaN (a pedestrian never passes the engine's rest test: docs/human.md);
+  REST_SPEED, else NaN (with ``until="rest"`` the run ends when every body, the person's
+  segments included, passes the engine's rest test: docs/human.md, item 7a);
 - ``p.v.first_contact_time``, ``p.v.throw_distance`` (crashsim.analysis.throw);
 - ``p.v.head_time``, ``p.v.head_x``, ``p.v.head_y``, ``p.v.head_z`` (the head's first overlap
   with v, and v's surface point nearest the head's CG then, in v's model frame),
@@ -316,16 +317,20 @@ class _Stopped(Exception):
 
 def run_one(scene: Scene, options: Mapping[str, Any], stop: threading.Event | None = None
             ) -> Result:  # fmt: skip
-    """Run a variant's scene for ``options["duration"]`` s at ``options["dt"]``, samples kept
+    """Run a variant's scene for ``options["duration"]`` s at ``options["dt"]`` (with
+    ``options["until"] == "rest"``: until every body rests, at most that long), samples kept
     every RECORD_INTERVAL (at least every step; first overlaps and exchanges always)."""
 
     def check(_t: float) -> None:
         if stop is not None and stop.is_set():
             raise _Stopped
 
-    dt = float(options["dt"])
-    return scene.run(float(options["duration"]), dt=dt, record_interval=max(dt, RECORD_INTERVAL),
-                     progress=check)  # fmt: skip
+    dt, duration = float(options["dt"]), float(options["duration"])
+    record = max(dt, RECORD_INTERVAL)
+    if options.get("until") == "rest":
+        return scene.run(dt=dt, until="rest", max_duration=duration, record_interval=record,
+                         progress=check)  # fmt: skip
+    return scene.run(duration, dt=dt, record_interval=record, progress=check)
 
 
 def run_scenes(

@@ -299,7 +299,7 @@ def run_study(
         raise StudyError(f"chunk_size = {chunk_size!r} is invalid: give an integer >= 1")
     options = {"duration": duration, "dt": dt, "until": until, "max_impacts": max_impacts}
     if scene.pedestrians:
-        _check_pedestrian_study(backend, until)
+        _check_pedestrian_study(backend)
     bar = _Progress(progress, n)
     try:
         if scene.pedestrians:
@@ -345,21 +345,14 @@ def run_study(
     )
 
 
-def _check_pedestrian_study(backend: str, until: str | None) -> None:
-    """A study of a scene with pedestrians runs its variants as Scenes on this machine, for a
-    fixed duration (crashsim.studies.pedestrians)."""
+def _check_pedestrian_study(backend: str) -> None:
+    """A study of a scene with pedestrians runs its variants as Scenes on this machine
+    (crashsim.studies.pedestrians)."""
     if backend != "local":
         raise StudyError(
             'a study of a scene with pedestrians runs on this machine (backend="local"): its '
             "variants run as Scenes, whose trajectories give the person's figures, not through "
             "the batch engine the Dask backend distributes"
-        )
-    if until is not None:
-        raise StudyError(
-            'until="rest" is not taken for a pedestrian: its segments creep on the road for '
-            "seconds after the body has stopped, and some runs never pass the engine's rest "
-            "test (docs/human.md, item 7a): give duration= (s) and until=None; the study records "
-            "the person's rest position when it is slower than 0.1 m/s at the end"
         )
 
 

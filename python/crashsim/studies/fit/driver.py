@@ -130,13 +130,6 @@ def fit(
         raise FitError('give duration (s) for runs of a fixed length, or until="rest"')
     if until == "rest" and scene.ground is None:
         raise FitError('until="rest" needs a ground: give duration and until=None instead')
-    if until == "rest" and scene.pedestrians:
-        raise FitError(
-            'until="rest" is not taken for a pedestrian: its segments creep on the road for '
-            "seconds after the body has stopped, and some runs never pass the engine's rest "
-            "test (docs/human.md, item 7a): give duration= (s, long enough for the person to stop: "
-            "a PedestrianRest item says when it did not) and until=None"
-        )
     for what, v in (("dt", dt), ("max_duration", max_duration), ("step", step)):
         if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
             raise FitError(f"{what} = {v!r} must be a number > 0")

@@ -136,15 +136,15 @@ class _Problem:
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the residuals carry what the warnings say
-            if kw["until"] == "rest":
-                return scene.run(dt=kw["dt"], until="rest", max_duration=kw["max_duration"],
-                                 progress=check)  # fmt: skip
+            record: dict[str, float] = {}
             if scene.pedestrians:  # its figures need samples, not every step's
                 from crashsim.studies.pedestrians import RECORD_INTERVAL
 
-                return scene.run(duration=kw["duration"], dt=kw["dt"], progress=check,
-                                 record_interval=max(kw["dt"], RECORD_INTERVAL))  # fmt: skip
-            return scene.run(duration=kw["duration"], dt=kw["dt"], progress=check)
+                record["record_interval"] = max(kw["dt"], RECORD_INTERVAL)
+            if kw["until"] == "rest":
+                return scene.run(dt=kw["dt"], until="rest", max_duration=kw["max_duration"],
+                                 progress=check, **record)  # fmt: skip
+            return scene.run(duration=kw["duration"], dt=kw["dt"], progress=check, **record)
 
     def from_result(self, result: Result) -> tuple[Array, NDArray[np.bool_]]:
         return self._row([e.difference(e.from_result(result)) for e in self.evidence])
