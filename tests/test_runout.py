@@ -344,6 +344,7 @@ wheels = "rear"
 
 
 ZONE2 = "\n[[ground.zones]]\npolygon = [[35, 0], [50, 0], [50, 3]]\nfriction = 0.3"
+BOWTIE = "\n[[ground.zones]]\npolygon = [[0, 0], [1, 1], [1, 0], [0, 1]]\nfriction = 0.3"
 STATE2 = '[[vehicles.inputs.wheel_states]]\nwheel = "FL"\nstate = "free"\ntime = "x"\n'
 MISTAKES = [
     ('friction = "dry asphalt"', "\nslope = 2", r"ground.slope: unknown key"),
@@ -360,7 +361,9 @@ MISTAKES = [
     ),
     ('track = ["1.55 m", "1.52 m"]', '\ntrack = "2.5 m"', r"wheels: .*lies outside the body"),
     ('time = "0 s"\n', STATE2, r"wheel_states\[1\].time"),
-    ('friction = "wet asphalt"', ZONE2, r"ground: .*friction zones 'puddle' and 1: they overlap"),
+    # the zones' place (not their text) puts the error at the zone's key
+    ('friction = "wet asphalt"', ZONE2, r"ground.zones\[1\]: zones\[0\] and zones\[1\]: they"),
+    ('friction = "wet asphalt"', BOWTIE, r"ground.zones\[1\]: it crosses itself"),
     ('until = "rest"\n', 'duration = "2 s"\n', r"run.duration: with until"),
     ('pole = { diameter = "0.3 m", height = "5 m" }', "", r"obstacles\[0\]: give exactly one"),
     ('name = "pole"', '\nname = "red"', r"obstacles\[0\].name: .*already in the scene"),

@@ -43,6 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from crashsim.environment.ground import FrictionZone, Ground
+from crashsim.errors import CrashsimError
 from crashsim.filekind import special_file
 from crashsim.io.fitfile import read_fit
 from crashsim.io.scene_bodies import (
@@ -322,7 +323,25 @@ def _ground(t: _Table | None, base: Path) -> Ground | None:
         zones.append(_wrap(z, None, lambda c=corners, mu=mu, n=name: FrictionZone(c, mu, n)))
     kwargs["zones"] = zones
     t.finish()
-    return _wrap(t, None, lambda: Ground(**kwargs))
+    try:
+        return Ground(**kwargs)
+    except CrashsimError as e:
+        if not isinstance(e, ValueError):
+            raise
+        raise _ground_error(t, e) from e
+
+
+def _ground_error(t: _Table, e: CrashsimError) -> SceneFileError:
+    """The engine's refusal of a ground at the key it concerns: a zone's error at
+    ground.zones[k] (its place, not its text, says which), two overlapping zones at the
+    later one, naming the other; anything else at the ground table."""
+    place = next((p for p in e.loc if p[0] in ("zone", "zones")), None)
+    if place is None or e.message is None:
+        return t.error(None, str(e))
+    if place[0] == "zone":
+        return t.error(f"zones[{place[1]}]", e.message)
+    a, b = place[1]
+    return t.error(f"zones[{b}]", f"zones[{a}] and zones[{b}]: {e.message}")
 
 
 def _contact_values(t: _Table, names: list[str]) -> dict[str, Any]:
