@@ -601,6 +601,25 @@ mod tests {
     /// The swing's and the twist's rate vectors against central differences of the angles
     /// along the motion, over orientations of every swing up to 170 deg and twists of both
     /// signs (relative error below 1e-6).
+    /// Sample `i` of the test motions: two bodies' orientations (world from body) and
+    /// angular velocities (rad/s, world), spread over many relative orientations.
+    fn sample_motion(i: usize) -> (Matrix, Matrix, Vector, Vector) {
+        let f = i as Real;
+        let ra = Rotation::from_scaled_axis(Vector::new(0.1 * f, -0.05 * f, 0.02 * f))
+            .to_rotation_matrix()
+            .into_inner();
+        let rb = Rotation::from_scaled_axis(Vector::new(
+            (0.37 * f).sin() * 2.5,
+            (0.23 * f).cos() * 1.5,
+            0.3 * f - 6.0,
+        ))
+        .to_rotation_matrix()
+        .into_inner();
+        let wa = Vector::new(0.4, -0.7, 0.2);
+        let wb = Vector::new((0.5 * f).cos(), 0.8, -(0.3 * f).sin());
+        (ra, rb, wa, wb)
+    }
+
     #[test]
     fn a_ball_joints_limit_rates_are_the_angles_derivatives() {
         let joint = JointSpec::new(
@@ -613,21 +632,7 @@ mod tests {
         let h = 1e-6;
         let mut checked = 0;
         for i in 0..40 {
-            let f = i as Real;
-            let ra = Rotation::from_scaled_axis(Vector::new(0.1 * f, -0.05 * f, 0.02 * f))
-                .to_rotation_matrix()
-                .into_inner();
-            let rb = Rotation::from_scaled_axis(Vector::new(
-                (0.37 * f).sin() * 2.5,
-                (0.23 * f).cos() * 1.5,
-                0.3 * f - 6.0,
-            ))
-            .to_rotation_matrix()
-            .into_inner();
-            let (wa, wb) = (
-                Vector::new(0.4, -0.7, 0.2),
-                Vector::new((0.5 * f).cos(), 0.8, -(0.3 * f).sin()),
-            );
+            let (ra, rb, wa, wb) = sample_motion(i);
             let at = |s: Real| {
                 let turn = |w: Vector| Rotation::from_scaled_axis(w * s).to_rotation_matrix();
                 let bodies = [
@@ -671,21 +676,7 @@ mod tests {
             let joint = JointSpec::new(kind, 0, Some(1), frames.0, frames.1);
             let mut checked = 0;
             for i in 0..40 {
-                let f = i as Real;
-                let ra = Rotation::from_scaled_axis(Vector::new(0.1 * f, -0.05 * f, 0.02 * f))
-                    .to_rotation_matrix()
-                    .into_inner();
-                let rb = Rotation::from_scaled_axis(Vector::new(
-                    (0.37 * f).sin() * 2.5,
-                    (0.23 * f).cos() * 1.5,
-                    0.3 * f - 6.0,
-                ))
-                .to_rotation_matrix()
-                .into_inner();
-                let (wa, wb) = (
-                    Vector::new(0.4, -0.7, 0.2),
-                    Vector::new((0.5 * f).cos(), 0.8, -(0.3 * f).sin()),
-                );
+                let (ra, rb, wa, wb) = sample_motion(i);
                 let bodies_at = |s: Real| {
                     let turn = |w: Vector| Rotation::from_scaled_axis(w * s).to_rotation_matrix();
                     [
