@@ -337,7 +337,7 @@ def test_an_obstacle_with_stiffness_gives_an_automatic_depth_of_penetration() ->
     scene = cs.Scene(depth_of_penetration="auto")
     scene.add(car, (0.0, 0.0, 0.7), velocity=(10.0, 0.0, 0.0))
     front_only = cs.Obstacle.wall(5.0, stiffness={"front": (1e5, 5e6)})
-    with pytest.raises(cs.ParameterError, match="obstacle 'wall' has no stiffness on its rear"):
+    with pytest.raises(cs.ParameterError, match="obstacle 'wall': it has no stiffness on its rear"):
         scene.add_obstacle(front_only, (3.0, 0.0)).run(0.3)
     stiff = cs.Scene(depth_of_penetration="auto")
     stiff.add(car, (0.0, 0.0, 0.7), velocity=(10.0, 0.0, 0.0))

@@ -625,7 +625,7 @@ ERRORS = [
             "format_version = 1", 'format_version = 1\n[contact]\ndepth_of_penetration = "auto"'
         ),
         "contact.depth_of_penetration",
-        'vehicle "red" has none on its front, rear, left, right face(s)',
+        "vehicle 'red': it has no stiffness on its front face",
     ),
     (
         "cg_height on a mesh",

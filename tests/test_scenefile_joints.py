@@ -343,7 +343,7 @@ def test_a_joined_pair_needs_no_stiffness_unless_it_collides() -> None:
     with pytest.raises(SceneFileError) as info:
         loads_scene(BOXES + "collide = true\n")
     assert info.value.key == "contact.depth_of_penetration"
-    assert 'vehicle "car" has none on its front, rear, left, right face(s)' in str(info.value)
+    assert "vehicle 'car': it has no stiffness on its front face" in str(info.value)
     # collide = true: the pair exists, and a [[pairs]] entry for it applies
     case = loads_scene(GOOD + 'collide = true\n[[pairs]]\nvehicles = ["car", "towed"]\n'
                        "restitution = 0.3\n")  # fmt: skip

@@ -128,11 +128,11 @@ def test_stiffness_modes_need_stiffness_on_both_vehicles() -> None:
         scene = cs.Scene()
         scene.add(full, position=(-5.0, 0.0, 0.7))
         scene.add(bare, position=(0.0, 0.0, 0.7))
-        with pytest.raises(cs.ParameterError, match="vehicle 'bare' has no stiffness"):
+        with pytest.raises(cs.ParameterError, match="vehicle 'bare': it has no stiffness"):
             scene.contact(full, bare, **kwargs)
         defaults = cs.Scene(**kwargs)
         defaults.add(full, position=(-5.0, 0.0, 0.7)).add(bare, position=(0.0, 0.0, 0.7))
-        with pytest.raises(cs.ParameterError, match="vehicle 'bare' has no stiffness"):
+        with pytest.raises(cs.ParameterError, match="vehicle 'bare': it has no stiffness"):
             defaults.run(duration=0.1)
     with pytest.raises(cs.ParameterError, match="depth_of_penetration"):
         cs.Scene(depth_of_penetration="automatic")

@@ -44,6 +44,7 @@ __all__ = [
     "check_mass",
     "check_state",
     "check_pose",
+    "check_contact_stiffness",
 ]
 
 class CrashsimError(Exception):
@@ -153,6 +154,18 @@ def check_state(
 
 def check_pose(position: ArrayLike, orientation: ArrayLike) -> None:
     """The engine's checks of a fixed body's pose: ParameterError otherwise."""
+
+def check_contact_stiffness(
+    params: ContactParams,
+    faces1: list[tuple[float, float] | None],
+    obstacle1: bool,
+    faces2: list[tuple[float, float] | None],
+    obstacle2: bool,
+) -> None:
+    """The engine's check that a pair's parameters have the face stiffness they need (auto
+    depth of penetration, the stiffness centroid): each side's faces (A N/m, B N/m^2) or None
+    in the order front, rear, left, right, and whether it is a fixed obstacle; a
+    ParameterError placed at body 0 or 1, the side that lacks it."""
 
 def point_in_polygon(x: float, y: float, polygon: Any) -> bool:
     """True when (x, y) (m) lies inside the polygon ((k, 2) corners, m) or on its edge: the

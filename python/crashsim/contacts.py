@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike
 
 from crashsim import _core
 from crashsim.environment.obstacles import Obstacle
-from crashsim.errors import ParameterError, SceneError
+from crashsim.errors import ParameterError, SceneError, naming, renamed
 from crashsim.human.bicycle import Bicycle
 from crashsim.human.cyclist import Cyclist
 from crashsim.human.pedestrian import Pedestrian
@@ -62,37 +62,26 @@ _DEFAULTS = _core.ContactParams()
 """The engine's defaults of a pair's parameters (crates/crashsim-core/src/contact.rs)."""
 
 
-def _needs_stiffness(params: dict[str, Any]) -> bool:
-    return (
-        isinstance(params["depth_of_penetration"], str) and params["depth_of_penetration"] == "auto"
-    ) or (isinstance(params["centroid"], str) and params["centroid"] == "stiffness")
-
-
 def _check_stiffness(
-    params: dict[str, Any], vehicles: tuple[Vehicle | Obstacle, Vehicle | Obstacle]
+    params: _core.ContactParams, bodies: tuple[Vehicle | Obstacle, Vehicle | Obstacle]
 ) -> None:
-    """ParameterError when the pair's parameters need face stiffness a vehicle lacks. An
-    obstacle without any stiffness is rigid (the core's World::is_rigid)."""
-    if not _needs_stiffness(params):
-        return
-    for v in vehicles:
-        missing = [f for f in FACES if v.stiffness.face(f) is None]
-        if missing:
-            if isinstance(v, Obstacle):
-                if len(missing) == len(FACES):
-                    continue  # rigid: the vehicle's spring alone, no crush of its own
-                raise ParameterError(
-                    f"obstacle {v.name!r} has no stiffness on its {', '.join(missing)} "
-                    'face(s): depth_of_penetration="auto" and centroid="stiffness" need CRASH3 '
-                    "A and B on every face of an obstacle that has any: give them all (one "
-                    "stiffness=(A, B) sets every face), or none for a rigid obstacle"
-                )
-            raise ParameterError(
-                f"vehicle {v.name!r} has no stiffness on its {', '.join(missing)} face(s): "
-                'depth_of_penetration="auto" and centroid="stiffness" need CRASH3 A and B on '
-                "every face of both vehicles; give the vehicle stiffness=... (or build it from "
-                "a vehicle class), or use a fixed depth of penetration and the automatic centroid"
-            )
+    """The engine's check that a pair's parameters have the face stiffness they need
+    (ContactParams.check_stiffness: auto depth of penetration and the stiffness centroid need
+    every face of both bodies, a fixed obstacle without any is rigid); ParameterError naming
+    the body that lacks it."""
+    sides: list[Any] = []
+    for b in bodies:
+        faces = [None if (s := b.stiffness.face(f)) is None else (s.A, s.B) for f in FACES]
+        sides += [faces, isinstance(b, Obstacle)]
+    try:
+        _core.check_contact_stiffness(params, *sides)
+    except ParameterError as e:
+
+        def body(k: int) -> str:
+            kind = "obstacle" if isinstance(bodies[k], Obstacle) else "vehicle"
+            return f"{kind} {bodies[k].name!r}"
+
+        raise renamed(e, naming(body=body)) from e
 
 
 def _core_params(
@@ -232,8 +221,8 @@ class _Contacts:
         overrides = dict(self._overrides.get(names, {}))
         overrides.update({k: v for k, v in given.items() if v is not UNSET})
         merged = {**self._defaults, **overrides}
-        _core_params(merged, (i, j), self._index, self._bodies)
-        _check_stiffness(merged, (bodies[i], bodies[j]))
+        core = _core_params(merged, (i, j), self._index, self._bodies)
+        _check_stiffness(core, (bodies[i], bodies[j]))
         self._overrides.pop((names[1], names[0]), None)
         self._overrides[names] = overrides
         return self

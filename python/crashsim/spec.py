@@ -76,8 +76,9 @@ def _build_spec(
         )
     for a, b, params in pairs:
         i, j = index(a), index(b)
-        _check_stiffness(params, (bodies[i], bodies[j]))
-        spec.set_contact(i, j, _core_params(params, (i, j), index, lambda: bodies))
+        core = _core_params(params, (i, j), index, lambda: bodies)
+        _check_stiffness(core, (bodies[i], bodies[j]))
+        spec.set_contact(i, j, core)
     for pair in sorted(tuple(sorted(index(n) for n in p)) for p in no_contact):
         spec.set_no_contact(*pair)
     for names, (k, zeta) in soft.items():

@@ -1,8 +1,9 @@
 //! Contact parameters of a vehicle pair: every field states its default, unit and effect.
 
-use crate::error::{require_finite, require_finite_vector, Error, Result};
+use crate::error::{require_finite, require_finite_vector, Error, Place, Result};
 use crate::impulse::RestitutionMode;
 use crate::math::{Point, Real, Vector};
+use crate::stiffness::{Face, Stiffness};
 
 /// Largest accepted depth-of-penetration time (s).
 pub const MAX_DEPTH_OF_PENETRATION: Real = 0.060;
@@ -175,6 +176,38 @@ impl ContactParams {
     pub fn needs_stiffness(&self) -> bool {
         self.depth_of_penetration == DepthOfPenetration::Auto
             || self.centroid == CentroidMode::Stiffness
+    }
+
+    /// An error when these parameters need face stiffness (auto depth of penetration, the
+    /// stiffness centroid) that a body of the pair lacks: each side is (its body index, its
+    /// stiffness, whether it is a fixed obstacle). A fixed obstacle with no stiffness at all
+    /// is rigid and needs none. The error is placed at the body that lacks it.
+    pub fn check_stiffness(&self, sides: [(usize, &Stiffness, bool); 2]) -> Result<()> {
+        if !self.needs_stiffness() {
+            return Ok(());
+        }
+        for (i, s, obstacle) in sides {
+            if obstacle && s.is_none() {
+                continue;
+            }
+            if let Some(face) = Face::ALL.iter().find(|f| s.face(**f).is_none()) {
+                let fix = if obstacle {
+                    "give the obstacle's other faces a stiffness too, or none at all for a rigid \
+                     obstacle"
+                } else {
+                    "give the vehicle a stiffness (or build it from a vehicle class), or use a \
+                     fixed dt_p and the automatic centroid"
+                };
+                return Err(Error::invalid(format!(
+                    "it has no stiffness on its {} face: depth_of_penetration = auto and \
+                     centroid = stiffness need CRASH3 A and B on every face of both bodies, or \
+                     none on a fixed obstacle (rigid); {fix}",
+                    face.name()
+                ))
+                .at(Place::body(i)));
+            }
+        }
+        Ok(())
     }
 
     /// Checks every field's range.

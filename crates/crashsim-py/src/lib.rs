@@ -641,6 +641,34 @@ fn check_pose(position: &Bound<'_, PyAny>, orientation: &Bound<'_, PyAny>) -> Py
     core::spec::check_pose(&pose(position, orientation)?).map_err(errors::to_py)
 }
 
+/// The engine's check that a pair's parameters have the face stiffness they need (auto
+/// depth of penetration, the stiffness centroid): each side is its faces' (A N/m, B N/m^2)
+/// or None in the order front, rear, left, right and whether it is a fixed obstacle; the
+/// error is placed at body 0 or 1, the side that lacks it.
+#[pyfunction]
+fn check_contact_stiffness(
+    params: &spec::ContactParams,
+    faces1: Vec<Option<Bound<'_, PyAny>>>,
+    obstacle1: bool,
+    faces2: Vec<Option<Bound<'_, PyAny>>>,
+    obstacle2: bool,
+) -> PyResult<()> {
+    let stiffness = |faces: &[Option<Bound<'_, PyAny>>]| -> PyResult<core::Stiffness> {
+        let mut s = core::Stiffness::none();
+        for (face, value) in core::Face::ALL.iter().zip(faces) {
+            if let Some(f) = convert::face_stiffness(value.as_ref(), face.name())? {
+                s = s.with(*face, f);
+            }
+        }
+        Ok(s)
+    };
+    let (s1, s2) = (stiffness(&faces1)?, stiffness(&faces2)?);
+    params
+        .inner
+        .check_stiffness([(0, &s1, obstacle1), (1, &s2, obstacle2)])
+        .map_err(errors::to_py)
+}
+
 /// True when (x, y) (m) lies inside the polygon ((k, 2) corners, m) or on its edge: the
 /// engine's friction-zone test.
 #[pyfunction]
@@ -748,6 +776,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check_mass, m)?)?;
     m.add_function(wrap_pyfunction!(check_state, m)?)?;
     m.add_function(wrap_pyfunction!(check_pose, m)?)?;
+    m.add_function(wrap_pyfunction!(check_contact_stiffness, m)?)?;
     m.add_function(wrap_pyfunction!(suspension, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics_defaults, m)?)?;
     Ok(())

@@ -42,8 +42,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from crashsim import _core
+from crashsim.contacts import _check_stiffness
 from crashsim.environment.ground import FrictionZone, Ground
-from crashsim.errors import CrashsimError
+from crashsim.errors import CrashsimError, ParameterError
 from crashsim.filekind import special_file
 from crashsim.io.fitfile import read_fit
 from crashsim.io.scene_bodies import (
@@ -94,7 +96,6 @@ from crashsim.result import Result
 from crashsim.scene import Scene
 from crashsim.spec import DEFAULT_MAX_DURATION
 from crashsim.vehicles.generator.presets import PRESETS
-from crashsim.vehicles.stiffness import FACES
 from crashsim.vehicles.trucks import RIGID_PRESETS, TRACTOR_PRESETS
 from crashsim.vehicles.vehicle import Vehicle
 
@@ -477,16 +478,10 @@ def _check_stiffness_needs(top: _Table, scene: Scene) -> None:
                     continue  # joined: their meshes never meet
                 if scene.contact_parameters(a, b)[k] != defaults[k]:
                     continue  # the pair overrides it
-                for v in (a, b):
-                    missing = [f for f in FACES if v.stiffness.face(f) is None]
-                    if missing:
-                        top.fail(
-                            f"contact.{k}",
-                            f'"{defaults[k]}" needs stiffness on every face of both vehicles, '
-                            f'and vehicle "{v.name}" has none on its {", ".join(missing)} '
-                            'face(s): give it stiffness = "<vehicle class>" or a stiffness '
-                            "table, or override this pair in [[pairs]]",
-                        )
+                try:  # the engine's rule, on parameters that need what k asks for
+                    _check_stiffness(_core.ContactParams(**{k: defaults[k]}), (a, b))
+                except ParameterError as e:
+                    top.fail(f"contact.{k}", f"{e}; or override this pair in [[pairs]]")
 
 
 def _syntax_error(e: tomllib.TOMLDecodeError, file: str) -> SceneFileError:

@@ -34,7 +34,7 @@ use crate::motion::{BodyContact, MotionBound, OnGround};
 use crate::overlap::QueryWorkspace;
 use crate::shape::MeshShape;
 use crate::soft::SoftContact;
-use crate::stiffness::{Face, Stiffness};
+use crate::stiffness::Stiffness;
 use crate::vehicle::VehicleSpec;
 use clearance::Front;
 
@@ -525,31 +525,8 @@ impl World {
 
     /// An error when the pair's parameters need face stiffness that a body lacks.
     fn check_stiffness(&self, body1: usize, body2: usize, params: &ContactParams) -> Result<()> {
-        if !params.needs_stiffness() {
-            return Ok(());
-        }
-        for i in [body1, body2] {
-            if self.is_rigid(i) {
-                continue;
-            }
-            let s = &self.bodies[i].stiffness;
-            if let Some(face) = Face::ALL.iter().find(|f| s.face(**f).is_none()) {
-                let fix = if self.is_obstacle(i) {
-                    "give the obstacle's other faces a stiffness too, or none at all for a rigid \
-                     obstacle"
-                } else {
-                    "give the vehicle a stiffness, or use a fixed dt_p and the automatic centroid"
-                };
-                return Err(Error::invalid(format!(
-                    "it has no stiffness on its {} face: depth_of_penetration = auto and \
-                     centroid = stiffness need CRASH3 A and B on every face of both bodies, or \
-                     none on a fixed obstacle (rigid); {fix}",
-                    face.name()
-                ))
-                .at(Place::body(i)));
-            }
-        }
-        Ok(())
+        let side = |i: usize| (i, &self.bodies[i].stiffness, self.is_obstacle(i));
+        params.check_stiffness([side(body1), side(body2)])
     }
 
     /// Makes bodies `body1` and `body2` never collide: their pair is dropped (no overlap
