@@ -1,7 +1,7 @@
 """The Nicolas-Comstock combined-slip law (issue 19 item 7; Brach and Brach's modification,
 SAE 2000-01-0357, 2009-01-0102, 2011-01-0094) from the Python side: named by the engine, the
 scene file and the report, and its pure-slip limits in a run (the closed forms of the force
-itself are tested in crates/crashsim-core/src/vehicle/tyre.rs):
+itself are tested in crates/crashsim-core/src/vehicle/combined_slip.rs):
 
 - pure braking (no slip angle): Fx(s), the brake demand, so a straight stop is the one the
   default law gives, bit for bit, and v^2 / (2 a) within 1 %;
