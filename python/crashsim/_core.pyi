@@ -259,7 +259,9 @@ class Tyre:
     """A tyre, checked by the engine when made: model "linear" (cornering 1/rad, or its
     saturation_angle at mu = 1, rad), "linear_friction_scaled" (saturation_angle rad) or
     "magic_formula" (b 1/rad, c, e); relaxation_length (m), rolling_resistance, combined
-    ("braking_priority" | "circle"), load_sensitivity. None: the engine's default."""
+    ("braking_priority" | "circle" | "nicolas_comstock"), load_sensitivity,
+    longitudinal_stiffness (nicolas_comstock's Cs per unit load, 1 per unit slip; None: the
+    cornering stiffness). None: the engine's default."""
 
     def __new__(
         cls,
@@ -274,6 +276,7 @@ class Tyre:
         rolling_resistance: float | None = None,
         combined: str | None = None,
         load_sensitivity: float | None = None,
+        longitudinal_stiffness: float | None = None,
     ) -> Tyre: ...
     def resolved(self) -> dict[str, Any]:
         """Every parameter as the engine runs it."""

@@ -162,10 +162,11 @@ impl Tyre {
     /// model "linear" (cornering: the cornering coefficient, 1/rad, or saturation_angle:
     /// its equivalent at mu = 1, rad), "linear_friction_scaled" (saturation_angle, rad) or
     /// "magic_formula" (b 1/rad, c, e); relaxation_length (m), rolling_resistance (-),
-    /// combined ("braking_priority" or "circle"), load_sensitivity (-). None: the engine's
-    /// default.
+    /// combined ("braking_priority", "circle" or "nicolas_comstock"), load_sensitivity (-),
+    /// longitudinal_stiffness (nicolas_comstock's Cs per unit load, 1 per unit slip; None:
+    /// equal to the cornering stiffness). None: the engine's default.
     #[new]
-    #[pyo3(signature = (model = "linear", *, cornering = None, saturation_angle = None, b = None, c = None, e = None, relaxation_length = None, rolling_resistance = None, combined = None, load_sensitivity = None))]
+    #[pyo3(signature = (model = "linear", *, cornering = None, saturation_angle = None, b = None, c = None, e = None, relaxation_length = None, rolling_resistance = None, combined = None, load_sensitivity = None, longitudinal_stiffness = None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         model: &str,
@@ -178,6 +179,7 @@ impl Tyre {
         rolling_resistance: Option<Real>,
         combined: Option<&str>,
         load_sensitivity: Option<Real>,
+        longitudinal_stiffness: Option<Real>,
     ) -> PyResult<Tyre> {
         let mut t = core::vehicle::Tyre::default();
         let foreign = |names: &[(&str, bool)], model: &str| -> PyResult<()> {
@@ -259,22 +261,26 @@ impl Tyre {
             t.combined = match v {
                 "braking_priority" => CombinedSlip::BrakingPriority,
                 "circle" => CombinedSlip::Circle,
+                "nicolas_comstock" => CombinedSlip::NicolasComstock,
                 other => {
                     return Err(errors::parameter(format!(
                         "tyre combined = {other:?} is unknown: use \"braking_priority\" (the \
-                         brake force kept, the lateral force from what the friction leaves) or \
-                         \"circle\" (both scaled onto the friction circle)"
+                         brake force kept, the lateral force from what the friction leaves), \
+                         \"circle\" (both scaled onto the friction circle) or \
+                         \"nicolas_comstock\" (Brach and Brach's modified Nicolas-Comstock \
+                         combination of the pure-slip forces)"
                     )))
                 }
             };
         }
+        t.longitudinal_stiffness = longitudinal_stiffness;
         t.validate().map_err(errors::to_py)?;
         Ok(Tyre { inner: t })
     }
 
     /// Every parameter as the engine runs it: model, its own parameters (cornering 1/rad;
     /// saturation_angle rad; b, c, e), relaxation_length, rolling_resistance, combined,
-    /// load_sensitivity.
+    /// load_sensitivity and, with combined "nicolas_comstock", longitudinal_stiffness.
     fn resolved<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
         let t = &self.inner;
@@ -301,9 +307,14 @@ impl Tyre {
             match t.combined {
                 CombinedSlip::BrakingPriority => "braking_priority",
                 CombinedSlip::Circle => "circle",
+                CombinedSlip::NicolasComstock => "nicolas_comstock",
             },
         )?;
         d.set_item("load_sensitivity", t.load_sensitivity)?;
+        // Listed with the law that uses it only (None: the cornering stiffness).
+        if t.combined == CombinedSlip::NicolasComstock {
+            d.set_item("longitudinal_stiffness", t.longitudinal_stiffness)?;
+        }
         Ok(d)
     }
 

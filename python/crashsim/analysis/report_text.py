@@ -262,9 +262,15 @@ def _vehicle_data_lines(result: Result) -> list[str]:
             f"{math.degrees(t.get('saturation_angle', 0.0)):.1f} deg",
             "magic_formula": f"Magic Formula B {t.get('b')}, C {t.get('c')}, E {t.get('e')}",
         }[t["model"]]
+        combined = t["combined"]
+        if combined == "nicolas_comstock":
+            cs = t.get("longitudinal_stiffness")
+            combined += " (longitudinal stiffness " + (
+                "= cornering)" if cs is None else f"{cs:g} Fz per unit slip)"
+            )
         lines.append(
             f"  {name}: tyre {law}; relaxation length {t['relaxation_length']:.3f} m; rolling "
-            f"resistance {t['rolling_resistance']:g}; combined slip {t['combined']}; load "
+            f"resistance {t['rolling_resistance']:g}; combined slip {combined}; load "
             f"sensitivity {t['load_sensitivity']:g}"
         )
         st = d["steering"]

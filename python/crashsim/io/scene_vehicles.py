@@ -27,7 +27,7 @@ from crashsim.vehicles.generator.presets import SHAPE_PARAMETERS
 from crashsim.vehicles.inputs import Brake, DriverInputs
 from crashsim.vehicles.mass_properties import SOLIDS
 from crashsim.vehicles.meshio import axes_rotation, unit_scale
-from crashsim.vehicles.tyre import TYRE_MODELS, TYRE_PARAMETERS, Tyre
+from crashsim.vehicles.tyre import COMBINED_SLIP_LAWS, TYRE_MODELS, TYRE_PARAMETERS, Tyre
 from crashsim.vehicles.vehicle import Vehicle
 from crashsim.vehicles.vehicle_data import vehicle_class
 
@@ -403,12 +403,13 @@ def _tyre(t: _Table) -> Tyre | None:
     if ty.has("cornering"):
         values["cornering"] = ty.quantity("cornering", "per angle", low="> 0")
     ty.taken.add("cornering")
-    for k in ("b", "c", "e", "rolling_resistance", "load_sensitivity"):
+    plain = ("b", "c", "e", "rolling_resistance", "load_sensitivity", "longitudinal_stiffness")
+    for k in plain:
         if ty.has(k):
             values[k] = ty.number(k)
         ty.taken.add(k)
     if ty.has("combined"):
-        values["combined"] = ty.string("combined", choices=("braking_priority", "circle"))
+        values["combined"] = ty.string("combined", choices=COMBINED_SLIP_LAWS)
     if ty.has("relaxation_length"):
         values["relaxation_length"] = ty.quantity("relaxation_length", "length", low="> 0")
     ty.taken.add("relaxation_length")

@@ -10,11 +10,14 @@ from crashsim import _core
 from crashsim.errors import ParameterError
 from crashsim.vehicles.numbers import finite as _number
 
-__all__ = ["TYRE_MODELS", "TYRE_PARAMETERS", "Tyre"]
+__all__ = ["COMBINED_SLIP_LAWS", "TYRE_MODELS", "TYRE_PARAMETERS", "Tyre"]
 
 TYRE_MODELS = ("linear", "linear_friction_scaled", "magic_formula")
 """The tyre models: the reconstruction programs' linear tyre, crashsim's law before 2026-11
 (mu Fz at the saturation angle on every road) and Pacejka's Magic Formula."""
+
+COMBINED_SLIP_LAWS = ("braking_priority", "circle", "nicolas_comstock")
+"""How a wheel's longitudinal and lateral forces share the friction (docs/vehicle-model.md)."""
 
 
 @dataclass(frozen=True)
@@ -36,8 +39,11 @@ class Tyre:
     ``relaxation_length`` (m), ``rolling_resistance`` (force / load; default 0, as the
     reconstruction programs: give 0.010-0.015 for passenger tyres on asphalt), ``combined``
     ("braking_priority", the default: the brake force kept and the lateral force from what the
-    friction leaves; or "circle": both scaled onto the friction circle), ``load_sensitivity``
-    (cornering stiffness proportional to Fz^(1 - e); default 0). A field left None takes the
+    friction leaves; "circle": both scaled onto the friction circle; or "nicolas_comstock":
+    Brach and Brach's modified Nicolas-Comstock combination of the pure-slip forces, capped at
+    mu Fz), ``load_sensitivity`` (cornering stiffness proportional to Fz^(1 - e); default 0),
+    ``longitudinal_stiffness`` (nicolas_comstock only: the longitudinal slip stiffness per
+    unit load, 1 per unit slip; default the cornering stiffness). A field left None takes the
     engine's default (:meth:`resolved` shows every value as run).
     """
 
@@ -51,6 +57,7 @@ class Tyre:
     rolling_resistance: float | None = None
     combined: str | None = None
     load_sensitivity: float | None = None
+    longitudinal_stiffness: float | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.model, str):
@@ -64,6 +71,7 @@ class Tyre:
             "relaxation_length": "m",
             "rolling_resistance": "1",
             "load_sensitivity": "1",
+            "longitudinal_stiffness": "1",
         }
         for name, unit in units.items():
             value = getattr(self, name)
@@ -88,7 +96,8 @@ class Tyre:
     def resolved(self) -> dict[str, Any]:
         """Every parameter as the engine runs it: the given ones and the engine's defaults
         for the others (model, cornering 1/rad or saturation_angle rad or b, c, e;
-        relaxation_length m, rolling_resistance, combined, load_sensitivity)."""
+        relaxation_length m, rolling_resistance, combined, load_sensitivity; with combined
+        "nicolas_comstock" its longitudinal_stiffness, None for the cornering stiffness)."""
         return dict(self.to_core().resolved())
 
     def __reduce__(self) -> tuple[Any, ...]:

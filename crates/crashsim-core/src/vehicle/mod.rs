@@ -3,6 +3,7 @@
 //! A [`VehicleSpec`] is what a body needs to run on the ground; the forces it makes are
 //! evaluated per wheel and per integration stage by [`crate::motion`].
 
+pub mod combined_slip;
 pub mod inputs;
 pub mod steering;
 pub mod tyre;

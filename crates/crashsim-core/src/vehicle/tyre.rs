@@ -42,14 +42,18 @@
 //! leaves ([`CombinedSlip`]): by default `sqrt((mu Fz)^2 - Fx^2)` (the braking force kept and
 //! the friction ellipse giving the steering force, as Brach and Brach describe the
 //! reconstruction programs' combined laws, SAE 2009-01-0102), or both scaled onto the friction
-//! circle (Kamm's circle). The Magic Formula's curve applies to the lateral slip only, scaled
-//! to the lateral force available (the similarity method again), so a braked wheel delivers
-//! its brake force whatever the law. A locked wheel slides at mu Fz against its patch
-//! velocity under every law.
+//! circle (Kamm's circle), or combined by Nicolas and Comstock's formula as Brach and Brach
+//! modified it ([`super::combined_slip::nicolas_comstock`]: the brake demand is the pure-slip force Fx(s), its slip
+//! the one the linear curve Cs s gives it at, and the tread's force over its cornering
+//! stiffness tan(alpha)), capped at mu Fz. The Magic Formula's curve applies to the lateral
+//! slip only, scaled to the lateral force available (the similarity method again), so a braked
+//! wheel delivers its brake force under the first two laws. A locked wheel slides at mu Fz
+//! against its patch velocity under every law.
 
 use crate::error::{require_finite, Error, Result};
 use crate::math::Real;
 
+use super::combined_slip::{combine_pure_slip_forces, MAX_LONGITUDINAL_STIFFNESS};
 use super::wheel::GRAVITY;
 
 /// Deflection relaxation time (s) of a wheel in the air (no load): the tread springs back.
@@ -137,6 +141,13 @@ pub enum CombinedSlip {
     /// mu Fz (Kamm's circle): braking in a turn at the limit keeps part of the lateral force
     /// and gives up part of the braking. crashsim's law before 2026-11.
     Circle,
+    /// Nicolas and Comstock's combination of the pure-slip forces Fx(s) and Fy(alpha) as
+    /// Brach and Brach modified it to give the pure-slip forces back at alpha = 0 and s = 0
+    /// (SAE 2000-01-0357; SAE 2009-01-0102; SAE 2011-01-0094), with crashsim's equivalent
+    /// slips (see [`super::combined_slip::nicolas_comstock`]): both components change with both slips, so a braked
+    /// wheel in a turn brakes less than its demand. The resultant is capped at mu Fz (the
+    /// formula alone reaches 1.32 mu Fz with the linear tyre's sharp saturation).
+    NicolasComstock,
 }
 
 /// A tyre: its force law, relaxation length, rolling resistance and combined-slip law.
@@ -173,6 +184,18 @@ pub struct Tyre {
     /// first: the understeer of real tyres (Gillespie, ch. 6; Milliken, ch. 2). Default 0,
     /// the reconstruction programs' linear tyre, whose stiffness is proportional to the load.
     pub load_sensitivity: Real,
+    /// Longitudinal slip stiffness per unit load `Cs / Fz` (1 per unit slip, in (0, 100]) of
+    /// the [`CombinedSlip::NicolasComstock`] law, the only one that uses it. None (default):
+    /// Cs equal to the cornering stiffness C_alpha (per rad), the isotropic tread crashsim's
+    /// bristle already is (one stiffness C / sigma both ways), with which the combined force
+    /// follows the slip vector. Measured passenger tyres: Cs about 1-1.5 C_alpha, 15-30 Fz
+    /// per unit slip (Pacejka, Tire and Vehicle Dynamics, ch. 4). Proportional to the load
+    /// (the load sensitivity applies to C_alpha only).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub longitudinal_stiffness: Option<Real>,
 }
 
 impl Default for Tyre {
@@ -185,6 +208,7 @@ impl Default for Tyre {
             rolling_resistance: 0.0,
             combined: CombinedSlip::BrakingPriority,
             load_sensitivity: 0.0,
+            longitudinal_stiffness: None,
         }
     }
 }
@@ -240,6 +264,23 @@ impl Tyre {
                 "a tyre's load sensitivity must lie in [0, 1) (0: stiffness proportional to \
                  the load)",
             ));
+        }
+        if let Some(cs) = self.longitudinal_stiffness {
+            require_finite("longitudinal_stiffness", cs)?;
+            if !(cs > 0.0 && cs <= MAX_LONGITUDINAL_STIFFNESS) {
+                return Err(Error::parameter(
+                    "longitudinal_stiffness",
+                    cs,
+                    "a longitudinal slip stiffness per unit load must lie in (0, 100] per unit \
+                     slip (passenger tyres 15-30; leave it unset for the cornering stiffness)",
+                ));
+            }
+            if self.combined != CombinedSlip::NicolasComstock {
+                return Err(Error::invalid(format!(
+                    "longitudinal_stiffness = {cs} is used by the nicolas_comstock combined-slip \
+                     law only: set combined = nicolas_comstock or leave it unset"
+                )));
+            }
         }
         match self.model {
             TyreModel::Linear { cornering } => {
@@ -400,7 +441,7 @@ impl Tyre {
                 }
                 (friction * friction - fx * fx).max(0.0).sqrt()
             }
-            CombinedSlip::Circle => friction,
+            CombinedSlip::Circle | CombinedSlip::NicolasComstock => friction,
         };
         let fy_lin = k * u[1] + damping * du[1];
         let (fy_mag, at_limit) = self.lateral(fy_lin.abs(), available);
@@ -412,7 +453,16 @@ impl Tyre {
         if k * u[1].abs() >= yield_force && u[1] * du[1] >= 0.0 {
             du[1] = -(u[1] - u[1].signum() * yield_force / k) / YIELD_RELAXATION;
         }
-        if self.combined == CombinedSlip::Circle {
+        if self.combined == CombinedSlip::NicolasComstock {
+            let slip_stiffness = [
+                self.longitudinal_stiffness.map_or(c_alpha, |c| c * fz),
+                c_alpha,
+            ];
+            let pure_saturated = fx.abs() >= friction;
+            (fx, fy) = combine_pure_slip_forces(fx, fy, fy_lin, slip_stiffness, friction);
+            sliding |= pure_saturated;
+        }
+        if self.combined != CombinedSlip::BrakingPriority {
             let total = fx.hypot(fy);
             if total > friction {
                 fx *= friction / total;
@@ -656,7 +706,7 @@ mod tests {
                         assert!((fx + 0.6 * friction).abs() < 1e-9 * friction, "{out:?}");
                         assert!(fy.abs() <= 0.8 * friction * (1.0 + 1e-12), "{out:?}");
                     }
-                    CombinedSlip::Circle => {
+                    CombinedSlip::Circle | CombinedSlip::NicolasComstock => {
                         assert!(fx.hypot(fy) <= friction * (1.0 + 1e-12), "{out:?}");
                     }
                 }
