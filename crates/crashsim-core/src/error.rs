@@ -113,6 +113,11 @@ impl std::error::Error for Error {}
 /// The engine's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
+/// The kind of a result's error; None when it is Ok.
+pub fn error_kind<T>(r: &Result<T>) -> Option<ErrorKind> {
+    r.as_ref().err().map(|e| e.kind)
+}
+
 impl Error {
     /// An error of `kind` with no place yet.
     pub fn new(kind: ErrorKind, message: impl Into<String>) -> Self {

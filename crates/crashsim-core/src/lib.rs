@@ -29,7 +29,7 @@ pub mod world;
 
 pub use body::{BodyState, MassProperties, RigidBody};
 pub use contact::{CentroidMode, ContactParams, DepthOfPenetration, NormalMode};
-pub use error::{Error, ErrorKind, Place, Result};
+pub use error::{error_kind, Error, ErrorKind, Place, Result};
 pub use impulse::RestitutionMode;
 pub use mass::SolidProperties;
 pub use shape::MeshShape;

@@ -15,7 +15,7 @@ use crashsim_core::vehicle::{
 };
 use crashsim_core::world::{degrees, heading, magnitude, pdof_deg};
 use crashsim_core::ErrorKind;
-use crashsim_core::{BodyState, ContactParams, Error, MassProperties, MeshShape, SceneSpec};
+use crashsim_core::{BodyState, ContactParams, MassProperties, MeshShape, SceneSpec};
 
 fn box_props(m: Real, l: Real, w: Real, h: Real) -> MassProperties {
     let i = Matrix::from_diagonal(&Vector::new(
@@ -218,13 +218,24 @@ fn failed_variants_are_listed_and_the_others_finish() {
     assert_eq!(out.errors.len(), 2);
     assert_eq!(out.errors[0].index, 1);
     assert!(
-        matches!(&out.errors[0].error, e @ Error { kind: ErrorKind::InitialOverlap, .. } if e.to_string().starts_with("variant 1: ") && e.to_string().contains("\"red\"") && e.to_string().contains("\"blue\"")),
+        {
+            let e = &out.errors[0].error;
+            e.kind == ErrorKind::InitialOverlap
+                && e.to_string().starts_with("variant 1: ")
+                && e.to_string().contains("\"red\"")
+                && e.to_string().contains("\"blue\"")
+        },
         "{:?}",
         out.errors[0]
     );
     assert_eq!(out.errors[1].index, 2);
     assert!(
-        matches!(&out.errors[1].error, e @ Error { kind: ErrorKind::Parameter, .. } if e.to_string().starts_with("variant 2: ") && e.to_string().contains("restitution")),
+        {
+            let e = &out.errors[1].error;
+            e.kind == ErrorKind::Parameter
+                && e.to_string().starts_with("variant 2: ")
+                && e.to_string().contains("restitution")
+        },
         "{:?}",
         out.errors[1]
     );
@@ -243,24 +254,24 @@ fn bad_overrides_are_refused_naming_the_key() {
     let spec = seed();
     let unknown = Overrides::new(&spec, 2, vec![("speed".into(), vec![2], vec![1.0, 2.0])]);
     assert!(
-        matches!(unknown, Err(e @ Error { kind: ErrorKind::Parameter, .. }) if e.message.contains("\"speed\""))
+        unknown.is_err_and(|e| e.kind == ErrorKind::Parameter && e.message.contains("\"speed\""))
     );
     let shape = Overrides::new(
         &spec,
         2,
         vec![("velocity".into(), vec![2, 3], vec![0.0; 6])],
     );
-    assert!(
-        matches!(shape, Err(e @ Error { kind: ErrorKind::Parameter, .. }) if e.message.contains("\"velocity\"") && e.message.contains("(2, 2, 3)"))
-    );
+    assert!(shape.is_err_and(|e| e.kind == ErrorKind::Parameter
+        && e.message.contains("\"velocity\"")
+        && e.message.contains("(2, 2, 3)")));
     let ground = Overrides::new(
         &spec,
         1,
         vec![("ground.tyre_friction".into(), vec![1], vec![0.7])],
     );
-    assert!(
-        matches!(ground, Err(e @ Error { kind: ErrorKind::Parameter, .. }) if e.message.contains("ground.tyre_friction"))
-    );
+    assert!(ground.is_err_and(
+        |e| e.kind == ErrorKind::Parameter && e.message.contains("ground.tyre_friction")
+    ));
 }
 
 #[test]
