@@ -77,16 +77,7 @@ mod tests {
         CombinedSlip, Tyre, TyreModel, WheelAction, DEFAULT_CORNERING_COEFFICIENT,
     };
 
-    const FREE: WheelAction = WheelAction {
-        locked: false,
-        brake_capacity: 0.0,
-        drive: 0.0,
-    };
-
-    /// The steady deflection of a free-rolling tyre at speed vx and lateral velocity vy.
-    fn steady(t: &Tyre, vx: Real, vy: Real) -> [Real; 2] {
-        [0.0, -vy * t.relaxation_length / vx.abs()]
-    }
+    use crate::vehicle::tyre::tests::{steady, FREE};
 
     /// The Nicolas-Comstock tyre with the given law and longitudinal stiffness.
     fn nicolas_comstock_tyre(model: TyreModel, longitudinal_stiffness: Option<Real>) -> Tyre {

@@ -517,17 +517,18 @@ impl Tyre {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    const FREE: WheelAction = WheelAction {
+    /// A wheel neither braked nor driven (shared with combined_slip.rs's tests).
+    pub(crate) const FREE: WheelAction = WheelAction {
         locked: false,
         brake_capacity: 0.0,
         drive: 0.0,
     };
 
     /// The steady deflection of a free-rolling tyre at speed vx and lateral velocity vy.
-    fn steady(t: &Tyre, vx: Real, vy: Real) -> [Real; 2] {
+    pub(crate) fn steady(t: &Tyre, vx: Real, vy: Real) -> [Real; 2] {
         [0.0, -vy * t.relaxation_length / vx.abs()]
     }
 
