@@ -14,45 +14,82 @@ XTOL, FTOL, GTOL = 1e-5, 1e-10, 1e-10  # the local solve's tolerances (scaled un
 
 
 JUMP = 1.0  # tolerances: a second difference larger than this is a jump, not curvature
+# A jump on one side changes the residuals at least this many times more than the other
+# side's step does; comparable changes either side are the runs' scatter (below).
+CLIFF_RATIO = 3.0
+# Scatter widens an unknown's step by WIDEN at a time, to WIDEST (fractions of its range),
+# while the second difference grows less than KINK times a widening.
+WIDEN, WIDEST, KINK = 3.0, 0.1, 2.0
 
 
-def _jacobian(prob: _Problem, u: Array, lo: Array, hi: Array, step: float) -> Array:
+def _jacobian(
+    prob: _Problem, u: Array, lo: Array, hi: Array, step: float, widen: bool = False
+) -> Array:
     """(m, k) d residual / d u at ``step`` (a fraction of each range); see _differences."""
-    return _differences(prob, u, lo, hi, np.full(len(u), step))
+    return _differences(prob, u, lo, hi, np.full(len(u), step), widen)
 
 
-def _differences(prob: _Problem, u: Array, lo: Array, hi: Array, steps: Array) -> Array:
+def _differences(
+    prob: _Problem, u: Array, lo: Array, hi: Array, steps: Array, widen: bool = False
+) -> Array:
     """(m, k) d residual / d u by differences over ``steps`` (scaled) either side of u, the
     point and its 2k neighbours one batch (u itself is usually run already).
 
     Central differences, except where an unknown's two sides disagree by more than JUMP
-    tolerances (the norm of the residuals' second difference): then a jump lies on one side
-    (candidates whose run-out differs, e.g. a second contact: chi^2 180 against 7 on either
-    side, docs/fitting.md), and the side whose residuals change less is taken. One-sided at
-    a bound."""
+    tolerances (the norm of the residuals' second difference):
+    - one side changes the residuals CLIFF_RATIO times more than the other: a jump lies on
+      that side (candidates whose run-out differs, e.g. a second contact: chi^2 180 against
+      7 on either side, docs/fitting.md), and the other side is taken;
+    - both change alike: scatter (a struck pedestrian's rest moves by +-2 tolerances between
+      speeds 0.45 km/h apart, docs/fitting.md), where either side alone can point the wrong
+      way: the central difference, the secant over both steps, is taken; with ``widen`` (the
+      local solve's Jacobian) after widening the unknown's step WIDEN times (one more batch
+      of its two neighbours) until its sides agree, it reaches WIDEST, or the disagreement
+      grows with the step (KINK: a kink or a curve, not scatter).
+    One-sided at a bound."""
     k = len(u)
-    pts = [u]
-    for j in range(k):
-        a, b = u.copy(), u.copy()
-        a[j] = min(1.0, u[j] + steps[j])
-        b[j] = max(0.0, u[j] - steps[j])
-        pts += [a, b]
-    pts_a = np.array(pts)
-    r = prob.residuals(lo + pts_a * (hi - lo))
-    r0 = r[0]
-    cols = []
-    for j in range(k):
-        ra, rb = r[1 + 2 * j], r[2 + 2 * j]
-        ha, hb = pts_a[1 + 2 * j, j] - u[j], u[j] - pts_a[2 + 2 * j, j]
-        if ha <= 0.0 or hb <= 0.0:  # at a bound: the side inside
-            cols.append((ra - rb) / (ha + hb))
-            continue
-        fwd, bwd = (ra - r0) / ha, (r0 - rb) / hb
-        if np.linalg.norm(fwd - bwd) * min(ha, hb) > JUMP:
-            cols.append(fwd if np.linalg.norm(ra - r0) <= np.linalg.norm(r0 - rb) else bwd)
-        else:
-            cols.append((ra - rb) / (ha + hb))
+    steps = np.array(steps, dtype=np.float64)
+    cols: list[Array] = [np.empty(0)] * k
+    bent: list[float] = [np.inf] * k  # each unknown's last second difference (tolerances)
+    todo = list(range(k))
+    while todo:
+        pts = [u]
+        for j in todo:
+            a, b = u.copy(), u.copy()
+            a[j] = min(1.0, u[j] + steps[j])
+            b[j] = max(0.0, u[j] - steps[j])
+            pts += [a, b]
+        pts_a = np.array(pts)
+        r = prob.residuals(lo + pts_a * (hi - lo))
+        scattered = []
+        for n, j in enumerate(todo):
+            ra, rb = r[1 + 2 * n], r[2 + 2 * n]
+            ha, hb = pts_a[1 + 2 * n, j] - u[j], u[j] - pts_a[2 + 2 * n, j]
+            cols[j], second = _difference(r[0], ra, rb, ha, hb)
+            # Scatter keeps its size as the step widens; a kink (a distance's |d| at its
+            # zero) or a curve grows with it: WIDEN or WIDEN^2 times.
+            if widen and 0.0 < second < KINK * bent[j] and steps[j] < WIDEST:
+                scattered.append(j)
+                bent[j] = second
+                steps[j] = min(WIDEST, steps[j] * WIDEN)
+        todo = scattered
     return np.column_stack(cols)
+
+
+def _difference(r0: Array, ra: Array, rb: Array, ha: float, hb: float) -> tuple[Array, float]:
+    """d residual / d u from the residuals at u (r0), ha above (ra) and hb below (rb), as
+    _differences says; and the second difference's norm (tolerances) where the sides change
+    alike yet disagree by more than JUMP, as scatter does (0 otherwise)."""
+    if ha <= 0.0 or hb <= 0.0:  # at a bound: the side inside
+        return (ra - rb) / (ha + hb), 0.0
+    fwd, bwd = (ra - r0) / ha, (r0 - rb) / hb
+    second = float(np.linalg.norm(fwd - bwd) * min(ha, hb))
+    if second <= JUMP:
+        return (ra - rb) / (ha + hb), 0.0
+    change_a, change_b = np.linalg.norm(ra - r0), np.linalg.norm(r0 - rb)
+    if max(change_a, change_b) > CLIFF_RATIO * min(change_a, change_b):
+        return (fwd if change_a <= change_b else bwd), 0.0
+    return (ra - rb) / (ha + hb), second
 
 
 def _least_squares(
@@ -64,7 +101,7 @@ def _least_squares(
         return prob.residuals(lo + u * (hi - lo))[0]
 
     def jac(u: Array) -> Array:
-        return _jacobian(prob, u, lo, hi, step)
+        return _jacobian(prob, u, lo, hi, step, widen=True)
 
     # Tolerances in scaled unknowns (the range = 1): XTOL stops at steps of 1e-5 of a range,
     # far below any figure the evidence fixes; tighter only spends runs on the jumps.
