@@ -45,6 +45,7 @@ __all__ = [
     "check_state",
     "check_pose",
     "check_contact_stiffness",
+    "check_vehicle",
 ]
 
 class CrashsimError(Exception):
@@ -166,6 +167,35 @@ def check_contact_stiffness(
     depth of penetration, the stiffness centroid): each side's faces (A N/m, B N/m^2) or None
     in the order front, rear, left, right, and whether it is a fixed obstacle; a
     ParameterError placed at body 0 or 1, the side that lacks it."""
+
+def check_vehicle(
+    mass: float,
+    *,
+    shape: Shape | None = None,
+    centers: ArrayLike,
+    radii: ArrayLike,
+    steerable: Sequence[bool],
+    static_loads: ArrayLike,
+    spring_rates: ArrayLike,
+    damping: ArrayLike,
+    tyre: Tyre | None = None,
+    steering_ratio: float | None = None,
+    ackermann: float | None = None,
+    steering_reference: str | None = None,
+    anti_roll: list[tuple[int, int, float]] = ...,
+    abs: bool = True,
+    steer: tuple[str, Any] | None = None,
+    brake: list[tuple[str, ArrayLike, float | None] | None] = ...,
+    drive: list[ArrayLike | None] = ...,
+    switches: list[tuple[int, str, float, str, float]] = ...,
+    coupling: ArrayLike | None = None,
+    hitch_load: tuple[ArrayLike, float] | None = None,
+    load_groups: list[list[int]] = ...,
+) -> None:
+    """The engine's checks of wheels, tyre, linkage, bars and driver inputs (SceneSpec.
+    set_vehicle's keywords) for a vehicle of ``mass`` kg, with no scene: every rule
+    set_vehicle applies but the wheels' place in the body's outline, which is checked too
+    when the body's ``shape`` is given. ParameterError (``loc``: the wheel) otherwise."""
 
 def point_in_polygon(x: float, y: float, polygon: Any) -> bool:
     """True when (x, y) (m) lies inside the polygon ((k, 2) corners, m) or on its edge: the

@@ -12,6 +12,19 @@ use crate::math::{Isometry, Matrix, Point, Real, Rotation, Vector};
 /// Largest rotation (rad) per Runge-Kutta sub-step; the local error is about angle^5 / 120.
 const MAX_SUBSTEP_ANGLE: Real = 0.01;
 
+/// Checks a body's mass (kg): finite and positive.
+pub fn check_mass(mass: Real) -> Result<()> {
+    require_finite("mass", mass)?;
+    if mass <= 0.0 {
+        return Err(Error::parameter(
+            "mass",
+            mass,
+            "a mass must be positive (kg)",
+        ));
+    }
+    Ok(())
+}
+
 /// Mass properties: mass (kg) and inertia tensor about the CG in the body frame (kg m^2).
 #[derive(Clone, Debug, PartialEq)]
 pub struct MassProperties {
@@ -27,14 +40,7 @@ impl MassProperties {
     /// finite, not symmetric (relative 1e-9), not positive definite, or impossible (its
     /// largest principal moment above the sum of the other two, relative 1e-6).
     pub fn new(mass: Real, inertia: Matrix) -> Result<MassProperties> {
-        require_finite("mass", mass)?;
-        if mass <= 0.0 {
-            return Err(Error::parameter(
-                "mass",
-                mass,
-                "a mass must be positive (kg)",
-            ));
-        }
+        check_mass(mass)?;
         if !inertia.iter().all(|x| x.is_finite()) {
             return Err(Error::invalid(
                 "the inertia tensor has a non-finite entry: give finite kg m^2 values",

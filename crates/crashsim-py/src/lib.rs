@@ -777,6 +777,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check_state, m)?)?;
     m.add_function(wrap_pyfunction!(check_pose, m)?)?;
     m.add_function(wrap_pyfunction!(check_contact_stiffness, m)?)?;
+    m.add_function(wrap_pyfunction!(spec::check_vehicle, m)?)?;
     m.add_function(wrap_pyfunction!(suspension, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics_defaults, m)?)?;
     Ok(())

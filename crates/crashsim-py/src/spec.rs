@@ -412,30 +412,7 @@ impl SceneSpec {
         hitch_load: Option<(Bound<'_, PyAny>, f64)>,
         load_groups: Vec<Vec<usize>>,
     ) -> PyResult<()> {
-        let hitch_load = match hitch_load {
-            Some((p, f)) => Some((core::math::Point::from(vector3(&p, "the hitch")?), f)),
-            None => None,
-        };
-        let coupling = match coupling {
-            Some(c) => Some(core::math::Point::from(vector3(&c, "coupling")?)),
-            None => None,
-        };
-        let reference = match steering_reference {
-            None | Some("outer") => core::vehicle::SteerReference::Outer,
-            Some("centre") | Some("center") => core::vehicle::SteerReference::Centre,
-            Some(other) => {
-                return Err(errors::parameter(format!(
-                    "steering_reference = {other:?} is unknown: the input's road-wheel angle is \
-                     the 'outer' wheel's (the reconstruction programs') or the axle 'centre''s"
-                )))
-            }
-        };
-        let linkage = core::vehicle::Steering {
-            ratio: steering_ratio,
-            ackermann: ackermann.unwrap_or(core::vehicle::DEFAULT_ACKERMANN),
-            reference,
-        };
-        let mut spec = ground::vehicle(
+        let spec = vehicle_spec(
             centers,
             radii,
             steerable,
@@ -443,17 +420,19 @@ impl SceneSpec {
             spring_rates,
             damping,
             tyre,
-            linkage,
+            steering_ratio,
+            ackermann,
+            steering_reference,
             anti_roll,
             abs,
             steer,
             brake,
             drive,
             switches,
+            coupling,
+            hitch_load,
+            load_groups,
         )?;
-        spec.coupling = coupling;
-        spec.hitch_load = hitch_load;
-        spec.load_groups = load_groups;
         self.inner.set_vehicle(body, spec).map_err(errors::to_py)
     }
 
@@ -676,4 +655,128 @@ pub fn body_input(
         angular_velocity: vector3(angular_velocity, "angular_velocity")?,
     };
     Ok((props, state))
+}
+
+/// The core's VehicleSpec from set_vehicle's (and check_vehicle's) keywords: wheels (body
+/// frame, m, N, N/m, N s/m), tyre, linkage, bars (N m/rad), ABS, inputs, coupling, hitch
+/// load (m, N) and load groups. Only translation: the rules are the core's.
+#[allow(clippy::too_many_arguments)]
+fn vehicle_spec(
+    centers: &Bound<'_, PyAny>,
+    radii: &Bound<'_, PyAny>,
+    steerable: &Bound<'_, PyAny>,
+    static_loads: &Bound<'_, PyAny>,
+    spring_rates: &Bound<'_, PyAny>,
+    damping: &Bound<'_, PyAny>,
+    tyre: Option<&ground::Tyre>,
+    steering_ratio: Option<f64>,
+    ackermann: Option<f64>,
+    steering_reference: Option<&str>,
+    anti_roll: Vec<(usize, usize, f64)>,
+    abs: bool,
+    steer: Option<(String, Bound<'_, PyAny>)>,
+    brake: Vec<Option<ground::BrakeRow<'_>>>,
+    drive: Vec<Option<Bound<'_, PyAny>>>,
+    switches: Vec<Bound<'_, PyAny>>,
+    coupling: Option<Bound<'_, PyAny>>,
+    hitch_load: Option<(Bound<'_, PyAny>, f64)>,
+    load_groups: Vec<Vec<usize>>,
+) -> PyResult<core::vehicle::VehicleSpec> {
+    let hitch_load = match hitch_load {
+        Some((p, f)) => Some((core::math::Point::from(vector3(&p, "the hitch")?), f)),
+        None => None,
+    };
+    let coupling = match coupling {
+        Some(c) => Some(core::math::Point::from(vector3(&c, "coupling")?)),
+        None => None,
+    };
+    let reference = match steering_reference {
+        None | Some("outer") => core::vehicle::SteerReference::Outer,
+        Some("centre") | Some("center") => core::vehicle::SteerReference::Centre,
+        Some(other) => {
+            return Err(errors::parameter(format!(
+                "steering_reference = {other:?} is unknown: the input's road-wheel angle is \
+                 the 'outer' wheel's (the reconstruction programs') or the axle 'centre''s"
+            )))
+        }
+    };
+    let linkage = core::vehicle::Steering {
+        ratio: steering_ratio,
+        ackermann: ackermann.unwrap_or(core::vehicle::DEFAULT_ACKERMANN),
+        reference,
+    };
+    let mut spec = ground::vehicle(
+        centers,
+        radii,
+        steerable,
+        static_loads,
+        spring_rates,
+        damping,
+        tyre,
+        linkage,
+        anti_roll,
+        abs,
+        steer,
+        brake,
+        drive,
+        switches,
+    )?;
+    spec.coupling = coupling;
+    spec.hitch_load = hitch_load;
+    spec.load_groups = load_groups;
+    Ok(spec)
+}
+
+/// The core's checks of a vehicle of `mass` kg (VehicleSpec::validate), set_vehicle's
+/// keywords without a body: every rule but the wheels' place in the body's outline, which
+/// is checked too when the body's `shape` (body frame, m) is given. No scene is made.
+#[pyfunction]
+#[pyo3(signature = (mass, *, shape = None, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steering_ratio = None, ackermann = None, steering_reference = None, anti_roll = Vec::new(), abs = true, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new(), coupling = None, hitch_load = None, load_groups = Vec::new()))]
+#[allow(clippy::too_many_arguments)]
+pub fn check_vehicle(
+    mass: f64,
+    shape: Option<&Shape>,
+    centers: &Bound<'_, PyAny>,
+    radii: &Bound<'_, PyAny>,
+    steerable: &Bound<'_, PyAny>,
+    static_loads: &Bound<'_, PyAny>,
+    spring_rates: &Bound<'_, PyAny>,
+    damping: &Bound<'_, PyAny>,
+    tyre: Option<&ground::Tyre>,
+    steering_ratio: Option<f64>,
+    ackermann: Option<f64>,
+    steering_reference: Option<&str>,
+    anti_roll: Vec<(usize, usize, f64)>,
+    abs: bool,
+    steer: Option<(String, Bound<'_, PyAny>)>,
+    brake: Vec<Option<ground::BrakeRow<'_>>>,
+    drive: Vec<Option<Bound<'_, PyAny>>>,
+    switches: Vec<Bound<'_, PyAny>>,
+    coupling: Option<Bound<'_, PyAny>>,
+    hitch_load: Option<(Bound<'_, PyAny>, f64)>,
+    load_groups: Vec<Vec<usize>>,
+) -> PyResult<()> {
+    let spec = vehicle_spec(
+        centers,
+        radii,
+        steerable,
+        static_loads,
+        spring_rates,
+        damping,
+        tyre,
+        steering_ratio,
+        ackermann,
+        steering_reference,
+        anti_roll,
+        abs,
+        steer,
+        brake,
+        drive,
+        switches,
+        coupling,
+        hitch_load,
+        load_groups,
+    )?;
+    spec.validate(shape.map(|s| s.inner.aabb()), mass)
+        .map_err(errors::to_py)
 }

@@ -100,21 +100,6 @@ def _renamed(error: ParameterError, names: Sequence[str], prefix: str = "") -> P
     return renamed(error, wheel_naming(names), prefix)
 
 
-# -- the engine as a checker --------------------------------------------------------------------
-
-
-def _probe_world(half: Array, mass: float) -> _core.SceneSpec:
-    """A scene spec with one box body of half-extents ``half`` (m) centred on its CG."""
-    import trimesh
-
-    box = trimesh.creation.box(extents=2.0 * np.maximum(half, 1e-3))
-    world = _core.SceneSpec()
-    shape = _core.Shape(np.asarray(box.vertices, dtype=np.float64), np.asarray(box.faces))
-    inertia = np.eye(3) * mass
-    world.add_body(shape, mass, inertia, (0, 0, 0), (1, 0, 0, 0), (0, 0, 0), (0, 0, 0))
-    return world
-
-
 # -- wheels ---------------------------------------------------------------------------------------
 
 
@@ -284,7 +269,7 @@ class Wheels:
         self.cg_to_front_axle: float | None = a
         self.cg_height: float | None = h
         self.steer: str = steer
-        self._check(self._probe(), 1.0, "", explicit_rates=False)
+        self._check(1.0, "", explicit_rates=False)
 
     @classmethod
     def from_class(
@@ -411,7 +396,7 @@ class Wheels:
             left, right = self.index(bar[0]), self.index(bar[1])
             bars.append((left, right, _number(bar[2], f"anti_roll[{k}] roll stiffness", "N m/rad")))
         self._roll = ("bars", tuple(bars))
-        self._check(self._probe(), 1.0, "", explicit_rates=False)
+        self._check(1.0, "", explicit_rates=False)
         return self
 
     def _init(
@@ -464,16 +449,11 @@ class Wheels:
         # positive numbers; weight scales): explicit rates and the anti-roll bars wait for the
         # vehicle's mass (check_on), as the frequencies they make with each load have bounds.
 
-    def _probe(self) -> _core.SceneSpec:
-        """A scene spec with a box body around these wheels, of 1 kg."""
-        lo = np.min(self._centers, axis=0) - np.max(self._radii)
-        hi = np.max(self._centers, axis=0) + np.max(self._radii)
-        return _probe_world(np.maximum(np.abs(lo), np.abs(hi)) + 0.01, 1.0)
-
     def check_inputs(self, **inputs: Any) -> None:
         """The engine's checks of driver inputs (SceneSpec.set_vehicle's steer, brake, drive,
-        switches) on these wheels; the engine's ParameterError otherwise."""
-        self._probe().set_vehicle(0, **{**self.spec(1.0, explicit_rates=False), **inputs})
+        switches) on these wheels (``_core.check_vehicle``); the engine's ParameterError
+        otherwise."""
+        _core.check_vehicle(1.0, **{**self.spec(1.0, explicit_rates=False), **inputs})
 
     # -- what the engine gets --------------------------------------------------------------
 
@@ -684,20 +664,26 @@ class Wheels:
         return [(0, 1, share * bars), (2, 3, (1.0 - share) * bars)]
 
     def _check(
-        self, world: _core.SceneSpec, mass: float, prefix: str, *, explicit_rates: bool = True
+        self,
+        mass: float,
+        prefix: str,
+        *,
+        explicit_rates: bool = True,
+        shape: _core.Shape | None = None,
     ) -> None:
+        """The engine's checks of these wheels for a vehicle of ``mass`` kg
+        (``_core.check_vehicle``: no scene is made), on its body's ``shape`` when given;
+        errors name the wheels, after ``prefix``."""
         try:
-            world.set_vehicle(0, **self.spec(mass, explicit_rates=explicit_rates))
+            _core.check_vehicle(mass, shape=shape, **self.spec(mass, explicit_rates=explicit_rates))
         except ParameterError as e:
             raise _renamed(e, self._names, prefix) from e
 
     def check_on(self, shape: _core.Shape, mass: float, what: str) -> None:
         """The engine's checks of these wheels on a body (its shape, body frame, and mass in
-        kg): wheels inside the body's outline, loads carrying the weight. ``what`` names the
-        vehicle in the message."""
-        world = _core.SceneSpec()
-        world.add_body(shape, mass, np.eye(3) * mass, (0, 0, 0), (1, 0, 0, 0), (0, 0, 0), (0, 0, 0))
-        self._check(world, mass, f"{what}: ")
+        kg): wheels inside the body's outline, loads carrying the weight, explicit rates and
+        the anti-roll bars. ``what`` names the vehicle in the message."""
+        self._check(mass, f"{what}: ", shape=shape)
 
     def contact_points(self) -> Array:
         """(n, 3) body-frame points where the tyres touch level ground at static ride height

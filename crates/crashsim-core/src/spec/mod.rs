@@ -210,7 +210,7 @@ impl SceneSpec {
             )
             .at(Place::body(i))),
             BodyMotion::Moving { props, vehicle, .. } => {
-                spec.validate(body.shape.aabb(), props.mass())?;
+                spec.validate(Some(body.shape.aabb()), props.mass())?;
                 *vehicle = Some(spec);
                 Ok(())
             }

@@ -67,10 +67,29 @@ pub struct VehicleSpec {
 }
 
 impl VehicleSpec {
-    /// Checks the wheels, tyre and inputs against the body's box `body_box` (body frame) and
-    /// mass (kg): every wheel inside the box's outline (within 0.1 m), the static loads
-    /// carrying the weight (within 1 %).
-    pub fn validate(&self, body_box: &Aabb, mass: Real) -> Result<()> {
+    /// Checks the wheels, tyre and inputs of a vehicle of `mass` kg: at least 3 wheels (2
+    /// coupled), each wheel's numbers, its load groups, the static loads carrying the weight
+    /// (within 1 %), the tyre, linkage, anti-roll bars and driver inputs; with `body_box`
+    /// (the body's box, body frame, m) also every wheel inside its outline (within 0.1 m).
+    /// A scene's or a world's set_vehicle gives the box; None checks the rest, the wheels
+    /// before they are put on a body (the Python binding's `check_vehicle`).
+    pub fn validate(&self, body_box: Option<&Aabb>, mass: Real) -> Result<()> {
+        self.check_wheels(body_box)?;
+        self.checked_groups()?;
+        self.check_weight(mass)?;
+        self.tyre.validate()?;
+        self.steering.validate()?;
+        self.check_bars()?;
+        self.inputs.validate(self.wheels.len())?;
+        if let Some(steer) = &self.inputs.steer {
+            self.steering.validate_input(steer, &self.wheels)?;
+        }
+        Ok(())
+    }
+
+    /// Enough wheels, each one's numbers and, with `body_box`, its centre inside the box's
+    /// outline (x and y, within [`WHEEL_OUTSIDE_MARGIN`]).
+    fn check_wheels(&self, body_box: Option<&Aabb>) -> Result<()> {
         let least = if self.coupling.is_some() { 2 } else { 3 };
         if self.wheels.len() < least {
             return Err(Error::invalid(format!(
@@ -81,6 +100,7 @@ impl VehicleSpec {
         }
         for (k, w) in self.wheels.iter().enumerate() {
             w.validate(k)?;
+            let Some(body_box) = body_box else { continue };
             let c = w.center;
             let (lo, hi) = (body_box.mins, body_box.maxs);
             let m = WHEEL_OUTSIDE_MARGIN;
@@ -94,7 +114,13 @@ impl VehicleSpec {
                 .at(Place::Wheel(k)));
             }
         }
-        self.checked_groups()?;
+        Ok(())
+    }
+
+    /// A finite, positive `mass` (kg) whose weight the wheels' static loads (N) carry
+    /// (within 1 %): with a hitch load, that too; with a coupling, less its share.
+    fn check_weight(&self, mass: Real) -> Result<()> {
+        crate::body::check_mass(mass)?;
         let mut weight = mass * GRAVITY;
         let towed = match &self.hitch_load {
             Some((p, load)) => {
@@ -122,8 +148,11 @@ impl VehicleSpec {
                  {weight:.1} N: they must carry its weight (leave them to the engine)"
             )));
         }
-        self.tyre.validate()?;
-        self.steering.validate()?;
+        Ok(())
+    }
+
+    /// Each anti-roll bar's wheels and stiffness, and one bar per wheel.
+    fn check_bars(&self) -> Result<()> {
         for (k, bar) in self.anti_roll.iter().enumerate() {
             bar.validate(k, &self.wheels)?;
             let shared = self.anti_roll[..k].iter().any(|b| {
@@ -136,10 +165,6 @@ impl VehicleSpec {
                     "anti-roll bar {k} shares a wheel with another bar: one bar per wheel"
                 )));
             }
-        }
-        self.inputs.validate(self.wheels.len())?;
-        if let Some(steer) = &self.inputs.steer {
-            self.steering.validate_input(steer, &self.wheels)?;
         }
         Ok(())
     }
@@ -203,3 +228,7 @@ impl VehicleSpec {
         }
     }
 }
+
+#[cfg(test)]
+#[path = "validate_tests.rs"]
+mod tests;

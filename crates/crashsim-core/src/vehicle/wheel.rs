@@ -397,7 +397,8 @@ pub fn check_load_groups(groups: &[Vec<usize>], n: usize) -> Result<()> {
 /// at rest, with everything a vehicle may have: `groups` of wheels sharing their load
 /// equally (each one support at its wheels' mean position, its load split equally), a
 /// `coupling` (a trailer's, which may pull) and a `towed` load on its hitch. Returns each
-/// wheel's load and the coupling's (0 without one).
+/// wheel's load and the coupling's (0 without one). Errors name the wheel of a non-finite
+/// position.
 pub fn wheel_loads(
     xy: &[[Real; 2]],
     groups: &[Vec<usize>],
@@ -406,6 +407,11 @@ pub fn wheel_loads(
     towed: Option<([Real; 2], Real)>,
 ) -> Result<(Vec<Real>, Real)> {
     check_load_groups(groups, xy.len())?;
+    for (k, p) in xy.iter().enumerate() {
+        require_finite("centre x", p[0])
+            .and_then(|_| require_finite("centre y", p[1]))
+            .map_err(|e| e.at(Place::Wheel(k)))?;
+    }
     let mut supports: Vec<Vec<usize>> = groups.to_vec();
     for k in 0..xy.len() {
         if !groups.iter().any(|g| g.contains(&k)) {

@@ -350,7 +350,7 @@ impl World {
                     .at(Place::body(i)),
             );
         }
-        spec.validate(wb.shape.aabb(), wb.body.props().mass())?;
+        spec.validate(Some(wb.shape.aabb()), wb.body.props().mass())?;
         wb.vehicle = Some(Arc::new(spec));
         Ok(())
     }
