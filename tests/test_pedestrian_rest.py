@@ -52,3 +52,45 @@ def test_the_standing_fall_alone_comes_to_rest_and_gains_no_energy() -> None:
     late = energy[t >= 4.0]
     rise = float(np.max(late - np.minimum.accumulate(late)))
     assert rise < 0.01, f"the lying body gained {rise:.4f} J"
+
+
+def test_a_shoulder_flung_past_its_twist_range_does_not_blow_up() -> None:
+    """A study's variant that stalled (docs/studies.md: the Monte Carlo's variant 63): a
+    1.62 m walking man struck at 40 km/h (benches/pedestrian_studies.py's scene) lands at
+    1.2866 s with his left arm flung to a swing of 179.99 deg at the shoulder, its twist past
+    its bound. The twist limit's row, 1e5 times a unit one there, threw every segment to
+    1e8 m/s in one Runge-Kutta step, and the first-contact search then crawled on for hours.
+    Now the twist is not held past a swing of 150 deg (docs/joints.md, "Limits"): the run to
+    1.4 s ends in seconds with every segment slower than 15 m/s from 1 s on."""
+    import time
+
+    car = cs.Vehicle.generate("sedan", name="car")
+    person = cs.Pedestrian(height=1.75, mass=75.0, sex="male", pose="walking")
+    scene = cs.Scene(ground=cs.Ground(friction=0.8))
+    ahead = float(car.mesh.bounds[1, 0] - car.cg[0])
+    scene.add(car, (0.0, 0.0), heading=0.0, velocity=(cs.kmh(40.0), 0.0, 0.0),
+              inputs=cs.DriverInputs(brake=[(0.0, 1.0), (30.0, 1.0)]))  # fmt: skip
+    left = float(person.vertices()[:, 1].max())
+    scene.add(person, (ahead + 0.05 + left, 0.0), heading=np.pi / 2)
+    for seg in person.segments:
+        scene.contact(car, seg, depth_of_penetration=0.0, restitution=0.1, friction=0.3,
+                      normal="volume")  # fmt: skip
+    scene.soft_contact(car, person, stiffness=1e5, damping_ratio=0.5)
+    variant = scene.with_({"ground.body_friction": 0.6299773458771732,
+                           "pedestrian.pose": 1.0, "pedestrian.height": 1.6187641634677832})
+    began = time.monotonic()
+
+    def guard(t: float) -> None:  # fails in a minute rather than hanging for hours
+        assert time.monotonic() - began < 60.0, f"stalled at t = {t:.5f} s"
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = variant.run(1.4, dt=2e-4, record_interval=2e-3, progress=guard)
+    # From 1 s on (flight, landing): measured at most 12.0 m/s (the left hand as the body
+    # lands); 1e8 m/s in the blown-up step.
+    fastest = 0.0
+    for seg in variant.pedestrians["pedestrian"].segments:
+        tr = result.trajectory(seg.name)
+        speed = np.linalg.norm(tr.velocity[tr.t >= 1.0], axis=1)
+        fastest = max(fastest, float(speed.max()))
+    assert fastest < 15.0, f"a segment reached {fastest:.3g} m/s"

@@ -178,6 +178,8 @@ fn angles(joint: &JointSpec, bodies: &[JointBody]) -> (Vector, [Vector; 3]) {
 ///   F1's axes (q_w >= 0): with `dq/dt = (0, w)/2 * q` for w the relative angular velocity in
 ///   F1's axes, `dt/dt = g.w` with `g = (q_w q_y + q_x q_z, q_y q_z - q_w q_x, q_w^2 + q_z^2) /
 ///   (q_w^2 + q_z^2)` (not a unit vector: the twist's rate also takes a share of a swing's).
+///   Its size is 1 / cos(s/2): past a swing of [`TWIST_HELD_SWING`] g is taken as none and
+///   no limit holds the twist (a rate vector of zero: see [`limit_rows`]).
 pub(crate) fn limit_angles(joint: &JointSpec, bodies: &[JointBody]) -> (Vector, [Vector; 3]) {
     if joint.kind != JointKind::Spherical {
         return angles(joint, bodies);
@@ -196,8 +198,8 @@ pub(crate) fn limit_angles(joint: &JointSpec, bodies: &[JointBody]) -> (Vector, 
     let (w, x, y, z) = (sign * q.w, sign * q.i, sign * q.j, sign * q.k);
     let twist = 2.0 * z.atan2(w);
     let norm = w * w + z * z;
-    // A swing of 180 deg leaves no twist to measure (norm 0): its rate is taken as none.
-    let twist_axis = if norm > 1e-12 {
+    // Past TWIST_HELD_SWING the twist is not held: its rate vector (size 1/cos(s/2)) is none.
+    let twist_axis = if swing <= TWIST_HELD_SWING {
         a1 * Vector::new(w * y + x * z, y * z - w * x, norm) / norm
     } else {
         Vector::zeros()
@@ -255,7 +257,7 @@ pub(crate) fn limit_axis_rates(joint: &JointSpec, bodies: &[JointBody]) -> [Vect
             let (w, x, y, z) = (q.w, q.i, q.j, q.k);
             let (dw, dx, dy, dz) = (dq.w, dq.i, dq.j, dq.k);
             let norm = w * w + z * z;
-            let twist = if norm > 1e-12 {
+            let twist = if size.atan2(z1.dot(&z2)) <= TWIST_HELD_SWING {
                 let u = Vector::new(w * y + x * z, y * z - w * x, norm);
                 let du = Vector::new(
                     dw * y + w * dy + dx * z + x * dz,
@@ -323,6 +325,9 @@ pub(crate) fn limit_rows(
     let mut which = Vec::new();
     for (k, limit) in joint.limits.iter().enumerate() {
         let (angle, axis) = (theta[limit.angle], axes[limit.angle]);
+        if axis == Vector::zeros() {
+            continue; // an angle with no rate now (a swing of 0, a twist past its swing)
+        }
         let rate = (wb - wa).dot(&axis);
         let (past, outward) = if angle > limit.upper - margin {
             (angle - limit.upper, rate > 0.0)
@@ -343,6 +348,14 @@ pub(crate) fn limit_rows(
     }
     which
 }
+
+/// The largest swing (rad, 150 deg) at which a ball joint's twist limit holds. The twist's
+/// rate vector grows as 1 / cos(s/2) towards a swing of 180 deg, where the twist is not
+/// defined: a shoulder (no swing limit: its published range reaches 180 deg) whose arm was
+/// flung past 179.99 deg made the limit's row 1e5 times the size of the others and its J' nu
+/// 2e12, and one Runge-Kutta step threw every segment of the person to 1e8 m/s (the stalled
+/// study variant of docs/studies.md). At 150 deg the vector is 3.9 times a unit one.
+pub(crate) const TWIST_HELD_SWING: Real = 150.0 * std::f64::consts::PI / 180.0;
 
 /// How close (rad) to a limit's bound a joint resting on it may be for the limit to hold it
 /// (the projection leaves it on the bound to about 1e-13 rad).
@@ -368,6 +381,9 @@ fn resting_limit_rows(
     let (_, wb) = velocity(bodies, joint.body2);
     for (limit, _) in joint.limits.iter().zip(engaged).filter(|(_, &e)| e) {
         let (angle, axis) = (theta[limit.angle], axes[limit.angle]);
+        if axis == Vector::zeros() {
+            continue; // as in limit_rows
+        }
         let rate = (wb - wa).dot(&axis);
         let sign = if angle >= limit.upper - RESTING_ANGLE && rate >= -RESTING_RATE {
             -1.0
@@ -642,8 +658,8 @@ mod tests {
                 limit_angles(&joint, &bodies)
             };
             let (theta, axes) = at(0.0);
-            if theta.x > 170.0_f64.to_radians() || theta.x < 0.05 {
-                continue;
+            if theta.x > TWIST_HELD_SWING - 0.01 || theta.x < 0.05 {
+                continue; // no rate past TWIST_HELD_SWING (below)
             }
             let (plus, minus) = (at(h).0, at(-h).0);
             for k in 0..2 {
@@ -658,6 +674,54 @@ mod tests {
         }
         assert!(checked > 30, "only {checked} orientations checked");
     }
+    /// Past TWIST_HELD_SWING a ball joint's twist has no rate vector and no limit row, even
+    /// far past its bounds; below it, its rate vector is 1 / cos(s/2) long and a twist past
+    /// its limit gets its row (the stall of docs/studies.md: a shoulder at 179.99 deg).
+    #[test]
+    fn a_twist_is_not_held_past_its_largest_swing() {
+        let mut joint = JointSpec::new(
+            JointKind::Spherical,
+            0,
+            Some(1),
+            (Point::origin(), Rotation::identity()),
+            (Point::origin(), Rotation::identity()),
+        );
+        joint.limits = vec![crate::joint::AngleLimit {
+            angle: 1,
+            lower: -0.5,
+            upper: 0.5,
+        }];
+        let w = Vector::new(0.3, -2.0, 5.0);
+        for (swing, held) in [
+            (140.0_f64, true),
+            (149.9, true),
+            (150.1, false),
+            (179.99, false),
+        ] {
+            // a swing about x, then a twist of 1.2 rad about the swung z (past the 0.5 bound)
+            let s = swing.to_radians();
+            let rb = (Rotation::from_scaled_axis(Vector::x() * s)
+                * Rotation::from_scaled_axis(Vector::z() * 1.2))
+            .to_rotation_matrix()
+            .into_inner();
+            let bodies = [body(Matrix::identity(), Vector::zeros()), body(rb, w)];
+            let (theta, axes) = limit_angles(&joint, &bodies);
+            assert!((theta.x - s).abs() < 1e-9 && (theta.y - 1.2).abs() < 1e-9);
+            let mut rows = Vec::new();
+            limit_rows(&joint, &bodies, 0.0, &mut rows);
+            let turning = limit_axis_rates(&joint, &bodies);
+            if held {
+                assert!((axes[1].norm() - 1.0 / (s / 2.0).cos()).abs() < 1e-9);
+                assert_eq!(rows.len(), 1, "at {swing} deg");
+                assert!((rows[0].c - 0.7).abs() < 1e-9);
+            } else {
+                assert_eq!(axes[1], Vector::zeros(), "at {swing} deg");
+                assert_eq!(turning[1], Vector::zeros());
+                assert!(rows.is_empty(), "at {swing} deg");
+            }
+        }
+    }
+
     /// The rate vectors' time derivatives (a limit row's J' nu) against central differences
     /// of the rate vectors along the motion, for a ball joint (swing and twist), a hinge and
     /// a fifth wheel, over many orientations (relative error below 1e-6).
@@ -686,7 +750,7 @@ mod tests {
                 };
                 let (theta, _) = limit_angles(&joint, &bodies_at(0.0));
                 if kind == JointKind::Spherical
-                    && (theta.x > 170.0_f64.to_radians() || theta.x < 0.05)
+                    && (theta.x > TWIST_HELD_SWING - 0.01 || theta.x < 0.05)
                 {
                     continue;
                 }
