@@ -161,3 +161,34 @@ def test_check_vehicle_applies_set_vehicles_rules_with_and_without_the_body() ->
         with pytest.raises(cs.ParameterError) as by_body:
             _core.check_mass(mass, np.eye(3))
         assert str(raised.value) == str(by_body.value)
+
+
+@pytest.mark.parametrize(
+    ("springs", "loc", "start"),
+    [
+        ({"natural_frequency": -1.0}, FRONT_LEFT, "natural_frequency = -1 Hz is invalid"),
+        ({"damping_ratio": [0.3, 0.3, 0.3, 9.0]}, REAR_RIGHT, "damping_ratio = 9 is invalid"),
+    ],
+)
+def test_a_bad_spring_is_placed_at_its_wheel(springs, loc, start) -> None:
+    """A natural frequency or damping ratio the engine's ``suspension`` refuses: the wheel's
+    place is data (``.loc``), as the engine's own checks give it, and the vehicle's name stays
+    before it in the text (before: ``.loc`` was empty, the place only in the text)."""
+    with pytest.raises(cs.ParameterError) as caught:
+        _body().with_wheels(**WHEELS, **springs)
+    e = caught.value
+    assert e.loc == (loc,)
+    assert e.message.startswith(start)
+    name = wheels_module.STANDARD_NAMES[loc[1]]
+    assert str(e) == f"vehicle 'car': wheel '{name}': {e.message}"
+
+
+def test_at_puts_a_place_outermost_as_the_engine_does() -> None:
+    from crashsim.errors import at
+
+    inner = cs.ParameterError("x = -1 is invalid")  # made in Python: no places
+    outer = at(at(inner, ("wheel", 2, None)), ("body", 1, "red"))
+    assert outer.loc == (("body", 1, "red"), ("wheel", 2, None))
+    assert outer.message == "x = -1 is invalid"
+    assert str(outer) == 'body 1 ("red"): wheel 2: x = -1 is invalid'
+    assert type(outer) is cs.ParameterError

@@ -92,11 +92,11 @@ Naming = Callable[[Place, tuple[Place, ...]], "str | None"]
 its vehicle); None keeps the engine's text (:func:`describe`), "" drops the place."""
 
 
-def renamed(error: _E, name: Naming, prefix: str = "", suffix: str = "") -> _E:
+def renamed(error: _E, name: Naming | None, prefix: str = "", suffix: str = "") -> _E:
     """``error`` again (the same class, ``loc`` and ``message``) with its text rebuilt from
     its places, each named by ``name`` (:data:`Naming`), then the message; ``prefix`` and
-    ``suffix`` around it. An error without places keeps its text."""
-    if error.message is None:
+    ``suffix`` around it. An error without places, or ``name`` None, keeps its text."""
+    if error.message is None or name is None:
         text = str(error)
     else:
         parts = [name(p, error.loc[:k]) for k, p in enumerate(error.loc)]
@@ -105,6 +105,15 @@ def renamed(error: _E, name: Naming, prefix: str = "", suffix: str = "") -> _E:
     out = type(error)(prefix + text + suffix)
     out.loc = error.loc
     out.message = error.message
+    return out
+
+
+def at(error: _E, place: Place) -> _E:
+    """``error`` one place further out, as the engine's ``Error::at`` puts it: ``place``
+    first in its ``loc`` and its text (:func:`describe`) first in its text."""
+    out = type(error)(f"{describe(place)}: {error}")
+    out.loc = (place, *error.loc)
+    out.message = str(error) if error.message is None else error.message
     return out
 
 
@@ -133,5 +142,6 @@ __all__ = [
     "Naming",
     "describe",
     "renamed",
+    "at",
     "naming",
 ]

@@ -33,7 +33,7 @@ import trimesh
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
-from crashsim.errors import MeshError, ParameterError
+from crashsim.errors import MeshError, ParameterError, renamed
 from crashsim.names import check_name
 from crashsim.vehicles import plausibility
 from crashsim.vehicles.builders import VehicleBuilders
@@ -250,7 +250,7 @@ class Vehicle(VehicleBuilders):
                     **springs,
                 )
             except ParameterError as e:
-                raise ParameterError(f"vehicle {self._name!r}: {e}") from e
+                raise renamed(e, None, f"vehicle {self._name!r}: ") from e
         else:
             if not isinstance(wheels, Wheels):
                 raise ParameterError(

@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
-from crashsim.errors import Naming, ParameterError, naming, renamed
+from crashsim.errors import Naming, ParameterError, at, naming, renamed
 from crashsim.names import check_name
 from crashsim.vehicles.numbers import finite as _number
 from crashsim.vehicles.tyre import TYRE_MODELS, Tyre
@@ -552,7 +552,7 @@ class Wheels:
             try:
                 rates[k], damp[k] = _core.suspension(float(f), float(freq), float(zeta))
             except ParameterError as e:
-                raise ParameterError(f"wheel {self._names[k]!r}: {e}") from e
+                raise _renamed(at(e, ("wheel", k, None)), self._names) from e
         if self._rates is not None and explicit_rates:
             rates = self._rates.copy()
         if self._damping is not None and explicit_rates:
