@@ -310,8 +310,10 @@ def test_the_local_solve_sees_the_trend_through_scatter(amp: float) -> None:
 
 def test_a_kink_is_not_widened_as_scatter() -> None:
     """A residual |d| (a distance to a mark) at its zero: the sides disagree by more than a
-    tolerance but grow with the step, so the Jacobian widens once, not to WIDEST; the kink's
-    central difference is 0 and the other residual's slope is exact."""
+    tolerance while changing alike, so the local solve's Jacobian looks 3 times further
+    once; each side's change grew in proportion to its step (a kink, not scatter), and the
+    side changing less is taken, as for a jump (the first of two equal ones: +500 per unit
+    of the scaled unknown), without widening further."""
     from crashsim.studies.fit import solvers
 
     class _Kink:
@@ -330,7 +332,26 @@ def test_a_kink_is_not_widened_as_scatter() -> None:
     lo, hi = np.array([10.0]), np.array([20.0])
     jac = solvers._jacobian(prob, np.array([0.5]), lo, hi, 1e-2, widen=True)  # type: ignore[arg-type]
     assert len(prob.asked) == 5  # u and its two sides, then the sides 3 times wider
-    np.testing.assert_allclose(jac[:, 0], [0.0, 30.0], atol=1e-9)
+    np.testing.assert_allclose(jac[:, 0], [500.0, 30.0], rtol=1e-9)
+
+
+def test_a_cliff_on_one_side_is_told_from_scatter_by_looking_further() -> None:
+    """A jump of 1.5 tolerances 0.5 % of the range above u on a slope of 100 tolerances per
+    unit: the sides change alike (1.5 + 1 against 1), so the Jacobian looks 3 times
+    further; the side below grows in proportion, the side above does not: the slope below
+    is taken, exactly (its central difference would be 1.75 times too steep)."""
+    from crashsim.studies.fit import solvers
+
+    class _Cliff:
+        m = 1
+
+        def residuals(self, xs: np.ndarray) -> np.ndarray:
+            x = np.atleast_2d(xs)[:, :1]
+            return 100.0 * (x - 0.5) + np.where(x > 0.505, 1.5, 0.0)
+
+    jac = solvers._jacobian(_Cliff(), np.array([0.5]), np.zeros(1), np.ones(1), 1e-2,  # type: ignore[arg-type]
+                            widen=True)  # fmt: skip
+    np.testing.assert_allclose(jac[:, 0], [100.0], rtol=1e-9)
 
 
 @pytest.mark.parametrize("scale", [1.0, 0.3])

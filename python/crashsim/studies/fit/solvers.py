@@ -14,12 +14,13 @@ XTOL, FTOL, GTOL = 1e-5, 1e-10, 1e-10  # the local solve's tolerances (scaled un
 
 
 JUMP = 1.0  # tolerances: a second difference larger than this is a jump, not curvature
-# A jump on one side changes the residuals at least this many times more than the other
-# side's step does; comparable changes either side are the runs' scatter (below).
+# A side that changes the residuals this many times more than the other holds a jump.
 CLIFF_RATIO = 3.0
-# Scatter widens an unknown's step by WIDEN at a time, to WIDEST (fractions of its range),
-# while the second difference grows less than KINK times a widening.
+# The local solve's Jacobian looks WIDEN times further, up to WIDEST of a range, where the
+# sides disagree but change alike; it stops widening once the disagreement grows KINK times.
 WIDEN, WIDEST, KINK = 3.0, 0.1, 2.0
+
+_Sides = tuple[Array, Array, float, float]  # residuals above and below u, their distances
 
 
 def _jacobian(
@@ -29,6 +30,26 @@ def _jacobian(
     return _differences(prob, u, lo, hi, np.full(len(u), step), widen)
 
 
+def _sides(
+    prob: _Problem, u: Array, lo: Array, hi: Array, steps: Array, which: list[int]
+) -> tuple[Array, dict[int, _Sides]]:
+    """The residuals at u and, for each unknown in ``which``, at ``steps`` (scaled) above and
+    below it (clipped to the bounds), as one batch."""
+    pts = [u]
+    for j in which:
+        a, b = u.copy(), u.copy()
+        a[j] = min(1.0, u[j] + steps[j])
+        b[j] = max(0.0, u[j] - steps[j])
+        pts += [a, b]
+    pts_a = np.array(pts)
+    r = prob.residuals(lo + pts_a * (hi - lo))
+    out = {
+        j: (r[1 + 2 * n], r[2 + 2 * n], pts_a[1 + 2 * n, j] - u[j], u[j] - pts_a[2 + 2 * n, j])
+        for n, j in enumerate(which)
+    }  # fmt: skip
+    return r[0], out
+
+
 def _differences(
     prob: _Problem, u: Array, lo: Array, hi: Array, steps: Array, widen: bool = False
 ) -> Array:
@@ -36,60 +57,102 @@ def _differences(
     point and its 2k neighbours one batch (u itself is usually run already).
 
     Central differences, except where an unknown's two sides disagree by more than JUMP
-    tolerances (the norm of the residuals' second difference):
-    - one side changes the residuals CLIFF_RATIO times more than the other: a jump lies on
-      that side (candidates whose run-out differs, e.g. a second contact: chi^2 180 against
-      7 on either side, docs/fitting.md), and the other side is taken;
-    - both change alike: scatter (a struck pedestrian's rest moves by +-2 tolerances between
-      speeds 0.45 km/h apart, docs/fitting.md), where either side alone can point the wrong
-      way: the central difference, the secant over both steps, is taken; with ``widen`` (the
-      local solve's Jacobian) after widening the unknown's step WIDEN times (one more batch
-      of its two neighbours) until its sides agree, it reaches WIDEST, or the disagreement
-      grows with the step (KINK: a kink or a curve, not scatter).
-    One-sided at a bound."""
+    tolerances (the norm of the residuals' second difference). Then a jump lies on one side
+    (candidates whose run-out differs, e.g. a second contact: chi^2 180 against 7 on either
+    side, docs/fitting.md) and the side whose residuals change less is taken; with ``widen``
+    (the local solve's Jacobian) only where that side changes them CLIFF_RATIO times less.
+    Where both change alike, the local solve looks WIDEN times further on both sides (one
+    more batch): a side whose residuals grow in proportion to the step is smooth, one that
+    does not holds the jump, and the smooth side is taken; both in proportion (a kink, such
+    as a distance to a tyre mark at its zero): the side changing less, as above; neither
+    (scatter: a struck pedestrian's rest moves by up to 2 tolerances between speeds 0.45
+    km/h apart, docs/fitting.md, where either side alone can point the wrong way): wider
+    still, to WIDEST or until the sides agree or their disagreement grows KINK times with a
+    widening (a curve), and the central difference over the widest steps. One-sided at a
+    bound."""
     k = len(u)
     steps = np.array(steps, dtype=np.float64)
-    cols: list[Array] = [np.empty(0)] * k
-    bent: list[float] = [np.inf] * k  # each unknown's last second difference (tolerances)
-    todo = list(range(k))
-    while todo:
-        pts = [u]
-        for j in todo:
-            a, b = u.copy(), u.copy()
-            a[j] = min(1.0, u[j] + steps[j])
-            b[j] = max(0.0, u[j] - steps[j])
-            pts += [a, b]
-        pts_a = np.array(pts)
-        r = prob.residuals(lo + pts_a * (hi - lo))
-        scattered = []
-        for n, j in enumerate(todo):
-            ra, rb = r[1 + 2 * n], r[2 + 2 * n]
-            ha, hb = pts_a[1 + 2 * n, j] - u[j], u[j] - pts_a[2 + 2 * n, j]
-            cols[j], second = _difference(r[0], ra, rb, ha, hb)
-            # Scatter keeps its size as the step widens; a kink (a distance's |d| at its
-            # zero) or a curve grows with it: WIDEN or WIDEN^2 times.
-            if widen and 0.0 < second < KINK * bent[j] and steps[j] < WIDEST:
-                scattered.append(j)
-                bent[j] = second
-                steps[j] = min(WIDEST, steps[j] * WIDEN)
-        todo = scattered
+    r0, near = _sides(prob, u, lo, hi, steps, list(range(k)))
+    cols: list[Array] = []
+    unclear: list[int] = []
+    for j in range(k):
+        ra, rb, ha, hb = near[j]
+        col, second = _difference(r0, ra, rb, ha, hb, strict=not widen)
+        cols.append(col)
+        if second > 0.0:
+            unclear.append(j)
+    scatter: dict[int, float] = {}
+    if unclear:
+        steps[unclear] = np.minimum(WIDEST, steps[unclear] * WIDEN)
+        _, far = _sides(prob, u, lo, hi, steps, unclear)
+        for j in unclear:
+            col, second = _judge(r0, near[j], far[j])
+            cols[j] = col
+            if second > 0.0:
+                scatter[j] = second
+    while scatter:  # widen the scattered unknowns while the sides disagree as scatter does
+        grow = [j for j in scatter if steps[j] < WIDEST]
+        if not grow:
+            break
+        steps[grow] = np.minimum(WIDEST, steps[grow] * WIDEN)
+        _, wider = _sides(prob, u, lo, hi, steps, grow)
+        still: dict[int, float] = {}
+        for j in grow:
+            ra, rb, ha, hb = wider[j]
+            second = _second(r0, ra, rb, ha, hb)
+            if second >= KINK * scatter[j]:
+                continue  # a curve: the last central difference stands
+            cols[j] = (ra - rb) / (ha + hb)
+            if second > JUMP:
+                still[j] = second
+        scatter = still
     return np.column_stack(cols)
 
 
-def _difference(r0: Array, ra: Array, rb: Array, ha: float, hb: float) -> tuple[Array, float]:
+def _second(r0: Array, ra: Array, rb: Array, ha: float, hb: float) -> float:
+    """The second difference's norm (tolerances) at the shorter of the two steps."""
+    return float(np.linalg.norm((ra - r0) / ha - (r0 - rb) / hb) * min(ha, hb))
+
+
+def _difference(
+    r0: Array, ra: Array, rb: Array, ha: float, hb: float, strict: bool
+) -> tuple[Array, float]:
     """d residual / d u from the residuals at u (r0), ha above (ra) and hb below (rb), as
-    _differences says; and the second difference's norm (tolerances) where the sides change
-    alike yet disagree by more than JUMP, as scatter does (0 otherwise)."""
+    _differences says for the first steps; and the second difference's norm (tolerances)
+    where the sides disagree but change alike, to be judged further (0 otherwise; never
+    when ``strict``, which takes the side changing less on any disagreement)."""
     if ha <= 0.0 or hb <= 0.0:  # at a bound: the side inside
         return (ra - rb) / (ha + hb), 0.0
     fwd, bwd = (ra - r0) / ha, (r0 - rb) / hb
-    second = float(np.linalg.norm(fwd - bwd) * min(ha, hb))
+    second = _second(r0, ra, rb, ha, hb)
     if second <= JUMP:
         return (ra - rb) / (ha + hb), 0.0
     change_a, change_b = np.linalg.norm(ra - r0), np.linalg.norm(r0 - rb)
-    if max(change_a, change_b) > CLIFF_RATIO * min(change_a, change_b):
-        return (fwd if change_a <= change_b else bwd), 0.0
-    return (ra - rb) / (ha + hb), second
+    less = fwd if change_a <= change_b else bwd
+    if strict or max(change_a, change_b) > CLIFF_RATIO * min(change_a, change_b):
+        return less, 0.0
+    return less, second
+
+
+def _judge(r0: Array, near: _Sides, far: _Sides) -> tuple[Array, float]:
+    """An unknown whose sides at ``near`` disagree but change alike, seen again at ``far``
+    (WIDEN times further): the smooth side's slope at near where only one side's change
+    grew in proportion to its step (within JUMP); the side changing less where both did (a
+    kink); the central difference at far, with its second difference's norm to widen on,
+    where neither did (scatter)."""
+    ra, rb, ha, hb = near
+    fa, fb, ga, gb = far
+    smooth_a = np.linalg.norm((fa - r0) - (ra - r0) * (ga / ha)) <= JUMP
+    smooth_b = np.linalg.norm((r0 - fb) - (r0 - rb) * (gb / hb)) <= JUMP
+    fwd, bwd = (ra - r0) / ha, (r0 - rb) / hb
+    if smooth_a and not smooth_b:
+        return fwd, 0.0
+    if smooth_b and not smooth_a:
+        return bwd, 0.0
+    if smooth_a and smooth_b:
+        return (fwd if np.linalg.norm(ra - r0) <= np.linalg.norm(r0 - rb) else bwd), 0.0
+    second = _second(r0, fa, fb, ga, gb)
+    return (fa - fb) / (ga + gb), (second if second > JUMP else 0.0)
 
 
 def _least_squares(
