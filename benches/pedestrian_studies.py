@@ -35,7 +35,8 @@ import crashsim as cs
 import numpy as np
 from crashsim.studies import choice, normal, uniform
 from crashsim.studies.evidence import HeadStrike, PedestrianRest
-from crashsim.studies.pedestrians import columns_of, run_one
+from crashsim.studies.pedestrians import columns_of
+from crashsim.studies.scene_runs import run_one
 
 STIFFNESS = 1e5  # N/m, the car-segment soft contact (docs/human.md, "Soft contacts")
 DT = 2e-4  # s

@@ -11,8 +11,8 @@ under the same names, so every pair's contact parameters, the no-contact pairs a
 contacts carry over. ``<v>/<p>.stiffness`` and ``.damping_ratio`` set the soft contact of
 vehicle v with every segment of p.
 
-A scene with pedestrians runs each variant as a Scene (``Scene.run``, threads of this
-machine), not through the batch: the figures of the person (throw distance, the head's first
+A scene with pedestrians runs each variant as a Scene (crashsim.studies.scene_runs: threads
+of this machine), not through the batch: the figures of the person (throw distance, the head's first
 contact, its place on the vehicle) need each run's trajectories and contact log, which the
 batch does not keep. Per variant the study records the batch's columns of the vehicles that
 are not a pedestrian's segments, read from the Result as crashsim.batch defines them, and per
@@ -31,20 +31,16 @@ pedestrian p and striking vehicle v (units m, m/s, s):
 
 from __future__ import annotations
 
-import concurrent.futures
 import copy
 import math
-import os
-import threading
-import warnings
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from crashsim import _core
-from crashsim.errors import CrashsimError, ParameterError
+from crashsim.errors import ParameterError
 
 if TYPE_CHECKING:
     from crashsim.human.pedestrian import Pedestrian
@@ -53,20 +49,18 @@ if TYPE_CHECKING:
 
 __all__ = [
     "KEY",
-    "RECORD_INTERVAL",
     "REST_SPEED",
     "column_names",
     "columns_of",
+    "empty_columns",
     "pose_name",
     "rebuild",
-    "run_scenes",
 ]
 
 Array = NDArray[np.float64]
 
 KEY = "pedestrian:"  # prefix of a study's arrays that rebuild a pedestrian (never the batch's)
 REST_SPEED = 0.1  # m/s: the whole-body CG slower than this at the end is at rest (assumed)
-RECORD_INTERVAL = 2e-3  # s between kept samples of a study's runs (first overlaps are kept)
 HEAD = "head"
 _HEAD_FIGURES = ("head_time", "head_x", "head_y", "head_z", "head_wrap_around",
                  "head_relative_speed")  # fmt: skip
@@ -306,83 +300,3 @@ def columns_of(result: Result, scene: Scene, max_impacts: int) -> dict[str, floa
             figures = pedestrian_figures(result, person, by_name[car])
             out.update({f"{name}.{car}.{k}": v for k, v in figures.items()})
     return out
-
-
-# -- a study's variants as Scenes -------------------------------------------------------------
-
-
-class _Stopped(Exception):
-    """Ctrl-C: the run in a worker thread stops."""
-
-
-def run_one(scene: Scene, options: Mapping[str, Any], stop: threading.Event | None = None
-            ) -> Result:  # fmt: skip
-    """Run a variant's scene for ``options["duration"]`` s at ``options["dt"]`` (with
-    ``options["until"] == "rest"``: until every body rests, at most that long), samples kept
-    every RECORD_INTERVAL (at least every step; first overlaps and exchanges always)."""
-
-    def check(_t: float) -> None:
-        if stop is not None and stop.is_set():
-            raise _Stopped
-
-    dt, duration = float(options["dt"]), float(options["duration"])
-    record = max(dt, RECORD_INTERVAL)
-    if options.get("until") == "rest":
-        return scene.run(dt=dt, until="rest", max_duration=duration, record_interval=record,
-                         progress=check)  # fmt: skip
-    return scene.run(duration, dt=dt, record_interval=record, progress=check)
-
-
-def run_scenes(
-    scene: Scene,
-    overrides: Mapping[str, Array],
-    n: int,
-    options: Mapping[str, Any],
-    threads: int | None,
-    bar: Callable[[int], None],
-) -> tuple[dict[str, np.ndarray], list[Any], NDArray[np.bool_], bool]:
-    """Every variant as a Scene (paths.apply_overrides) run on ``threads`` threads (None:
-    one per core), its row from :func:`columns_of`: (columns, errors as
-    crashsim.batch.VariantError, finished, interrupted), as the batch's chunks give them."""
-    from crashsim.batch import VariantError
-    from crashsim.studies.paths import apply_overrides
-
-    max_impacts = int(options["max_impacts"])
-    columns = empty_columns(scene, n, max_impacts)
-    finished = np.zeros(n, dtype=bool)
-    errors: list[VariantError] = []
-    stop = threading.Event()
-
-    def one(i: int) -> dict[str, float] | VariantError | None:
-        try:
-            variant = apply_overrides(scene, overrides, i)
-            return columns_of(run_one(variant, options, stop), variant, max_impacts)
-        except _Stopped:
-            return None
-        except CrashsimError as e:
-            return VariantError.of(i, e)
-
-    workers = (os.cpu_count() or 1) if threads is None else threads
-    pool = concurrent.futures.ThreadPoolExecutor(max_workers=max(1, min(workers, n)))
-    interrupted = False
-    done = 0
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # per-run warnings (dt_p, rest) would repeat n times
-        futures = {pool.submit(one, i): i for i in range(n)}
-        try:
-            for f in concurrent.futures.as_completed(futures):
-                i, out = futures[f], f.result()
-                if isinstance(out, VariantError):
-                    errors.append(out)
-                elif out is not None:
-                    for k, v in out.items():
-                        columns[k][i] = v
-                    finished[i] = True
-                done += 1
-                bar(done)
-        except KeyboardInterrupt:
-            stop.set()
-            interrupted = True
-        finally:
-            pool.shutdown(wait=True, cancel_futures=True)
-    return columns, errors, finished, interrupted

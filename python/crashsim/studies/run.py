@@ -303,7 +303,7 @@ def run_study(
     bar = _Progress(progress, n)
     try:
         if scene.pedestrians:
-            from crashsim.studies.pedestrians import run_scenes
+            from crashsim.studies.scene_runs import run_scenes
 
             result = run_scenes(scene, overrides, n, options, threads, bar)
         elif backend == "dask":

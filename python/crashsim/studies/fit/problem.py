@@ -138,7 +138,7 @@ class _Problem:
             warnings.simplefilter("ignore")  # the residuals carry what the warnings say
             record: dict[str, float] = {}
             if scene.pedestrians:  # its figures need samples, not every step's
-                from crashsim.studies.pedestrians import RECORD_INTERVAL
+                from crashsim.studies.scene_runs import RECORD_INTERVAL
 
                 record["record_interval"] = max(kw["dt"], RECORD_INTERVAL)
             if kw["until"] == "rest":
