@@ -526,3 +526,25 @@ def test_the_summary_names_every_source(mesh_path: Path) -> None:
     assert f"{q.shells} shells ({q.closed_shells} closed)" in text
     kind = "mesh volume" if q.watertight else "winding-number solid"
     assert text.count(f"[{kind} ") == 2 and "[user]" in text
+
+
+def test_with_mass_scales_the_inertia_and_keeps_the_wheels_frequencies() -> None:
+    """Vehicle.with_mass (a study's ``<vehicle>.mass`` path): the inertia scales with the
+    mass (radii of gyration kept), explicit spring rates and damping scale with it (natural
+    frequencies kept), wheels given by frequency are shared, the mesh and engine shape are
+    shared, the original is untouched; a mass the engine refuses is a ParameterError."""
+    car = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1500.0, name="car").with_wheels(
+        wheelbase=2.7, track=1.5, radius=0.3, cg_to_front_axle=1.2,
+        spring_rates=30e3, damping=2.5e3)  # fmt: skip
+    heavy = car.with_mass(1800.0)
+    assert heavy.mass == 1800.0 and car.mass == 1500.0
+    np.testing.assert_array_equal(heavy.inertia, np.asarray(car.inertia) * (1800.0 / 1500.0))
+    assert heavy.shape is car.shape and heavy.name == "car"
+    spec, base = heavy.wheels.spec(1800.0), car.wheels.spec(1500.0)
+    np.testing.assert_allclose(spec["spring_rates"], base["spring_rates"] * 1.2, rtol=1e-15)
+    np.testing.assert_allclose(spec["damping"], base["damping"] * 1.2, rtol=1e-15)
+    by_frequency = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1500.0).with_wheels(
+        wheelbase=2.7, track=1.5, radius=0.3, cg_to_front_axle=1.2)  # fmt: skip
+    assert by_frequency.with_mass(1600.0).wheels is by_frequency.wheels
+    with pytest.raises(cs.ParameterError, match="mass"):
+        car.with_mass(-5.0)

@@ -68,6 +68,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim.errors import StudyError
+from crashsim.placement import _read_only
 from crashsim.records import rotation_matrix
 
 if TYPE_CHECKING:
@@ -635,35 +636,6 @@ def _slots(scene: Scene, p: ParameterPath) -> list[tuple[Any, ...]]:
 # -- one variant as a Scene -------------------------------------------------------------------
 
 
-def _read_only(a: ArrayLike) -> Array:
-    out = np.array(a, dtype=np.float64)
-    out.setflags(write=False)
-    return out
-
-
-def _with_mass(vehicle: Any, mass: float) -> Any:
-    """The vehicle with another mass (kg): inertia scaled by the same ratio (radii of
-    gyration kept); wheels keep their natural frequencies (explicit spring rates and damping
-    scaled by the ratio; rates from natural frequencies follow the static loads)."""
-    from crashsim.vehicles.checks import _check_mass_properties
-
-    ratio = mass / vehicle.mass
-    inertia = np.asarray(vehicle.inertia, dtype=np.float64) * ratio
-    _check_mass_properties(mass, inertia)  # the engine's checks (ParameterError)
-    other = copy.copy(vehicle)
-    other._mass = float(mass)
-    other._inertia = _read_only(inertia)
-    wheels = vehicle.wheels
-    if wheels is not None and (wheels._rates is not None or wheels._damping is not None):
-        wheels = copy.copy(wheels)
-        if wheels._rates is not None:
-            wheels._rates = wheels._rates * ratio
-        if wheels._damping is not None:
-            wheels._damping = wheels._damping * ratio
-        other._wheels = wheels
-    return other
-
-
 def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
     """The Scene of variant ``i`` of core-level override arrays (the batch contract's keys):
     a copy of ``scene`` sharing its vehicles' meshes and engine shapes, with the variant's
@@ -686,7 +658,7 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
             if key in arrays:
                 changes[key] = _read_only(arrays[key][i, j])
         if "mass" in arrays and float(arrays["mass"][i, j]) != p.vehicle.mass:
-            changes["vehicle"] = _with_mass(p.vehicle, float(arrays["mass"][i, j]))
+            changes["vehicle"] = p.vehicle.with_mass(float(arrays["mass"][i, j]))
         if changes:
             placements[j] = dataclasses.replace(p, **changes)
     new._placements = placements

@@ -26,6 +26,7 @@ accepted ranges and their messages live in one place (crates/crashsim-core).
 
 from __future__ import annotations
 
+import copy
 from typing import Any
 
 import numpy as np
@@ -287,6 +288,22 @@ class Vehicle(VehicleBuilders):
     def coupler(self) -> Hitch | None:
         """Where this vehicle (a trailer) rests on its tractor: its coupler or kingpin."""
         return self._coupler
+
+    def with_mass(self, mass: float) -> Vehicle:
+        """The same vehicle with another mass (kg; a new Vehicle sharing this one's mesh and
+        engine shape): the inertia scaled by the same ratio (its radii of gyration kept), and
+        the wheels keep their natural frequencies (explicit spring rates and damping scaled
+        by the ratio; rates from natural frequencies follow the static loads). ParameterError
+        for a mass the engine refuses. A study's ``<vehicle>.mass`` path uses it."""
+        ratio = mass / self._mass
+        inertia = np.asarray(self._inertia, dtype=np.float64) * ratio
+        _check_mass_properties(mass, inertia)  # the engine's checks (ParameterError)
+        other = copy.copy(self)
+        other._mass = float(mass)
+        other._inertia = _read_only(inertia)
+        if self._wheels is not None:
+            other._wheels = self._wheels.with_mass_ratio(ratio)
+        return other
 
     def with_hitch(self, at: ArrayLike, kind: str = "ball") -> Vehicle:
         """The same vehicle with a hitch (a new Vehicle): ``at`` the model-frame point (m)

@@ -19,6 +19,7 @@ passed on with the wheels' names.
 
 from __future__ import annotations
 
+import copy
 import functools
 import math
 from collections.abc import Iterator, Sequence
@@ -678,6 +679,20 @@ class Wheels:
             _core.check_vehicle(mass, shape=shape, **self.spec(mass, explicit_rates=explicit_rates))
         except ParameterError as e:
             raise _renamed(e, self._names, prefix) from e
+
+    def with_mass_ratio(self, ratio: float) -> Wheels:
+        """These wheels under a vehicle ``ratio`` times as heavy, keeping their natural
+        frequencies: explicit spring rates and damping scaled by the ratio (a copy); these
+        wheels themselves when they have neither (rates from natural frequencies follow the
+        static loads)."""
+        if self._rates is None and self._damping is None:
+            return self
+        other = copy.copy(self)
+        if self._rates is not None:
+            other._rates = self._rates * ratio
+        if self._damping is not None:
+            other._damping = self._damping * ratio
+        return other
 
     def check_on(self, shape: _core.Shape, mass: float, what: str) -> None:
         """The engine's checks of these wheels on a body (its shape, body frame, and mass in
