@@ -4,6 +4,8 @@ speed fitted back from the person's rest position and the head-strike point.
 
     python3 benches/pedestrian_studies.py --mc 100            # Monte Carlo, 100 variants
     python3 benches/pedestrian_studies.py --fit               # fit 45 km/h back from 35
+    python3 benches/pedestrian_studies.py --fit --method global   # the global search
+    python3 benches/pedestrian_studies.py --scan              # the evidence against speed
     python3 benches/pedestrian_studies.py --mc 8 --duration 1.0   # a quick look
 
 The scene is benches/pedestrian_throw.py's: a generated sedan braking at the friction limit
@@ -20,9 +22,14 @@ percentiles, the rest position's, and the wall time per run.
 
 Fit (``--fit``): the evidence is read off a run at 45 km/h (4.5 s): the person's rest position
 (tolerance 0.25 m) and the head-strike point on the car (0.05 m per coordinate, the car's
-model frame); ``cs.fit`` of ``car.speed`` within 25-70 km/h from 35 km/h, least squares,
-runs of the same length. Prints the recovered speed, its 95 % range, the verdict, the runs
-and the wall time.
+model frame); ``cs.fit`` of ``car.speed`` within 25-70 km/h from 35 km/h, least squares
+(``--method global``: differential evolution, then least squares), runs of the same length.
+Prints the recovered speed, its 95 % range, the verdict, the runs and the wall time.
+
+Scan (``--scan``): a sweep of the speed over 30-60 km/h in steps of 1 km/h, runs of 4.5 s;
+prints per speed the person's rest position, the head-strike point and the throw distance,
+and the rest's scatter: each coordinate's residual from a straight line fitted over the
+sweep (the scatter a fit's tolerance on the rest position must allow for).
 """
 
 from __future__ import annotations
@@ -100,7 +107,31 @@ def monte_carlo(n: int, duration: float, threads: int | None) -> None:
     print(f"  correlation of the throw distance with ground.body_friction: {r:.2f}")
 
 
-def fit(duration: float, threads: int | None) -> None:
+def scan(duration: float, threads: int | None) -> None:
+    from crashsim.studies import linspace
+
+    t0 = time.perf_counter()
+    study = cs.sweep(strike_scene(35.0), {"car.speed": linspace(cs.kmh(30.0), cs.kmh(60.0), 31)},
+                     duration=duration, dt=DT, threads=threads, progress=True)  # fmt: skip
+    wall = time.perf_counter() - t0
+    f = study.frame
+    kmh = f["car.speed"].to_numpy() * 3.6
+    print(f"31 runs of {duration:g} s, {len(study.errors)} failed; wall {wall:.0f} s")
+    print(" km/h  rest x (m)  rest y (m)  head x (m)  head z (m)  throw (m)")
+    cols = ("pedestrian.final_x", "pedestrian.final_y", "pedestrian.car.head_x",
+            "pedestrian.car.head_z", "pedestrian.car.throw_distance")  # fmt: skip
+    for k in range(len(f)):
+        print(f"{kmh[k]:5.0f}" + "".join(f"  {f[c].iloc[k]:10.3f}" for c in cols))
+    for col in ("pedestrian.final_x", "pedestrian.final_y"):
+        v = f[col].to_numpy()
+        slope, icpt = np.polyfit(kmh, v, 1)
+        res = v - (slope * kmh + icpt)
+        print(f"{col}: {slope:+.3f} m per km/h; residual from the line sd {res.std(ddof=2):.3f} m, "
+              f"largest {np.abs(res).max():.3f} m; between neighbours 1 km/h apart the change "
+              f"less the line's: largest {np.abs(np.diff(res)).max():.3f} m")
+
+
+def fit(duration: float, threads: int | None, method: str = "least_squares") -> None:
     truth = strike_scene(45.0)
     t0 = time.perf_counter()
     with warnings.catch_warnings():
@@ -119,7 +150,7 @@ def fit(duration: float, threads: int | None) -> None:
     ]
     t0 = time.perf_counter()
     result = cs.fit(strike_scene(35.0), {"car.speed": (cs.kmh(25.0), cs.kmh(70.0))}, evidence,
-                    until=None, duration=duration, dt=DT, samples=0, scan=False,
+                    method=method, until=None, duration=duration, dt=DT, samples=0, scan=False,
                     threads=threads, progress=True)
     wall = time.perf_counter() - t0
     print(result.summary())
@@ -133,16 +164,21 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--mc", type=int, default=None, help="Monte Carlo variants")
     p.add_argument("--fit", action="store_true")
+    p.add_argument("--method", choices=("least_squares", "global"), default="least_squares",
+                   help="the fit's method (default least_squares)")
+    p.add_argument("--scan", action="store_true", help="the evidence against the speed")
     p.add_argument("--duration", type=float, default=None,
-                   help="s per run (default 4.0 for --mc, 4.5 for --fit)")
+                   help="s per run (default 4.0 for --mc, 4.5 for --fit and --scan)")
     p.add_argument("--threads", type=int, default=None)
     a = p.parse_args()
-    if a.mc is None and not a.fit:
-        p.error("give --mc N and/or --fit")
+    if a.mc is None and not a.fit and not a.scan:
+        p.error("give --mc N, --fit and/or --scan")
     if a.mc is not None:
         monte_carlo(a.mc, a.duration or 4.0, a.threads)
+    if a.scan:
+        scan(a.duration or 4.5, a.threads)
     if a.fit:
-        fit(a.duration or 4.5, a.threads)
+        fit(a.duration or 4.5, a.threads, a.method)
 
 
 if __name__ == "__main__":
