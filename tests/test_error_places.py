@@ -103,3 +103,28 @@ def test_single_values_are_checked_by_the_core_without_a_probe_scene() -> None:
     _core.check_table([[0.0, 1.0], [1.0, 2.0]], "throttle")
     with pytest.raises(cs.ParameterError, match="the throttle table's times must increase"):
         _core.check_table([[1.0, 1.0], [0.0, 2.0]], "throttle")
+
+
+@pytest.mark.parametrize(
+    ("place", "text"),
+    [
+        (("variant", 7, None), "variant 7"),
+        (("body", 0, "red"), 'body 0 ("red")'),
+        (("body", 2, None), "body 2"),
+        (("bodies", (0, 1, 4), ("a", None, "c")), 'bodies 0 ("a"), 1 and 4 ("c")'),
+        (("wheel", 3, None), "wheel 3"),
+        (("zone", 1, None), "friction zone 1"),
+        (("zones", (1, 3), None), "friction zones 1 and 3"),
+        (("part", None, "ground.zones[2]"), "ground.zones[2]"),
+    ],
+)
+def test_describe_is_the_engines_rendering_of_each_kind(place, text) -> None:
+    """One rendering of a place, the core's (``Place``'s Display through
+    ``_core.describe_place``): the same text the engine's messages carry."""
+    assert describe(place) == text
+
+
+def test_describe_refuses_what_is_no_place() -> None:
+    for bad in (("lane", 1, None), ("wheel", "front", None), ("body", 0)):
+        with pytest.raises(ValueError, match="is no place"):
+            describe(bad)

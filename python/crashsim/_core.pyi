@@ -46,6 +46,7 @@ __all__ = [
     "check_pose",
     "check_contact_stiffness",
     "check_vehicle",
+    "describe_place",
 ]
 
 class CrashsimError(Exception):
@@ -155,6 +156,11 @@ def check_state(
 
 def check_pose(position: ArrayLike, orientation: ArrayLike) -> None:
     """The engine's checks of a fixed body's pose: ParameterError otherwise."""
+
+def describe_place(place: tuple[Any, Any, Any]) -> str:
+    """The engine's text of one place of an error's ``loc`` ("wheel 2", 'body 0 ("red")',
+    "friction zones 1 and 3"), the rendering its messages use; ValueError for a tuple that
+    is no place."""
 
 def check_contact_stiffness(
     params: ContactParams,

@@ -23,6 +23,7 @@ engine numbers (a vehicle's wheels, the ground's zones, the scene's bodies) give
 from collections.abc import Callable
 from typing import Any, TypeVar
 
+from crashsim import _core
 from crashsim._core import (
     CrashsimError,
     InitialOverlapError,
@@ -67,24 +68,8 @@ _E = TypeVar("_E", bound=CrashsimError)
 
 def describe(place: Place) -> str:
     """The engine's text of one place: "wheel 2", "body 0 ("red")", "friction zones 1 and 3",
-    "variant 7" (as the engine writes it)."""
-    kind, index, name = place
-    if kind == "body":
-        return f'body {index}' + ("" if name is None else f' ("{name}")')
-    if kind == "bodies":
-        names = name if name is not None else (None,) * len(index)
-        parts = [
-            f"{i}" + ("" if n is None else f' ("{n}")')
-            for i, n in zip(index, names, strict=True)
-        ]
-        return "bodies " + (", ".join(parts[:-1]) + " and " if len(parts) > 1 else "") + parts[-1]
-    if kind == "zone":
-        return f"friction zone {index}"
-    if kind == "zones":
-        return f"friction zones {index[0]} and {index[1]}"
-    if kind == "part":
-        return str(name)
-    return f"{kind} {index}"
+    "variant 7" (the core's own rendering, ``_core.describe_place``)."""
+    return _core.describe_place(place)
 
 
 Naming = Callable[[Place, tuple[Place, ...]], "str | None"]

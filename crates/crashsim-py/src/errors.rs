@@ -131,6 +131,47 @@ fn place_tuple<'py>(py: Python<'py>, place: &Place) -> PyResult<Bound<'py, PyTup
     PyTuple::new(py, [kind.into_pyobject(py)?.into_any(), index, name])
 }
 
+/// A (kind, index, name) tuple of [`place_tuple`] back as the core's [`Place`]; None for a
+/// tuple no place gives.
+fn place_of(place: &Bound<'_, PyAny>) -> Option<Place> {
+    let (kind, index, name): (String, Bound<'_, PyAny>, Bound<'_, PyAny>) = place.extract().ok()?;
+    let names = |n: &Bound<'_, PyAny>, count: usize| -> Option<Vec<Option<String>>> {
+        if n.is_none() {
+            return Some(vec![None; count]);
+        }
+        n.extract().ok()
+    };
+    Some(match kind.as_str() {
+        "variant" => Place::Variant(index.extract().ok()?),
+        "body" => Place::Body(index.extract().ok()?, name.extract().ok()?),
+        "bodies" => {
+            let ids: Vec<usize> = index.extract().ok()?;
+            let n = ids.len();
+            Place::Bodies(ids, names(&name, n)?)
+        }
+        "wheel" => Place::Wheel(index.extract().ok()?),
+        "zone" => Place::Zone(index.extract().ok()?),
+        "zones" => {
+            let (a, b): (usize, usize) = index.extract().ok()?;
+            Place::Zones(a, b)
+        }
+        "part" => Place::Part(name.extract().ok()?),
+        _ => return None,
+    })
+}
+
+/// The engine's text of one place of an error's `.loc` ("wheel 2", "body 0 (\"red\")",
+/// "friction zones 1 and 3"), the one rendering the core's messages use; a ValueError for
+/// a tuple that is no place.
+#[pyfunction]
+pub fn describe_place(place: &Bound<'_, PyAny>) -> PyResult<String> {
+    place_of(place).map(|p| p.to_string()).ok_or_else(|| {
+        pyo3::exceptions::PyValueError::new_err(format!(
+            "{place} is no place: give (kind, index, name) as an error's .loc holds"
+        ))
+    })
+}
+
 /// The error's place as a tuple of [`place_tuple`]s, outermost first.
 pub fn loc_tuple<'py>(py: Python<'py>, loc: &[Place]) -> PyResult<Bound<'py, PyTuple>> {
     let places = loc
