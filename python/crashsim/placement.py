@@ -22,7 +22,7 @@ from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import ParameterError, SceneError
 from crashsim.records import rotation_matrix
-from crashsim.vehicles.checks import _as_float
+from crashsim.vehicles.checks import _as_float, _read_only
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.vehicle import Vehicle
 from crashsim.vehicles.wheels import Wheels
@@ -97,12 +97,6 @@ def _position(position: ArrayLike, orientation: ArrayLike | None) -> tuple[Any, 
             )
         return np.array([p[0], p[1], 0.0]), True
     return position, False
-
-
-def _read_only(a: ArrayLike) -> Array:
-    out = np.array(a, dtype=np.float64)
-    out.setflags(write=False)
-    return out
 
 
 @dataclass(frozen=True)

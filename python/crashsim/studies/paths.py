@@ -68,8 +68,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim.errors import StudyError
-from crashsim.placement import _read_only
 from crashsim.records import rotation_matrix
+from crashsim.vehicles.checks import _read_only
 
 if TYPE_CHECKING:
     from crashsim.scene import Scene
