@@ -301,3 +301,16 @@ def test_fit_of_a_pedestrians_own_path_rebuilds_it_per_candidate() -> None:
                  duration=0.05, dt=DT, samples=0, scan=False, progress=False)
     assert abs(fit.values["pedestrian.position_x"] - (x0 + 0.1)) < 0.005
     assert fit.scene.pedestrians["pedestrian"] is not scene.pedestrians["pedestrian"]
+
+
+def test_an_override_key_no_study_makes_is_refused() -> None:
+    """apply_overrides takes the study's keys ("pedestrian:pedestrian.height"), not paths: a
+    path given as a key was ignored and its variant ran the base scene (how the study's
+    stalled variant 63 once "ran in 4.7 s alone", docs/studies.md)."""
+    from crashsim.studies.paths import apply_overrides
+
+    scene = strike()
+    with pytest.raises(cs.StudyError, match="'pedestrian.height' is none of a study's"):
+        apply_overrides(scene, {"pedestrian.height": np.array([1.62])}, 0)
+    height = scene.with_({"pedestrian.height": 1.62}).pedestrians["pedestrian"].height
+    assert height == pytest.approx(1.62)

@@ -111,6 +111,10 @@ GROUND_PARAMETERS: dict[str, tuple[str | None, str]] = {
     "body_friction": (None, "1"),
 }
 _GROUND_KEYS = {"friction": "ground.tyre_friction", "body_friction": "ground.body_friction"}
+# The override arrays apply_overrides reads besides "contact.*" and "pedestrian:*".
+_OVERRIDE_KEYS = frozenset(
+    ("position", "orientation", "velocity", "angular_velocity", "mass", *_GROUND_KEYS.values())
+)
 # a pedestrian's own paths (crashsim.studies.pedestrians rebuilds it for each variant)
 PEDESTRIAN_PARAMETERS: dict[str, tuple[str | None, str]] = {
     "height": ("length", "m"),
@@ -642,7 +646,15 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
     states, masses, pair parameters and ground frictions. Values are not checked here: the
     engine checks them when the scene runs (as in the batch). A pedestrian's own paths
     rebuild it (crashsim.studies.pedestrians.rebuild; ParameterError for a value it refuses)
-    and its segments keep the rebuilt states."""
+    and its segments keep the rebuilt states. StudyError for a key no study makes (a path
+    given as a key, "pedestrian.height", was ignored before: its variant ran the base scene)."""
+    for key in arrays:
+        if not (key in _OVERRIDE_KEYS or key.startswith(("contact.", "pedestrian:"))):
+            raise StudyError(
+                f"override array {key!r} is none of a study's (the keys crashsim.studies.paths."
+                "overrides makes: states, mass, contact.*, ground frictions, pedestrian:*): "
+                "give parameter paths to Scene.with_ instead"
+            )
     new = copy.copy(scene)
     rebuilt: set[str] = set()
     if any(k.startswith("pedestrian:") for k in arrays):
