@@ -385,54 +385,11 @@ impl SceneSpec {
         self.inner.set_ground(ground.inner.clone());
     }
 
-    /// Gives a body wheels, a tyre, the steering linkage, anti-roll bars and driver inputs
-    /// (see the stub).
-    #[pyo3(signature = (body, *, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steering_ratio = None, ackermann = None, steering_reference = None, anti_roll = Vec::new(), abs = true, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new(), coupling = None, hitch_load = None, load_groups = Vec::new()))]
-    #[allow(clippy::too_many_arguments)]
-    fn set_vehicle(
-        &mut self,
-        body: usize,
-        centers: &Bound<'_, PyAny>,
-        radii: &Bound<'_, PyAny>,
-        steerable: &Bound<'_, PyAny>,
-        static_loads: &Bound<'_, PyAny>,
-        spring_rates: &Bound<'_, PyAny>,
-        damping: &Bound<'_, PyAny>,
-        tyre: Option<&ground::Tyre>,
-        steering_ratio: Option<f64>,
-        ackermann: Option<f64>,
-        steering_reference: Option<&str>,
-        anti_roll: Vec<(usize, usize, f64)>,
-        abs: bool,
-        steer: Option<(String, Bound<'_, PyAny>)>,
-        brake: Vec<Option<ground::BrakeRow<'_>>>,
-        drive: Vec<Option<Bound<'_, PyAny>>>,
-        switches: Vec<Bound<'_, PyAny>>,
-        coupling: Option<Bound<'_, PyAny>>,
-        hitch_load: Option<(Bound<'_, PyAny>, f64)>,
-        load_groups: Vec<Vec<usize>>,
-    ) -> PyResult<()> {
-        let spec = vehicle_spec(
-            centers,
-            radii,
-            steerable,
-            static_loads,
-            spring_rates,
-            damping,
-            tyre,
-            steering_ratio,
-            ackermann,
-            steering_reference,
-            anti_roll,
-            abs,
-            steer,
-            brake,
-            drive,
-            switches,
-            coupling,
-            hitch_load,
-            load_groups,
-        )?;
+    /// Gives a body wheels, a tyre, the steering linkage, anti-roll bars and driver inputs:
+    /// [`VehicleArgs`]' keywords (see the stub).
+    #[pyo3(signature = (body, **keywords))]
+    fn set_vehicle(&mut self, body: usize, keywords: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+        let spec = VehicleArgs::from_keywords("set_vehicle", keywords)?.spec()?;
         self.inner.set_vehicle(body, spec).map_err(errors::to_py)
     }
 
@@ -657,126 +614,158 @@ pub fn body_input(
     Ok((props, state))
 }
 
-/// The core's VehicleSpec from set_vehicle's (and check_vehicle's) keywords: wheels (body
-/// frame, m, N, N/m, N s/m), tyre, linkage, bars (N m/rad), ABS, inputs, coupling, hitch
-/// load (m, N) and load groups. Only translation: the rules are the core's.
-#[allow(clippy::too_many_arguments)]
-fn vehicle_spec(
-    centers: &Bound<'_, PyAny>,
-    radii: &Bound<'_, PyAny>,
-    steerable: &Bound<'_, PyAny>,
-    static_loads: &Bound<'_, PyAny>,
-    spring_rates: &Bound<'_, PyAny>,
-    damping: &Bound<'_, PyAny>,
-    tyre: Option<&ground::Tyre>,
+/// set_vehicle's (and check_vehicle's) keywords as one value: wheels (body frame, m, N,
+/// N/m, N s/m), tyre, linkage, bars (N m/rad), ABS, inputs, coupling, hitch load (m, N) and
+/// load groups; the stub gives each one's shape. Only translation: the rules are the core's.
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
+struct VehicleArgs<'py> {
+    centers: Bound<'py, PyAny>,
+    radii: Bound<'py, PyAny>,
+    steerable: Bound<'py, PyAny>,
+    static_loads: Bound<'py, PyAny>,
+    spring_rates: Bound<'py, PyAny>,
+    damping: Bound<'py, PyAny>,
+    #[pyo3(default)]
+    tyre: Option<PyRef<'py, ground::Tyre>>,
+    #[pyo3(default)]
     steering_ratio: Option<f64>,
+    #[pyo3(default)]
     ackermann: Option<f64>,
-    steering_reference: Option<&str>,
+    #[pyo3(default)]
+    steering_reference: Option<String>,
+    #[pyo3(default)]
     anti_roll: Vec<(usize, usize, f64)>,
+    #[pyo3(default = true)]
     abs: bool,
-    steer: Option<(String, Bound<'_, PyAny>)>,
-    brake: Vec<Option<ground::BrakeRow<'_>>>,
-    drive: Vec<Option<Bound<'_, PyAny>>>,
-    switches: Vec<Bound<'_, PyAny>>,
-    coupling: Option<Bound<'_, PyAny>>,
-    hitch_load: Option<(Bound<'_, PyAny>, f64)>,
+    #[pyo3(default)]
+    steer: Option<(String, Bound<'py, PyAny>)>,
+    #[pyo3(default)]
+    brake: Vec<Option<ground::BrakeRow<'py>>>,
+    #[pyo3(default)]
+    drive: Vec<Option<Bound<'py, PyAny>>>,
+    #[pyo3(default)]
+    switches: Vec<Bound<'py, PyAny>>,
+    #[pyo3(default)]
+    coupling: Option<Bound<'py, PyAny>>,
+    #[pyo3(default)]
+    hitch_load: Option<(Bound<'py, PyAny>, f64)>,
+    #[pyo3(default)]
     load_groups: Vec<Vec<usize>>,
-) -> PyResult<core::vehicle::VehicleSpec> {
-    let hitch_load = match hitch_load {
-        Some((p, f)) => Some((core::math::Point::from(vector3(&p, "the hitch")?), f)),
-        None => None,
-    };
-    let coupling = match coupling {
-        Some(c) => Some(core::math::Point::from(vector3(&c, "coupling")?)),
-        None => None,
-    };
-    let reference = match steering_reference {
-        None | Some("outer") => core::vehicle::SteerReference::Outer,
-        Some("centre") | Some("center") => core::vehicle::SteerReference::Centre,
-        Some(other) => {
-            return Err(errors::parameter(format!(
-                "steering_reference = {other:?} is unknown: the input's road-wheel angle is \
-                 the 'outer' wheel's (the reconstruction programs') or the axle 'centre''s"
-            )))
+}
+
+impl<'py> VehicleArgs<'py> {
+    /// The keywords every call needs, and those it may give.
+    const REQUIRED: [&'static str; 6] = [
+        "centers",
+        "radii",
+        "steerable",
+        "static_loads",
+        "spring_rates",
+        "damping",
+    ];
+    const OPTIONAL: [&'static str; 13] = [
+        "tyre",
+        "steering_ratio",
+        "ackermann",
+        "steering_reference",
+        "anti_roll",
+        "abs",
+        "steer",
+        "brake",
+        "drive",
+        "switches",
+        "coupling",
+        "hitch_load",
+        "load_groups",
+    ];
+
+    /// From `function`'s keywords, refusing an unknown or missing one with Python's own
+    /// TypeError, as a signature would.
+    fn from_keywords(function: &str, keywords: Option<&Bound<'py, PyDict>>) -> PyResult<Self> {
+        let type_error = |m: String| PyErr::new::<pyo3::exceptions::PyTypeError, _>(m);
+        let Some(keywords) = keywords else {
+            return Err(type_error(format!(
+                "{function}() missing required keyword argument: 'centers'"
+            )));
+        };
+        for key in keywords.keys() {
+            let key: String = key.extract()?;
+            if !Self::REQUIRED.contains(&key.as_str()) && !Self::OPTIONAL.contains(&key.as_str()) {
+                return Err(type_error(format!(
+                    "{function}() got an unexpected keyword argument '{key}'"
+                )));
+            }
         }
-    };
-    let linkage = core::vehicle::Steering {
-        ratio: steering_ratio,
-        ackermann: ackermann.unwrap_or(core::vehicle::DEFAULT_ACKERMANN),
-        reference,
-    };
-    let mut spec = ground::vehicle(
-        centers,
-        radii,
-        steerable,
-        static_loads,
-        spring_rates,
-        damping,
-        tyre,
-        linkage,
-        anti_roll,
-        abs,
-        steer,
-        brake,
-        drive,
-        switches,
-    )?;
-    spec.coupling = coupling;
-    spec.hitch_load = hitch_load;
-    spec.load_groups = load_groups;
-    Ok(spec)
+        for key in Self::REQUIRED {
+            if !keywords.contains(key)? {
+                return Err(type_error(format!(
+                    "{function}() missing required keyword argument: '{key}'"
+                )));
+            }
+        }
+        keywords.as_any().extract()
+    }
+
+    /// The core's VehicleSpec.
+    fn spec(self) -> PyResult<core::vehicle::VehicleSpec> {
+        let hitch_load = match self.hitch_load {
+            Some((p, f)) => Some((core::math::Point::from(vector3(&p, "the hitch")?), f)),
+            None => None,
+        };
+        let coupling = match self.coupling {
+            Some(c) => Some(core::math::Point::from(vector3(&c, "coupling")?)),
+            None => None,
+        };
+        let reference = match self.steering_reference.as_deref() {
+            None | Some("outer") => core::vehicle::SteerReference::Outer,
+            Some("centre") | Some("center") => core::vehicle::SteerReference::Centre,
+            Some(other) => {
+                return Err(errors::parameter(format!(
+                    "steering_reference = {other:?} is unknown: the input's road-wheel angle is \
+                     the 'outer' wheel's (the reconstruction programs') or the axle 'centre''s"
+                )))
+            }
+        };
+        let linkage = core::vehicle::Steering {
+            ratio: self.steering_ratio,
+            ackermann: self.ackermann.unwrap_or(core::vehicle::DEFAULT_ACKERMANN),
+            reference,
+        };
+        let mut spec = ground::vehicle(
+            &self.centers,
+            &self.radii,
+            &self.steerable,
+            &self.static_loads,
+            &self.spring_rates,
+            &self.damping,
+            self.tyre.as_deref(),
+            linkage,
+            self.anti_roll,
+            self.abs,
+            self.steer,
+            self.brake,
+            self.drive,
+            self.switches,
+        )?;
+        spec.coupling = coupling;
+        spec.hitch_load = hitch_load;
+        spec.load_groups = self.load_groups;
+        Ok(spec)
+    }
 }
 
 /// The core's checks of a vehicle of `mass` kg (VehicleSpec::validate), set_vehicle's
 /// keywords without a body: every rule but the wheels' place in the body's outline, which
 /// is checked too when the body's `shape` (body frame, m) is given. No scene is made.
 #[pyfunction]
-#[pyo3(signature = (mass, *, shape = None, centers, radii, steerable, static_loads, spring_rates, damping, tyre = None, steering_ratio = None, ackermann = None, steering_reference = None, anti_roll = Vec::new(), abs = true, steer = None, brake = Vec::new(), drive = Vec::new(), switches = Vec::new(), coupling = None, hitch_load = None, load_groups = Vec::new()))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (mass, *, shape = None, **keywords))]
 pub fn check_vehicle(
     mass: f64,
     shape: Option<&Shape>,
-    centers: &Bound<'_, PyAny>,
-    radii: &Bound<'_, PyAny>,
-    steerable: &Bound<'_, PyAny>,
-    static_loads: &Bound<'_, PyAny>,
-    spring_rates: &Bound<'_, PyAny>,
-    damping: &Bound<'_, PyAny>,
-    tyre: Option<&ground::Tyre>,
-    steering_ratio: Option<f64>,
-    ackermann: Option<f64>,
-    steering_reference: Option<&str>,
-    anti_roll: Vec<(usize, usize, f64)>,
-    abs: bool,
-    steer: Option<(String, Bound<'_, PyAny>)>,
-    brake: Vec<Option<ground::BrakeRow<'_>>>,
-    drive: Vec<Option<Bound<'_, PyAny>>>,
-    switches: Vec<Bound<'_, PyAny>>,
-    coupling: Option<Bound<'_, PyAny>>,
-    hitch_load: Option<(Bound<'_, PyAny>, f64)>,
-    load_groups: Vec<Vec<usize>>,
+    keywords: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<()> {
-    let spec = vehicle_spec(
-        centers,
-        radii,
-        steerable,
-        static_loads,
-        spring_rates,
-        damping,
-        tyre,
-        steering_ratio,
-        ackermann,
-        steering_reference,
-        anti_roll,
-        abs,
-        steer,
-        brake,
-        drive,
-        switches,
-        coupling,
-        hitch_load,
-        load_groups,
-    )?;
+    let spec = VehicleArgs::from_keywords("check_vehicle", keywords)?.spec()?;
     spec.validate(shape.map(|s| s.inner.aabb()), mass)
         .map_err(errors::to_py)
 }
