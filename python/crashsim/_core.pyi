@@ -7,7 +7,7 @@ Users should not need this module: the public API is ``crashsim.Scene``.
 """
 
 from collections.abc import Callable, Sequence
-from typing import Any, final
+from typing import Any, NotRequired, TypedDict, Unpack, final
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -174,29 +174,35 @@ def check_contact_stiffness(
     in the order front, rear, left, right, and whether it is a fixed obstacle; a
     ParameterError placed at body 0 or 1, the side that lacks it."""
 
+class _VehicleKeywords(TypedDict):
+    """SceneSpec.set_vehicle's and check_vehicle's keywords (the binding's VehicleArgs): the
+    first six needed, the others optional (None, empty, or ABS on when not given)."""
+
+    centers: ArrayLike
+    radii: ArrayLike
+    steerable: Sequence[bool]
+    static_loads: ArrayLike
+    spring_rates: ArrayLike
+    damping: ArrayLike
+    tyre: NotRequired[Tyre | None]
+    steering_ratio: NotRequired[float | None]
+    ackermann: NotRequired[float | None]
+    steering_reference: NotRequired[str | None]
+    anti_roll: NotRequired[list[tuple[int, int, float]]]
+    abs: NotRequired[bool]
+    steer: NotRequired[tuple[str, Any] | None]
+    brake: NotRequired[list[tuple[str, ArrayLike, float | None] | None]]
+    drive: NotRequired[list[ArrayLike | None]]
+    switches: NotRequired[list[tuple[int, str, float, str, float]]]
+    coupling: NotRequired[ArrayLike | None]
+    hitch_load: NotRequired[tuple[ArrayLike, float] | None]
+    load_groups: NotRequired[list[list[int]]]
+
 def check_vehicle(
     mass: float,
     *,
     shape: Shape | None = None,
-    centers: ArrayLike,
-    radii: ArrayLike,
-    steerable: Sequence[bool],
-    static_loads: ArrayLike,
-    spring_rates: ArrayLike,
-    damping: ArrayLike,
-    tyre: Tyre | None = None,
-    steering_ratio: float | None = None,
-    ackermann: float | None = None,
-    steering_reference: str | None = None,
-    anti_roll: list[tuple[int, int, float]] = ...,
-    abs: bool = True,
-    steer: tuple[str, Any] | None = None,
-    brake: list[tuple[str, ArrayLike, float | None] | None] = ...,
-    drive: list[ArrayLike | None] = ...,
-    switches: list[tuple[int, str, float, str, float]] = ...,
-    coupling: ArrayLike | None = None,
-    hitch_load: tuple[ArrayLike, float] | None = None,
-    load_groups: list[list[int]] = ...,
+    **keywords: Unpack[_VehicleKeywords],
 ) -> None:
     """The engine's checks of wheels, tyre, linkage, bars and driver inputs (SceneSpec.
     set_vehicle's keywords) for a vehicle of ``mass`` kg, with no scene: every rule
@@ -432,26 +438,7 @@ class SceneSpec:
     def set_vehicle(
         self,
         body: int,
-        *,
-        centers: ArrayLike,
-        radii: ArrayLike,
-        steerable: Sequence[bool],
-        static_loads: ArrayLike,
-        spring_rates: ArrayLike,
-        damping: ArrayLike,
-        tyre: Tyre | None = None,
-        steering_ratio: float | None = None,
-        ackermann: float | None = None,
-        steering_reference: str | None = None,
-        anti_roll: list[tuple[int, int, float]] = ...,
-        abs: bool = True,
-        steer: tuple[str, Any] | None = None,
-        brake: list[tuple[str, ArrayLike, float | None] | None] = ...,
-        drive: list[ArrayLike | None] = ...,
-        switches: list[tuple[int, str, float, str, float]] = ...,
-        coupling: ArrayLike | None = None,
-        hitch_load: tuple[ArrayLike, float] | None = None,
-        load_groups: list[list[int]] = ...,
+        **keywords: Unpack[_VehicleKeywords],
     ) -> None:
         """Give a body wheels: centres (n, 3) m in the body frame at static ride height, radii
         (m), steerable flags, static loads (N), spring rates (N/m), damping (N s/m); a Tyre;
