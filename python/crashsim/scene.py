@@ -11,6 +11,7 @@ ranges and their messages live in one place (crates/crashsim-core).
 
 from __future__ import annotations
 
+import copy
 import warnings
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from itertools import combinations
@@ -747,6 +748,23 @@ class Scene(_Contacts):
         from crashsim.studies.paths import with_
 
         return with_(self, {**(changes or {}), **more})
+
+    def _varied(
+        self,
+        placements: list[_Placement],
+        overrides: dict[tuple[str, str], dict[str, Any]],
+        ground: Ground | None = None,
+    ) -> Scene:
+        """A copy of this scene for one variant of a study (crashsim.studies.paths): the same
+        vehicles, meshes and engine shapes, with these placements and pair overrides, and
+        ``ground`` when given. Nothing is checked here: the engine checks the values when the
+        variant runs, as the batch does."""
+        new = copy.copy(self)
+        new._placements = placements
+        new._overrides = overrides
+        if ground is not None:
+            new._ground = ground
+        return new
 
     def __repr__(self) -> str:
         names = [p.vehicle.name for p in self._placements]

@@ -56,7 +56,6 @@ the batch does.
 
 from __future__ import annotations
 
-import copy
 import dataclasses
 import difflib
 import math
@@ -655,7 +654,7 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
                 "overrides makes: states, mass, contact.*, ground frictions, pedestrian:*): "
                 "give parameter paths to Scene.with_ instead"
             )
-    new = copy.copy(scene)
+    new = scene  # the variant is a copy: Scene._varied below
     rebuilt: set[str] = set()
     if any(k.startswith("pedestrian:") for k in arrays):
         from crashsim.studies.pedestrians import rebuild
@@ -673,8 +672,7 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
             changes["vehicle"] = p.vehicle.with_mass(float(arrays["mass"][i, j]))
         if changes:
             placements[j] = dataclasses.replace(p, **changes)
-    new._placements = placements
-    new._overrides = {k: dict(v) for k, v in scene._overrides.items()}
+    pair_overrides = {k: dict(v) for k, v in scene._overrides.items()}
     for key, arr in arrays.items():
         if key.startswith("contact."):
             parameter = key.removeprefix("contact.")
@@ -683,16 +681,16 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
                 if parameter == "depth_of_penetration" and math.isnan(value):
                     value = "auto"
                 if value != params[parameter] or isinstance(value, str):
-                    new._overrides.setdefault((a, b), {})[parameter] = value
-    ground_keys = [k for k in ("ground.tyre_friction", "ground.body_friction") if k in arrays]
-    if ground_keys:
+                    pair_overrides.setdefault((a, b), {})[parameter] = value
+    ground = None
+    if any(k in arrays for k in ("ground.tyre_friction", "ground.body_friction")):
         def value(key: str) -> float | None:
             return float(arrays[key][i]) if key in arrays else None
 
-        new._ground = scene.ground.with_friction(
+        ground = scene.ground.with_friction(
             value("ground.tyre_friction"), value("ground.body_friction")
         )
-    return new
+    return new._varied(placements, pair_overrides, ground)
 
 
 def with_(scene: Scene, changes: Mapping[str, Any]) -> Scene:
