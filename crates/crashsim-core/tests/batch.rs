@@ -8,32 +8,17 @@ use std::sync::Arc;
 
 use crashsim_core::batch::{run_batch, BatchOptions, BatchOutput, Control, Overrides, Values};
 use crashsim_core::ground::Ground;
-use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
+use crashsim_core::math::{Point, Real, Vector};
 use crashsim_core::vehicle::{
     static_loads, DriverInputs, Trigger, Tyre, VehicleSpec, WheelSpec, WheelState, WheelSwitch,
     GRAVITY,
 };
 use crashsim_core::world::{degrees, heading, magnitude, pdof_deg};
 use crashsim_core::ErrorKind;
-use crashsim_core::{BodyState, ContactParams, MassProperties, MeshShape, SceneSpec};
+use crashsim_core::{ContactParams, MeshShape, SceneSpec};
 
-fn box_props(m: Real, l: Real, w: Real, h: Real) -> MassProperties {
-    let i = Matrix::from_diagonal(&Vector::new(
-        m / 12.0 * (w * w + h * h),
-        m / 12.0 * (l * l + h * h),
-        m / 12.0 * (l * l + w * w),
-    ));
-    MassProperties::new(m, i).unwrap()
-}
-
-fn state(x: Real, y: Real, z: Real, yaw: Real, v: Vector) -> BodyState {
-    BodyState {
-        position: Point::new(x, y, z),
-        orientation: Rotation::from_axis_angle(&Vector::z_axis(), yaw),
-        velocity: v,
-        angular_velocity: Vector::zeros(),
-    }
-}
+mod common;
+use common::{box_props, state};
 
 /// The seed's 90 deg side impact (examples/seed-90deg.toml): red 30 mph into blue's left
 /// side, 1 s at 1 ms.

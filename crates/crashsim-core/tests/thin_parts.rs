@@ -11,24 +11,11 @@ use crashsim_core::{
     RunOutput, World,
 };
 
+mod common;
+use common::{box_props, box_shape};
+
 const CAR: (Real, Real, Real, Real) = (4.5, 1.8, 1.4, 1450.0);
 const FIXED_MASS: Real = 1e6;
-
-fn box_shape(l: Real, w: Real, h: Real) -> Arc<MeshShape> {
-    Arc::new(MeshShape::cuboid(
-        Vector::zeros(),
-        Vector::new(l, w, h) * 0.5,
-    ))
-}
-
-fn box_props(m: Real, l: Real, w: Real, h: Real) -> MassProperties {
-    let i = Matrix::from_diagonal(&Vector::new(
-        m / 12.0 * (w * w + h * h),
-        m / 12.0 * (l * l + h * h),
-        m / 12.0 * (l * l + w * w),
-    ));
-    MassProperties::new(m, i).unwrap()
-}
 
 fn fixed_props() -> MassProperties {
     MassProperties::new(FIXED_MASS, Matrix::identity() * 1e12).unwrap()

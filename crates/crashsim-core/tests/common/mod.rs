@@ -6,9 +6,11 @@
 // Each test file uses its own part of this module.
 #![allow(dead_code)]
 
-use crashsim_core::math::{Matrix, Point, Real, Vector};
+use std::sync::Arc;
+
+use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
 use crashsim_core::vehicle::{static_loads, Trigger, WheelSpec, WheelState, WheelSwitch, GRAVITY};
-use crashsim_core::MassProperties;
+use crashsim_core::{BodyState, MassProperties, MeshShape, World};
 
 pub const MASS: Real = 1500.0;
 pub const A: Real = 1.1;
@@ -61,4 +63,46 @@ pub fn all_wheels_from_start(state: WheelState) -> Vec<WheelSwitch> {
             state: state.clone(),
         })
         .collect()
+}
+
+// -- box bodies (engine.rs, thin_parts.rs, batch.rs) -------------------------------------
+
+/// A box: length, width, height (m), body frame at its centre.
+pub fn box_shape(l: Real, w: Real, h: Real) -> Arc<MeshShape> {
+    Arc::new(MeshShape::cuboid(
+        Vector::zeros(),
+        Vector::new(l, w, h) * 0.5,
+    ))
+}
+
+/// A uniform solid box of `m` kg and those sizes (m): its mass properties about the CG.
+pub fn box_props(m: Real, l: Real, w: Real, h: Real) -> MassProperties {
+    let i = Matrix::from_diagonal(&Vector::new(
+        m / 12.0 * (w * w + h * h),
+        m / 12.0 * (l * l + h * h),
+        m / 12.0 * (l * l + w * w),
+    ));
+    MassProperties::new(m, i).unwrap()
+}
+
+/// A body at (x, y, z) m, turned `yaw` rad about z, moving at `v` m/s, not turning.
+pub fn state(x: Real, y: Real, z: Real, yaw: Real, v: Vector) -> BodyState {
+    BodyState {
+        position: Point::new(x, y, z),
+        orientation: Rotation::from_axis_angle(&Vector::z_axis(), yaw),
+        velocity: v,
+        angular_velocity: Vector::zeros(),
+    }
+}
+
+/// Adds a uniform box of `m` kg and sizes `(l, w, h)` m at `state`; its index.
+pub fn add_box(
+    world: &mut World,
+    m: Real,
+    (l, w, h): (Real, Real, Real),
+    state: &BodyState,
+) -> usize {
+    world
+        .add_body(box_shape(l, w, h), box_props(m, l, w, h), state)
+        .unwrap()
 }

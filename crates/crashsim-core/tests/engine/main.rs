@@ -3,7 +3,6 @@
 //! determinism and bad input. Tolerances are stated at each assertion.
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
-use std::sync::Arc;
 
 use crashsim_core::impulse::{ImpulseProblem, RestitutionMode};
 use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
@@ -11,41 +10,18 @@ use crashsim_core::world::NORMAL_DEPTH;
 use crashsim_core::{error_kind, ErrorKind};
 use crashsim_core::{
     BodyState, CentroidMode, ContactEventKind, ContactParams, DepthOfPenetration, Face,
-    FaceStiffness, MassProperties, MeshShape, NormalMode, Stiffness, World,
+    FaceStiffness, MassProperties, NormalMode, Stiffness, World,
 };
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
+#[path = "../common/mod.rs"]
+mod common;
 mod stiffness_modes;
+use common::{add_box, box_props, box_shape, state};
 use stiffness_modes::stiffness;
 
 const MPH: Real = 0.44704;
-
-/// A box vehicle: length, width, height (m), body frame at its centre.
-fn box_shape(l: Real, w: Real, h: Real) -> Arc<MeshShape> {
-    Arc::new(MeshShape::cuboid(
-        Vector::zeros(),
-        Vector::new(l, w, h) * 0.5,
-    ))
-}
-
-fn box_props(m: Real, l: Real, w: Real, h: Real) -> MassProperties {
-    let i = Matrix::from_diagonal(&Vector::new(
-        m / 12.0 * (w * w + h * h),
-        m / 12.0 * (l * l + h * h),
-        m / 12.0 * (l * l + w * w),
-    ));
-    MassProperties::new(m, i).unwrap()
-}
-
-fn state(x: Real, y: Real, z: Real, yaw: Real, v: Vector) -> BodyState {
-    BodyState {
-        position: Point::new(x, y, z),
-        orientation: Rotation::from_axis_angle(&Vector::z_axis(), yaw),
-        velocity: v,
-        angular_velocity: Vector::zeros(),
-    }
-}
 
 /// The seed's side impact: a 4.5 x 1.8 x 1.4 m bullet car at `speed` m/s and `angle` rad to
 /// the struck car (4.6 x 1.8 x 1.45 m, at rest, heading +90 deg so its left side faces -x).
@@ -60,12 +36,12 @@ fn seed_scene(speed: Real, angle: Real, offset: Real) -> World {
         &state(-4.0, offset, 0.7, angle, v),
     )
     .unwrap();
-    w.add_body(
-        box_shape(4.6, 1.8, 1.45),
-        box_props(1500.0, 4.6, 1.8, 1.45),
+    add_box(
+        &mut w,
+        1500.0,
+        (4.6, 1.8, 1.45),
         &state(0.0, 0.0, 0.725, FRAC_PI_2, Vector::zeros()),
-    )
-    .unwrap();
+    );
     w
 }
 
@@ -110,18 +86,18 @@ fn first_contact_does_not_depend_on_the_step() {
 fn a_thin_plate_is_not_tunnelled_through() {
     // A 2 cm plate struck at 40 m/s with 10 ms steps (40 cm per step).
     let mut w = World::new();
-    w.add_body(
-        box_shape(1.0, 1.0, 1.0),
-        box_props(1000.0, 1.0, 1.0, 1.0),
+    add_box(
+        &mut w,
+        1000.0,
+        (1.0, 1.0, 1.0),
         &state(0.0, 0.0, 0.5, 0.0, Vector::new(40.0, 0.0, 0.0)),
-    )
-    .unwrap();
-    w.add_body(
-        box_shape(0.02, 3.0, 3.0),
-        box_props(50.0, 0.02, 3.0, 3.0),
+    );
+    add_box(
+        &mut w,
+        50.0,
+        (0.02, 3.0, 3.0),
         &state(1.537, 0.0, 0.5, 0.0, Vector::zeros()),
-    )
-    .unwrap();
+    );
     w.set_contact(
         0,
         1,
@@ -147,18 +123,18 @@ fn central_collinear_impacts_match_the_closed_form() {
         (2000.0, 1000.0, 7.0, 0.4),
     ] {
         let mut w = World::new();
-        w.add_body(
-            box_shape(4.0, 1.8, 1.4),
-            box_props(m1, 4.0, 1.8, 1.4),
+        add_box(
+            &mut w,
+            m1,
+            (4.0, 1.8, 1.4),
             &state(0.0, 0.0, 0.7, 0.0, Vector::new(v, 0.0, 0.0)),
-        )
-        .unwrap();
-        w.add_body(
-            box_shape(4.4, 1.7, 1.3),
-            box_props(m2, 4.4, 1.7, 1.3),
+        );
+        add_box(
+            &mut w,
+            m2,
+            (4.4, 1.7, 1.3),
             &state(4.3, 0.0, 0.7, 0.0, Vector::zeros()),
-        )
-        .unwrap();
+        );
         w.set_contact(
             0,
             1,
@@ -441,36 +417,36 @@ fn the_same_scene_twice_gives_the_same_bits() {
 #[test]
 fn overlapping_at_the_start_is_a_clear_error() {
     let mut w = World::new();
-    w.add_body(
-        box_shape(4.0, 2.0, 1.0),
-        box_props(1000.0, 4.0, 2.0, 1.0),
+    add_box(
+        &mut w,
+        1000.0,
+        (4.0, 2.0, 1.0),
         &state(0.0, 0.0, 0.5, 0.0, Vector::zeros()),
-    )
-    .unwrap();
-    w.add_body(
-        box_shape(4.0, 2.0, 1.0),
-        box_props(1000.0, 4.0, 2.0, 1.0),
+    );
+    add_box(
+        &mut w,
+        1000.0,
+        (4.0, 2.0, 1.0),
         &state(3.0, 0.0, 0.5, 0.3, Vector::zeros()),
-    )
-    .unwrap();
+    );
     assert_eq!(
         error_kind(&w.run(0.1, 1e-3)),
         Some(ErrorKind::InitialOverlap)
     );
     // A small body wholly inside a big one also counts.
     let mut w = World::new();
-    w.add_body(
-        box_shape(10.0, 10.0, 10.0),
-        box_props(1000.0, 10.0, 10.0, 10.0),
+    add_box(
+        &mut w,
+        1000.0,
+        (10.0, 10.0, 10.0),
         &state(0.0, 0.0, 5.0, 0.0, Vector::zeros()),
-    )
-    .unwrap();
-    w.add_body(
-        box_shape(1.0, 1.0, 1.0),
-        box_props(10.0, 1.0, 1.0, 1.0),
+    );
+    add_box(
+        &mut w,
+        10.0,
+        (1.0, 1.0, 1.0),
         &state(0.0, 0.0, 5.0, 0.0, Vector::zeros()),
-    )
-    .unwrap();
+    );
     assert_eq!(
         error_kind(&w.run(0.1, 1e-3)),
         Some(ErrorKind::InitialOverlap)
@@ -524,23 +500,23 @@ fn after_a_separation_a_new_overlap_starts_a_fresh_timer() {
     // A car creeps into a heavy square block spinning at 4 rad/s: the block's corner knocks
     // the car away, they separate, and the next corner strikes again.
     let mut w = World::new();
-    w.add_body(
-        box_shape(4.0, 1.8, 1.4),
-        box_props(1400.0, 4.0, 1.8, 1.4),
+    add_box(
+        &mut w,
+        1400.0,
+        (4.0, 1.8, 1.4),
         &state(-2.5, 0.4, 0.7, 0.0, Vector::new(1.0, 0.0, 0.0)),
-    )
-    .unwrap();
-    w.add_body(
-        box_shape(2.0, 2.0, 1.0),
-        box_props(20000.0, 2.0, 2.0, 1.0),
+    );
+    add_box(
+        &mut w,
+        20000.0,
+        (2.0, 2.0, 1.0),
         &BodyState {
             position: Point::new(1.5, 0.0, 0.5),
             orientation: Rotation::identity(),
             velocity: Vector::zeros(),
             angular_velocity: Vector::new(0.0, 0.0, 4.0),
         },
-    )
-    .unwrap();
+    );
     w.set_contact(
         0,
         1,
@@ -572,9 +548,10 @@ fn a_sideswipe_turns_closing_again_and_gets_a_secondary_exchange() {
     // still overlap: a new timer and a secondary exchange (the rear "slap").
     let mut w = World::new();
     let yaw = 10f64.to_radians();
-    w.add_body(
-        box_shape(4.5, 1.8, 1.4),
-        box_props(1500.0, 4.5, 1.8, 1.4),
+    add_box(
+        &mut w,
+        1500.0,
+        (4.5, 1.8, 1.4),
         &state(
             -5.0,
             -0.6,
@@ -582,8 +559,7 @@ fn a_sideswipe_turns_closing_again_and_gets_a_secondary_exchange() {
             yaw,
             Vector::new(yaw.cos(), yaw.sin(), 0.0) * 20.0,
         ),
-    )
-    .unwrap();
+    );
     w.add_body(
         box_shape(40.0, 1.0, 2.0),
         MassProperties::new(1e6, Matrix::identity() * 1e10).unwrap(),
@@ -641,18 +617,18 @@ fn offset_frontal_normal_follows_the_faces_that_met_not_the_deep_overlap() {
     // into each other outweigh the front faces and the volume normal turned 52 deg sideways.
     // Taken while the overlap is 2 cm deep it is within atan(2 x 0.02 / 1.8) = 1.3 deg of x.
     let mut w = World::new();
-    w.add_body(
-        box_shape(4.5, 1.8, 1.4),
-        box_props(1500.0, 4.5, 1.8, 1.4),
+    add_box(
+        &mut w,
+        1500.0,
+        (4.5, 1.8, 1.4),
         &state(-5.0, 0.9, 0.7, 0.0, Vector::new(30.5, 0.0, 0.0)),
-    )
-    .unwrap();
-    w.add_body(
-        box_shape(4.5, 1.8, 1.4),
-        box_props(1500.0, 4.5, 1.8, 1.4),
+    );
+    add_box(
+        &mut w,
+        1500.0,
+        (4.5, 1.8, 1.4),
         &state(0.0, 0.0, 0.7, PI, Vector::zeros()),
-    )
-    .unwrap();
+    );
     w.set_contact(
         0,
         1,

@@ -21,18 +21,18 @@ pub(super) fn stiffness(front: Real, rear: Real, side: Real) -> Stiffness {
 /// central impact with the overlap 1.7 m wide (the narrower box). (No faces are coplanar.)
 fn rear_end_scene(v: Real, b_front1: Real, b_rear2: Real, params: ContactParams) -> World {
     let mut w = World::new();
-    w.add_body(
-        box_shape(4.5, 1.8, 1.4),
-        box_props(1500.0, 4.5, 1.8, 1.4),
+    add_box(
+        &mut w,
+        1500.0,
+        (4.5, 1.8, 1.4),
         &state(-4.5, 0.0, 0.7, 0.0, Vector::new(v, 0.0, 0.0)),
-    )
-    .unwrap();
-    w.add_body(
-        box_shape(4.2, 1.7, 1.2),
-        box_props(1200.0, 4.2, 1.7, 1.2),
+    );
+    add_box(
+        &mut w,
+        1200.0,
+        (4.2, 1.7, 1.2),
         &state(0.0, 0.0, 0.7, 0.0, Vector::zeros()),
-    )
-    .unwrap();
+    );
     w.set_stiffness(0, stiffness(b_front1, 0.8e6, 0.5e6))
         .unwrap();
     w.set_stiffness(1, stiffness(1.1e6, b_rear2, 0.5e6))
@@ -137,12 +137,12 @@ fn stiffness_modes_need_stiffness_on_both_vehicles() {
     ] {
         let mut w = World::new();
         for x in [-5.0, 0.0] {
-            w.add_body(
-                box_shape(4.5, 1.8, 1.4),
-                box_props(1500.0, 4.5, 1.8, 1.4),
+            add_box(
+                &mut w,
+                1500.0,
+                (4.5, 1.8, 1.4),
                 &state(x, 0.0, 0.7, 0.0, Vector::zeros()),
-            )
-            .unwrap();
+            );
         }
         w.set_stiffness(0, stiffness(1e6, 1e6, 1e6)).unwrap();
         match w.set_contact(0, 1, params.clone()) {

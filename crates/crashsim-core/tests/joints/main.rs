@@ -101,6 +101,16 @@ fn energy(world: &World, out: &RunOutput, props: &[MassProperties], k: usize) ->
         .sum()
 }
 
+/// The sample at `time` (an exchange's instant) and the bodies' momentum change (N s) from
+/// the sample before it, less gravity's impulse between the two: every body of `m` kg.
+fn momentum_jump(out: &RunOutput, time: Real, m: Real) -> (usize, Vector) {
+    let k = out.times.iter().position(|&t| t == time).unwrap();
+    let momentum = |k: usize| -> Vector { out.sample(k).iter().map(|s| s.velocity * m).sum() };
+    let weight = out.sample(k).len() as Real * m * GRAVITY;
+    let gravity = Vector::new(0.0, 0.0, -weight * (out.times[k] - out.times[k - 1]));
+    (k, momentum(k) - momentum(k - 1) - gravity)
+}
+
 /// Largest distance (m) between joined rods' ends (and the first rod's from the pivot) over
 /// the run, and the largest angle (rad) between hinge axes.
 fn drift(out: &RunOutput, n: usize, length: Real, hinges: bool) -> (Real, Real) {
@@ -492,14 +502,7 @@ fn an_exchange_with_a_jointed_body_sees_the_mechanism() {
     );
     // Momentum of all three across the exchange instant (the samples either side, less
     // gravity's impulse between them).
-    let k = out.times.iter().position(|&t| t == imp.time).unwrap();
-    let momentum = |k: usize| -> Vector { out.sample(k).iter().map(|s| s.velocity * 1000.0).sum() };
-    let gravity = Vector::new(
-        0.0,
-        0.0,
-        -3000.0 * GRAVITY * (out.times[k] - out.times[k - 1]),
-    );
-    let change = momentum(k) - momentum(k - 1) - gravity;
+    let (k, change) = momentum_jump(&out, imp.time, 1000.0);
     assert!(change.norm() < 1e-6, "{change:?}");
     // B was pushed, and A came along through the joint.
     let (va, vb) = (out.sample(k)[a].velocity, out.sample(k)[b].velocity);
@@ -593,14 +596,8 @@ fn jointed_bodies_that_collide_exchange_through_their_joint() {
         (after + 0.3 * before).abs() < 1e-9 * before,
         "{before} -> {after}"
     );
-    let k = out.times.iter().position(|&t| t == imp.time).unwrap();
-    let momentum = |k: usize| -> Vector { out.sample(k).iter().map(|s| s.velocity * 500.0).sum() };
-    let gravity = Vector::new(
-        0.0,
-        0.0,
-        -1000.0 * GRAVITY * (out.times[k] - out.times[k - 1]),
-    );
-    assert!((momentum(k) - momentum(k - 1) - gravity).norm() < 1e-6);
+    let (k, change) = momentum_jump(&out, imp.time, 500.0);
+    assert!(change.norm() < 1e-6, "{change:?}");
     // The joint held through it.
     let s = out.sample(k);
     let gap = (s[a].position + s[a].orientation * Vector::new(1.2, 0.0, 0.0))
