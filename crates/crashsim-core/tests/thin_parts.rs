@@ -7,12 +7,11 @@ use std::sync::Arc;
 
 use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
 use crashsim_core::{
-    BodyState, ContactEventKind, ContactParams, DepthOfPenetration, MassProperties, MeshShape,
-    RunOutput, World,
+    BodyState, ContactParams, DepthOfPenetration, MassProperties, MeshShape, RunOutput, World,
 };
 
 mod common;
-use common::{box_props, box_shape};
+use common::{box_props, box_shape, every_timer_is_accounted_for};
 
 const CAR: (Real, Real, Real, Real) = (4.5, 1.8, 1.4, 1450.0);
 const FIXED_MASS: Real = 1e6;
@@ -51,27 +50,6 @@ fn cylinder(r: Real, h: Real, sides: u32) -> Arc<MeshShape> {
         t.push([top, a1, b1]);
     }
     Arc::new(MeshShape::new(v, t).unwrap())
-}
-
-/// Every first overlap or closing-again starts a timer; each must end in an exchange or a
-/// no-exchange event with a reason.
-fn every_timer_is_accounted_for(out: &RunOutput) {
-    let timers = out
-        .contacts
-        .iter()
-        .filter(|c| {
-            matches!(
-                c.kind,
-                ContactEventKind::FirstOverlap | ContactEventKind::ClosingAgain
-            )
-        })
-        .count();
-    let skipped = out
-        .contacts
-        .iter()
-        .filter(|c| matches!(&c.kind, ContactEventKind::NoExchange(r) if !r.is_empty()))
-        .count();
-    assert_eq!(timers, out.impacts.len() + skipped, "{:?}", out.contacts);
 }
 
 /// A car at `v` m/s square into a fixed wall of thickness `th` (m); the car's |delta-V|.

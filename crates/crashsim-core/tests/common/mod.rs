@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
 use crashsim_core::vehicle::{static_loads, Trigger, WheelSpec, WheelState, WheelSwitch, GRAVITY};
-use crashsim_core::{BodyState, MassProperties, MeshShape, World};
+use crashsim_core::{BodyState, ContactEventKind, MassProperties, MeshShape, RunOutput, World};
 
 pub const MASS: Real = 1500.0;
 pub const A: Real = 1.1;
@@ -105,4 +105,25 @@ pub fn add_box(
     world
         .add_body(box_shape(l, w, h), box_props(m, l, w, h), state)
         .unwrap()
+}
+
+/// Every first overlap or closing-again starts a timer; each must end in an exchange or a
+/// no-exchange event with a reason.
+pub fn every_timer_is_accounted_for(out: &RunOutput) {
+    let timers = out
+        .contacts
+        .iter()
+        .filter(|c| {
+            matches!(
+                c.kind,
+                ContactEventKind::FirstOverlap | ContactEventKind::ClosingAgain
+            )
+        })
+        .count();
+    let skipped = out
+        .contacts
+        .iter()
+        .filter(|c| matches!(&c.kind, ContactEventKind::NoExchange(r) if !r.is_empty()))
+        .count();
+    assert_eq!(timers, out.impacts.len() + skipped, "{:?}", out.contacts);
 }

@@ -18,7 +18,7 @@ use rand::{Rng, SeedableRng};
 #[path = "../common/mod.rs"]
 mod common;
 mod stiffness_modes;
-use common::{add_box, box_props, box_shape, state};
+use common::{add_box, box_props, box_shape, every_timer_is_accounted_for, state};
 use stiffness_modes::stiffness;
 
 const MPH: Real = 0.44704;
@@ -589,22 +589,7 @@ fn a_sideswipe_turns_closing_again_and_gets_a_secondary_exchange() {
         assert!((imp.time - imp.first_contact_time - 0.030).abs() < 1e-12);
     }
     // Every timer ends in an exchange or a logged reason.
-    let timers = out
-        .contacts
-        .iter()
-        .filter(|c| {
-            matches!(
-                c.kind,
-                ContactEventKind::FirstOverlap | ContactEventKind::ClosingAgain
-            )
-        })
-        .count();
-    let skipped = out
-        .contacts
-        .iter()
-        .filter(|c| matches!(c.kind, ContactEventKind::NoExchange(_)))
-        .count();
-    assert_eq!(timers, out.impacts.len() + skipped, "{:?}", out.contacts);
+    every_timer_is_accounted_for(&out);
     for imp in &out.impacts {
         assert!(imp.energy_dissipated >= 0.0);
     }
