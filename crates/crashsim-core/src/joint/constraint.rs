@@ -18,8 +18,9 @@
 //! matrix is symmetric positive definite when no row repeats another (a tree of joints);
 //! redundant rows (a loop, a body held twice) are solved by least squares.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 
+use super::solve::{mobility, solve};
 use super::{JointKind, JointSpec, FRICTION_SMOOTHING};
 use crate::math::{Matrix, Point, Real, Rotation, Vector};
 
@@ -46,11 +47,11 @@ pub(crate) struct JointBody {
 /// One held quantity (see the module's notes). Body b is None for the world.
 #[derive(Clone, Debug)]
 pub(crate) struct Row {
-    a: usize,
-    b: Option<usize>,
+    pub(super) a: usize,
+    pub(super) b: Option<usize>,
     /// (linear, angular) parts of J on body a and body b.
-    ja: [Vector; 2],
-    jb: [Vector; 2],
+    pub(super) ja: [Vector; 2],
+    pub(super) jb: [Vector; 2],
     /// The value C (m or 1).
     c: Real,
     /// J' nu, the part of C's second derivative from the velocities alone.
@@ -414,21 +415,6 @@ pub(crate) fn drift_rate(joint: &JointSpec, bodies: &[JointBody]) -> Real {
         .fold(0.0, |m: Real, r| m.max(apply(r, &nu).abs()))
 }
 
-/// W J^T for one row: the (linear, angular) velocity change of body a and body b per unit
-/// of the row's impulse.
-fn mobility(row: &Row, bodies: &[JointBody]) -> ([Vector; 2], [Vector; 2]) {
-    let a = &bodies[row.a];
-    let da = [row.ja[0] * a.inv_mass, a.inv_inertia * row.ja[1]];
-    let db = match row.b {
-        Some(b) => [
-            row.jb[0] * bodies[b].inv_mass,
-            bodies[b].inv_inertia * row.jb[1],
-        ],
-        None => [Vector::zeros(); 2],
-    };
-    (da, db)
-}
-
 /// `J x` of one row for per-body (linear, angular) values `x`.
 fn apply(row: &Row, x: &[(Vector, Vector)]) -> Real {
     let mut s = row.ja[0].dot(&x[row.a].0) + row.ja[1].dot(&x[row.a].1);
@@ -436,39 +422,6 @@ fn apply(row: &Row, x: &[(Vector, Vector)]) -> Real {
         s += row.jb[0].dot(&x[b].0) + row.jb[1].dot(&x[b].1);
     }
     s
-}
-
-/// Solves `(J W J^T) lambda = rhs` for the rows.
-fn solve(rows: &[Row], bodies: &[JointBody], rhs: DVector<Real>) -> DVector<Real> {
-    let n = rows.len();
-    let moves: Vec<_> = rows.iter().map(|r| mobility(r, bodies)).collect();
-    let mut a = DMatrix::<Real>::zeros(n, n);
-    for i in 0..n {
-        for j in i..n {
-            let (ri, rj) = (&rows[i], &rows[j]);
-            let (ma, mb) = &moves[j];
-            let mut s = 0.0;
-            // Row i's J on every body row j moves.
-            for (body, m) in [(Some(rj.a), ma), (rj.b, mb)] {
-                let Some(body) = body else { continue };
-                if ri.a == body {
-                    s += ri.ja[0].dot(&m[0]) + ri.ja[1].dot(&m[1]);
-                }
-                if ri.b == Some(body) {
-                    s += ri.jb[0].dot(&m[0]) + ri.jb[1].dot(&m[1]);
-                }
-            }
-            a[(i, j)] = s;
-            a[(j, i)] = s;
-        }
-    }
-    if let Some(chol) = a.clone().cholesky() {
-        return chol.solve(&rhs);
-    }
-    // Redundant rows: the least-squares reactions (the solve cannot fail for an SVD).
-    a.svd(true, true)
-        .solve(&rhs, 1e-12)
-        .unwrap_or_else(|_| DVector::zeros(n))
 }
 
 /// Per body, the sum of `J^T lambda` weighted by `W` (a velocity change per impulse) or not

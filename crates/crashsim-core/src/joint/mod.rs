@@ -25,6 +25,7 @@
 //! (the swing-twist split of the relative rotation, the swing about an axis across F1's z).
 
 mod constraint;
+mod solve;
 
 pub(crate) use constraint::{
     applied_torques, drift_rate, limit_angles, limit_rows, project_positions, project_velocities,
