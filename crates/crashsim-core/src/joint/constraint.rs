@@ -53,9 +53,9 @@ pub(crate) struct Row {
     pub(super) ja: [Vector; 2],
     pub(super) jb: [Vector; 2],
     /// The value C (m or 1).
-    c: Real,
+    pub(super) c: Real,
     /// J' nu, the part of C's second derivative from the velocities alone.
-    bias: Real,
+    pub(super) bias: Real,
 }
 
 /// A joint's frames in the world now: (anchor, axes as columns) on body a and on body b.
