@@ -14,7 +14,6 @@ from __future__ import annotations
 import copy
 import warnings
 from collections.abc import Callable, Iterator, Mapping, Sequence
-from itertools import combinations
 from typing import Any, Literal
 
 import numpy as np
@@ -27,7 +26,6 @@ from crashsim.contacts import (
     CentroidSpec,
     NormalSpec,
     VehicleRef,
-    _Contacts,
     _core_params,
 )
 from crashsim.environment.ground import Ground
@@ -43,6 +41,7 @@ from crashsim.human.bicycle import Bicycle
 from crashsim.human.cyclist import Cyclist
 from crashsim.human.pedestrian import Pedestrian
 from crashsim.joints import Joint, check_new, checked_frame, make_joint
+from crashsim.people import _People
 from crashsim.placement import (
     _check_state,
     _ground_height,
@@ -64,7 +63,6 @@ from crashsim.spec import (
     _run_settings,
     _scene_naming,
 )
-from crashsim.vehicles.checks import _as_float
 from crashsim.vehicles.coupling import JOINT_OF, check_coupling
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.vehicle import Vehicle
@@ -118,7 +116,7 @@ def _per_trailer(
     return entries
 
 
-class Scene(_Contacts):
+class Scene(_People):
     """Vehicles with initial states, and the contact parameters of every pair.
 
     The keyword arguments are the defaults of every pair (override per pair with
@@ -365,73 +363,6 @@ class Scene(_Contacts):
             tower = self._tow(tower, trailer, trailer_inputs, dict(options or {}))
         return self
 
-    def _add_pedestrian(
-        self, pedestrian: Pedestrian, position: ArrayLike, heading: float | None,
-        velocity: ArrayLike,
-    ) -> Scene:
-        """Places a pedestrian's segments and joins them (:meth:`add`)."""
-        what = f"pedestrian {pedestrian.name!r}"
-        if self._ground is None:
-            raise SceneError(f"{what} needs a ground: set scene.ground = crashsim.Ground(...)")
-        xy = np.asarray(position, dtype=np.float64).reshape(-1)[:2]
-        ground = _ground_height(self._ground, float(xy[0]), float(xy[1]), what)
-        h = 0.0 if heading is None else _as_float(heading, "heading", "rad")
-        bodies, joints = pedestrian.placement(position, h, velocity, ground)
-        for body, cg, rotation, v in bodies:
-            self.add(body, cg, orientation=rotation, velocity=v)
-        for j, at, axes, child_axes in joints:
-            self.join(
-                f"{pedestrian.name}/{j.parent}",
-                f"{pedestrian.name}/{j.child}",
-                at=at,
-                kind=j.kind,
-                axes=axes,
-                limits=j.limits,
-                stiffness=j.stiffness,
-                damping=j.damping,
-                friction=j.friction,
-                name=f"{pedestrian.name}/{j.name}",
-                axes2=child_axes,
-            )
-        # A passive body's segments never strike each other (the joints hold the neighbours).
-        names = [body.name for body, *_ in bodies]
-        self._pedestrians[pedestrian.name] = pedestrian
-        self._pedestrian_places[pedestrian.name] = (_read_only(position), h, _read_only(velocity))
-        joined = {frozenset((f"{pedestrian.name}/{j.parent}", f"{pedestrian.name}/{j.child}"))
-                  for j, *_ in joints}  # fmt: skip
-        for a, b in combinations(names, 2):
-            if frozenset((a, b)) not in joined:
-                self.no_contact(a, b)
-        return self
-
-    def _add_bicycle(
-        self, thing: Cyclist | Bicycle, position: ArrayLike, heading: float | None,
-        velocity: ArrayLike,
-    ) -> Scene:
-        """Places a cyclist's or a bicycle's bodies, joins them and sets their pairs (the
-        rider's soft contacts with the frame, the pairs that never collide) (:meth:`add`)."""
-        what = f"{type(thing).__name__.lower()} {thing.name!r}"
-        if self._ground is None:
-            raise SceneError(f"{what} needs a ground: set scene.ground = crashsim.Ground(...)")
-        if thing.name in self._cyclists or thing.name in self._pedestrians:
-            raise SceneError(f"{what} is already in the scene: names must be unique")
-        xy = np.asarray(position, dtype=np.float64).reshape(-1)[:2]
-        ground = _ground_height(self._ground, float(xy[0]), float(xy[1]), what)
-        h = 0.0 if heading is None else _as_float(heading, "heading", "rad")
-        parts = thing.placement(position, h, velocity, ground)
-        for body, cg, rotation, v, w in parts.bodies:
-            self.add(body, cg, orientation=rotation, velocity=v, angular_velocity=w)
-        for j in parts.joints:
-            j = dict(j)
-            self.join(j.pop("vehicle1"), j.pop("vehicle2"), **j)
-        for a, b in parts.no_contact:
-            self.no_contact(a, b)
-        for a, b, k, zeta, params in parts.soft:
-            self.contact(a, b, **params)
-            self.soft_contact(a, b, stiffness=k, damping_ratio=zeta)
-        self._cyclists[thing.name] = thing
-        return self
-
     def _tow(
         self,
         tower: _Placement,
@@ -568,22 +499,6 @@ class Scene(_Contacts):
     def joints(self) -> list[Joint]:
         """The joints, in the order made."""
         return list(self._joints)
-
-    @property
-    def pedestrians(self) -> dict[str, Pedestrian]:
-        """The pedestrians added (each one's segments are vehicles of the scene), by name."""
-        return dict(self._pedestrians)
-
-    @property
-    def cyclists(self) -> dict[str, Cyclist]:
-        """The cyclists added (each one's rider segments and bicycle bodies are vehicles of
-        the scene), by name."""
-        return {k: v for k, v in self._cyclists.items() if isinstance(v, Cyclist)}
-
-    @property
-    def bicycles(self) -> dict[str, Bicycle]:
-        """The bicycles added on their own (a cyclist's is its ``bicycle``), by name."""
-        return {k: v for k, v in self._cyclists.items() if isinstance(v, Bicycle)}
 
     def _placement(self, vehicle: VehicleRef) -> _Placement:
         i = self._index(vehicle)
