@@ -207,6 +207,16 @@ def test_bad_input() -> None:
         scene.add(p, (5.0, 0.0))
 
 
+def test_where_a_pedestrian_was_added_is_read_back(standing: cs.Pedestrian) -> None:
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(standing, (2.4, -1.0), heading=0.5, velocity=(1.0, 0.2, 0.0))
+    position, heading, velocity = scene.pedestrian_place("pedestrian")
+    assert list(position) == [2.4, -1.0] and heading == 0.5
+    assert list(velocity) == [1.0, 0.2, 0.0]
+    with pytest.raises(SceneError, match="no pedestrian 'bob' .pedestrians: 'pedestrian'"):
+        scene.pedestrian_place("bob")
+
+
 def test_soft_contacts_are_checked_and_reach_every_segment(standing: cs.Pedestrian) -> None:
     car = cs.Vehicle.box(length=4.0, width=1.7, height=1.0, mass=1200.0, name="car",
                          ground_clearance=0.3, cg_height=0.8)
@@ -222,6 +232,10 @@ def test_soft_contacts_are_checked_and_reach_every_segment(standing: cs.Pedestri
     scene.soft_contact(car, standing, stiffness=1e5, damping_ratio=0.5)
     soft = scene.to_spec(0.1).soft_contacts
     assert len(soft) == 16 and {(a, k, z) for a, _, k, z in soft} == {(0, 1e5, 0.5)}
+    # read back per pair, either way round; None for a pair without one
+    assert scene.soft_contact_of("pedestrian/head", car) == (1e5, 0.5)
+    assert scene.soft_contact_of(car, "pedestrian/foot_left") == (1e5, 0.5)
+    assert scene.soft_contact_of("pedestrian/head", "pedestrian/upper_torso") is None
     # 1 ms is too long for 1e5 N/m on a 0.4 kg hand: refused, with the stiffness that fits
     with pytest.raises(ParameterError, match="too stiff for the step"):
         scene.run(0.01)

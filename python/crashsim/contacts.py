@@ -295,6 +295,15 @@ class _Contacts:
                 self._soft[frozenset((a, b))] = (k, zeta)
         return self
 
+    def soft_contact_of(
+        self, vehicle1: VehicleRef, vehicle2: VehicleRef
+    ) -> tuple[float, float] | None:
+        """The pair's soft contact (:meth:`soft_contact`): (stiffness N/m, damping ratio), or
+        None when the pair has none."""
+        bodies = self._bodies()
+        names = frozenset((bodies[self._index(vehicle1)].name, bodies[self._index(vehicle2)].name))
+        return self._soft.get(names)
+
     def pairs(self) -> list[tuple[str, str, dict[str, Any]]]:
         """Every pair of vehicles as the engine gets it: (vehicle 1, vehicle 2, parameters),
         vehicle 1 being the one the normal points away from (the first argument of the last

@@ -6,9 +6,10 @@ collide, a rider's soft contacts with the frame), and the people added, by name
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import copy
+from collections.abc import Callable, Mapping
 from itertools import combinations
-from typing import TYPE_CHECKING, Self
+from typing import TYPE_CHECKING, Any, Self
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -19,7 +20,8 @@ from crashsim.errors import SceneError
 from crashsim.human.bicycle import Bicycle
 from crashsim.human.cyclist import Cyclist
 from crashsim.human.pedestrian import Pedestrian
-from crashsim.placement import _ground_height, _read_only
+from crashsim.joints import Joint
+from crashsim.placement import _ground_height, _Placement, _read_only
 from crashsim.vehicles.checks import _as_float
 
 Array = NDArray[np.float64]
@@ -34,10 +36,14 @@ class _People(_Contacts):
     _pedestrians: dict[str, Pedestrian]
     _cyclists: dict[str, Cyclist | Bicycle]
     _pedestrian_places: dict[str, tuple[Array, float, Array]]
+    _placements: list[_Placement]
+    _joints: list[Joint]
 
     if TYPE_CHECKING:  # the scene's own methods (crashsim.Scene)
         add: Callable[..., Self]
         join: Callable[..., Self]
+
+        def __init__(self, *args: Any, ground: Ground | None = None, **kw: Any) -> None: ...
 
     @property
     def pedestrians(self) -> dict[str, Pedestrian]:
@@ -54,6 +60,48 @@ class _People(_Contacts):
     def bicycles(self) -> dict[str, Bicycle]:
         """The bicycles added on their own (a cyclist's is its ``bicycle``), by name."""
         return {k: v for k, v in self._cyclists.items() if isinstance(v, Bicycle)}
+
+    def pedestrian_place(self, name: str) -> tuple[Array, float, Array]:
+        """Where pedestrian ``name`` was added: (position as given to :meth:`add` (m),
+        heading (rad), velocity (m/s, world))."""
+        if name not in self._pedestrian_places:
+            known = ", ".join(repr(n) for n in self._pedestrian_places) or "none"
+            raise SceneError(f"no pedestrian {name!r} (pedestrians: {known})")
+        return self._pedestrian_places[name]
+
+    def _with_people(
+        self,
+        people: Mapping[str, tuple[Pedestrian, ArrayLike, float, ArrayLike]],
+        soft: Mapping[frozenset[str], tuple[float, float]],
+    ) -> tuple[Self, set[str]]:
+        """A copy of this scene for one variant of a study (crashsim.studies.pedestrians):
+        each pedestrian named in ``people`` rebuilt as the Pedestrian given, placed at
+        (position, heading rad, velocity m/s) as :meth:`add` places one; its segments and
+        joints take the places of the old ones under the same names, so every pair's
+        contact parameters, the no-contact pairs and the soft contacts carry over. ``soft``
+        sets pairs' soft contacts (stiffness N/m, damping ratio), values the engine has
+        checked. Returns the copy and the names of the segments placed."""
+        new = copy.copy(self)
+        new._placements = list(self._placements)
+        new._joints = list(self._joints)
+        new._pedestrians = dict(self._pedestrians)
+        new._pedestrian_places = dict(self._pedestrian_places)
+        new._soft = dict(self._soft)
+        made: set[str] = set()
+        index = {p.vehicle.name: j for j, p in enumerate(new._placements)}
+        joint_index = {jt.name: j for j, jt in enumerate(new._joints)}
+        for name, (person, position, heading, velocity) in people.items():
+            alone = type(self)(ground=self._ground)  # a Scene: the person placed alone
+            alone.add(person, position, heading=heading, velocity=velocity)
+            for p in alone._placements:
+                new._placements[index[p.vehicle.name]] = p
+                made.add(p.vehicle.name)
+            for jt in alone._joints:
+                new._joints[joint_index[jt.name]] = jt
+            new._pedestrians[name] = person
+            new._pedestrian_places[name] = alone._pedestrian_places[name]
+        new._soft.update(soft)
+        return new, made
 
     def _add_pedestrian(
         self, pedestrian: Pedestrian, position: ArrayLike, heading: float | None,

@@ -171,7 +171,7 @@ def _struck(scene: Scene) -> list[tuple[str, str, list[tuple[str, str]]]]:
 
 def _soft_with(scene: Scene, body: str, person: str) -> bool:
     """Whether every segment of the pedestrian has a soft contact with the body."""
-    return all(frozenset((body, s.name)) in scene._soft
+    return all(scene.soft_contact_of(body, s.name) is not None
                for s in scene.pedestrians[person].segments)  # fmt: skip
 
 
@@ -741,8 +741,9 @@ def base_value(scene: Scene, name: str) -> float:
         return _pedestrian_value(scene, str(p.target), p.parameter)
     if p.kind == "pedestrian pair" and p.parameter in SOFT_PARAMETERS:
         body, person = p.target  # type: ignore[misc]
-        k, zeta = {scene._soft[frozenset((body, s.name))]
-                   for s in scene.pedestrians[person].segments}.pop()  # fmt: skip
+        # the same on every segment (the path is offered only then: _soft_with)
+        k, zeta = {scene.soft_contact_of(body, s.name)
+                   for s in scene.pedestrians[person].segments}.pop() or (math.nan, math.nan)
         return k if p.parameter == "stiffness" else zeta
     chosen = set(_pairs_of(scene, p))
     values = [_pair_value(params[p.parameter]) for a, b, params in scene.pairs()
@@ -763,7 +764,7 @@ def _pedestrian_value(scene: Scene, person: str, parameter: str) -> float:
 
     ped = scene.pedestrians[person]
     args = ped.arguments
-    position, heading, velocity = scene._pedestrian_places[person]
+    position, heading, velocity = scene.pedestrian_place(person)
     values = {
         "height": lambda: ped.height if args["percentile"] is not None else args["height"],
         "mass": lambda: args["mass"],

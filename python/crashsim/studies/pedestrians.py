@@ -31,7 +31,6 @@ pedestrian p and striking vehicle v (units m, m/s, s):
 
 from __future__ import annotations
 
-import copy
 import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
@@ -150,38 +149,18 @@ def rebuild(scene: Scene, arrays: Mapping[str, Array], i: int) -> tuple[Scene, s
     study's KEY arrays), and the names of the segments whose placements it made (the caller
     leaves their states alone). ParameterError (that variant fails) for a value the
     Pedestrian or the soft contact refuses."""
-    from crashsim.scene import Scene
-
     people, soft = _split(arrays, i)
-    new = copy.copy(scene)
-    new._placements = list(scene._placements)
-    new._joints = list(scene._joints)
-    new._pedestrians = dict(scene._pedestrians)
-    new._pedestrian_places = dict(scene._pedestrian_places)
-    new._soft = dict(scene._soft)
-    made: set[str] = set()
-    index = {p.vehicle.name: j for j, p in enumerate(new._placements)}
-    joint_index = {jt.name: j for j, jt in enumerate(new._joints)}
-    for name, values in people.items():
-        person, position, heading, velocity = _new_person(
-            scene.pedestrians[name], scene._pedestrian_places[name], values)  # fmt: skip
-        alone = Scene(ground=scene.ground)
-        alone.add(person, position, heading=heading, velocity=velocity)
-        for p in alone._placements:
-            new._placements[index[p.vehicle.name]] = p
-            made.add(p.vehicle.name)
-        for jt in alone._joints:
-            new._joints[joint_index[jt.name]] = jt
-        new._pedestrians[name] = person
-        new._pedestrian_places[name] = alone._pedestrian_places[name]
+    placed = {name: _new_person(scene.pedestrians[name], scene.pedestrian_place(name), values)
+              for name, values in people.items()}  # fmt: skip
+    pairs: dict[frozenset[str], tuple[float, float]] = {}
     for (other, name), values in soft.items():
-        for seg in new._pedestrians[name].segments:
-            pair = frozenset((other, seg.name))
-            k, zeta = new._soft[pair]
+        person = placed[name][0] if name in placed else scene.pedestrians[name]
+        for seg in person.segments:
+            k, zeta = scene.soft_contact_of(other, seg.name) or (math.nan, math.nan)
             k, zeta = values.get("stiffness", k), values.get("damping_ratio", zeta)
             _core.check_soft_contact(k, zeta)
-            new._soft[pair] = (k, zeta)
-    return new, made
+            pairs[frozenset((other, seg.name))] = (k, zeta)
+    return scene._with_people(placed, pairs)
 
 
 # -- the figures of a run ---------------------------------------------------------------------
