@@ -59,6 +59,23 @@ pub(super) fn solve(rows: &[Row], bodies: &[JointBody], rhs: DVector<Real>) -> D
     })
 }
 
+/// Entry (i, j) of `J W J^T`: row i's J on the bodies row j moves (`moves`, row j's
+/// mobility); zero unless the two rows share a body.
+fn entry(ri: &Row, rj: &Row, moves: &([Vector; 2], [Vector; 2])) -> Real {
+    let (ma, mb) = moves;
+    let mut s = 0.0;
+    for (body, m) in [(Some(rj.a), ma), (rj.b, mb)] {
+        let Some(body) = body else { continue };
+        if ri.a == body {
+            s += ri.ja[0].dot(&m[0]) + ri.ja[1].dot(&m[1]);
+        }
+        if ri.b == Some(body) {
+            s += ri.jb[0].dot(&m[0]) + ri.jb[1].dot(&m[1]);
+        }
+    }
+    s
+}
+
 /// `J W J^T` for the rows, every pair of rows visited: entry (i, j) is row i's J on the
 /// bodies row j moves (zero unless the two rows share a body).
 fn dense_matrix(rows: &[Row], bodies: &[JointBody]) -> DMatrix<Real> {
@@ -67,19 +84,7 @@ fn dense_matrix(rows: &[Row], bodies: &[JointBody]) -> DMatrix<Real> {
     let mut a = DMatrix::<Real>::zeros(n, n);
     for i in 0..n {
         for j in i..n {
-            let (ri, rj) = (&rows[i], &rows[j]);
-            let (ma, mb) = &moves[j];
-            let mut s = 0.0;
-            // Row i's J on every body row j moves.
-            for (body, m) in [(Some(rj.a), ma), (rj.b, mb)] {
-                let Some(body) = body else { continue };
-                if ri.a == body {
-                    s += ri.ja[0].dot(&m[0]) + ri.ja[1].dot(&m[1]);
-                }
-                if ri.b == Some(body) {
-                    s += ri.jb[0].dot(&m[0]) + ri.jb[1].dot(&m[1]);
-                }
-            }
+            let s = entry(&rows[i], &rows[j], &moves[j]);
             a[(i, j)] = s;
             a[(j, i)] = s;
         }
@@ -117,29 +122,13 @@ fn matrix(rows: &[Row], bodies: &[JointBody]) -> DMatrix<Real> {
     // The last row j each row i was paired with (a row on both of row j's bodies once).
     let mut paired = vec![usize::MAX; n];
     for (j, rj) in rows.iter().enumerate() {
-        let (ma, mb) = &moves[j];
         for body in [Some(rj.a), rj.b].into_iter().flatten() {
             for &i in &rows_of[first[body]..first[body + 1]] {
                 if i > j || paired[i] == j {
                     continue;
                 }
                 paired[i] = j;
-                let ri = &rows[i];
-                let mut s = 0.0;
-                if ri.a == rj.a {
-                    s += ri.ja[0].dot(&ma[0]) + ri.ja[1].dot(&ma[1]);
-                }
-                if ri.b == Some(rj.a) {
-                    s += ri.jb[0].dot(&ma[0]) + ri.jb[1].dot(&ma[1]);
-                }
-                if let Some(b) = rj.b {
-                    if ri.a == b {
-                        s += ri.ja[0].dot(&mb[0]) + ri.ja[1].dot(&mb[1]);
-                    }
-                    if ri.b == Some(b) {
-                        s += ri.jb[0].dot(&mb[0]) + ri.jb[1].dot(&mb[1]);
-                    }
-                }
+                let s = entry(&rows[i], rj, &moves[j]);
                 a[(i, j)] = s;
                 a[(j, i)] = s;
             }
