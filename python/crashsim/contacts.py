@@ -267,8 +267,10 @@ class _Contacts:
         may be a :class:`crashsim.Pedestrian` in the scene: every segment of it (a
         :class:`crashsim.Cyclist` or :class:`crashsim.Bicycle`: every body of it). The pair's
         normal and friction are its contact parameters (:meth:`contact`; ``normal="volume"``
-        for contacts from above). The run refuses a step too long for the stiffness
-        (``sqrt(k / m) dt`` above 0.2, m the lighter body's mass). Returns the scene."""
+        for contacts from above). While the pair presses, the run cuts each step into
+        n = ceil(sqrt(k / m) dt / 0.2) sub-steps (m the lighter body's mass; none when
+        ``sqrt(k / m) dt`` is at most 0.2) and refuses a step that would need more than 50.
+        Returns the scene."""
         k = _as_float(stiffness, "stiffness", "N/m")
         zeta = _as_float(damping_ratio, "damping_ratio", "1")
         _core.check_soft_contact(k, zeta)

@@ -1,6 +1,7 @@
 //! The compliant contact of soft pairs (soft.rs, docs/human.md): a head-on contact against
 //! the spring-dashpot's own equation of motion, momentum kept, a body resting on a soft slab
-//! sinking m g / k, one sliding on it stopping in v^2 / (2 mu g), and steps too long refused.
+//! sinking m g / k, one sliding on it stopping in v^2 / (2 mu g), a pair too stiff for the step
+//! pressing in sub-steps, and steps too long even for those refused.
 
 use std::sync::Arc;
 
@@ -167,31 +168,117 @@ fn a_body_sliding_on_a_soft_slab_stops_in_v2_over_2_mu_g() {
 }
 
 #[test]
-fn a_soft_contact_too_stiff_for_the_step_is_refused() {
+fn a_soft_pair_too_stiff_for_the_step_presses_in_sub_steps() {
+    // 2e7 N/m on the 5 kg cube at 1 ms: sqrt(k/m) dt = 2.0 rad (unstable as one step), so
+    // 10 sub-steps while it presses. It sinks m g / k as the same run at a tenth of the step
+    // does, and only the grid's samples (and the first overlap's) are recorded.
+    let stiff = |w: &mut World| {
+        w.set_soft_contact(
+            0,
+            1,
+            SoftContact {
+                stiffness: 2e7,
+                damping_ratio: 0.7,
+            },
+        )
+        .unwrap()
+    };
     let mut w = on_a_slab(0.0, 0.5);
-    w.set_soft_contact(
-        0,
-        1,
-        SoftContact {
-            stiffness: 1e6,
-            damping_ratio: 0.7,
-        },
-    )
-    .unwrap();
-    let err = w.run(0.1, DT).unwrap_err().to_string();
+    stiff(&mut w);
+    let out = w.run(1.0, DT).unwrap();
+    let z = out.sample(out.len() - 1)[0].position.z;
+    let sink = 1.1 - z;
+    let expected = 5.0 * GRAVITY / 2e7;
+    assert!(
+        (sink / expected - 1.0).abs() < 0.01,
+        "sank {sink:.3e} m against m g / k = {expected:.3e} m"
+    );
+    let mut short = on_a_slab(0.0, 0.5);
+    stiff(&mut short);
+    let fine = short.run(1.0, DT / 10.0).unwrap();
+    let z_fine = fine.sample(fine.len() - 1)[0].position.z;
+    assert!((z - z_fine).abs() < 1e-9, "{z} against {z_fine} at DT / 10");
+    let soft = on_a_slab(0.0, 0.5).run(1.0, DT).unwrap();
+    assert_eq!(out.len(), soft.len(), "the sub-steps are not recorded");
+    assert_eq!(out.contacts.len(), soft.contacts.len());
+}
+
+#[test]
+fn a_stiff_head_on_contact_in_sub_steps_is_the_run_at_the_sub_step() {
+    // The head-on pair above at 100 times the stiffness: sqrt(k/m) dt = 0.71 rad on the
+    // lighter cube (4 kg) at 1 ms, so 4 sub-steps while it presses. Its restitution and
+    // contact time are those of the run at a quarter of the step, and the spring-dashpot's
+    // within the first-order step's error (0.23 rad per sub-step on the reduced mass, 2.4
+    // kg: 6.3 % here, 2.0 % at 0.09 rad above).
+    let (m1, m2, k, zeta) = (4.0, 6.0, 2e6, 0.3);
+    let head_on = |dt: Real| {
+        let mut w = World::new();
+        let (s1, p1) = cube(0.25, m1);
+        let (s2, p2) = cube(0.25, m2);
+        w.add_body(s1, p1, &state(0.0, 0.0, 2.0)).unwrap();
+        w.add_body(s2, p2, &state(0.6, 0.0, -1.0)).unwrap();
+        w.set_soft_contact(
+            0,
+            1,
+            SoftContact {
+                stiffness: k,
+                damping_ratio: zeta,
+            },
+        )
+        .unwrap();
+        let out = w.run(0.2, dt).unwrap();
+        let last = out.sample(out.len() - 1);
+        let (v1, v2) = (last[0].velocity.x, last[1].velocity.x);
+        let momentum = m1 * v1 + m2 * v2;
+        assert!((momentum - (m1 * 2.0 - m2 * 1.0)).abs() < 1e-12);
+        assert_eq!(out.contacts.len(), 2, "{:?}", out.contacts);
+        let lasted = out.contacts[1].time - out.contacts[0].time;
+        ((v2 - v1) / 3.0, lasted)
+    };
+    let (e, lasted) = head_on(DT);
+    let (e_fine, lasted_fine) = head_on(DT / 4.0);
+    let (e_model, duration) = spring_dashpot(m1 * m2 / (m1 + m2), k, zeta, 3.0);
+    assert!(
+        (e / e_fine - 1.0).abs() < 0.005,
+        "restitution {e:.4} in sub-steps against {e_fine:.4} at DT / 4"
+    );
+    assert!(
+        (lasted - lasted_fine).abs() < 1e-6,
+        "{lasted} against {lasted_fine}"
+    );
+    assert!(
+        (e / e_model - 1.0).abs() < 0.07,
+        "restitution {e:.4} against the model's {e_model:.4}"
+    );
+    assert!(
+        (lasted - duration).abs() < 2.0 * DT / 4.0,
+        "contact {lasted:.5} s against the model's {duration:.5} s"
+    );
+}
+
+#[test]
+fn a_soft_contact_too_stiff_even_for_sub_steps_is_refused() {
+    // 1e8 N/m on 5 kg at 10 ms: 44.7 rad per step, past 50 sub-steps of 0.2 rad.
+    let stiffest = |w: &mut World| {
+        w.set_soft_contact(
+            0,
+            1,
+            SoftContact {
+                stiffness: 1e8,
+                damping_ratio: 0.7,
+            },
+        )
+        .unwrap()
+    };
+    let mut w = on_a_slab(0.0, 0.5);
+    stiffest(&mut w);
+    let err = w.run(0.1, 0.01).unwrap_err().to_string();
     assert!(err.contains("too stiff for the step"), "{err}");
-    assert!(err.contains("at most 2.000e5 N/m"), "{err}");
+    assert!(err.contains("at most 5.000e6 N/m"), "{err}");
+    assert!(err.contains("a step of at most 2.24e-3 s"), "{err}");
     // A run at a step that fits, then resumed with a longer one: refused again.
     let mut w = on_a_slab(0.0, 0.5);
-    w.set_soft_contact(
-        0,
-        1,
-        SoftContact {
-            stiffness: 1e6,
-            damping_ratio: 0.7,
-        },
-    )
-    .unwrap();
-    w.run(0.01, 1e-4).unwrap();
-    assert!(w.run(0.01, DT).is_err());
+    stiffest(&mut w);
+    w.run(0.01, 1e-3).unwrap();
+    assert!(w.run(0.01, 0.01).is_err());
 }

@@ -38,7 +38,7 @@ GAP = 1e-3  # m, between each contact point of the rider and the bicycle at the 
 # The rider's soft contacts with the frame: segments, stiffness N/m, damping ratio, friction.
 # Assumed (no published saddle, grip or pedal stiffness was read): the saddle sinks about
 # 5 mm under the whole upper body; hands and feet are softer so that a 1 ms step suits their
-# light segments (Scene.soft_contact: sqrt(k / m) dt <= 0.2).
+# light segments with no sub-steps (Scene.soft_contact: sqrt(k / m) dt <= 0.2).
 SADDLE = (("pelvis",), 1.0e5, 0.5, 0.5)
 HANDS = (("hand_left", "hand_right"), 1.5e4, 0.5, 0.5)
 FEET = (("foot_left", "foot_right"), 3.0e4, 0.5, 0.5)

@@ -119,6 +119,9 @@ struct Pair {
     /// The compliant contact that replaces the timer and the exchange (None: the impulse
     /// model of `params`).
     soft: Option<SoftContact>,
+    /// While the soft pair presses, each step of the run is cut into this many sub-steps
+    /// (soft.rs, [`World::size_soft_substeps`]); 1 for every other pair.
+    soft_substeps: usize,
 }
 
 /// How a body moves between exchanges.
@@ -299,6 +302,7 @@ impl World {
                 closest: None,
                 crossing: None,
                 soft: None,
+                soft_substeps: 1,
             });
         }
         let b = shape.aabb();

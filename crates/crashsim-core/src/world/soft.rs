@@ -6,13 +6,17 @@ use super::{Phase, World};
 use crate::error::{Error, Place, Result};
 use crate::math::{Point, Real, Vector};
 use crate::overlap::OverlapRegion;
-use crate::soft::MAX_SOFT_STEP_ANGLE;
+use crate::soft::{MAX_SOFT_STEP_ANGLE, MAX_SOFT_SUBSTEPS};
 
 impl World {
-    /// Refuses a soft pair too stiff for the step `dt` (s): `sqrt(k / m) dt` above
-    /// [`MAX_SOFT_STEP_ANGLE`], `m` the lighter moving body's mass.
-    pub(super) fn check_soft_steps(&self, dt: Real) -> Result<()> {
-        for p in &self.pairs {
+    /// Sizes each soft pair's sub-steps for a run at step `dt` (s): while it presses, a step
+    /// is cut into n = ceil(sqrt(k / m) dt / [`MAX_SOFT_STEP_ANGLE`]) sub-steps, `m` the
+    /// lighter moving body's mass (1 when the step is short enough: the run is then the
+    /// same, bit for bit, as without sub-steps). Refuses a pair that would need more than
+    /// [`MAX_SOFT_SUBSTEPS`].
+    pub(super) fn size_soft_substeps(&mut self, dt: Real) -> Result<()> {
+        for pi in 0..self.pairs.len() {
+            let p = &self.pairs[pi];
             let Some(soft) = p.soft else { continue };
             let mass = [p.body1, p.body2]
                 .iter()
@@ -20,20 +24,46 @@ impl World {
                 .filter(|m| m.is_finite())
                 .fold(Real::INFINITY, Real::min);
             let angle = (soft.stiffness / mass).sqrt() * dt;
-            if angle > MAX_SOFT_STEP_ANGLE {
-                let stiffest = mass * (MAX_SOFT_STEP_ANGLE / dt).powi(2);
-                let longest = MAX_SOFT_STEP_ANGLE / (soft.stiffness / mass).sqrt();
+            let n = (angle / MAX_SOFT_STEP_ANGLE).ceil().max(1.0);
+            if n > MAX_SOFT_SUBSTEPS as Real {
+                let most = MAX_SOFT_STEP_ANGLE * MAX_SOFT_SUBSTEPS as Real;
+                let stiffest = mass * (most / dt).powi(2);
+                let longest = most / (soft.stiffness / mass).sqrt();
                 return Err(Error::invalid(format!(
                     "their soft contact is too stiff for the step: {:.3e} N/m on {mass:.3} kg \
-                     turns sqrt(k/m) dt = {angle:.2} rad per step (at most \
-                     {MAX_SOFT_STEP_ANGLE}); give a stiffness of at most {stiffest:.3e} N/m or \
-                     a step of at most {longest:.2e} s",
+                     turns sqrt(k/m) dt = {angle:.2} rad per step, more than \
+                     {MAX_SOFT_SUBSTEPS} sub-steps of {MAX_SOFT_STEP_ANGLE} take; give a \
+                     stiffness of at most {stiffest:.3e} N/m or a step of at most \
+                     {longest:.2e} s",
                     soft.stiffness
                 ))
                 .at(Place::bodies(p.body1, p.body2)));
             }
+            self.pairs[pi].soft_substeps = n as usize;
         }
         Ok(())
+    }
+
+    /// Where the step now under way ends while a soft pair presses and needs sub-steps: the
+    /// next of the grid step's n equal parts past now (the grid step from `grid - dt` to
+    /// `grid`, n the most any pressing pair needs); None when no pair needs them or the next
+    /// part is the grid point itself.
+    pub(super) fn soft_substep_end(&self, grid: Real, dt: Real) -> Option<Real> {
+        let n = self
+            .pairs
+            .iter()
+            .filter(|p| matches!(p.phase, Phase::Pressing { .. }))
+            .map(|p| p.soft_substeps)
+            .max()?;
+        if n <= 1 {
+            return None;
+        }
+        let (start, h) = (grid - dt, dt / n as Real);
+        // The part now is the one that holds `time` (a point on a boundary, within a
+        // millionth of a part, belongs to the part it starts).
+        let j = ((self.time - start) / h + 1e-6).floor().max(0.0) + 1.0;
+        let end = start + j * h;
+        (end < grid - 1e-6 * h).then_some(end)
     }
 
     /// After a step from `t_prev`, a pressing soft pair either separated (logged, apart) or

@@ -205,8 +205,9 @@ impl World {
         }
         let steps = (duration / dt).ceil() as usize;
         let stride = options.stride(steps, dt)?;
-        // Every run's step, not only the first's: a run resumed with a longer step is checked.
-        self.check_soft_steps(dt)?;
+        // Every run's step, not only the first's: a run resumed with another step is sized
+        // again.
+        self.size_soft_substeps(dt)?;
         if !self.started {
             for p in &self.pairs {
                 self.check_stiffness(p.body1, p.body2, &p.params)?;
@@ -290,6 +291,12 @@ impl World {
                     target = target.min(exchange_at);
                 }
             }
+            // A soft pair pressing too stiffly for the step: the step's next sub-step (not
+            // recorded unless something happens in it).
+            let substep = self.soft_substep_end(grid, dt).filter(|&end| end < target);
+            if let Some(end) = substep {
+                target = end;
+            }
             target = target.max(self.time);
             // The earliest first overlap among apart pairs inside (time, target], as an
             // offset from now.
@@ -358,7 +365,10 @@ impl World {
             let event = out.impacts.len() > impacts
                 || out.contacts.len() > contacts
                 || out.joint_events.len() > joint_events;
-            if options.history && (!on_grid || event || k % stride == 0 || k >= steps) {
+            let off_grid = !on_grid && substep.is_none();
+            if options.history
+                && (off_grid || event || (on_grid && (k % stride == 0 || k >= steps)))
+            {
                 self.record(&mut out)?;
             }
             if on_grid {
