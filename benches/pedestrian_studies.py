@@ -67,7 +67,7 @@ def strike_scene(speed_kmh: float, pose: str = "walking") -> cs.Scene:
     return scene
 
 
-def monte_carlo(n: int, duration: float, threads: int | None) -> None:
+def monte_carlo(n: int, duration: float, threads: int | None, dt: float = DT) -> None:
     scene = strike_scene(40.0)
     dists = {
         "ground.body_friction": uniform(0.45, 0.70),
@@ -75,12 +75,12 @@ def monte_carlo(n: int, duration: float, threads: int | None) -> None:
         "pedestrian.height": normal(1.756, 0.0686, 1.55, 1.95),
     }
     t0 = time.perf_counter()
-    study = cs.monte_carlo(scene, dists, n=n, seed=1, duration=duration, dt=DT,
+    study = cs.monte_carlo(scene, dists, n=n, seed=1, duration=duration, dt=dt,
                            threads=threads, progress=True)
     wall = time.perf_counter() - t0
     ok = study.ok
     print(f"{n} variants, {int(ok.sum())} ran, {len(study.errors)} failed; {duration:g} s runs "
-          f"at {DT:g} s; wall {wall:.0f} s ({wall / n:.2f} s per variant on "
+          f"at {dt:g} s; wall {wall:.0f} s ({wall / n:.2f} s per variant on "
           f"{threads or 'all'} threads)")
     for e in study.errors:
         print(" ", e)
@@ -107,12 +107,12 @@ def monte_carlo(n: int, duration: float, threads: int | None) -> None:
     print(f"  correlation of the throw distance with ground.body_friction: {r:.2f}")
 
 
-def scan(duration: float, threads: int | None) -> None:
+def scan(duration: float, threads: int | None, dt: float = DT) -> None:
     from crashsim.studies import linspace
 
     t0 = time.perf_counter()
     study = cs.sweep(strike_scene(35.0), {"car.speed": linspace(cs.kmh(30.0), cs.kmh(60.0), 31)},
-                     duration=duration, dt=DT, threads=threads, progress=True)  # fmt: skip
+                     duration=duration, dt=dt, threads=threads, progress=True)  # fmt: skip
     wall = time.perf_counter() - t0
     f = study.frame
     kmh = f["car.speed"].to_numpy() * 3.6
@@ -131,12 +131,13 @@ def scan(duration: float, threads: int | None) -> None:
               f"less the line's: largest {np.abs(np.diff(res)).max():.3f} m")
 
 
-def fit(duration: float, threads: int | None, method: str = "least_squares") -> None:
+def fit(duration: float, threads: int | None, method: str = "least_squares", dt: float = DT
+        ) -> None:  # fmt: skip
     truth = strike_scene(45.0)
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        row = columns_of(run_one(truth, {"duration": duration, "dt": DT}), truth, 2)
+        row = columns_of(run_one(truth, {"duration": duration, "dt": dt}), truth, 2)
     print(f"evidence run (45 km/h, {duration:g} s): {time.perf_counter() - t0:.1f} s wall; "
           f"rest ({row['pedestrian.final_x']:.3f}, {row['pedestrian.final_y']:.3f}) m at "
           f"{row['pedestrian.final_speed']:.3f} m/s; head strike at "
@@ -150,7 +151,7 @@ def fit(duration: float, threads: int | None, method: str = "least_squares") -> 
     ]
     t0 = time.perf_counter()
     result = cs.fit(strike_scene(35.0), {"car.speed": (cs.kmh(25.0), cs.kmh(70.0))}, evidence,
-                    method=method, until=None, duration=duration, dt=DT, samples=0, scan=False,
+                    method=method, until=None, duration=duration, dt=dt, samples=0, scan=False,
                     threads=threads, progress=True)
     wall = time.perf_counter() - t0
     print(result.summary())
@@ -170,15 +171,18 @@ def main() -> None:
     p.add_argument("--duration", type=float, default=None,
                    help="s per run (default 4.0 for --mc, 4.5 for --fit and --scan)")
     p.add_argument("--threads", type=int, default=None)
+    p.add_argument("--dt", type=float, default=DT,
+                   help="s, the runs' step (default 0.2 ms; longer: sub-steps while a segment "
+                        "presses on the car)")
     a = p.parse_args()
     if a.mc is None and not a.fit and not a.scan:
         p.error("give --mc N, --fit and/or --scan")
     if a.mc is not None:
-        monte_carlo(a.mc, a.duration or 4.0, a.threads)
+        monte_carlo(a.mc, a.duration or 4.0, a.threads, a.dt)
     if a.scan:
-        scan(a.duration or 4.5, a.threads)
+        scan(a.duration or 4.5, a.threads, a.dt)
     if a.fit:
-        fit(a.duration or 4.5, a.threads, a.method)
+        fit(a.duration or 4.5, a.threads, a.method, a.dt)
 
 
 if __name__ == "__main__":
