@@ -52,14 +52,16 @@ fn spring_dashpot(m: Real, k: Real, zeta: Real, v0: Real) -> (Real, Real) {
     }
 }
 
-#[test]
-fn a_head_on_soft_contact_follows_the_spring_dashpot_and_keeps_momentum() {
-    // Two cubes in space (no ground: nothing else acts), 4 kg and 6 kg, closing at 3 m/s:
-    // the reduced mass 2.4 kg on k = 2e4 N/m, damping ratio 0.3 (sqrt(k/m) dt = 0.091).
-    let (m1, m2, k, zeta) = (4.0, 6.0, 2e4, 0.3);
+/// The head-on pair's masses (kg): cube 1 at x = 0 moving at +2 m/s, cube 2 at 0.6 m at
+/// -1 m/s (0.5 m cubes, 0.1 m apart, closing at 3 m/s).
+const HEAD_ON_MASSES: (Real, Real) = (4.0, 6.0);
+
+/// Two cubes in space (no ground: nothing else acts) meeting head-on with a soft contact of
+/// stiffness `k` (N/m) and damping ratio `zeta`, run 0.2 s at step `dt` (s).
+fn head_on(k: Real, zeta: Real, dt: Real) -> crashsim_core::RunOutput {
     let mut w = World::new();
-    let (s1, p1) = cube(0.25, m1);
-    let (s2, p2) = cube(0.25, m2);
+    let (s1, p1) = cube(0.25, HEAD_ON_MASSES.0);
+    let (s2, p2) = cube(0.25, HEAD_ON_MASSES.1);
     w.add_body(s1, p1, &state(0.0, 0.0, 2.0)).unwrap();
     w.add_body(s2, p2, &state(0.6, 0.0, -1.0)).unwrap();
     w.set_soft_contact(
@@ -71,7 +73,15 @@ fn a_head_on_soft_contact_follows_the_spring_dashpot_and_keeps_momentum() {
         },
     )
     .unwrap();
-    let out = w.run(0.2, DT).unwrap();
+    w.run(0.2, dt).unwrap()
+}
+
+#[test]
+fn a_head_on_soft_contact_follows_the_spring_dashpot_and_keeps_momentum() {
+    // Two cubes in space (no ground: nothing else acts), 4 kg and 6 kg, closing at 3 m/s:
+    // the reduced mass 2.4 kg on k = 2e4 N/m, damping ratio 0.3 (sqrt(k/m) dt = 0.091).
+    let (m1, m2, k, zeta) = (HEAD_ON_MASSES.0, HEAD_ON_MASSES.1, 2e4, 0.3);
+    let out = head_on(k, zeta, DT);
     assert!(out.impacts.is_empty(), "a soft pair exchanges no impulse");
     let last = out.sample(out.len() - 1);
     let (v1, v2) = (last[0].velocity.x, last[1].velocity.x);
@@ -210,23 +220,9 @@ fn a_stiff_head_on_contact_in_sub_steps_is_the_run_at_the_sub_step() {
     // contact time are those of the run at a quarter of the step, and the spring-dashpot's
     // within the first-order step's error (0.23 rad per sub-step on the reduced mass, 2.4
     // kg: 6.3 % here, 2.0 % at 0.09 rad above).
-    let (m1, m2, k, zeta) = (4.0, 6.0, 2e6, 0.3);
-    let head_on = |dt: Real| {
-        let mut w = World::new();
-        let (s1, p1) = cube(0.25, m1);
-        let (s2, p2) = cube(0.25, m2);
-        w.add_body(s1, p1, &state(0.0, 0.0, 2.0)).unwrap();
-        w.add_body(s2, p2, &state(0.6, 0.0, -1.0)).unwrap();
-        w.set_soft_contact(
-            0,
-            1,
-            SoftContact {
-                stiffness: k,
-                damping_ratio: zeta,
-            },
-        )
-        .unwrap();
-        let out = w.run(0.2, dt).unwrap();
+    let (m1, m2, k, zeta) = (HEAD_ON_MASSES.0, HEAD_ON_MASSES.1, 2e6, 0.3);
+    let run = |dt: Real| {
+        let out = head_on(k, zeta, dt);
         let last = out.sample(out.len() - 1);
         let (v1, v2) = (last[0].velocity.x, last[1].velocity.x);
         let momentum = m1 * v1 + m2 * v2;
@@ -235,8 +231,8 @@ fn a_stiff_head_on_contact_in_sub_steps_is_the_run_at_the_sub_step() {
         let lasted = out.contacts[1].time - out.contacts[0].time;
         ((v2 - v1) / 3.0, lasted)
     };
-    let (e, lasted) = head_on(DT);
-    let (e_fine, lasted_fine) = head_on(DT / 4.0);
+    let (e, lasted) = run(DT);
+    let (e_fine, lasted_fine) = run(DT / 4.0);
     let (e_model, duration) = spring_dashpot(m1 * m2 / (m1 + m2), k, zeta, 3.0);
     assert!(
         (e / e_fine - 1.0).abs() < 0.005,
