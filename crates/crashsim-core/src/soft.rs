@@ -33,9 +33,9 @@ pub const MAX_SOFT_DAMPING_RATIO: Real = 2.0;
 /// ([`MAX_SOFT_SUBSTEPS`] at most).
 pub const MAX_SOFT_STEP_ANGLE: Real = 0.2;
 /// Most sub-steps a run's step is cut into while a soft pair presses: a stiffer pair (or a
-/// longer step) is refused with the stiffness and the step that fit. 50 keeps a 1 ms run of
-/// a 1e8 N/m pair on 1 kg refused (its sub-steps would be 10 us: give a shorter step), and
-/// takes a 1e5 N/m pair on a 0.4 kg hand at 1 ms in 4.
+/// longer step) is refused with the stiffness and the step that fit. At 50 a step already
+/// spans 1.6 periods of the contact (a period is 31 sub-steps), a step too long for what it
+/// records; a 1e5 N/m pair on a 0.4 kg hand needs 3 at 1 ms.
 pub const MAX_SOFT_SUBSTEPS: usize = 50;
 
 /// The compliant contact of one pair.
