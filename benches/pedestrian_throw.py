@@ -69,6 +69,7 @@ class Strike:
     first_contact: float  # s
     head_time: float | None  # s, the head's first contact with the vehicle
     head_speed: float | None  # m/s, the head relative to the vehicle at the point it touched
+    head_wad: float | None  # m, that point's wrap-around distance (None off the front)
     pelvis_end_speed: float  # m/s at the end of the run
     duration: float  # s simulated: the end of the run
     at_rest: bool  # every body passed the engine's rest test before the longest run
@@ -99,24 +100,26 @@ def strike(speed_kmh: float, front: str, duration: float | None = None, dt: floa
     at_rest = not any(issubclass(w.category, cs.RestNotReachedWarning) for w in caught)
     wall = time.perf_counter() - t0
     head = segment_contacts(result, ped, car).get("head")
-    head_time, head_speed = (None, None) if head is None else (head.time, head.relative_speed)
+    head_time, head_speed, head_wad = ((None, None, None) if head is None
+                                       else (head.time, head.relative_speed, head.wrap_around))
     pelvis = result.trajectory(f"{ped.name}/pelvis")
     return Strike(
         speed_kmh, front, throw_distance(result, "car", ped),
-        first_contact_time(result, "car", ped), head_time, head_speed,
+        first_contact_time(result, "car", ped), head_time, head_speed, head_wad,
         float(np.linalg.norm(pelvis.velocity[-1])), float(pelvis.t[-1]), at_rest, wall,
     )
 
 
 def table(rows: list[Strike]) -> str:
     lines = ["| km/h | front | throw (m) | first contact (s) | head contact (s) | head rel. speed "
-             "(m/s) | pelvis at end (m/s) | ended (s) | at rest | wall (s) |",
-             "| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: |"]
+             "(m/s) | head WAD (m) | pelvis at end (m/s) | ended (s) | at rest | wall (s) |",
+             "| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: |"]
     for r in rows:
         head_t = "none" if r.head_time is None else f"{r.head_time:.3f}"
         head_v = "-" if r.head_speed is None else f"{r.head_speed:.2f}"
+        wad = "-" if r.head_wad is None else f"{r.head_wad:.2f}"
         lines.append(f"| {r.speed_kmh:.0f} | {r.front} | {r.throw:.2f} | {r.first_contact:.4f} | "
-                     f"{head_t} | {head_v} | {r.pelvis_end_speed:.3f} | {r.duration:.2f} | "
+                     f"{head_t} | {head_v} | {wad} | {r.pelvis_end_speed:.3f} | {r.duration:.2f} | "
                      f"{'yes' if r.at_rest else 'no'} | {r.wall:.1f} |")
     return "\n".join(lines)
 
