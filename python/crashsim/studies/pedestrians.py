@@ -39,7 +39,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from crashsim import _core
-from crashsim.errors import ParameterError
+from crashsim.errors import ParameterError, StudyError
 
 if TYPE_CHECKING:
     from crashsim.human.pedestrian import Pedestrian
@@ -154,10 +154,12 @@ def rebuild(scene: Scene, arrays: Mapping[str, Array], i: int) -> tuple[Scene, s
               for name, values in people.items()}  # fmt: skip
     pairs: dict[frozenset[str], tuple[float, float]] = {}
     for (other, name), values in soft.items():
-        person = placed[name][0] if name in placed else scene.pedestrians[name]
-        for seg in person.segments:
-            k, zeta = scene.soft_contact_of(other, seg.name) or (math.nan, math.nan)
-            k, zeta = values.get("stiffness", k), values.get("damping_ratio", zeta)
+        # (a rebuilt person's segments keep their names)
+        for seg in scene.pedestrians[name].segments:
+            base = scene.soft_contact_of(other, seg.name)
+            if base is None:  # the paths offer these parameters only where every segment has one
+                raise StudyError(f"{other!r} and {seg.name!r} have no soft contact to vary")
+            k, zeta = values.get("stiffness", base[0]), values.get("damping_ratio", base[1])
             _core.check_soft_contact(k, zeta)
             pairs[frozenset((other, seg.name))] = (k, zeta)
     return scene._with_people(placed, pairs)
