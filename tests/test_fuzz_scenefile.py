@@ -175,7 +175,7 @@ def check_loads(text: str) -> SceneFile | None:
         return None
     assert math.isfinite(case.run.duration) and case.run.duration > 0.0
     assert math.isfinite(case.run.dt) and case.run.dt > 0.0
-    for p in case.scene._placements:
+    for p in case.scene.placements:
         v = p.vehicle
         assert math.isfinite(v.mass) and v.mass > 0.0
         assert _finite(v.cg) and _finite(v.inertia) and _finite(v.mesh.vertices)

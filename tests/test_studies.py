@@ -4,6 +4,7 @@ Parquet, percentiles, pictures), the tornado and Sobol indices."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import signal
@@ -80,23 +81,35 @@ def test_an_unknown_path_names_the_key_and_lists_the_valid_ones() -> None:
     assert isinstance(e.value, cs.CrashsimError) and isinstance(e.value, ValueError)
 
 
+def test_placements_are_the_vehicles_initial_states_read_only() -> None:
+    scene = _scene()
+    placements = scene.placements
+    assert isinstance(placements, tuple) and all(isinstance(p, cs.Placement) for p in placements)
+    assert [p.vehicle.name for p in placements] == [v.name for v in scene.vehicles]
+    assert np.array_equal(placements[0].velocity, [13.4112, 0.0, 0.0])
+    with pytest.raises(ValueError, match="read-only"):
+        placements[0].velocity[0] = 1.0
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        placements[0].velocity = np.zeros(3)  # type: ignore[misc]
+
+
 def test_with_leaves_the_scene_unchanged_and_follows_the_rules() -> None:
     scene = _scene()
     turned = scene.with_({"red.heading": math.radians(10.0), "red.speed": 20.0})
     again = scene.with_({"red.heading": math.radians(10.0)})
-    p0 = scene._placements[0]
+    p0 = scene.placements[0]
     assert np.array_equal(p0.velocity, [13.4112, 0.0, 0.0])  # the base is untouched
-    p = turned._placements[0]
+    p = turned.placements[0]
     # turned about the CG: position kept, velocity turned with the body, then scaled to 20 m/s
     assert np.array_equal(p.position, p0.position)
     assert np.allclose(p.velocity, 20.0 * np.array([math.cos(0.17453292519943295),
                                                     math.sin(0.17453292519943295), 0.0]))
-    assert math.isclose(float(np.linalg.norm(again._placements[0].velocity)), 13.4112)
+    assert math.isclose(float(np.linalg.norm(again.placements[0].velocity)), 13.4112)
     # a level vehicle's heading is exactly what Scene.add(heading=h) gives
     h = math.radians(10.0)
     assert np.array_equal(p.orientation, [math.cos(h / 2), 0.0, 0.0, math.sin(h / 2)])
     # a vehicle at rest takes its speed along its heading
-    moving = scene.with_({"blue.speed": 2.0})._placements[1]
+    moving = scene.with_({"blue.speed": 2.0}).placements[1]
     assert np.allclose(moving.velocity, [0.0, 2.0, 0.0], atol=1e-15)
     assert scene.with_(restitution=0.3).contact_parameters("red", "blue")["restitution"] == 0.3
     assert scene.contact_parameters("red", "blue")["restitution"] == 0.1

@@ -37,6 +37,7 @@ from crashsim.io import export, scenefile
 from crashsim.io.export import export_frames, export_glb
 from crashsim.io.viewer import view
 from crashsim.joints import JointEvent, JointRecord
+from crashsim.placement import Placement
 from crashsim.plots import plot_impact, plot_trajectories
 from crashsim.records import (
     ContactEvent,
@@ -84,6 +85,7 @@ __all__ = [
     "tractor",
     "rigid_truck",
     "Scene",
+    "Placement",
     "DepthOfPenetrationWarning",
     "Result",
     "Impact",

@@ -28,7 +28,7 @@ from crashsim.vehicles.stiffness import FACES
 from crashsim.vehicles.vehicle import Vehicle
 
 if TYPE_CHECKING:
-    from crashsim.placement import _Placement
+    from crashsim.placement import Placement
 
 VehicleRef: TypeAlias = Vehicle | Obstacle | str
 # None: horizontal part of the volume normal tilted by pitch; "volume": the full 3-D one;
@@ -161,7 +161,7 @@ class _Contacts:
 
     # the scene's state (crashsim.Scene.__init__ makes it)
     _defaults: dict[str, Any]
-    _placements: list[_Placement]
+    _placements: list[Placement]
     _overrides: dict[tuple[str, str], dict[str, Any]]
     _joints: list[Joint]
     _no_contact: set[frozenset[str]]

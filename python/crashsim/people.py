@@ -21,7 +21,7 @@ from crashsim.human.bicycle import Bicycle
 from crashsim.human.cyclist import Cyclist
 from crashsim.human.pedestrian import Pedestrian
 from crashsim.joints import Joint
-from crashsim.placement import _ground_height, _Placement, _read_only
+from crashsim.placement import Placement, _ground_height, _read_only
 from crashsim.vehicles.checks import _as_float
 
 Array = NDArray[np.float64]
@@ -36,7 +36,7 @@ class _People(_Contacts):
     _pedestrians: dict[str, Pedestrian]
     _cyclists: dict[str, Cyclist | Bicycle]
     _pedestrian_places: dict[str, tuple[Array, float, Array]]
-    _placements: list[_Placement]
+    _placements: list[Placement]
     _joints: list[Joint]
 
     if TYPE_CHECKING:  # the scene's own methods (crashsim.Scene)

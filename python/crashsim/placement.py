@@ -56,7 +56,7 @@ def _quaternion_from_matrix(r: Array) -> Array:
     return np.asarray(q, dtype=np.float64)
 
 
-def _in_body(frame: tuple[Array, Array], placement: _Placement) -> tuple[Array, Array]:
+def _in_body(frame: tuple[Array, Array], placement: Placement) -> tuple[Array, Array]:
     """A world frame (anchor, m; axes, quaternion w, x, y, z) in the body frame of a placed
     vehicle: what a joint keeps of it."""
     anchor, axes = frame
@@ -100,8 +100,9 @@ def _position(position: ArrayLike, orientation: ArrayLike | None) -> tuple[Any, 
 
 
 @dataclass(frozen=True)
-class _Placement:
-    """A vehicle and its initial state (world frame, SI)."""
+class Placement:
+    """A vehicle and its initial state (world frame, SI), as Scene.add placed it
+    (Scene.placements); a frozen record, read-only arrays."""
 
     vehicle: Vehicle
     position: Array  # CG, m
@@ -116,6 +117,10 @@ class _Placement:
     # tilted to it, which moves its CG a little off (x, y)).
     level: Array | None = None
     anchor: tuple[float, float] | None = None
+
+
+# The class's name until 2026-11-27: pickles made before name it.
+_Placement = Placement
 
 
 @dataclass(frozen=True)
@@ -157,7 +162,7 @@ def _ground_height(ground: Ground | None, x: float, y: float, what: str) -> floa
     return h
 
 
-def _resting(ground: Ground | None, p: _Placement) -> _Placement:
+def _resting(ground: Ground | None, p: Placement) -> Placement:
     """p with its CG at its static height above the ground at its (x, y); a vehicle on
     wheels on a terrain is also tilted so its wheels stand on the plane fitted through
     the terrain's heights under them."""
@@ -212,7 +217,7 @@ def _grounded(ground: Ground | None, p: _ObstaclePlacement) -> _ObstaclePlacemen
     return dataclasses.replace(p, position=_read_only([x, y, z]))
 
 
-def _check_terrain_under(ground: Ground | None, p: _Placement, wheels: Wheels) -> None:
+def _check_terrain_under(ground: Ground | None, p: Placement, wheels: Wheels) -> None:
     """SceneError when a wheel starts over a hole in the terrain."""
     if ground is None or ground.terrain is None:
         return

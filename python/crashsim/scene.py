@@ -43,13 +43,13 @@ from crashsim.human.pedestrian import Pedestrian
 from crashsim.joints import Joint, check_new, checked_frame, make_joint
 from crashsim.people import _People
 from crashsim.placement import (
+    Placement,
     _check_state,
     _ground_height,
     _grounded,
     _in_body,
     _ObstaclePlacement,
     _orientation,
-    _Placement,
     _position,
     _read_only,
     _resting,
@@ -68,7 +68,8 @@ from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.vehicle import Vehicle
 
 # Pickles of scenes made while _Placement and _ObstaclePlacement lived here name them
-# crashsim.scene._Placement (._ObstaclePlacement): the imports above keep those loading.
+# crashsim.scene._Placement (._ObstaclePlacement): these names keep those loading.
+_Placement = Placement
 
 __all__ = ["DEFAULT_MAX_DURATION", "DepthOfPenetrationWarning", "RestNotReachedWarning", "Scene"]
 
@@ -174,7 +175,7 @@ class Scene(_People):
         )
         _core_params(defaults, None, self._index, self._bodies)  # the engine's checks, at the call
         self._defaults = defaults
-        self._placements: list[_Placement] = []
+        self._placements: list[Placement] = []
         self._obstacles: list[_ObstaclePlacement] = []
         # (name1, name2) -> overridden parameters; the normal points from name1 into name2.
         self._overrides: dict[tuple[str, str], dict[str, Any]] = {}
@@ -340,7 +341,7 @@ class Scene(_People):
                     "(vehicle.with_wheels(...)) or drop the inputs"
                 )
             inputs.to_core(vehicle.wheels, f"vehicle {vehicle.name!r} inputs")
-        placement = _Placement(
+        placement = Placement(
             vehicle=vehicle,
             position=_read_only(pos),
             orientation=_read_only(q),
@@ -365,11 +366,11 @@ class Scene(_People):
 
     def _tow(
         self,
-        tower: _Placement,
+        tower: Placement,
         trailer: Vehicle,
         inputs: DriverInputs | None,
         coupling: dict[str, Any],
-    ) -> _Placement:
+    ) -> Placement:
         """Places ``trailer`` behind ``tower`` with its coupler on the tower's hitch, moving
         with it, and joins them; returns the trailer's placement."""
         if not isinstance(trailer, Vehicle):
@@ -500,7 +501,13 @@ class Scene(_People):
         """The joints, in the order made."""
         return list(self._joints)
 
-    def _placement(self, vehicle: VehicleRef) -> _Placement:
+    @property
+    def placements(self) -> tuple[Placement, ...]:
+        """Each vehicle (a pedestrian's segments and a bicycle's parts among them) with its
+        initial state, in the order added; obstacles are not placements."""
+        return tuple(self._placements)
+
+    def _placement(self, vehicle: VehicleRef) -> Placement:
         i = self._index(vehicle)
         if i >= len(self._placements):
             raise SceneError(
@@ -666,17 +673,20 @@ class Scene(_People):
 
     def _varied(
         self,
-        placements: list[_Placement],
-        overrides: dict[tuple[str, str], dict[str, Any]],
+        placements: list[Placement],
+        pair_changes: Mapping[tuple[str, str], Mapping[str, Any]],
         ground: Ground | None = None,
     ) -> Scene:
         """A copy of this scene for one variant of a study (crashsim.studies.paths): the same
-        vehicles, meshes and engine shapes, with these placements and pair overrides, and
-        ``ground`` when given. Nothing is checked here: the engine checks the values when the
-        variant runs, as the batch does."""
+        vehicles, meshes and engine shapes, with these placements, the pairs' contact
+        parameters changed by ``pair_changes`` ({(a, b) as Scene.pairs names them: {parameter:
+        value}}), and ``ground`` when given. Nothing is checked here: the engine checks the
+        values when the variant runs, as the batch does."""
         new = copy.copy(self)
         new._placements = placements
-        new._overrides = overrides
+        new._overrides = {k: dict(v) for k, v in self._overrides.items()}
+        for pair, changes in pair_changes.items():
+            new._overrides.setdefault(pair, {}).update(changes)
         if ground is not None:
             new._ground = ground
         return new

@@ -25,7 +25,7 @@ from crashsim.errors import (
     renamed,
 )
 from crashsim.joints import Joint
-from crashsim.placement import _check_terrain_under, _ObstaclePlacement, _Placement
+from crashsim.placement import Placement, _check_terrain_under, _ObstaclePlacement
 from crashsim.vehicles.checks import _as_float
 from crashsim.vehicles.stiffness import FACES
 from crashsim.vehicles.vehicle import Vehicle
@@ -36,7 +36,7 @@ DEFAULT_MAX_DURATION = 60.0
 
 def _build_spec(
     *,
-    placements: list[_Placement],
+    placements: list[Placement],
     obstacles: list[_ObstaclePlacement],
     bodies: list[Vehicle | Obstacle],
     pairs: list[tuple[str, str, dict[str, Any]]],
@@ -163,7 +163,7 @@ def _run_settings(
 
 
 def _scene_naming(
-    placements: list[_Placement], obstacles: list[_ObstaclePlacement]
+    placements: list[Placement], obstacles: list[_ObstaclePlacement]
 ) -> Naming:
     """Names the engine's places in a scene's run: body i is the i-th vehicle placed, then
     the obstacles; a wheel is named by the vehicle around it."""
@@ -191,7 +191,7 @@ def _scene_naming(
 
 def _named_overlap_error(
     error: InitialOverlapError,
-    placements: list[_Placement],
+    placements: list[Placement],
     obstacles: list[_ObstaclePlacement],
     scene_pairs: Callable[[], list[tuple[str, str, dict[str, Any]]]],
 ) -> InitialOverlapError:

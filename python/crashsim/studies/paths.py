@@ -395,7 +395,7 @@ def overrides(
                 key=f"{v}.velocity_x" if "velocity_x" in given else f"{v}.velocity_y",
             )
     out: dict[str, Array] = {}
-    placements = scene._placements
+    placements = scene.placements
     by_vehicle = {v: [p for p in paths if p.kind == "vehicle" and p.target == v] for v in vehicles}
     state_keys = set()
     for ps in by_vehicle.values():
@@ -541,7 +541,7 @@ def _check_pedestrian_paths(scene: Scene, paths: Sequence[ParameterPath]) -> Non
 def _combinations(scene: Scene) -> list[list[int]]:
     """The vehicles joined to each other (Scene.join with two vehicles: a tractor and its
     trailers), as lists of placement indices, each in the order added."""
-    names = [p.vehicle.name for p in scene._placements]
+    names = [p.vehicle.name for p in scene.placements]
     group = list(range(len(names)))
 
     def root(i: int) -> int:
@@ -549,7 +549,7 @@ def _combinations(scene: Scene) -> list[list[int]]:
             i = group[i]
         return i
 
-    for joint in scene._joints:
+    for joint in scene.joints:
         a, b = joint.vehicles
         if b is not None:
             ra, rb = root(names.index(a)), root(names.index(b))
@@ -572,7 +572,7 @@ def _move_combinations(
     motion (their places and headings turned and moved with it, their velocities those of
     its points), so the joints' frames still meet and their bodies move together. A
     StudyError when paths set the state of two units of one combination."""
-    names = [p.vehicle.name for p in scene._placements]
+    names = [p.vehicle.name for p in scene.placements]
     state = {"position_x", "position_y", "heading", "speed", "direction"}
     state |= {"velocity_x", "velocity_y", "yaw_rate"}
     for members in _combinations(scene):
@@ -660,7 +660,7 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
         from crashsim.studies.pedestrians import rebuild
 
         new, rebuilt = rebuild(scene, arrays, i)
-    placements = list(new._placements)
+    placements = list(new.placements)
     for j, p in enumerate(placements):
         if p.vehicle.name in rebuilt:
             continue
@@ -672,7 +672,7 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
             changes["vehicle"] = p.vehicle.with_mass(float(arrays["mass"][i, j]))
         if changes:
             placements[j] = dataclasses.replace(p, **changes)
-    pair_overrides = {k: dict(v) for k, v in scene._overrides.items()}
+    pair_changes: dict[tuple[str, str], dict[str, Any]] = {}
     for key, arr in arrays.items():
         if key.startswith("contact."):
             parameter = key.removeprefix("contact.")
@@ -681,7 +681,7 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
                 if parameter == "depth_of_penetration" and math.isnan(value):
                     value = "auto"
                 if value != params[parameter] or isinstance(value, str):
-                    pair_overrides.setdefault((a, b), {})[parameter] = value
+                    pair_changes.setdefault((a, b), {})[parameter] = value
     ground = None
     if any(k in arrays for k in ("ground.tyre_friction", "ground.body_friction")):
         def value(key: str) -> float | None:
@@ -690,7 +690,7 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
         ground = scene.ground.with_friction(
             value("ground.tyre_friction"), value("ground.body_friction")
         )
-    return new._varied(placements, pair_overrides, ground)
+    return new._varied(placements, pair_changes, ground)
 
 
 def with_(scene: Scene, changes: Mapping[str, Any]) -> Scene:
@@ -718,7 +718,7 @@ def base_value(scene: Scene, name: str) -> float:
     p = parse_path(scene, name)
     if p.kind == "vehicle":
         j = [v.name for v in scene.vehicles].index(str(p.target))
-        pl = scene._placements[j]
+        pl = scene.placements[j]
         v, w, q, pos = pl.velocity, pl.angular_velocity, pl.orientation, pl.position
         return float(
             {
