@@ -43,10 +43,12 @@ def test_the_standing_fall_alone_comes_to_rest_and_gains_no_energy() -> None:
     scene.add(ped, (0.0, 0.0), heading=0.0, velocity=(0.0, 0.0, 0.0))
     with warnings.catch_warnings():
         warnings.simplefilter("error", cs.RestNotReachedWarning)
-        result = scene.run(until="rest", max_duration=15.0, dt=1e-3, record_interval=0.01)
+        result = scene.run(until="rest", max_duration=25.0, dt=1e-3, record_interval=0.01)
     t, energy = segment_energy(result, ped)
-    # Measured: at rest at 10.20 s (scripts/pedestrian_rest.py).
-    assert t[-1] < 12.0, f"came to rest only at {t[-1]:.2f} s"
+    # Measured: at rest at 18.50 s (scripts/pedestrian_rest.py); 10.20 s before the segments
+    # had static friction: the right hand now holds where it slid, and the arm propped on it
+    # topples over slowly (its energy falls 1.6 J from 3 s to 18 s, never rising).
+    assert t[-1] < 20.0, f"came to rest only at {t[-1]:.2f} s"
     # Lying from about 3 s on: the energy only falls but for the contact springs' exchange
     # (measured: at most 0.9 mJ over its lowest so far from 4 s on; 2.2 J before the fix).
     late = energy[t >= 4.0]

@@ -137,18 +137,18 @@ pub fn advance_mechanism(
         .map(|(b, g)| g.stage_of(b))
         .collect();
     // The limits the joints rest on hold over the whole sub-step (updated by `project`).
-    let rates = |t: Real, s: &[Stage], engaged: &[Vec<bool>]| -> Result<Vec<Stage>> {
-        Ok(mechanism_rates(bodies, motions, joints, engaged, ground, t, s, false)?.0)
+    let rates = |motions: &[OnGround], t: Real, s: &[Stage], engaged: &[Vec<bool>]| {
+        mechanism_rates(bodies, motions, joints, engaged, ground, t, s, false).map(|r| r.0)
     };
     let combine = |s: &[Stage], d: &[Stage], h: Real| -> Vec<Stage> {
         s.iter().zip(d).map(|(a, b)| a.axpy(h, b)).collect()
     };
     for i in 0..n {
         let t = t0 + i as Real * h;
-        let k1 = rates(t, &s, engaged)?;
-        let k2 = rates(t + 0.5 * h, &combine(&s, &k1, 0.5 * h), engaged)?;
-        let k3 = rates(t + 0.5 * h, &combine(&s, &k2, 0.5 * h), engaged)?;
-        let k4 = rates(t + h, &combine(&s, &k3, h), engaged)?;
+        let k1 = rates(motions, t, &s, engaged)?;
+        let k2 = rates(motions, t + 0.5 * h, &combine(&s, &k1, 0.5 * h), engaged)?;
+        let k3 = rates(motions, t + 0.5 * h, &combine(&s, &k2, 0.5 * h), engaged)?;
+        let k4 = rates(motions, t + h, &combine(&s, &k3, h), engaged)?;
         let mut next = combine(&s, &k1, h / 6.0);
         next = combine(&next, &k2, h / 3.0);
         next = combine(&next, &k3, h / 3.0);
@@ -158,6 +158,9 @@ pub fn advance_mechanism(
             motions[k].land(bodies[k].props(), ground, st);
         }
         project(bodies, joints, engaged, &mut next, t + h, &mut span.hits);
+        for (k, st) in next.iter().enumerate() {
+            motions[k].hold_anchors(bodies[k].props(), ground, st);
+        }
         s = next;
         for (k, st) in s.iter().enumerate() {
             let finite =

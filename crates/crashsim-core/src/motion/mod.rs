@@ -89,6 +89,9 @@ pub struct OnGround {
     /// A bound on the ground around the body, kept between steps while the body's box stays
     /// over its region (it only saves work: which points touch is decided exactly).
     ground_near: Option<GroundNear>,
+    /// Static friction's anchor of each contact point on the ground (m, world), None off
+    /// the ground; empty when none touches or the contact has no static friction.
+    anchors: Vec<Option<Point>>,
 }
 
 /// A body state during integration (the quaternion unnormalised inside a step).
@@ -218,6 +221,7 @@ impl OnGround {
             deflections: vec![[0.0; 2]; n],
             exchanges: 0,
             ground_near: None,
+            anchors: Vec::new(),
         }
     }
 
@@ -511,6 +515,7 @@ impl OnGround {
             next = next.axpy(h / 6.0, &k4);
             next.q = *Rotation::new_normalize(next.q).quaternion();
             self.land(&props, ground, &mut next);
+            self.hold_anchors(&props, ground, &next);
             s = next;
             let finite =
                 s.x.iter()

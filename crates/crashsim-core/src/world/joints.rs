@@ -300,8 +300,9 @@ impl World {
 
     /// Sizes the ground contact of every wheel-less member of a mechanism to the mechanism's
     /// whole mass: a pedestrian's foot carries the body (sized to its own 1 kg, it sank 4.4 cm
-    /// under 75 kg), a bicycle's wheel the frame. Members with wheels are carried by them and
-    /// keep their own (a trailer's body).
+    /// under 75 kg), a bicycle's wheel the frame; and gives it static friction
+    /// ([`BodyContact::with_static_friction`]: a lying person comes to rest). Members with
+    /// wheels are carried by them and keep their own (a trailer's body).
     fn size_ground_contacts_to_mechanisms(&mut self) -> Result<()> {
         for m in &self.mechanisms {
             let total: Real = m
@@ -316,7 +317,8 @@ impl World {
                 }
                 if let Motion::OnGround(g) = &mut wb.motion {
                     let own = wb.body.props().mass();
-                    g.contact = Arc::new(BodyContact::new(&wb.shape, own, total, None)?);
+                    let contact = BodyContact::new(&wb.shape, own, total, None)?;
+                    g.contact = Arc::new(contact.with_static_friction());
                 }
             }
         }
