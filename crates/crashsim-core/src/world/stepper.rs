@@ -183,6 +183,94 @@ impl World {
         options: &RunOptions,
         progress: &mut dyn FnMut(Real) -> bool,
     ) -> Result<RunOutput> {
+        let steps = self.check_run(duration, dt, options)?;
+        let stride = options.stride(steps, dt)?;
+        // Every run's step, not only the first's: a run resumed with another step is sized
+        // again.
+        self.size_soft_substeps(dt)?;
+        self.start()?;
+        let mut out = self.new_output(steps, stride, dt, options)?;
+        if options.history {
+            self.record(&mut out)?;
+        }
+        let t_start = self.time;
+        let t_end = t_start + duration;
+        // Events at the current instant per pair, to stop a pair that makes no progress.
+        let mut at_instant = (self.time, vec![0usize; self.pairs.len()]);
+        let mut k = 1usize;
+        while self.time < t_end {
+            if options.until_rest && self.all_at_rest() {
+                break;
+            }
+            self.keep_step_start();
+            let grid = if k >= steps {
+                t_end
+            } else {
+                t_start + k as Real * dt
+            };
+            let mut target = grid;
+            for p in &self.pairs {
+                if let Phase::Timer { exchange_at, .. } = p.phase {
+                    target = target.min(exchange_at);
+                }
+            }
+            // A soft pair pressing too stiffly for the step: the step's next sub-step (not
+            // recorded unless something happens in it).
+            let substep = self.soft_substep_end(grid, dt).filter(|&end| end < target);
+            if let Some(end) = substep {
+                target = end;
+            }
+            target = target.max(self.time);
+            if let Some((offset, pi)) = self.earliest_first_overlap(target, progress)? {
+                self.advance_by(offset)?;
+                out.joint_events.append(&mut self.joint_events);
+                self.count_event(&mut at_instant, pi)?;
+                self.begin_contact(pi, &mut out);
+                if options.history {
+                    self.record(&mut out)?;
+                }
+                continue;
+            }
+            let t_prev = self.time;
+            let (impacts, contacts, joint_events) = (
+                out.impacts.len(),
+                out.contacts.len(),
+                out.joint_events.len(),
+            );
+            self.advance_to(target)?;
+            out.joint_events.append(&mut self.joint_events);
+            self.follow_pairs(t_prev, &mut at_instant, &mut out)?;
+            if let Some(e) = self.deferred.lock().expect("not poisoned").take() {
+                return Err(e);
+            }
+            self.track_rest();
+            // At or past the grid point (never past it, but a step that could end beyond it
+            // must not stall the count).
+            let on_grid = target >= grid;
+            let event = out.impacts.len() > impacts
+                || out.contacts.len() > contacts
+                || out.joint_events.len() > joint_events;
+            let off_grid = !on_grid && substep.is_none();
+            if options.history
+                && (off_grid || event || (on_grid && (k % stride == 0 || k >= steps)))
+            {
+                self.record(&mut out)?;
+            }
+            if on_grid {
+                k += 1;
+            }
+            if !progress(self.time) {
+                return Err(interrupted(self.time));
+            }
+        }
+        self.record(&mut out)?;
+        self.rest_at_end(&mut out);
+        self.step_start = None;
+        Ok(out)
+    }
+
+    /// Checks a run's duration (s), step (s) and options; the number of grid steps.
+    fn check_run(&self, duration: Real, dt: Real, options: &RunOptions) -> Result<usize> {
         require_finite("duration", duration)?;
         require_finite("dt", dt)?;
         if duration < 0.0 {
@@ -203,23 +291,37 @@ impl World {
                 "a run until rest needs a ground (without one nothing slows the vehicles)",
             ));
         }
-        let steps = (duration / dt).ceil() as usize;
-        let stride = options.stride(steps, dt)?;
-        // Every run's step, not only the first's: a run resumed with another step is sized
-        // again.
-        self.size_soft_substeps(dt)?;
-        if !self.started {
-            for p in &self.pairs {
-                self.check_stiffness(p.body1, p.body2, &p.params)?;
-            }
-            self.check_initial_overlaps()?;
-            if self.ground.is_some() {
-                self.carry_coupling_loads()?;
-            }
-            self.start_motion()?;
-            self.build_mechanisms()?;
-            self.started = true;
+        Ok((duration / dt).ceil() as usize)
+    }
+
+    /// The first run's set-up (nothing on a resumed run): the pairs' stiffness, the initial
+    /// overlaps, the couplings' loads, the motion on the ground and the mechanisms.
+    fn start(&mut self) -> Result<()> {
+        if self.started {
+            return Ok(());
         }
+        for p in &self.pairs {
+            self.check_stiffness(p.body1, p.body2, &p.params)?;
+        }
+        self.check_initial_overlaps()?;
+        if self.ground.is_some() {
+            self.carry_coupling_loads()?;
+        }
+        self.start_motion()?;
+        self.build_mechanisms()?;
+        self.started = true;
+        Ok(())
+    }
+
+    /// An empty output for a run of `steps` grid steps of `dt` s sampled every `stride`-th,
+    /// its memory reserved (a history first checked against its size limit).
+    fn new_output(
+        &self,
+        steps: usize,
+        stride: usize,
+        dt: Real,
+        options: &RunOptions,
+    ) -> Result<RunOutput> {
         let wheel_counts: Vec<usize> = (0..self.bodies.len())
             .map(|i| self.wheel_count(i))
             .collect();
@@ -234,8 +336,6 @@ impl World {
                 self.joints.len(),
             )?;
         }
-        let t_start = self.time;
-        let t_end = t_start + duration;
         let mut out = RunOutput {
             body_count: self.bodies.len(),
             wheel_counts,
@@ -261,124 +361,90 @@ impl World {
         out.joints
             .try_reserve_exact(samples * self.joints.len())
             .map_err(|_| out_of_memory(self.time))?;
-        if options.history {
-            self.record(&mut out)?;
+        Ok(out)
+    }
+
+    /// Keeps every body's state and motion (and the mechanisms' engaged limits) at the
+    /// step's start, for the searches that look back into the step (on the ground only).
+    fn keep_step_start(&mut self) {
+        if self.ground.is_some() {
+            let snapshot = self
+                .bodies
+                .iter()
+                .map(|b| (b.body.clone(), b.motion.clone()));
+            self.step_start = Some((self.time, snapshot.collect()));
+            self.engaged_at_step_start =
+                self.mechanisms.iter().map(|m| m.engaged.clone()).collect();
         }
-        // Events at the current instant per pair, to stop a pair that makes no progress.
-        let mut at_instant = (self.time, vec![0usize; self.pairs.len()]);
-        let mut k = 1usize;
-        while self.time < t_end {
-            if options.until_rest && self.all_at_rest() {
-                break;
-            }
-            if self.ground.is_some() {
-                let snapshot = self
-                    .bodies
-                    .iter()
-                    .map(|b| (b.body.clone(), b.motion.clone()));
-                self.step_start = Some((self.time, snapshot.collect()));
-                self.engaged_at_step_start =
-                    self.mechanisms.iter().map(|m| m.engaged.clone()).collect();
-            }
-            let grid = if k >= steps {
-                t_end
-            } else {
-                t_start + k as Real * dt
-            };
-            let mut target = grid;
-            for p in &self.pairs {
-                if let Phase::Timer { exchange_at, .. } = p.phase {
-                    target = target.min(exchange_at);
-                }
-            }
-            // A soft pair pressing too stiffly for the step: the step's next sub-step (not
-            // recorded unless something happens in it).
-            let substep = self.soft_substep_end(grid, dt).filter(|&end| end < target);
-            if let Some(end) = substep {
-                target = end;
-            }
-            target = target.max(self.time);
-            // The earliest first overlap among apart pairs inside (time, target], as an
-            // offset from now.
-            let mut earliest: Option<(Real, usize)> = None;
-            for pi in 0..self.pairs.len() {
-                if !matches!(self.pairs[pi].phase, Phase::Apart) {
-                    continue;
-                }
-                let horizon = earliest.map_or(target - self.time, |(dt, _)| dt);
-                if let Some(dt) = self.first_contact(pi, horizon, progress)? {
-                    if earliest.is_none_or(|(de, _)| dt < de) {
-                        earliest = Some((dt, pi));
-                    }
-                }
-            }
-            if let Some((offset, pi)) = earliest {
-                self.advance_by(offset)?;
-                out.joint_events.append(&mut self.joint_events);
-                self.count_event(&mut at_instant, pi)?;
-                let (b1, b2) = (self.pairs[pi].body1, self.pairs[pi].body2);
-                out.contacts.push(ContactEvent {
-                    body1: b1,
-                    body2: b2,
-                    time: self.time,
-                    kind: ContactEventKind::FirstOverlap,
-                });
-                self.pairs[pi].exchanges = 0;
-                if self.pairs[pi].soft.is_some() {
-                    self.pairs[pi].phase = Phase::Pressing { depth: 0.0 };
-                    self.pairs[pi].front = None;
-                } else if !self.start_resting_contact(pi, &mut out) {
-                    self.start_timer(pi, self.time, None, &mut out);
-                }
-                if options.history {
-                    self.record(&mut out)?;
-                }
+    }
+
+    /// The earliest first overlap among the apart pairs in (now, `target`]: its offset from
+    /// now (s) and the pair.
+    fn earliest_first_overlap(
+        &mut self,
+        target: Real,
+        progress: &mut dyn FnMut(Real) -> bool,
+    ) -> Result<Option<(Real, usize)>> {
+        let mut earliest: Option<(Real, usize)> = None;
+        for pi in 0..self.pairs.len() {
+            if !matches!(self.pairs[pi].phase, Phase::Apart) {
                 continue;
             }
-            let t_prev = self.time;
-            let (impacts, contacts, joint_events) = (
-                out.impacts.len(),
-                out.contacts.len(),
-                out.joint_events.len(),
-            );
-            self.advance_to(target)?;
-            out.joint_events.append(&mut self.joint_events);
-            for pi in 0..self.pairs.len() {
-                match self.pairs[pi].phase {
-                    Phase::Timer { exchange_at, .. } if exchange_at <= self.time => {
-                        self.count_event(&mut at_instant, pi)?;
-                        self.exchange(pi, &mut out)
-                    }
-                    Phase::Engaged { .. } => self.follow_engaged(pi, t_prev, &mut out),
-                    Phase::Touching { .. } => self.follow_touching(pi, t_prev, &mut out),
-                    Phase::Pressing { .. } => self.press(pi, t_prev, &mut out),
-                    _ => {}
+            let horizon = earliest.map_or(target - self.time, |(dt, _)| dt);
+            if let Some(dt) = self.first_contact(pi, horizon, progress)? {
+                if earliest.is_none_or(|(de, _)| dt < de) {
+                    earliest = Some((dt, pi));
                 }
             }
-            if let Some(e) = self.deferred.lock().expect("not poisoned").take() {
-                return Err(e);
-            }
-            self.track_rest();
-            // At or past the grid point (never past it, but a step that could end beyond it
-            // must not stall the count).
-            let on_grid = target >= grid;
-            let event = out.impacts.len() > impacts
-                || out.contacts.len() > contacts
-                || out.joint_events.len() > joint_events;
-            let off_grid = !on_grid && substep.is_none();
-            if options.history
-                && (off_grid || event || (on_grid && (k % stride == 0 || k >= steps)))
-            {
-                self.record(&mut out)?;
-            }
-            if on_grid {
-                k += 1;
-            }
-            if !progress(self.time) {
-                return Err(interrupted(self.time));
+        }
+        Ok(earliest)
+    }
+
+    /// Logs pair `pi`'s first overlap now and starts its contact: pressing (a soft pair),
+    /// resting, or the depth-of-penetration timer.
+    fn begin_contact(&mut self, pi: usize, out: &mut RunOutput) {
+        let (b1, b2) = (self.pairs[pi].body1, self.pairs[pi].body2);
+        out.contacts.push(ContactEvent {
+            body1: b1,
+            body2: b2,
+            time: self.time,
+            kind: ContactEventKind::FirstOverlap,
+        });
+        self.pairs[pi].exchanges = 0;
+        if self.pairs[pi].soft.is_some() {
+            self.pairs[pi].phase = Phase::Pressing { depth: 0.0 };
+            self.pairs[pi].front = None;
+        } else if !self.start_resting_contact(pi, out) {
+            self.start_timer(pi, self.time, None, out);
+        }
+    }
+
+    /// Each pair after an advance from `t_prev`: its exchange when its timer has run out, or
+    /// following it while engaged, touching or pressing.
+    fn follow_pairs(
+        &mut self,
+        t_prev: Real,
+        at_instant: &mut (Real, Vec<usize>),
+        out: &mut RunOutput,
+    ) -> Result<()> {
+        for pi in 0..self.pairs.len() {
+            match self.pairs[pi].phase {
+                Phase::Timer { exchange_at, .. } if exchange_at <= self.time => {
+                    self.count_event(at_instant, pi)?;
+                    self.exchange(pi, out)
+                }
+                Phase::Engaged { .. } => self.follow_engaged(pi, t_prev, out),
+                Phase::Touching { .. } => self.follow_touching(pi, t_prev, out),
+                Phase::Pressing { .. } => self.press(pi, t_prev, out),
+                _ => {}
             }
         }
-        self.record(&mut out)?;
+        Ok(())
+    }
+
+    /// At a run's end, the rest time of each body on the ground slow for [`REST_TIME`]: when
+    /// it came to rest after it last moved, else when it became slow.
+    fn rest_at_end(&self, out: &mut RunOutput) {
         for (i, since) in self.slow_since.iter().enumerate() {
             if matches!(self.bodies[i].motion, Motion::OnGround(_))
                 && since.is_some_and(|t0| self.time - t0 >= REST_TIME - 1e-12)
@@ -386,8 +452,6 @@ impl World {
                 out.rest[i] = self.stopped_at[i].or(*since);
             }
         }
-        self.step_start = None;
-        Ok(out)
     }
 
     /// Updates, for each body on the ground, since when it has been slow enough to be at rest,
