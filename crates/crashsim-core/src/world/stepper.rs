@@ -37,9 +37,10 @@ pub const REST_TIME: Real = 0.2;
 /// A body smaller than 0.57 m from its CG to its box's farthest corner is slow enough in
 /// yaw below this speed (m/s) over that distance (a pedestrian's hand, 0.1 m: 2.9 deg/s)
 /// rather than below [`REST_YAW_RATE`]: no point of it turns faster. Settled, likewise, below
-/// [`SETTLED_SPEED`] over that distance. A lying pedestrian's segments creep on the ground's
-/// regularised friction at a few mm/s and turn at up to 1.3 deg/s for seconds (docs/human.md,
-/// "Rest of a lying body"); a car, larger, keeps the fixed rates.
+/// [`SETTLED_SPEED`] over that distance. A lying pedestrian's segments crept on the ground's
+/// regularised friction at a few mm/s and turned at up to 1.3 deg/s for seconds before they
+/// had static friction (docs/human.md, "Rest of a lying body"); a car, larger, keeps the
+/// fixed rates.
 pub const REST_TURN_SPEED: Real = 0.005;
 /// A body faster than this along the ground (m/s) is moving again: its time to rest starts
 /// over.
