@@ -218,7 +218,8 @@ impl World {
         Some((at, share, note))
     }
 
-    /// Exchange the impulse of pair `pi` now (its timer expired).
+    /// Exchange the impulse of pair `pi` now (its timer expired). (Over 100 lines for the
+    /// two refusals' messages and the Impact record's 30 fields, each written once here.)
     pub(super) fn exchange(&mut self, pi: usize, out: &mut RunOutput) {
         let (started, timer, secondary, notes, early_normal, share) = match &self.pairs[pi].phase {
             Phase::Timer {
@@ -261,11 +262,7 @@ impl World {
                     "the meshes no longer overlap at the exchange instant, {elapsed_ms:.1} ms after \
                      the {} (they separated during the timer): no impulse. A shorter \
                      depth_of_penetration exchanges while they still overlap",
-                    if secondary {
-                        "closing again"
-                    } else {
-                        "first overlap"
-                    }
+                    timer_start(secondary)
                 ),
                 Phase::Apart,
             );
@@ -313,42 +310,17 @@ impl World {
                     normal.z,
                     depth,
                     geometry.width,
-                    if secondary {
-                        "closing again"
-                    } else {
-                        "first overlap"
-                    }
+                    timer_start(secondary)
                 ),
                 engaged,
             );
             return;
         };
         let before = [b1.state(), b2.state()];
-        // The kinetic energy of the bodies the exchange moves: the pair and, through joints,
-        // their mechanisms' other members.
-        let moved = self.moved_by(i1, i2);
-        let energy_before: Real = moved
-            .iter()
-            .map(|&k| self.bodies[k].body.kinetic_energy())
-            .sum();
         let j = solution.impulse * share;
-        self.bodies[i1].body.apply_impulse(&(-j), &centroid);
-        self.bodies[i2].body.apply_impulse(&j, &centroid);
-        self.share_impulse(i1);
-        self.share_impulse(i2);
-        for i in [i1, i2] {
-            if let Motion::OnGround(g) = &mut self.bodies[i].motion {
-                g.exchanges += 1; // wheel states may switch at an exchange
-            }
-            self.forget_clearance(i);
-        }
-        self.forget_predictions();
+        let energy_dissipated = self.apply_exchange(i1, i2, &centroid, &j);
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
         let after = [b1.state(), b2.state()];
-        let energy_after: Real = moved
-            .iter()
-            .map(|&k| self.bodies[k].body.kinetic_energy())
-            .sum();
         let u_after = b1.point_velocity(&centroid) - b2.point_velocity(&centroid);
         out.impacts.push(Impact {
             body1: i1,
@@ -374,7 +346,7 @@ impl World {
             angular_velocity_after: [after[0].angular_velocity, after[1].angular_velocity],
             relative_velocity_before: u,
             relative_velocity_after: u_after,
-            energy_dissipated: energy_before - energy_after,
+            energy_dissipated,
             region_points: geometry.region.points,
             contact_frame: geometry.frame,
             region_min: geometry.region_min,
@@ -389,6 +361,34 @@ impl World {
         });
         self.pairs[pi].exchanges += 1;
         self.pairs[pi].phase = engaged;
+    }
+
+    /// Applies the impulse `j` (N s) at `centroid` (world) to body `i2` and `-j` to body
+    /// `i1`, shares it through their joints and forgets what the velocity change leaves
+    /// stale; the kinetic energy (J) the bodies it moves lose: the pair and, through joints,
+    /// their mechanisms' other members.
+    fn apply_exchange(&mut self, i1: usize, i2: usize, centroid: &Point, j: &Vector) -> Real {
+        let moved = self.moved_by(i1, i2);
+        let energy_before: Real = moved
+            .iter()
+            .map(|&k| self.bodies[k].body.kinetic_energy())
+            .sum();
+        self.bodies[i1].body.apply_impulse(&(-j), centroid);
+        self.bodies[i2].body.apply_impulse(j, centroid);
+        self.share_impulse(i1);
+        self.share_impulse(i2);
+        for i in [i1, i2] {
+            if let Motion::OnGround(g) = &mut self.bodies[i].motion {
+                g.exchanges += 1; // wheel states may switch at an exchange
+            }
+            self.forget_clearance(i);
+        }
+        self.forget_predictions();
+        let energy_after: Real = moved
+            .iter()
+            .map(|&k| self.bodies[k].body.kinetic_energy())
+            .sum();
+        energy_before - energy_after
     }
 
     /// At pair `pi`'s first overlap (now): when both bodies are at rest and their meshes
@@ -545,5 +545,14 @@ impl World {
             });
             self.start_timer(pi, started, Some(normal_in_1), out);
         }
+    }
+}
+
+/// What a pair's timer started at, for the notes: its first overlap, or its closing again.
+fn timer_start(secondary: bool) -> &'static str {
+    if secondary {
+        "closing again"
+    } else {
+        "first overlap"
     }
 }
