@@ -5,6 +5,8 @@
 //! Results are those of nalgebra's dense Cholesky bit for bit (the tests compare them); only
 //! the zeros of the matrix and of its factor are passed over.
 
+use std::cell::RefCell;
+
 use nalgebra::{DMatrix, DVector};
 
 use super::constraint::{JointBody, Row};
@@ -41,7 +43,24 @@ pub(super) fn solve(rows: &[Row], bodies: &[JointBody], rhs: DVector<Real>) -> D
     } else {
         let a = matrix(rows, bodies);
         let mut l = a.clone();
-        if factor(&mut l) {
+        let factored = KEPT.with(|kept| {
+            let mut kept = kept.borrow_mut();
+            let k = match kept.iter().position(|s| s.fits(rows)) {
+                Some(k) => k,
+                None if kept.len() < SYMBOLIC_KEPT => {
+                    kept.push(Symbolic::new(rows, bodies.len()));
+                    kept.len() - 1
+                }
+                None => {
+                    // the oldest made goes
+                    kept.rotate_left(1);
+                    kept[SYMBOLIC_KEPT - 1] = Symbolic::new(rows, bodies.len());
+                    SYMBOLIC_KEPT - 1
+                }
+            };
+            factor(&mut l, &kept[k])
+        });
+        if factored {
             // nalgebra's `Cholesky::solve`: L y = rhs, then L^T x = y.
             let mut x = rhs.clone();
             l.solve_lower_triangular_unchecked_mut(&mut x);
@@ -92,14 +111,10 @@ fn dense_matrix(rows: &[Row], bodies: &[JointBody]) -> DMatrix<Real> {
     a
 }
 
-/// [`dense_matrix`], bit for bit, visiting only the pairs of rows that share a body (through
-/// each body's rows): a mechanism of many bodies costs what its joints' neighbours do, not
-/// the square of its rows.
-fn matrix(rows: &[Row], bodies: &[JointBody]) -> DMatrix<Real> {
-    let n = rows.len();
-    let moves: Vec<_> = rows.iter().map(|r| mobility(r, bodies)).collect();
-    // Each body's rows, ascending: rows_of[first[k]..first[k + 1]] for body k.
-    let mut first = vec![0; bodies.len() + 1];
+/// Each body's rows, ascending: `rows_of[first[k]..first[k + 1]]` for body k (a row between
+/// a body and itself counted once).
+fn rows_of_bodies(rows: &[Row], bodies: usize) -> (Vec<usize>, Vec<usize>) {
+    let mut first = vec![0; bodies + 1];
     let other = |r: &Row| r.b.filter(|&b| b != r.a);
     for r in rows {
         first[r.a + 1] += 1;
@@ -107,20 +122,25 @@ fn matrix(rows: &[Row], bodies: &[JointBody]) -> DMatrix<Real> {
             first[b + 1] += 1;
         }
     }
-    for k in 0..bodies.len() {
+    for k in 0..bodies {
         first[k + 1] += first[k];
     }
     let mut fill = first.clone();
-    let mut rows_of = vec![0; first[bodies.len()]];
+    let mut rows_of = vec![0; first[bodies]];
     for (i, r) in rows.iter().enumerate() {
         for body in [Some(r.a), other(r)].into_iter().flatten() {
             rows_of[fill[body]] = i;
             fill[body] += 1;
         }
     }
-    let mut a = DMatrix::<Real>::zeros(n, n);
+    (first, rows_of)
+}
+
+/// Calls `f(i, j)` once for every pair of rows i <= j that share a body, j ascending.
+fn sharing_pairs(rows: &[Row], bodies: usize, mut f: impl FnMut(usize, usize)) {
+    let (first, rows_of) = rows_of_bodies(rows, bodies);
     // The last row j each row i was paired with (a row on both of row j's bodies once).
-    let mut paired = vec![usize::MAX; n];
+    let mut paired = vec![usize::MAX; rows.len()];
     for (j, rj) in rows.iter().enumerate() {
         for body in [Some(rj.a), rj.b].into_iter().flatten() {
             for &i in &rows_of[first[body]..first[body + 1]] {
@@ -128,52 +148,150 @@ fn matrix(rows: &[Row], bodies: &[JointBody]) -> DMatrix<Real> {
                     continue;
                 }
                 paired[i] = j;
-                let s = entry(&rows[i], rj, &moves[j]);
-                a[(i, j)] = s;
-                a[(j, i)] = s;
+                f(i, j);
             }
         }
     }
+}
+
+/// [`dense_matrix`], bit for bit, visiting only the pairs of rows that share a body (through
+/// each body's rows): a mechanism of many bodies costs what its joints' neighbours do, not
+/// the square of its rows.
+fn matrix(rows: &[Row], bodies: &[JointBody]) -> DMatrix<Real> {
+    let moves: Vec<_> = rows.iter().map(|r| mobility(r, bodies)).collect();
+    let mut a = DMatrix::<Real>::zeros(rows.len(), rows.len());
+    sharing_pairs(rows, bodies.len(), |i, j| {
+        let s = entry(&rows[i], &rows[j], &moves[j]);
+        a[(i, j)] = s;
+        a[(j, i)] = s;
+    });
     a
+}
+
+/// Per column j of the matrix, the rows i > j that share a body with row j (ascending):
+/// where it can be non-zero below its diagonal.
+fn pattern(rows: &[Row], bodies: usize) -> Vec<Vec<usize>> {
+    let mut below = vec![Vec::new(); rows.len()];
+    sharing_pairs(rows, bodies, |i, j| {
+        if i < j {
+            below[i].push(j); // j ascends: each list is sorted
+        }
+    });
+    below
+}
+
+/// Where L can be non-zero, by column and by row (see [`factor`]), for one pattern of rows.
+struct Symbolic {
+    /// The bodies of each row it was made for.
+    key: Vec<(usize, Option<usize>)>,
+    /// Per column, the rows below the diagonal where L may be non-zero ([`structure`]).
+    columns: Vec<Vec<usize>>,
+    /// Per row j, the columns k < j where L_jk may be non-zero, ascending.
+    in_row: Vec<Vec<usize>>,
+}
+
+impl Symbolic {
+    fn new(rows: &[Row], bodies: usize) -> Symbolic {
+        let columns = structure(pattern(rows, bodies));
+        let mut in_row = vec![Vec::new(); rows.len()];
+        for (k, below) in columns.iter().enumerate() {
+            for &i in below {
+                in_row[i].push(k);
+            }
+        }
+        Symbolic {
+            key: rows.iter().map(|r| (r.a, r.b)).collect(),
+            columns,
+            in_row,
+        }
+    }
+
+    /// True when it was made for rows on these bodies.
+    fn fits(&self, rows: &[Row]) -> bool {
+        self.key.len() == rows.len() && self.key.iter().zip(rows).all(|(k, r)| *k == (r.a, r.b))
+    }
+}
+
+/// How many [`Symbolic`]s a thread keeps.
+const SYMBOLIC_KEPT: usize = 8;
+
+thread_local! {
+    /// The last [`SYMBOLIC_KEPT`] patterns' [`Symbolic`]s made on this thread: a mechanism
+    /// solves the same few sets of rows (the Runge-Kutta stages', the projections') 11 times a
+    /// step and step after step, so a structure is found again only when its rows change (a
+    /// limit engages or lets go). One depends on the rows' bodies alone, so the results do not
+    /// depend on what the thread solved before.
+    static KEPT: RefCell<Vec<Symbolic>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Where L can be non-zero below its diagonal, column by column (ascending rows), from where
+/// the matrix can be (`below`, [`matrix`]'s): column j's own rows and those of every column
+/// whose first row below the diagonal is j (the elimination tree's children), past j. A
+/// superset of L's non-zeros whatever the values.
+fn structure(below: Vec<Vec<usize>>) -> Vec<Vec<usize>> {
+    let mut columns = below;
+    for j in 0..columns.len() {
+        // Column j is complete here: its children (all before it) are merged in.
+        let Some((&parent, rest)) = columns[j].split_first() else {
+            continue;
+        };
+        let merged = merge(&columns[parent], rest);
+        columns[parent] = merged;
+    }
+    columns
+}
+
+/// The union of two ascending lists, ascending, each value once.
+fn merge(a: &[usize], b: &[usize]) -> Vec<usize> {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut i, mut k) = (0, 0);
+    while i < a.len() || k < b.len() {
+        let next = match (a.get(i), b.get(k)) {
+            (Some(&x), Some(&y)) => x.min(y),
+            (Some(&x), None) => x,
+            (None, Some(&y)) => y,
+            (None, None) => unreachable!(),
+        };
+        i += usize::from(a.get(i) == Some(&next));
+        k += usize::from(b.get(k) == Some(&next));
+        out.push(next);
+    }
+    out
 }
 
 /// Factors the symmetric `a` in place into its lower Cholesky factor L (the strict upper
 /// triangle is left as it was); false, as nalgebra's `Cholesky::new` gives None, when a pivot
-/// is zero or negative (redundant rows).
+/// is zero or negative (redundant rows). `symbolic` says where L can be non-zero (made for
+/// the rows of `a`).
 ///
 /// The same left-looking algorithm and floating-point operations as nalgebra 0.34's
 /// `Cholesky::new`: column j gets `a_ij = -L_jk L_ik + a_ij` for k = 0..j in order, then is
-/// divided by the square root of its pivot; but every operation with an exact zero operand is
-/// skipped: a column k with L_jk = 0, the rows outside column k's runs of non-zeros (the runs
-/// are updated as slices), and the division of a zero. Adding a zero product leaves an entry
-/// as it is (no entry is -0, and every value is finite), so the factor is nalgebra's bit for
-/// bit (the tests compare them), while a tree of joints, whose matrix is mostly zeros, costs
-/// less: a walking pedestrian's 57 rows leave about a third of L non-zero.
-fn factor(a: &mut DMatrix<Real>) -> bool {
+/// divided by the square root of its pivot; but only the columns k whose row j may be
+/// non-zero are visited, and in them only the rows that may be, and a zero is neither used
+/// nor divided. Adding a zero product leaves an entry as it is (no entry is -0, and every
+/// value is finite), so the factor is nalgebra's bit for bit (the tests compare them), while
+/// a tree of joints, whose matrix is mostly zeros, costs what its non-zeros do: a walking
+/// pedestrian's 57 rows leave 568 of L's 1,653 entries below the diagonal non-zero.
+fn factor(a: &mut DMatrix<Real>, symbolic: &Symbolic) -> bool {
     let n = a.nrows();
+    let (columns, in_row) = (&symbolic.columns, &symbolic.in_row);
+    // Per column k, where row j's entry is in `columns[k]` (j passes each row once).
+    let mut at = vec![0usize; n];
     let l = a.as_mut_slice(); // column-major: L_ij at l[i + n j]
-                              // The runs [from, to) of rows below the diagonal where L is not zero, column after
-                              // column: column k's are runs[start[k]..start[k + 1]], ascending.
-    let mut runs: Vec<(usize, usize)> = Vec::with_capacity(4 * n);
-    let mut start = Vec::with_capacity(n + 1);
-    start.push(0);
     for j in 0..n {
         let (done, rest) = l.split_at_mut(j * n);
         let column = &mut rest[..n];
-        for k in 0..j {
+        for &k in &in_row[j] {
+            let from = at[k];
+            at[k] += 1; // columns[k][from] is j
             let f = -done[j + n * k];
             if f == 0.0 {
                 continue;
             }
             let lk = &done[n * k..n * (k + 1)];
-            for &(from, to) in &runs[start[k]..start[k + 1]] {
-                let from = from.max(j);
-                if from >= to {
-                    continue;
-                }
-                for (y, &x) in column[from..to].iter_mut().zip(&lk[from..to]) {
-                    *y += f * x;
-                }
+            column[j] += f * lk[j];
+            for &i in &columns[k][from + 1..] {
+                column[i] += f * lk[i];
             }
         }
         let pivot = column[j];
@@ -183,25 +301,12 @@ fn factor(a: &mut DMatrix<Real>) -> bool {
         }
         let d = pivot.sqrt();
         column[j] = d;
-        let mut open = None;
-        for (i, x) in column.iter_mut().enumerate().skip(j + 1) {
+        for &i in &columns[j] {
             // (0 / d is 0: only the non-zeros are divided.)
-            if *x != 0.0 {
-                *x /= d;
-            }
-            match (*x != 0.0, open) {
-                (true, None) => open = Some(i),
-                (false, Some(from)) => {
-                    runs.push((from, i));
-                    open = None;
-                }
-                _ => {}
+            if column[i] != 0.0 {
+                column[i] /= d;
             }
         }
-        if let Some(from) = open {
-            runs.push((from, n));
-        }
-        start.push(runs.len());
     }
     true
 }
@@ -294,7 +399,7 @@ mod tests {
             let a = matrix(&rows, &bodies);
             assert_eq!(bits(&a), bits(&dense_matrix(&rows, &bodies)), "case {case}");
             let mut l = a.clone();
-            let ours = factor(&mut l);
+            let ours = factor(&mut l, &Symbolic::new(&rows, bodies.len()));
             let theirs = a.clone().cholesky();
             assert_eq!(ours, theirs.is_some(), "case {case}");
             let rhs = DVector::from_fn(rows.len(), |_, _| rng.random_range(-1e3..1e3));
@@ -303,6 +408,20 @@ mod tests {
                 assert_eq!(bits(&l.lower_triangle()), bits(&chol.l()), "case {case}");
                 let x = solve(&rows, &bodies, rhs.clone());
                 assert_eq!(bits(&x), bits(&chol.solve(&rhs)), "case {case}");
+            }
+            // Other values on the same bodies: the structure found for the rows before is
+            // used again (the solve's cache), with the same bits as nalgebra's.
+            let other: Vec<Row> = rows
+                .iter()
+                .map(|r| Row {
+                    ja: [r.ja[0] * 1.5, r.ja[1] * 0.7],
+                    jb: [r.jb[0] * 0.9, r.jb[1] * 1.3],
+                    ..r.clone()
+                })
+                .collect();
+            if let Some(chol) = dense_matrix(&other, &bodies).cholesky() {
+                let x = solve(&other, &bodies, rhs.clone());
+                assert_eq!(bits(&x), bits(&chol.solve(&rhs)), "case {case}, again");
             }
         }
         assert!(
