@@ -25,12 +25,14 @@
 //! (the swing-twist split of the relative rotation, the swing about an axis across F1's z).
 
 mod constraint;
+mod row;
 mod solve;
 
 pub(crate) use constraint::{
     applied_torques, drift_rate, limit_angles, limit_rows, project_positions, project_velocities,
-    reactions, JointBody, RESTING_ANGLE,
+    reactions, RESTING_ANGLE,
 };
+pub(crate) use row::JointBody;
 
 use crate::error::{require_finite, require_finite_vector, Error, Result};
 use crate::math::{Point, Real, Rotation, Vector};

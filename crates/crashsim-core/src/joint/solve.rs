@@ -9,7 +9,7 @@ use std::cell::RefCell;
 
 use nalgebra::{DMatrix, DVector};
 
-use super::constraint::{JointBody, Row};
+use super::row::{JointBody, Row};
 use crate::math::{Real, Vector};
 
 /// W J^T for one row: the (linear, angular) velocity change of body a and body b per unit
