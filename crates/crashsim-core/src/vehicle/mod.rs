@@ -6,14 +6,16 @@
 pub mod combined_slip;
 pub mod inputs;
 pub mod steering;
+pub mod table;
 pub mod tyre;
 pub mod wheel;
 
-pub use inputs::{Braking, DriverInputs, Table, Trigger, WheelState, WheelSwitch};
+pub use inputs::{Braking, DriverInputs, Trigger, WheelState, WheelSwitch};
 pub use steering::{
     DriverPath, LinkageGeometry, SteerInput, SteerReference, Steering, DEFAULT_ACKERMANN,
     DEFAULT_PATH_MIN_DISTANCE, DEFAULT_PATH_PREVIEW,
 };
+pub use table::Table;
 pub use tyre::{
     CombinedSlip, Tyre, TyreForce, TyreModel, WheelAction, DEFAULT_CORNERING_COEFFICIENT,
     MAGIC_FORMULA_DEFAULTS,

@@ -27,7 +27,7 @@
 use crate::error::{require_finite, Error, Place, Result};
 use crate::math::Real;
 
-use super::inputs::Table;
+use super::table::Table;
 use super::wheel::WheelSpec;
 
 /// Default Ackermann fraction: 1, the linkage of reconstruction programs' vehicle models
