@@ -1,19 +1,16 @@
 //! The combined-slip law of Nicolas and Comstock as Brach and Brach modified it
-//! ([`CombinedSlip::NicolasComstock`]): the pure-slip forces Fx(s) and Fy(alpha) of a wheel
+//! ([`CombinedSlip::NicolasComstock`](crate::vehicle::CombinedSlip::NicolasComstock)): the pure-slip forces Fx(s) and Fy(alpha) of a wheel
 //! combined into the force at both slips, from crashsim's equivalent slips (docs/vehicle-model.md
 //! states them). Forces in N, wheel axes (x forward, y left).
 
 use crate::math::Real;
-
-#[cfg(doc)]
-use super::tyre::CombinedSlip;
 
 /// Largest longitudinal slip stiffness per unit load accepted (1 per unit slip): 100, five
 /// times a stiff passenger tyre's (about 20 Fz per unit slip); there the equivalent slip of
 /// any braking force is at most mu / 100 (0.02 at mu 2).
 pub const MAX_LONGITUDINAL_STIFFNESS: Real = 100.0;
 
-/// The [`CombinedSlip::NicolasComstock`] law's forces (N, wheel axes) from crashsim's inputs:
+/// The [`CombinedSlip::NicolasComstock`](crate::vehicle::CombinedSlip::NicolasComstock) law's forces (N, wheel axes) from crashsim's inputs:
 /// the longitudinal demand `fx` (N, signed; capped at the friction, the pure-slip curve's
 /// peak, it is Fx(s)), the law's lateral force `fy` with all the `friction` (N, signed:
 /// Fy(alpha)), the tread's linear lateral force `fy_lin` (N; over C_alpha it is tan(alpha))
