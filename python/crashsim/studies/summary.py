@@ -11,17 +11,16 @@ and NaN elsewhere.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
+from numpy.typing import NDArray
 
 from crashsim.errors import StudyError
 
 if TYPE_CHECKING:
     import pandas as pd
-
-    from crashsim.studies.run import Study
 
 __all__ = ["PERCENTILES", "format_summary", "output_unit", "percentiles"]
 
@@ -62,7 +61,22 @@ def _check(ps: Sequence[float]) -> tuple[float, ...]:
     return tuple(out)
 
 
-def percentiles(study: Study, ps: Sequence[float] | None = None) -> pd.DataFrame:
+class StudyColumns(Protocol):
+    """What the summary reads of a study (crashsim.studies.run.Study has it): the columns
+    by name, which are inputs, their units, and which variants ran."""
+
+    @property
+    def ok(self) -> NDArray[np.bool_]: ...
+    @property
+    def inputs(self) -> Mapping[str, np.ndarray]: ...
+    @property
+    def outputs(self) -> Mapping[str, np.ndarray]: ...
+    @property
+    def units(self) -> Mapping[str, str]: ...
+    def __getitem__(self, name: str) -> np.ndarray: ...
+
+
+def percentiles(study: StudyColumns, ps: Sequence[float] | None = None) -> pd.DataFrame:
     """The summary table (see the module docstring): one row per column, index = the column
     name; columns unit, n, mean, sd, min, P<p> ..., max."""
     import pandas as pd
