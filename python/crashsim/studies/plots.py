@@ -8,7 +8,7 @@ import math
 import re
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -16,10 +16,28 @@ from crashsim.errors import StudyError
 from crashsim.studies.summary import output_unit
 
 if TYPE_CHECKING:
+    import pandas as pd
     from matplotlib.figure import Figure
 
     from crashsim.studies.run import Study
-    from crashsim.studies.sensitivity import Sobol, Tornado
+
+
+class TornadoTable(Protocol):
+    """What the tornado chart reads (crashsim.studies.sensitivity.Tornado has it)."""
+
+    @property
+    def study(self) -> Study: ...
+    def table(self, output: str) -> pd.DataFrame: ...
+
+
+class SobolIndices(Protocol):
+    """What the Sobol chart reads (crashsim.studies.sensitivity.Sobol has it)."""
+
+    @property
+    def study(self) -> Study: ...
+    @property
+    def n(self) -> int: ...
+    def of(self, output: str) -> pd.DataFrame: ...
 
 __all__ = ["histogram_file", "plot_histogram", "plot_histograms", "plot_sobol", "plot_tornado"]
 
@@ -106,7 +124,7 @@ def plot_histograms(
     return written
 
 
-def plot_tornado(tornado: Tornado, output: str, path: Any = None) -> Figure:
+def plot_tornado(tornado: TornadoTable, output: str, path: Any = None) -> Figure:
     """The tornado chart of one output: per path (largest swing on top) a bar from the
     output at the base to the output at the path's low (one colour) and high (the other)
     value, the base output as a vertical line, the input range written beside each bar."""
@@ -139,7 +157,7 @@ def plot_tornado(tornado: Tornado, output: str, path: Any = None) -> Figure:
     return fig
 
 
-def plot_sobol(result: Sobol, output: str, path: Any = None) -> Figure:
+def plot_sobol(result: SobolIndices, output: str, path: Any = None) -> Figure:
     """First-order (S1) and total (ST) Sobol indices of one output per path, with their
     95 % confidence intervals."""
     table = result.of(output)
