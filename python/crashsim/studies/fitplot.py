@@ -7,22 +7,53 @@ file's: ``crashsim fit``), else SI with angles in degrees."""
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from os import PathLike
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
 from crashsim.studies.evidence import ImpactPoint, RestHeading, RestPosition, TyreMark
 
 if TYPE_CHECKING:
-    from crashsim.studies.fit.result import FitResult
+    from crashsim.result import Result
+    from crashsim.studies.evidence import Evidence
+    from crashsim.studies.verdict import Verdict
+
+
+class FitPicture(Protocol):
+    """What the picture reads of a fit (crashsim.studies.fit.result.FitResult has it)."""
+
+    @property
+    def names(self) -> Sequence[str]: ...
+    @property
+    def units(self) -> Mapping[str, str]: ...
+    @property
+    def values(self) -> Mapping[str, float]: ...
+    @property
+    def objective(self) -> float: ...
+    @property
+    def sigma(self) -> Mapping[str, float]: ...
+    @property
+    def ranges(self) -> Mapping[str, tuple[float, float] | None]: ...
+    @property
+    def evidence(self) -> Sequence[Evidence]: ...
+    @property
+    def result(self) -> Result | None: ...
+    @property
+    def scan(self) -> Mapping[str, tuple[Any, Any]] | None: ...
+    @property
+    def sample_ranges(self) -> Mapping[str, tuple[float, float] | None] | None: ...
+    @property
+    def samples(self) -> Any: ...
+    @property
+    def verdict(self) -> Verdict | None: ...
 
 EVIDENCE = "#d62728"  # colour of the evidence (red); the fitted run in the vehicles' colours
 
 
 def plot_fit(
-    fit: FitResult,
+    fit: FitPicture,
     path: str | PathLike[str] | None = None,
     units: Mapping[str, tuple[str, float]] | None = None,
 ) -> Any:
