@@ -2,7 +2,7 @@
 //! test (a crossing or a shell inside the other) and its hinted form.
 
 use super::inside::{nudge_length, shell_inside};
-use super::traverse::{map_tri, mapped_leaf, traverse_pairs_tight};
+use super::traverse::{map_tri, mapped_leaf, traverse_pairs};
 use super::QueryWorkspace;
 use crate::math::{Isometry, RigidMap};
 use crate::shape::MeshShape;
@@ -37,7 +37,7 @@ fn first_crossing(
     let pose12 = pose1.inv_mul(pose2);
     let map = RigidMap::new(&pose12);
     let mut found = None;
-    traverse_pairs_tight(s1, s2, &pose12, &mut ws.pairs, |a, b| {
+    traverse_pairs(s1, s2, &pose12, &mut ws.pairs, true, |a, b| {
         // b's triangles in 1's frame, mapped once per leaf pair (not once per triangle of a)
         let leaf2 = mapped_leaf(s2, b, &map);
         for &t1 in s1.bvh().leaf_primitives(a) {

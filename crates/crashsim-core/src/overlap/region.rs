@@ -82,7 +82,7 @@ pub(super) fn overlap_region_with(
     // Where the triangles meet, in frame 1: the segment oriented along n1 x n2, and whether
     // triangle 1 and triangle 2 are crossed (not merely touched) by the other.
     let mut segs: Vec<(u32, u32, TriangleContact)> = Vec::new();
-    traverse_pairs(s1, s2, &pose12, &mut stack, |a, b| {
+    traverse_pairs(s1, s2, &pose12, &mut stack, false, |a, b| {
         for &t1 in s1.bvh().leaf_primitives(a) {
             let tri1 = s1.triangle(t1);
             for &t2 in s2.bvh().leaf_primitives(b) {

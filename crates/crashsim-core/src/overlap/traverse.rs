@@ -28,38 +28,18 @@ pub(super) fn mapped_leaf(
 }
 
 /// Simultaneous descent of two trees (2 in 1's frame by `pose12`): calls `leaf` on every leaf
-/// pair whose boxes meet (node 2's box mapped into 1's frame and bounded there by a box);
-/// `leaf` returns true to stop early. Returns true if stopped early.
+/// pair whose boxes meet; `leaf` returns true to stop early. Returns true if stopped early.
+/// A node pair is passed over when node 2's box, mapped into 1's frame, is apart from node 1's
+/// box there (3 of the 15 separating axes of two boxes), and, with `both_frames`, also when
+/// node 1's box mapped into 2's frame is apart from node 2's (6 axes): fewer pairs, in the
+/// same order, where the poses turn one tree against the other (a query wanting one crossing
+/// pair takes it; the region, which reads every pair's triangles, does not).
 pub(super) fn traverse_pairs(
     s1: &MeshShape,
     s2: &MeshShape,
     pose12: &Isometry,
     stack: &mut Vec<(u32, u32)>,
-    leaf: impl FnMut(&BvhNode, &BvhNode) -> bool,
-) -> bool {
-    descend(s1, s2, pose12, stack, false, leaf)
-}
-
-/// [`traverse_pairs`] that also passes over the pairs whose boxes are apart along 2's axes
-/// (node 1's box mapped into 2's frame): 6 of the 15 separating axes of two boxes, not 3.
-/// It visits fewer pairs, in the same order, where the poses turn one tree against the
-/// other: for a query that wants one crossing pair, not every pair the region reads.
-pub(super) fn traverse_pairs_tight(
-    s1: &MeshShape,
-    s2: &MeshShape,
-    pose12: &Isometry,
-    stack: &mut Vec<(u32, u32)>,
-    leaf: impl FnMut(&BvhNode, &BvhNode) -> bool,
-) -> bool {
-    descend(s1, s2, pose12, stack, true, leaf)
-}
-
-fn descend(
-    s1: &MeshShape,
-    s2: &MeshShape,
-    pose12: &Isometry,
-    stack: &mut Vec<(u32, u32)>,
-    both_ways: bool,
+    both_frames: bool,
     mut leaf: impl FnMut(&BvhNode, &BvhNode) -> bool,
 ) -> bool {
     let (n1, n2) = (s1.bvh().nodes(), s2.bvh().nodes());
@@ -70,7 +50,7 @@ fn descend(
     while let Some((i, j)) = stack.pop() {
         let (a, b) = (&n1[i as usize], &n2[j as usize]);
         if !a.aabb.intersects(&map.aabb(&b.aabb))
-            || (both_ways && !b.aabb.intersects(&back.aabb(&a.aabb)))
+            || (both_frames && !b.aabb.intersects(&back.aabb(&a.aabb)))
         {
             continue;
         }
