@@ -71,7 +71,7 @@ from crashsim.records import rotation_matrix
 from crashsim.vehicles.checks import _read_only
 
 if TYPE_CHECKING:
-    from crashsim.scene import Scene
+    from crashsim.studies.view import SceneLike, SceneView
 
 __all__ = [
     "GROUND_PARAMETERS",
@@ -149,11 +149,11 @@ class ParameterPath:
     unit: str
 
 
-def _names(scene: Scene) -> tuple[list[str], list[str]]:
+def _names(scene: SceneView) -> tuple[list[str], list[str]]:
     return [v.name for v in scene.vehicles], [o.name for o in scene.obstacles]
 
 
-def _struck(scene: Scene) -> list[tuple[str, str, list[tuple[str, str]]]]:
+def _struck(scene: SceneView) -> list[tuple[str, str, list[tuple[str, str]]]]:
     """Every (body, pedestrian) with pairs between the body (a vehicle or obstacle that is
     not one of the pedestrian's segments) and the pedestrian's segments: (body, pedestrian,
     those pairs in ``Scene.pairs()`` order)."""
@@ -169,18 +169,18 @@ def _struck(scene: Scene) -> list[tuple[str, str, list[tuple[str, str]]]]:
     return out
 
 
-def _soft_with(scene: Scene, body: str, person: str) -> bool:
+def _soft_with(scene: SceneView, body: str, person: str) -> bool:
     """Whether every segment of the pedestrian has a soft contact with the body."""
     return all(scene.soft_contact_of(body, s.name) is not None
                for s in scene.pedestrians[person].segments)  # fmt: skip
 
 
-def _pedestrian_pair_parameters(scene: Scene, body: str, person: str) -> list[str]:
+def _pedestrian_pair_parameters(scene: SceneView, body: str, person: str) -> list[str]:
     soft = list(SOFT_PARAMETERS) if _soft_with(scene, body, person) else []
     return [*PAIR_PARAMETERS, *soft]
 
 
-def valid_paths(scene: Scene) -> list[str]:
+def valid_paths(scene: SceneView) -> list[str]:
     """Every path the scene has, in a stable order (vehicles, every-pair, pairs, ground,
     pedestrians, the pairs of a body and a pedestrian)."""
     vehicles, _ = _names(scene)
@@ -195,7 +195,7 @@ def valid_paths(scene: Scene) -> list[str]:
     return out
 
 
-def _listing(scene: Scene) -> str:
+def _listing(scene: SceneView) -> str:
     """The valid paths, compactly: red.{speed, ...}, restitution, ..."""
     vehicles, _ = _names(scene)
     segments = {s.name for p in scene.pedestrians.values() for s in p.segments}
@@ -215,7 +215,7 @@ def _listing(scene: Scene) -> str:
     return "; ".join(parts)
 
 
-def _unknown(scene: Scene, name: str, why: str) -> StudyError:
+def _unknown(scene: SceneView, name: str, why: str) -> StudyError:
     close = difflib.get_close_matches(name, valid_paths(scene), n=1, cutoff=0.6)
     hint = f'did you mean "{close[0]}"? ' if close else ""
     return StudyError(
@@ -225,7 +225,7 @@ def _unknown(scene: Scene, name: str, why: str) -> StudyError:
     )
 
 
-def parse_path(scene: Scene, name: str) -> ParameterPath:
+def parse_path(scene: SceneView, name: str) -> ParameterPath:
     """The :class:`ParameterPath` of a name in a scene; StudyError naming it and listing the
     valid ones when the scene has no such input."""
     if not isinstance(name, str):
@@ -268,7 +268,7 @@ def parse_path(scene: Scene, name: str) -> ParameterPath:
     raise _unknown(scene, text, f"the scene has no vehicle named {head!r}")
 
 
-def _pair_path(scene: Scene, text: str, head: str, parameter: str) -> ParameterPath:
+def _pair_path(scene: SceneView, text: str, head: str, parameter: str) -> ParameterPath:
     """A pair's path ``<a>/<b>.<parameter>``: two bodies, or a body and a pedestrian (every
     pair of the body with one of its segments). Names may hold "/" (a pedestrian's
     segments): the split that names two things of the scene is taken."""
@@ -359,7 +359,7 @@ def _values(name: str, values: ArrayLike, n: int | None) -> Array:
 
 
 def overrides(
-    scene: Scene, values: Mapping[str, ArrayLike], n: int | None = None
+    scene: SceneView, values: Mapping[str, ArrayLike], n: int | None = None
 ) -> dict[str, Array]:
     """The core-level override arrays (crashsim.batch.run_batch's ``overrides``) for the
     variants whose inputs are ``values``: {path: (n,) values, SI}. Only the keys the paths
@@ -510,7 +510,7 @@ def _pedestrian_key(p: ParameterPath) -> str:
     return f"{KEY}{target}.{p.parameter}"
 
 
-def _pairs_of(scene: Scene, p: ParameterPath) -> list[tuple[str, str]]:
+def _pairs_of(scene: SceneView, p: ParameterPath) -> list[tuple[str, str]]:
     """The pairs (as Scene.pairs() orders them) a pair parameter's path sets."""
     if p.kind == "pairs":
         return [(a, b) for a, b, _ in scene.pairs()]
@@ -521,7 +521,7 @@ def _pairs_of(scene: Scene, p: ParameterPath) -> list[tuple[str, str]]:
     return next(ps for x, q, ps in _struck(scene) if x == body and q == person)
 
 
-def _check_pedestrian_paths(scene: Scene, paths: Sequence[ParameterPath]) -> None:
+def _check_pedestrian_paths(scene: SceneView, paths: Sequence[ParameterPath]) -> None:
     """A pedestrian's own paths move or rebuild all its segments: StudyError when a path of
     one of its segments (as a vehicle) is given with them."""
     for p in paths:
@@ -538,7 +538,7 @@ def _check_pedestrian_paths(scene: Scene, paths: Sequence[ParameterPath]) -> Non
             )
 
 
-def _combinations(scene: Scene) -> list[list[int]]:
+def _combinations(scene: SceneView) -> list[list[int]]:
     """The vehicles joined to each other (Scene.join with two vehicles: a tractor and its
     trailers), as lists of placement indices, each in the order added."""
     names = [p.vehicle.name for p in scene.placements]
@@ -561,7 +561,7 @@ def _combinations(scene: Scene) -> list[list[int]]:
 
 
 def _move_combinations(
-    scene: Scene,
+    scene: SceneView,
     by_vehicle: Mapping[str, list[ParameterPath]],
     base: Mapping[str, Array],
     out: dict[str, Array],
@@ -622,7 +622,7 @@ def _pair_value(value: Any) -> float:
     return float(value)
 
 
-def _slots(scene: Scene, p: ParameterPath) -> list[tuple[Any, ...]]:
+def _slots(scene: SceneView, p: ParameterPath) -> list[tuple[Any, ...]]:
     """The inputs a path sets (two paths setting one of them conflict)."""
     if p.kind == "vehicle":
         return [("vehicle", p.target, p.parameter)]
@@ -639,7 +639,7 @@ def _slots(scene: Scene, p: ParameterPath) -> list[tuple[Any, ...]]:
 # -- one variant as a Scene -------------------------------------------------------------------
 
 
-def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
+def apply_overrides(scene: SceneLike, arrays: Mapping[str, Array], i: int) -> SceneLike:
     """The Scene of variant ``i`` of core-level override arrays (the batch contract's keys):
     a copy of ``scene`` sharing its vehicles' meshes and engine shapes, with the variant's
     states, masses, pair parameters and ground frictions. Values are not checked here: the
@@ -693,7 +693,7 @@ def apply_overrides(scene: Scene, arrays: Mapping[str, Array], i: int) -> Scene:
     return new._varied(placements, pair_changes, ground)
 
 
-def with_(scene: Scene, changes: Mapping[str, Any]) -> Scene:
+def with_(scene: SceneLike, changes: Mapping[str, Any]) -> SceneLike:
     """A new Scene with one variant's values ({path: value}, SI; see the module's table):
     ``scene.with_({"red.speed": 20.0, "restitution": 0.2})``. Running it gives what the
     batch gives for the same values, bit for bit. StudyError for an unknown path."""
@@ -705,12 +705,12 @@ def with_(scene: Scene, changes: Mapping[str, Any]) -> Scene:
     return apply_overrides(scene, arrays, 0)
 
 
-def path_units(scene: Scene, names: Sequence[str]) -> dict[str, str]:
+def path_units(scene: SceneView, names: Sequence[str]) -> dict[str, str]:
     """{path: SI unit} of paths (for column headers and summaries)."""
     return {n: parse_path(scene, n).unit for n in names}
 
 
-def base_value(scene: Scene, name: str) -> float:
+def base_value(scene: SceneView, name: str) -> float:
     """The base scene's value of a path (SI), as the path's rule reads it: speed |v|,
     direction atan2(vy, vx), heading the body x axis's yaw, ...; an every-pair parameter
     needs the same value on every pair (StudyError otherwise: name one pair); a depth of
@@ -758,7 +758,7 @@ def base_value(scene: Scene, name: str) -> float:
     return values[0] if values else math.nan
 
 
-def _pedestrian_value(scene: Scene, person: str, parameter: str) -> float:
+def _pedestrian_value(scene: SceneView, person: str, parameter: str) -> float:
     """The base scene's value of a pedestrian's own path (SI; NaN: a percentile not given)."""
     from crashsim.human.pedestrian import POSES
 

@@ -44,7 +44,7 @@ from crashsim.errors import ParameterError, StudyError
 if TYPE_CHECKING:
     from crashsim.human.pedestrian import Pedestrian
     from crashsim.result import Result
-    from crashsim.scene import Scene
+    from crashsim.studies.view import SceneLike, SceneView
 
 __all__ = [
     "KEY",
@@ -77,7 +77,7 @@ def pose_name(value: float) -> str:
     return POSES[int(x)]
 
 
-def segment_names(scene: Scene) -> set[str]:
+def segment_names(scene: SceneView) -> set[str]:
     """The names of every pedestrian's segments in the scene."""
     return {s.name for p in scene.pedestrians.values() for s in p.segments}
 
@@ -144,7 +144,7 @@ def _new_person(old: Pedestrian, place: tuple[Array, float, Array], values: Mapp
     return Pedestrian(**args), position, heading, velocity
 
 
-def rebuild(scene: Scene, arrays: Mapping[str, Array], i: int) -> tuple[Scene, set[str]]:
+def rebuild(scene: SceneLike, arrays: Mapping[str, Array], i: int) -> tuple[SceneLike, set[str]]:
     """A copy of ``scene`` with variant ``i``'s pedestrians rebuilt and soft contacts set (the
     study's KEY arrays), and the names of the segments whose placements it made (the caller
     leaves their states alone). ParameterError (that variant fails) for a value the
@@ -168,13 +168,13 @@ def rebuild(scene: Scene, arrays: Mapping[str, Array], i: int) -> tuple[Scene, s
 # -- the figures of a run ---------------------------------------------------------------------
 
 
-def _struck(scene: Scene) -> list[str]:
+def _struck(scene: SceneView) -> list[str]:
     """The vehicles that are not a pedestrian's segments, in the order added."""
     segments = segment_names(scene)
     return [v.name for v in scene.vehicles if v.name not in segments]
 
 
-def column_names(scene: Scene, max_impacts: int) -> dict[str, type]:
+def column_names(scene: SceneView, max_impacts: int) -> dict[str, type]:
     """The columns of a pedestrian scene's study, in order, and their dtypes."""
     cars = _struck(scene)
     out: dict[str, type] = {"n_impacts": np.int64}
@@ -197,7 +197,7 @@ def column_names(scene: Scene, max_impacts: int) -> dict[str, type]:
     return out
 
 
-def empty_columns(scene: Scene, n: int, max_impacts: int) -> dict[str, np.ndarray]:
+def empty_columns(scene: SceneView, n: int, max_impacts: int) -> dict[str, np.ndarray]:
     return {k: np.full(n, -1 if t is np.int64 else np.nan, dtype=t)
             for k, t in column_names(scene, max_impacts).items()}  # fmt: skip
 
@@ -261,7 +261,7 @@ def pedestrian_figures(result: Result, person: Pedestrian, vehicle: Any) -> dict
     return out
 
 
-def columns_of(result: Result, scene: Scene, max_impacts: int) -> dict[str, float]:
+def columns_of(result: Result, scene: SceneView, max_impacts: int) -> dict[str, float]:
     """One run's row: the vehicles' batch columns and every pedestrian's figures (the
     module's list)."""
     from crashsim.analysis.pedestrian import whole_body
