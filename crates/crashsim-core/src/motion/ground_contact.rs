@@ -159,6 +159,12 @@ impl BodyContact {
         self
     }
 
+    /// The ground's normal force (N, >= 0) on point `k`, `depth` m in it and approaching at
+    /// `vn` m/s along the ground's normal (negative: into it).
+    fn normal_force(&self, k: usize, depth: Real, vn: Real) -> Real {
+        (self.stiffness[k] * depth - self.damping[k] * vn).max(0.0)
+    }
+
     /// Number of contact points.
     pub fn len(&self) -> usize {
         self.points.len()
@@ -173,6 +179,16 @@ impl BodyContact {
 /// The part of `d` along the ground (normal `n`, unit).
 fn tangential(d: Vector, n: &Vector) -> Vector {
     d - n * d.dot(n)
+}
+
+/// `v` shortened to length `cap` when longer.
+fn capped(v: Vector, cap: Real) -> Vector {
+    let size = v.norm();
+    if size > cap {
+        v * (cap / size)
+    } else {
+        v
+    }
 }
 
 /// A [`GroundBound`] over the box `lo`..`hi` (x, y; m, world) seen from above.
@@ -208,19 +224,13 @@ impl OnGround {
         self.for_each_touching(ground, x, r, |k, p, g, depth| {
             let vp = v + w.cross(&(p - x));
             let vn = vp.dot(&g.normal);
-            let fn_ = (c.stiffness[k] * depth - c.damping[k] * vn).max(0.0);
+            let fn_ = c.normal_force(k, depth, vn);
             let vt = vp - g.normal * vn;
             let ft = match self.anchors.get(k).copied().flatten() {
                 Some(a) => {
                     // the spring-damper to the anchor, capped at the sliding friction
                     let d = tangential(p - a, &g.normal);
-                    let f = -d * c.stiffness[k] - vt * c.damping[k];
-                    let (size, cap) = (f.norm(), mu * fn_);
-                    if size > cap {
-                        f * (cap / size)
-                    } else {
-                        f
-                    }
+                    capped(-d * c.stiffness[k] - vt * c.damping[k], mu * fn_)
                 }
                 None => -vt * (mu * fn_ / vt.norm().max(BODY_SLIP_SPEED)),
             };
@@ -250,18 +260,10 @@ impl OnGround {
         self.for_each_touching(ground, &x, &r, |k, p, g, depth| {
             let vp = s.v + w.cross(&(p - x));
             let vn = vp.dot(&g.normal);
-            let fn_ = (c.stiffness[k] * depth - c.damping[k] * vn).max(0.0);
+            let fn_ = c.normal_force(k, depth, vn);
             let reach = mu * fn_ / c.stiffness[k]; // the spring's longest stretch (m)
             let d = match self.anchors.get(k).copied().flatten() {
-                Some(a) => {
-                    let d = tangential(p - a, &g.normal);
-                    let size = d.norm();
-                    if size > reach {
-                        d * (reach / size)
-                    } else {
-                        d
-                    }
-                }
+                Some(a) => capped(tangential(p - a, &g.normal), reach),
                 None => {
                     let vt = vp - g.normal * vn;
                     vt * (reach / vt.norm().max(BODY_SLIP_SPEED))
