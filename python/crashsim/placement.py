@@ -22,6 +22,7 @@ from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import ParameterError, SceneError
 from crashsim.records import rotation_matrix
+from crashsim.small_linalg import matmul, norm
 from crashsim.vehicles.checks import _as_float, _read_only
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.vehicle import Vehicle
@@ -61,8 +62,8 @@ def _in_body(frame: tuple[Array, Array], placement: Placement) -> tuple[Array, A
     vehicle: what a joint keeps of it."""
     anchor, axes = frame
     rot = rotation_matrix(placement.orientation)
-    local = _quaternion_from_matrix(rot.T @ rotation_matrix(axes))
-    return rot.T @ (anchor - placement.position), local
+    local = _quaternion_from_matrix(matmul(rot.T, rotation_matrix(axes)))
+    return matmul(rot.T, anchor - placement.position), local
 
 
 def _orientation(heading: float | None, orientation: ArrayLike | None) -> Any:
@@ -181,7 +182,7 @@ def _resting(ground: Ground | None, p: Placement) -> Placement:
             anchor=(x, y),
         )
     yaw = rotation_matrix(level)
-    feet = np.array([x, y]) + wheels.contact_points()[:, :2] @ yaw[:2, :2].T
+    feet = np.array([x, y]) + matmul(wheels.contact_points()[:, :2], yaw[:2, :2].T)
     heights = []
     for k, (fx, fy) in enumerate(feet):
         height = ground.height_at(fx, fy)
@@ -192,22 +193,51 @@ def _resting(ground: Ground | None, p: Placement) -> Placement:
                 "vehicle on it)"
             )
         heights.append(height)
-    # the plane z = a + b x + c y through the ground under the wheels (least squares)
-    design = np.c_[np.ones(len(feet)), feet]
-    a, b, c = np.linalg.lstsq(design, np.asarray(heights), rcond=None)[0]
+    b, c, a = _plane_through(feet, heights)
     n = np.array([-b, -c, 1.0]) / math.sqrt(b * b + c * c + 1.0)
     axis = np.cross([0.0, 0.0, 1.0], n)
-    sin, cos = float(np.linalg.norm(axis)), float(n[2])
+    sin, cos = float(norm(axis)), float(n[2])
     tilt = np.eye(3)
     if sin > 0.0:
         k_ = axis / sin
         cross = np.array([[0, -k_[2], k_[1]], [k_[2], 0, -k_[0]], [-k_[1], k_[0], 0]])
-        tilt = np.eye(3) + sin * cross + (1.0 - cos) * cross @ cross
-    q = _quaternion_from_matrix(tilt @ yaw)
+        tilt = np.eye(3) + sin * cross + (1.0 - cos) * matmul(cross, cross)
+    q = _quaternion_from_matrix(matmul(tilt, yaw))
     cg = np.array([x, y, a + b * x + c * y]) + h * n
     return dataclasses.replace(
         p, position=_read_only(cg), orientation=_read_only(q), level=level, anchor=(x, y)
     )
+
+
+def _plane_through(points: Array, heights: list[float]) -> tuple[float, float, float]:
+    """(b, c, a) of the plane z = a + b x + c y through the heights at the points (x, y) by
+    least squares; the smallest slope that fits when the points lie on a line (a single-track
+    vehicle's wheels). Exactly rounded sums (``math.fsum``) and Cramer's rule, not LAPACK,
+    so that the placement is the same bits on every machine (crashsim.small_linalg)."""
+    n = len(heights)
+    xs, ys = [float(v) for v in points[:, 0]], [float(v) for v in points[:, 1]]
+    mx, my, mz = math.fsum(xs) / n, math.fsum(ys) / n, math.fsum(heights) / n
+    dx, dy, dz = [v - mx for v in xs], [v - my for v in ys], [v - mz for v in heights]
+    sxx = math.fsum(u * u for u in dx)
+    syy = math.fsum(v * v for v in dy)
+    sxy = math.fsum(u * v for u, v in zip(dx, dy, strict=True))
+    sxz = math.fsum(u * w for u, w in zip(dx, dz, strict=True))
+    syz = math.fsum(v * w for v, w in zip(dy, dz, strict=True))
+    det = sxx * syy - sxy * sxy
+    if det > 1e-12 * (sxx + syy) ** 2:
+        b, c = (sxz * syy - syz * sxy) / det, (syz * sxx - sxz * sxy) / det
+    elif sxx + syy > 0.0:  # on a line: the slope along it only
+        # the line's direction: dx, dy = t (ux, uy), so sxx : syy : sxy = ux^2 : uy^2 : ux uy
+        ux, uy = math.sqrt(sxx), math.copysign(math.sqrt(syy), sxy)
+        length = math.hypot(ux, uy)
+        ux, uy = ux / length, uy / length
+        tz = math.fsum((ux * u + uy * v) * w for u, v, w in zip(dx, dy, dz, strict=True))
+        tt = math.fsum((ux * u + uy * v) ** 2 for u, v in zip(dx, dy, strict=True))
+        g = tz / tt
+        b, c = g * ux, g * uy
+    else:
+        b = c = 0.0
+    return b, c, mz - b * mx - c * my
 
 
 def _grounded(ground: Ground | None, p: _ObstaclePlacement) -> _ObstaclePlacement:
@@ -222,7 +252,7 @@ def _check_terrain_under(ground: Ground | None, p: Placement, wheels: Wheels) ->
     if ground is None or ground.terrain is None:
         return
     r = rotation_matrix(p.orientation)
-    points = p.position + wheels.contact_points() @ r.T
+    points = p.position + matmul(wheels.contact_points(), r.T)
     for k in ground.holes(points):
         x, y = points[k][:2]
         raise SceneError(

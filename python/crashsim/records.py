@@ -22,6 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import SceneError
+from crashsim.small_linalg import dot, norm
 
 __all__ = [
     "ContactEvent",
@@ -57,7 +58,7 @@ def rotation_matrix(q: ArrayLike) -> Array:
     (..., 4), the rotations (..., 3, 3), each quaternion normalised."""
     q = np.asarray(q, dtype=np.float64)
     if q.ndim == 1:
-        w, x, y, z = q / np.linalg.norm(q)
+        w, x, y, z = q / norm(q)
     else:
         w, x, y, z = np.moveaxis(q / np.linalg.norm(q, axis=-1, keepdims=True), -1, 0)
     r = np.array(
@@ -231,7 +232,7 @@ class Impact:
     @property
     def closing_speed(self) -> float:
         """Normal relative velocity at the centroid before the exchange (m/s, > 0 closing)."""
-        return float(self.relative_velocity_before @ self.normal)
+        return float(dot(self.relative_velocity_before, self.normal))
 
     def impulse_on(self, vehicle: Any) -> Array:
         """The impulse acting on a vehicle (name or Vehicle), N s, world."""

@@ -34,6 +34,7 @@ from crashsim.records import (
     _name_of,
     rotation_matrix,
 )
+from crashsim.small_linalg import norm
 
 if TYPE_CHECKING:
     from crashsim.vehicles.vehicle import Vehicle
@@ -479,13 +480,13 @@ class Result:
         else:
             k = int(np.searchsorted(tr.t, last, side="left"))
             from_exchange = _path_length(tr.position[k:])
-            displaced = float(np.linalg.norm(end - tr.position[k]))
+            displaced = float(norm(end - tr.position[k]))
         return RestState(
             time=time,
             position=end,
             heading=_heading(tr.orientation[-1]),
             distance=_path_length(tr.position),
-            displacement=float(np.linalg.norm(end - start)),
+            displacement=float(norm(end - start)),
             last_exchange=last,
             distance_from_exchange=from_exchange,
             displacement_from_exchange=displaced,
@@ -506,7 +507,7 @@ class Result:
                     time=c.time,
                     other=other,
                     velocity=s["velocity"],
-                    speed=float(np.linalg.norm(s["velocity"])),
+                    speed=float(norm(s["velocity"])),
                     angular_velocity=s["angular_velocity"],
                     heading=_heading(s["orientation"]),
                 )

@@ -56,6 +56,7 @@ from crashsim.placement import (
 )
 from crashsim.records import rotation_matrix
 from crashsim.result import Result
+from crashsim.small_linalg import matmul
 from crashsim.spec import (
     DEFAULT_MAX_DURATION,
     _build_spec,
@@ -380,8 +381,8 @@ class Scene(_People):
         assert hitch is not None and coupler is not None
         who = f"{tower.vehicle.name!r} towing {trailer.name!r}"
         rot = rotation_matrix(tower.orientation)
-        at = tower.position + rot @ hitch.point
-        position = at - rot @ coupler.point
+        at = tower.position + matmul(rot, hitch.point)
+        position = at - matmul(rot, coupler.point)
         if self._ground is not None and trailer.wheels is not None:
             ground = _ground_height(
                 self._ground, float(position[0]), float(position[1]), "a trailer"

@@ -11,6 +11,7 @@ import numpy as np
 
 from crashsim.analysis import penetration
 from crashsim.analysis.report_common import EQUAL_SHARES, Array, _freeze_arrays, _opt, _vec
+from crashsim.small_linalg import dot, matmul
 
 if TYPE_CHECKING:
     from crashsim.vehicles.vehicle import Vehicle
@@ -86,10 +87,11 @@ def _deformation(
     corners = np.array(
         [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
     )
-    world_corners = position + corners @ rotation.T
-    bounding_box = float(np.max(world_corners @ direction) - centroid @ direction)
-    origin_body = rotation.T @ (centroid - position)
-    hits = np.asarray(vehicle.shape.ray_hits(origin_body, rotation.T @ direction), dtype=np.float64)
+    world_corners = position + matmul(corners, rotation.T)
+    bounding_box = float(np.max(dot(world_corners, direction)) - dot(centroid, direction))
+    origin_body = matmul(rotation.T, centroid - position)
+    ray = matmul(rotation.T, direction)
+    hits = np.asarray(vehicle.shape.ray_hits(origin_body, ray), dtype=np.float64)
     mesh = float(hits[-1]) if hits.size else None
     if mesh is None:
         notes.append(

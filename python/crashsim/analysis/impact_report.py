@@ -30,6 +30,7 @@ from crashsim.analysis.report_common import (
     _vec,
 )
 from crashsim.errors import ParameterError, SceneError
+from crashsim.small_linalg import dot, matmul, norm
 
 if TYPE_CHECKING:
     from crashsim.records import Impact
@@ -50,7 +51,7 @@ def pdof(delta_v_body: ArrayLike) -> float | None:
     if dv.size != 3 or not np.all(np.isfinite(dv)):
         raise ParameterError(f"delta_v_body must be 3 finite numbers (m/s), got {dv.tolist()}")
     horizontal = math.hypot(dv[0], dv[1])
-    if horizontal == 0.0 or horizontal <= 1e-12 * float(np.linalg.norm(dv)):
+    if horizontal == 0.0 or horizontal <= 1e-12 * float(norm(dv)):
         return None
     angle = math.degrees(math.atan2(dv[1], -dv[0])) % 360.0
     return 0.0 if angle >= 360.0 else angle  # -1e-17 % 360 is 360.0 in floating point
@@ -373,7 +374,7 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
                 role=role,
                 struck_face=str(impact.struck_faces.get(name, UNKNOWN)),
                 spring_rate=party_rates[role - 1],
-                centroid_body=rotation.T @ (p - position),
+                centroid_body=matmul(rotation.T, p - position),
             )
             continue
         vehicle = result.vehicle(name)
@@ -397,7 +398,8 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
         v1 = np.asarray(impact.velocity_after[name], dtype=np.float64)
         w0 = np.asarray(impact.angular_velocity_before[name], dtype=np.float64)
         w1 = np.asarray(impact.angular_velocity_after[name], dtype=np.float64)
-        inertia_world = rotation @ np.asarray(vehicle.inertia, dtype=np.float64) @ rotation.T
+        inertia_body = np.asarray(vehicle.inertia, dtype=np.float64)
+        inertia_world = matmul(matmul(rotation, inertia_body), rotation.T)
         mass = float(vehicle.mass)
         share_energy = None if basis == UNKNOWN else e * shares[role - 1]
         ees = None if share_energy is None else math.sqrt(2.0 * max(share_energy, 0.0) / mass)
@@ -409,7 +411,7 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
                 struck_face=str(impact.struck_faces.get(name, UNKNOWN)),
                 effective_mass=m_eff[role - 1],
                 spring_rate=party_rates[role - 1],
-                centroid_body=rotation.T @ (p - position),
+                centroid_body=matmul(rotation.T, p - position),
                 impulse=np.asarray(impact.impulse_on(name), dtype=np.float64),
                 delta_v=dv,
                 delta_v_body=dv_body,
@@ -423,11 +425,11 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
                 delta_omega=w1 - w0,
                 velocity_before=v0,
                 velocity_after=v1,
-                speed_before=float(np.linalg.norm(v0)),
-                speed_after=float(np.linalg.norm(v1)),
-                translational_energy_change=0.5 * mass * float(v1 @ v1 - v0 @ v0),
+                speed_before=float(norm(v0)),
+                speed_after=float(norm(v1)),
+                translational_energy_change=0.5 * mass * float(dot(v1, v1) - dot(v0, v0)),
                 rotational_energy_change=0.5
-                * float(w1 @ inertia_world @ w1 - w0 @ inertia_world @ w0),
+                * float(dot(w1, matmul(inertia_world, w1)) - dot(w0, matmul(inertia_world, w0))),
                 energy=share_energy,
                 ees=ees,
                 deformation=deformation,
@@ -448,7 +450,7 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
         normal=n,
         contact_frame=np.asarray(impact.contact_frame, dtype=np.float64),
         impulse=np.asarray(impact.impulse, dtype=np.float64),
-        impulse_magnitude=float(np.linalg.norm(impact.impulse)),
+        impulse_magnitude=float(norm(impact.impulse)),
         impact_type=SLIDING if impact.sliding else FULL,
         closing_speed=v_n,
         energy_dissipated=e,

@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike
 from crashsim.errors import ParameterError
 from crashsim.records import rotation_matrix
 from crashsim.result import Result
+from crashsim.small_linalg import dot, matmul, norm
 
 if TYPE_CHECKING:
     from crashsim.human.bicycle import Bicycle
@@ -114,8 +115,8 @@ def wrap_around_distance(vehicle: Vehicle, point: ArrayLike) -> float | None:
         for i in range(len(loop) - 1):
             a, b = loop[i], loop[i + 1]
             ab = b - a
-            s = float(np.clip(np.dot(p[[0, 2]] - a, ab) / max(float(ab @ ab), 1e-300), 0, 1))
-            d = float(np.linalg.norm(a + s * ab - p[[0, 2]]))
+            s = float(np.clip(dot(p[[0, 2]] - a, ab) / max(float(dot(ab, ab)), 1e-300), 0, 1))
+            d = float(norm(a + s * ab - p[[0, 2]]))
             if best is None or d < best[0]:
                 best = (d, loop, i, s)
     assert best is not None
@@ -185,7 +186,7 @@ def segment_contacts(
         car_tr = result.trajectory(car)
         r_c = rotation_matrix(car_tr.orientation[k])
         x_s = result.trajectory(name).position[k]
-        local = r_c.T @ (x_s - car_tr.position[k]) + vehicle.cg  # the car's model frame
+        local = matmul(r_c.T, x_s - car_tr.position[k]) + vehicle.cg  # the car's model frame
         nearest, _, _ = trimesh.proximity.closest_point(vehicle.mesh, local[None, :])
         point = nearest[0]
         touching = np.zeros(t.size, dtype=bool)
@@ -217,14 +218,14 @@ def rest_of(result: Result, pedestrian: Pedestrian) -> tuple[Array, float]:
     """The pedestrian's centre of mass at the run's last sample (world, m) and its speed
     there (m/s): the rest position when that speed is small."""
     _, x, v = whole_body(result, pedestrian)
-    return x[-1], float(np.linalg.norm(v[-1]))
+    return x[-1], float(norm(v[-1]))
 
 
 def travel(t: Array, x: Array, t0: float) -> float:
     """The horizontal distance (m) from ``x`` (k, 3) at the first sample at or after ``t0``
     (s; the last sample if none) to ``x`` at the last sample: a throw distance."""
     k0 = min(int(np.searchsorted(t, t0)), len(t) - 1)
-    return float(np.linalg.norm(x[-1, :2] - x[k0, :2]))
+    return float(norm(x[-1, :2] - x[k0, :2]))
 
 
 @dataclass(frozen=True)
@@ -380,7 +381,7 @@ def _bicycle_report(result: Result, bicycle: Bicycle, others: list[Vehicle]) -> 
         contacts=contacts,
         throws=_throws(result, contacts, frame.position),
         rest=np.array(frame.position[-1], dtype=np.float64),
-        rest_speed=float(np.linalg.norm(frame.velocity[-1])),
+        rest_speed=float(norm(frame.velocity[-1])),
     )
 
 
@@ -408,7 +409,7 @@ def pedestrian_reports(result: Result) -> list[PedestrianReport]:
                 name=person.name,
                 contacts=contacts,
                 rest=x[-1],
-                rest_speed=float(np.linalg.norm(v[-1])),
+                rest_speed=float(norm(v[-1])),
                 end_time=float(result.t[-1]),
                 kind=kind,
                 bodies=tuple(s.name for s in person.segments),

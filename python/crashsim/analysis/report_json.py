@@ -13,6 +13,7 @@ import numpy as np
 
 from crashsim.analysis.engagements import WHY_SECONDARY
 from crashsim.analysis.report_common import _mat, _opt, _plain, _vec
+from crashsim.small_linalg import norm
 
 if TYPE_CHECKING:
     from crashsim.analysis.engagements import Engagement
@@ -180,7 +181,7 @@ def _engagement_record(e: Engagement) -> dict[str, Any]:
         "no_exchange": [{"time": float(t), "reason": reason} for t, reason in e.no_exchange],
         "delta_v": {
             "summed": {n: _vec(v) for n, v in e.delta_v.items()},
-            "magnitude": {n: float(np.linalg.norm(v)) for n, v in e.delta_v.items()},
+            "magnitude": {n: float(norm(v)) for n, v in e.delta_v.items()},
         },
         "energy_dissipated": float(e.energy_dissipated),
     }

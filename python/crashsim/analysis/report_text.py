@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from crashsim.analysis.report_common import BY_STIFFNESS, RIGID_OBSTACLE
+from crashsim.small_linalg import norm
 from crashsim.units import to_kmh, to_mph
 
 if TYPE_CHECKING:
@@ -90,7 +91,7 @@ def _engagement_lines(e: Engagement, impacts: list[ImpactReport]) -> list[str]:
     for name in e.vehicles:
         if name not in e.delta_v:  # a fixed obstacle
             continue
-        dv = float(np.linalg.norm(e.delta_v[name]))
+        dv = float(norm(e.delta_v[name]))
         summed.append(
             f"{name} {_fmt(dv, 3)} m/s ({_fmt(to_kmh(dv), 2)} km/h, {_fmt(to_mph(dv), 2)} mph)"
         )

@@ -34,6 +34,7 @@ from numpy.typing import NDArray
 
 from crashsim.analysis.engagements import engagements
 from crashsim.errors import SceneError
+from crashsim.small_linalg import norm
 from crashsim.units import to_kmh
 
 if TYPE_CHECKING:
@@ -245,8 +246,8 @@ def _obstacle_hits(result: Result, name: str) -> tuple[ObstacleHit, ...]:
                 time=float(imp.time),
                 closing_speed=float(imp.closing_speed),
                 delta_v=imp.speed_change(name),
-                speed_before=float(np.linalg.norm(imp.velocity_before[name])),
-                speed_after=float(np.linalg.norm(imp.velocity_after[name])),
+                speed_before=float(norm(imp.velocity_before[name])),
+                speed_after=float(norm(imp.velocity_after[name])),
             )
         )
     return tuple(out)
@@ -277,7 +278,7 @@ def run_out(result: Result, vehicle: Any) -> RunOutReport:
     path = np.vstack([np.asarray(s["position"])[None, :], tr.position[after:]])
     yaws = np.unwrap([_yaw(s["orientation"]), *(_yaw(q) for q in tr.orientation[after:])])
     velocity = np.asarray(s["velocity"], dtype=np.float64)
-    speed = float(np.linalg.norm(velocity))
+    speed = float(norm(velocity))
     from crashsim.vehicles.wheels import dynamics_defaults
 
     moving = speed >= dynamics_defaults()["rest_speed"]
@@ -302,7 +303,7 @@ def run_out(result: Result, vehicle: Any) -> RunOutReport:
         rest_time=None if rest is None else float(rest.time),
         time_to_rest=None if rest is None else max(0.0, float(rest.time) - t0),
         end_time=float(tr.t[-1]),
-        end_speed=float(np.linalg.norm(end_v)),
+        end_speed=float(norm(end_v)),
         end_yaw_rate=math.degrees(float(tr.angular_velocity[-1][2])),
         position=tr.position[-1],
         end_heading=_deg(float(yaws[-1])),
@@ -310,7 +311,7 @@ def run_out(result: Result, vehicle: Any) -> RunOutReport:
         attitude=_attitude(tilt),
         heading_change=math.degrees(float(yaws[-1] - yaws[0])),
         distance=_length(path),
-        displacement=float(np.linalg.norm(path[-1] - path[0])),
+        displacement=float(norm(path[-1] - path[0])),
         tyre_marks=_tyre_marks(result, name),
         obstacle_impacts=_obstacle_hits(result, name),
     )

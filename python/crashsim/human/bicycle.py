@@ -31,6 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim.errors import ParameterError
 from crashsim.names import check_name
+from crashsim.small_linalg import dot, matmul, norm, transform_points
 from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = ["KINDS", "Bicycle", "BicycleFit", "Parts"]
@@ -84,21 +85,34 @@ def _yaw(heading: float) -> Array:
 def _tube(a: ArrayLike, b: ArrayLike, radius: float) -> trimesh.Trimesh:
     """A capsule of ``radius`` whose cap centres are the points a and b (m)."""
     a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
-    length = float(np.linalg.norm(b - a))
+    length = float(norm(b - a))
     mesh = trimesh.creation.capsule(height=max(length, 1e-6), radius=radius,
                                     count=list(_TUBE_COUNT))  # fmt: skip
-    mesh.apply_transform(trimesh.geometry.align_vectors([0.0, 0.0, 1.0], (b - a) / length))
-    mesh.apply_translation((a + b) / 2.0)
-    return mesh
+    # trimesh's capsule lies along z, centred at the origin: turn z onto a -> b (Rodrigues,
+    # about z x d by the angle between them)
+    d = (b - a) / length
+    k = np.array([-d[1], d[0], 0.0])  # z x d
+    s, c = float(norm(k)), float(d[2])
+    turn = np.eye(3)
+    if s > 1e-12:
+        kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]]) / s
+        turn = np.eye(3) + s * kx + (1.0 - c) * matmul(kx, kx)
+    elif c < 0.0:
+        turn = np.diag([1.0, -1.0, -1.0])  # half a turn about x
+    transform = np.eye(4)
+    transform[:3, :3], transform[:3, 3] = turn, (a + b) / 2.0
+    return trimesh.Trimesh(transform_points(mesh.vertices, transform), mesh.faces, process=False)
 
 
 def _box(centre: ArrayLike, size: ArrayLike, tilt: float = 0.0) -> trimesh.Trimesh:
     """A box of ``size`` (x, y, z) m centred at ``centre``, turned by ``tilt`` rad about y
     (+: its front end down)."""
     mesh = trimesh.creation.box(extents=np.asarray(size, dtype=np.float64))
-    mesh.apply_transform(trimesh.transformations.rotation_matrix(tilt, [0.0, 1.0, 0.0]))
-    mesh.apply_translation(np.asarray(centre, dtype=np.float64))
-    return mesh
+    c, s = math.cos(tilt), math.sin(tilt)
+    transform = np.eye(4)
+    transform[:3, :3] = [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]
+    transform[:3, 3] = np.asarray(centre, dtype=np.float64)
+    return trimesh.Trimesh(transform_points(mesh.vertices, transform), mesh.faces, process=False)
 
 
 def _wheel_mesh(radius: float, width: float) -> trimesh.Trimesh:
@@ -139,7 +153,7 @@ def _combined(parts: list[tuple[float, Array, Array]]) -> tuple[float, Array, Ar
     inertia = np.zeros((3, 3))
     for m, c, i in parts:
         d = c - cg
-        inertia += i + m * (float(d @ d) * np.eye(3) - np.outer(d, d))
+        inertia += i + m * (float(dot(d, d)) * np.eye(3) - np.outer(d, d))
     return mass, cg, inertia
 
 
@@ -399,15 +413,16 @@ class Bicycle:
         moving at ``velocity`` (m/s, world), the wheels turning at its forward part over
         their radius."""
         origin, yaw, v = self.origin(position, heading, velocity, ground)
-        forward = float(v @ (yaw @ [1.0, 0.0, 0.0]))
+        forward = float(dot(v, matmul(yaw, [1.0, 0.0, 0.0])))
         parts = Parts()
-        parts.bodies.append((self._frame, origin + yaw @ self._frame.cg, yaw, v, np.zeros(3)))
+        cg = origin + matmul(yaw, self._frame.cg)
+        parts.bodies.append((self._frame, cg, yaw, v, np.zeros(3)))
         # the hinge's frame: its z along the axle (the bicycle's y), its x forward
-        axes = yaw @ np.column_stack([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+        axes = matmul(yaw, np.column_stack([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]))
         for end, wheel in self._wheels.items():
             radius = float(self._data[f"{end}_wheel"]["radius"])
-            at = origin + yaw @ self._axles[end]
-            spin = yaw @ np.array([0.0, forward / radius, 0.0])
+            at = origin + matmul(yaw, self._axles[end])
+            spin = matmul(yaw, np.array([0.0, forward / radius, 0.0]))
             parts.bodies.append((wheel, at, yaw, v, spin))
             parts.joints.append(dict(vehicle1=self._frame.name, vehicle2=wheel.name, at=at,
                                      kind="revolute", axes=axes,

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from crashsim.errors import ParameterError
+from crashsim.small_linalg import norm
 
 if TYPE_CHECKING:
     from crashsim.human.anthropometry import Segment
@@ -157,9 +158,9 @@ def cycling_angles(data: Sequence[Segment], pose: Mapping[str, float]) -> dict[s
     right = _Leg(seg, "right", ball)
     target = left.posed(hip_left, knee, ankle)[2] + np.array([0.0, 2.0 * crank])
     link = (right.ankle - right.knee) + _turn(right.ball - right.ankle, ankle)  # shank frame
-    l1, l2 = float(np.linalg.norm(right.knee - right.hip)), float(np.linalg.norm(link))
+    l1, l2 = float(norm(right.knee - right.hip)), float(norm(link))
     to_target = target - right.hip
-    d = float(np.linalg.norm(to_target))
+    d = float(norm(to_target))
     if not abs(l1 - l2) < d < l1 + l2:
         raise ParameterError(
             f"the cycling pose cannot reach the top pedal: it is {d:.3f} m from the hip, the "

@@ -29,6 +29,7 @@ from crashsim.human.bicycle import Bicycle, BicycleFit, Parts
 from crashsim.human.cycling_pose import pedal_points
 from crashsim.human.pedestrian import Pedestrian
 from crashsim.names import check_name
+from crashsim.small_linalg import matmul, norm
 from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = ["CONTACTS", "Cyclist"]
@@ -145,7 +146,8 @@ class Cyclist:
         rider's soft contacts with the frame and the pairs that never collide."""
         parts = self._bicycle.placement(position, heading, velocity, ground)
         origin, yaw, v = self._bicycle.origin(position, heading, velocity, ground)
-        bodies, joints = self._rider.placement(origin + yaw @ self._offset, heading, v, ground)
+        seat = origin + matmul(yaw, self._offset)
+        bodies, joints = self._rider.placement(seat, heading, v, ground)
         parts.bodies = [(b, cg, rot, vel, np.zeros(3)) for b, cg, rot, vel in bodies] + parts.bodies
         prefix = f"{self._name}/"
         parts.joints = [dict(
@@ -197,8 +199,8 @@ def _fit(rider: Pedestrian, bicycle: Bicycle) -> tuple[Array, BicycleFit]:
     # the handlebar under the middle of the left hand's axis, across it
     hand = next(s for s in data if s.name == "hand_left")
     cg, rot = rider.posed("hand_left")
-    ends = [cg + rot @ (np.asarray(p) - hand.cg_body) for p in (hand.origin, hand.end)]
-    axis = (ends[1] - ends[0]) / np.linalg.norm(ends[1] - ends[0])
+    ends = [cg + matmul(rot, np.asarray(p) - hand.cg_body) for p in (hand.origin, hand.end)]
+    axis = (ends[1] - ends[0]) / norm(ends[1] - ends[0])
     up = np.array([-axis[2], 0.0, axis[0]]) * (1.0 if axis[0] > 0 else -1.0)
     radius = float(bicycle.data["assumed"]["bar_radius"])
     bar = (ends[0] + ends[1]) / 2.0 + offset - (hand.contact.radius + radius + GAP) * up

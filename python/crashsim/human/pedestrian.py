@@ -36,6 +36,7 @@ from crashsim.errors import ParameterError
 from crashsim.human.anthropometry import Segment, body_segments
 from crashsim.human.cycling_pose import cycling_angles
 from crashsim.names import check_name
+from crashsim.small_linalg import dot, matmul, norm, transform_points
 from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = ["POSES", "Pedestrian", "PedestrianJoint"]
@@ -58,7 +59,7 @@ def _rot(axis: Array, angle_deg: float) -> Array:
     """The rotation by ``angle_deg`` about the unit ``axis`` (Rodrigues)."""
     a = math.radians(angle_deg)
     k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    return np.eye(3) + math.sin(a) * k + (1.0 - math.cos(a)) * k @ k
+    return np.eye(3) + math.sin(a) * k + (1.0 - math.cos(a)) * matmul(k, k)
 
 
 @dataclass(frozen=True)
@@ -244,10 +245,11 @@ class Pedestrian:
         bodies = []
         for posed, vehicle in zip(self._posed.values(), self._segments, strict=True):
             cg = _to_posed(posed, np.asarray(posed.segment.cg_body))
-            bodies.append((vehicle, origin + yaw @ cg, yaw @ posed.rotation, v.copy()))
+            rotation = matmul(yaw, posed.rotation)
+            bodies.append((vehicle, origin + matmul(yaw, cg), rotation, v.copy()))
         joints = [
-            (j, origin + yaw @ j.at, yaw @ j.axes,
-             None if j.child_axes is None else yaw @ j.child_axes)
+            (j, origin + matmul(yaw, j.at), matmul(yaw, j.axes),
+             None if j.child_axes is None else matmul(yaw, j.child_axes))
             for j in self._joints
         ]  # fmt: skip
         return bodies, joints
@@ -272,7 +274,7 @@ def _rebuilt(arguments: dict[str, Any]) -> Pedestrian:
 def _to_posed(p: _Posed, x: Array) -> Array:
     """Body-frame points of the standing posture moved with their segment into the pose."""
     standing_at = np.asarray(p.segment.joint.position if p.segment.joint else p.segment.origin)
-    return (np.asarray(x) - standing_at) @ p.rotation.T + p.joint_at
+    return matmul(np.asarray(x) - standing_at, p.rotation.T) + p.joint_at
 
 
 def _pose(data: list[Segment], angles: dict[str, Any], sex: str) -> dict[str, _Posed]:
@@ -286,7 +288,7 @@ def _pose(data: list[Segment], angles: dict[str, Any], sex: str) -> dict[str, _P
         parent = posed[s.parent]
         assert s.joint is not None
         at = _to_posed(parent, np.asarray(s.joint.position))
-        rotation = parent.rotation @ rel.get(s.name, np.eye(3))
+        rotation = matmul(parent.rotation, rel.get(s.name, np.eye(3)))
         posed[s.name] = _Posed(s, rotation, at)
     return posed
 
@@ -303,14 +305,14 @@ def _relative_rotations(a: dict[str, Any]) -> dict[str, Array]:
         out[f"upper_arm_{side}"] = _rot(_X, s * a.get("shoulder_abduction", 0.0))
         out[f"thigh_{side}"] = _rot(_X, s * a.get("hip_abduction", 0.0))
     if "lead_hip_flexion" in a:
-        out["thigh_left"] = _rot(_Y, -a["lead_hip_flexion"]) @ out["thigh_left"]
+        out["thigh_left"] = matmul(_rot(_Y, -a["lead_hip_flexion"]), out["thigh_left"])
         out["shank_left"] = _rot(_Y, a["lead_knee_flexion"])
-        out["thigh_right"] = _rot(_Y, a["trail_hip_extension"]) @ out["thigh_right"]
+        out["thigh_right"] = matmul(_rot(_Y, a["trail_hip_extension"]), out["thigh_right"])
         out["shank_right"] = _rot(_Y, a["trail_knee_flexion"])
         out["foot_right"] = _rot(_Y, a["trail_ankle_plantarflexion"])
         # the arms swing against the legs: the right arm forward
-        out["upper_arm_right"] = _rot(_Y, -a["arm_swing"]) @ out["upper_arm_right"]
-        out["upper_arm_left"] = _rot(_Y, a["arm_swing"]) @ out["upper_arm_left"]
+        out["upper_arm_right"] = matmul(_rot(_Y, -a["arm_swing"]), out["upper_arm_right"])
+        out["upper_arm_left"] = matmul(_rot(_Y, a["arm_swing"]), out["upper_arm_left"])
         for side in ("left", "right"):
             out[f"forearm_{side}"] = _rot(_Y, -a["elbow_flexion"])
     return out
@@ -338,7 +340,7 @@ def _capsule(segment: Segment) -> trimesh.Trimesh:
     diameter: the trunk's segments)."""
     r = segment.contact.radius
     a, b = np.zeros(3), np.asarray(segment.end) - np.asarray(segment.origin)
-    length = float(np.linalg.norm(b))
+    length = float(norm(b))
     axis = b / length
     core = length - 2.0 * r  # between the caps' centres
     if core <= 0.0:
@@ -351,10 +353,9 @@ def _capsule(segment: Segment) -> trimesh.Trimesh:
     if axis[2] < -0.5:
         transform[:3, :3] = _rot(_X, 180.0)
     elif axis[2] < 0.5:
-        transform[:3, :3] = _rot(np.cross(_Z, axis) / np.linalg.norm(np.cross(_Z, axis)), 90.0)
+        transform[:3, :3] = _rot(np.cross(_Z, axis) / norm(np.cross(_Z, axis)), 90.0)
     transform[:3, 3] = (a + b) / 2.0
-    mesh.apply_transform(transform)
-    return mesh
+    return trimesh.Trimesh(transform_points(mesh.vertices, transform), mesh.faces, process=False)
 
 
 def _segment_vehicle(p: _Posed, name: str) -> Vehicle:
@@ -410,9 +411,10 @@ def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
             # turned forward (about the pelvis's lateral axis) by half their difference, its
             # half-angle half their sum; the pose's thigh starts inside it.
             flexion, extension = rom["flexion"], rom["extension"]
-            standing = parent.rotation @ p.rotation.T @ axes  # the pose's hip turn undone
-            turn = _axis_angle(parent.rotation @ _Y, -(flexion - extension) / 2.0)
-            child_axes, axes = axes, turn @ standing
+            # the pose's hip turn undone
+            standing = matmul(matmul(parent.rotation, p.rotation.T), axes)
+            turn = _axis_angle(matmul(parent.rotation, _Y), -(flexion - extension) / 2.0)
+            child_axes, axes = axes, matmul(turn, standing)
             limits["swing"] = (0.0, (flexion + extension) / 2.0)
         out.append(PedestrianJoint(
             name=joint if s.side is None else f"{joint}_{s.side}",
@@ -433,27 +435,27 @@ def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
 
 def _axis_angle(axis: Array, angle: float) -> Array:
     """The rotation matrix of ``angle`` rad about the unit ``axis`` (Rodrigues)."""
-    k = np.asarray(axis, dtype=np.float64) / np.linalg.norm(axis)
+    k = np.asarray(axis, dtype=np.float64) / norm(axis)
     kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
-    return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx
+    return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * matmul(kx, kx)
 
 
 def _frame(z: Array, x_hint: Array) -> Array:
     """A right-handed frame (columns x, y, z) with the given z and x as near x_hint."""
-    z = z / np.linalg.norm(z)
-    x = x_hint - np.dot(x_hint, z) * z
-    if np.linalg.norm(x) < 1e-9:
+    z = z / norm(z)
+    x = x_hint - dot(x_hint, z) * z
+    if norm(x) < 1e-9:
         x = np.cross(_Y, z)
-    x /= np.linalg.norm(x)
+    x /= norm(x)
     return np.column_stack([x, np.cross(z, x), z])
 
 
 def _relative_angle(parent: _Posed, child: _Posed, axis: Array) -> float:
     """The pose's starting angle of a hinge (rad): the child's rotation relative to its
     parent, a rotation about ``axis`` (parent frame)."""
-    rel = parent.rotation.T @ child.rotation
+    rel = matmul(parent.rotation.T, child.rotation)
     vee = np.array([rel[2, 1] - rel[1, 2], rel[0, 2] - rel[2, 0], rel[1, 0] - rel[0, 1]])
-    return math.atan2(float(np.dot(axis, vee)) / 2.0, (float(np.trace(rel)) - 1.0) / 2.0)
+    return math.atan2(float(dot(axis, vee)) / 2.0, (float(np.trace(rel)) - 1.0) / 2.0)
 
 
 def _hinge(
@@ -469,7 +471,7 @@ def _hinge(
     else:  # elbow: flexion brings the forearm forward, about -y
         axis, lo, hi = -_Y, -rom["hyperextension"], rom["flexion"]
     start = _relative_angle(parent, child, axis)
-    axes = parent_rot @ _frame(axis, _X)
+    axes = matmul(parent_rot, _frame(axis, _X))
     return axes, {"angle": (lo - start, hi - start)}
 
 
@@ -480,10 +482,10 @@ def _ball(
     limb's deviation from the pose); the swing cone is the largest published range (a cone
     stands for every direction), the twist (about the limb) from the rotation ranges."""
     s = child.segment
-    far = s.origin if np.linalg.norm(np.subtract(s.origin, s.joint.position)) > np.linalg.norm(
+    far = s.origin if norm(np.subtract(s.origin, s.joint.position)) > norm(
         np.subtract(s.end, s.joint.position)) else s.end
     z = _to_posed(child, np.asarray(far)) - child.joint_at
-    axes = _frame(z, parent_rot @ _X)
+    axes = _frame(z, matmul(parent_rot, _X))
     limits: dict[str, tuple[float, float]] = {}
     swing = max((v for k, v in rom.items() if "rotation" not in k and k not in
                  ("pronation", "supination")), default=None)

@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import MeshError, ParameterError
+from crashsim.small_linalg import dot, matmul, norm
 from crashsim.vehicles.meshio import closed_shells, shell_labels
 
 __all__ = ["empirical_inertia", "solid_properties"]
@@ -43,14 +44,14 @@ def _parallel_axis(inertia_cm: Array, mass: float, d: Array) -> Array:
     """Inertia about a point displaced by d (m) from the centre of mass (kg m^2).
     ParameterError when it overflows (a CG absurdly far from the body)."""
     with np.errstate(over="ignore", invalid="ignore"):
-        out = inertia_cm + mass * (float(d @ d) * np.eye(3) - np.outer(d, d))
+        out = inertia_cm + mass * (float(dot(d, d)) * np.eye(3) - np.outer(d, d))
     if not np.all(np.isfinite(inertia_cm)):
         raise ParameterError(
             f"the inertia of a {mass:g} kg body is not finite: give the mass in kg"
         )
     if not np.all(np.isfinite(out)):
         raise ParameterError(
-            f"the CG is {float(np.linalg.norm(d)):.3g} m from the centre of the body's solid: "
+            f"the CG is {float(norm(d)):.3g} m from the centre of the body's solid: "
             "the inertia about it is not finite; give a CG on the vehicle (m, model frame) and "
             "its dimensions in metres"
         )
@@ -180,7 +181,7 @@ def _winding_solid(mesh: trimesh.Trimesh, what: str) -> tuple[float, Array, Arra
         )
     centroid = inside.mean(axis=0)
     d = inside - centroid
-    inertia = (np.eye(3) * float(np.sum(d * d)) - d.T @ d) * dv
+    inertia = (np.eye(3) * float(np.sum(d * d)) - matmul(d.T, d)) * dv
     sq = cell**2  # each cell's own inertia about its centre: a uniform small box
     inertia += np.diag([sq[1] + sq[2], sq[0] + sq[2], sq[0] + sq[1]]) * dv * len(inside) / 12.0
     return dv * len(inside), centroid, inertia

@@ -42,6 +42,7 @@ from numpy.typing import NDArray
 
 from crashsim.errors import MeshError, ParameterError
 from crashsim.filekind import special_file
+from crashsim.small_linalg import transform_points
 from crashsim.units import FOOT
 from crashsim.vehicles.plausibility import check_size
 
@@ -344,7 +345,7 @@ def load_mesh(
     transform = np.eye(4)
     transform[:3, :3] = rotation * scale
     if not np.array_equal(transform, np.eye(4)):
-        mesh.apply_transform(transform)
+        mesh.vertices = transform_points(mesh.vertices, transform)
         check_mesh(mesh, what + f" scaled to metres ({scale:g} m per unit)")
     shift = np.zeros(3)
     lo, hi = mesh.bounds
