@@ -89,6 +89,10 @@ result = case.scene.run(0.02, dt=2e-4)
 for body in ("car", "pedestrian/head", "pedestrian/pelvis"):
     tr = result.trajectory(body)
     h.update(tr.position.tobytes() + tr.velocity.tobytes())
+runout = load_scene("examples/runout-sedan-into-suv.toml").scene.run(1.5, record_interval=0.05)
+for name in ("sedan", "suv"):  # between the samples: Hermite positions, slerped orientations
+    between = runout.states(name, np.linspace(0.0013, 1.4987, 61))
+    h.update(between["position"].tobytes() + between["orientation"].tobytes())
 for name in ("seed-45deg", "three-vehicles"):
     h.update(build_report(load_scene(f"examples/{name}.toml").simulate()).to_json().encode())
 import crashsim as cs
@@ -119,6 +123,18 @@ def _kernels() -> list[str]:
     return kernels
 
 
+def _numpy_simd_above_baseline() -> list[str]:
+    """The SIMD levels numpy dispatches to on this CPU above its build's baseline (turned
+    off by NPY_DISABLE_CPU_FEATURES); [] when numpy does not say."""
+    try:
+        from numpy._core import _multiarray_umath as umath
+
+        found = umath.__cpu_features__
+        return [f for f in umath.__cpu_dispatch__ if found.get(f)]
+    except (ImportError, AttributeError):
+        return []
+
+
 @pytest.mark.skipif(platform.machine() not in ("x86_64", "AMD64"), reason="x86-64 kernels")
 def test_crashsims_answers_are_the_same_bits_under_every_blas_kernel(tmp_path):
     import json
@@ -128,13 +144,18 @@ def test_crashsims_answers_are_the_same_bits_under_every_blas_kernel(tmp_path):
         pytest.skip(f"this CPU runs one OpenBLAS kernel only ({kernels})")
     meshes = sorted((ROOT.parent / "shared" / "meshes").rglob("*.obj"))
     mesh = str(meshes[0]) if meshes else ""
+    runs = {k: {"OPENBLAS_CORETYPE": k} for k in kernels}
+    simd = _numpy_simd_above_baseline()
+    if simd:  # and numpy's own SIMD (its sin, arccos, power...) off: its baseline code only
+        runs["Prescott, numpy baseline"] = {"OPENBLAS_CORETYPE": "Prescott",
+                                            "NPY_DISABLE_CPU_FEATURES": " ".join(simd)}
     out = {}
-    for kernel in kernels:
-        env = dict(os.environ, OPENBLAS_CORETYPE=kernel, OPENBLAS_VERBOSE="0")
+    for label, extra in runs.items():
+        env = dict(os.environ, OPENBLAS_VERBOSE="0", **extra)
         run = subprocess.run([sys.executable, "-c", _PROBE, mesh], cwd=ROOT, env=env,
                              capture_output=True, text=True, timeout=300)  # fmt: skip
         assert run.returncode == 0, run.stderr[-2000:]
-        out[kernel] = json.loads(run.stdout.strip().splitlines()[-1])
+        out[label] = json.loads(run.stdout.strip().splitlines()[-1])
     if len({o["numpy"] for o in out.values()}) == 1:
         pytest.skip(f"numpy's @ gives the same bits under {kernels} here: nothing to compare")
     assert len({o["crashsim"] for o in out.values()}) == 1, out

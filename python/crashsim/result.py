@@ -34,7 +34,7 @@ from crashsim.records import (
     _name_of,
     rotation_matrix,
 )
-from crashsim.small_linalg import norm
+from crashsim.small_linalg import by_libm, norm
 
 if TYPE_CHECKING:
     from crashsim.vehicles.vehicle import Vehicle
@@ -76,11 +76,12 @@ def _slerp(q0: Array, q1: Array, s: Array) -> Array:
     near = d > 1.0 - 1e-12  # nearly the same rotation: linear, normalised
     linear = q0 + s[:, None] * (q1 - q0)
     linear /= np.linalg.norm(linear, axis=1, keepdims=True)
-    theta = np.arccos(np.minimum(1.0, d))
-    sin = np.where(near, 1.0, np.sin(theta))  # unused where near
-    arc = (np.sin((1.0 - s) * theta)[:, None] * q0 + np.sin(s * theta)[:, None] * q1) / sin[
-        :, None
-    ]
+    theta = by_libm(math.acos, np.minimum(1.0, d))
+    sin = np.where(near, 1.0, by_libm(math.sin, theta))  # unused where near
+    arc = (
+        by_libm(math.sin, (1.0 - s) * theta)[:, None] * q0
+        + by_libm(math.sin, s * theta)[:, None] * q1
+    ) / sin[:, None]
     return np.where(near[:, None], linear, arc)
 
 
@@ -321,8 +322,11 @@ class Result:
         t0, t1 = tr.t[k], tr.t[k + 1]
         h = t1 - t0
         s = (times - t0) / h
-        h00, h10 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s
-        h01, h11 = -2 * s**3 + 3 * s**2, s**3 - s**2
+        # s * s * s, not s**3: numpy's power is its SIMD or the C library's, by the CPU
+        s2 = s * s
+        s3 = s2 * s
+        h00, h10 = 2 * s3 - 3 * s2 + 1, s3 - 2 * s2 + s
+        h01, h11 = -2 * s3 + 3 * s2, s3 - s2
         p0, p1 = tr.position[k], tr.position[k + 1]
         v0, v1 = tr.velocity[k], tr.velocity[k + 1].copy()
         w0, w1 = tr.angular_velocity[k], tr.angular_velocity[k + 1].copy()

@@ -15,6 +15,8 @@ kernels and compares the bits.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -49,3 +51,13 @@ def transform_points(points: ArrayLike, transform: ArrayLike) -> Array:
     """Points (N, 3) moved by a 4 x 4 homogeneous transform: ``R p + t`` for each."""
     m = np.asarray(transform, dtype=np.float64)
     return matmul(np.asarray(points, dtype=np.float64), m[:3, :3].T) + m[:3, 3]
+
+
+def by_libm(fn: Callable[[float], float], x: ArrayLike) -> Array:
+    """``fn`` (one of Python's ``math`` functions: the C library's) applied to each element.
+    numpy's own sin, cos, arccos, power... run its SIMD code for the CPU, which rounds
+    differently from one CPU to the next (measured: a slerp's arccos and sin changed a
+    Result's orientations between samples when numpy's AVX2 and AVX-512 code was turned
+    off); the C library's are the ones the engine and Python's math use."""
+    a = np.asarray(x, dtype=np.float64)
+    return np.fromiter((fn(float(v)) for v in a.ravel()), np.float64, a.size).reshape(a.shape)

@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim.errors import ParameterError
 from crashsim.names import check_name
-from crashsim.small_linalg import dot, matmul, norm, transform_points
+from crashsim.small_linalg import by_libm, dot, matmul, norm, transform_points
 from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = ["KINDS", "Bicycle", "BicycleFit", "Parts"]
@@ -121,7 +121,8 @@ def _wheel_mesh(radius: float, width: float) -> trimesh.Trimesh:
     points) fans every face from the hub and gives each rim vertex the same area."""
     n = _WHEEL_SECTIONS
     angles = -math.pi / 2.0 + 2.0 * math.pi * np.arange(n) / n  # the first at the bottom
-    ring = np.column_stack([radius * np.cos(angles), np.zeros(n), radius * np.sin(angles)])
+    cos, sin = by_libm(math.cos, angles), by_libm(math.sin, angles)
+    ring = np.column_stack([radius * cos, np.zeros(n), radius * sin])
     half = width / 2.0
     left, right = ring + [0.0, half, 0.0], ring + [0.0, -half, 0.0]
     hubs = np.array([[0.0, half + 1e-3, 0.0], [0.0, -half - 1e-3, 0.0]])
