@@ -11,7 +11,8 @@ speed-time plots, the scene's inputs with units). docs/viewer.md describes the p
 
 Data flow: Result -> report -> page data (:mod:`.data`) -> page (:mod:`.page`); nothing
 imports this package but the command line and the package's top level. The page embeds
-three.js r111 (MIT, static/three/), its own script (static/viewer.js) and the data.
+three.js r111 (MIT, static/three/), its own scripts (static/viewer.js, people.js, report.js)
+and the data.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """The case page: one self-contained HTML file (template, style, three.js r111, the viewer's
-scripts (viewer.js, and people.js: pedestrians and cyclists as one person each) and the data,
-all inline), written atomically."""
+scripts (viewer.js; people.js: pedestrians and cyclists as one person each; report.js: the
+report panel) and the data, all inline), written atomically."""
 
 from __future__ import annotations
 
@@ -48,6 +48,7 @@ def render_page(data: dict[str, Any]) -> str:
         "THREE": _script(_static("three", "three.min.js"), "three.min.js"),
         "ORBIT": _script(_static("three", "OrbitControls.js"), "OrbitControls.js"),
         "PEOPLE": _script(_static("people.js"), "people.js"),
+        "REPORT": _script(_static("report.js"), "report.js"),
         "VIEWER": _script(_static("viewer.js"), "viewer.js"),
     }
     # one pass: text put in is never searched for placeholders again
