@@ -21,7 +21,7 @@
 use nalgebra::DVector;
 
 use super::row::{JointBody, Row};
-use super::solve::{mobility, solve};
+use super::solve::{mobility, solve, solve_each};
 use super::{JointKind, JointSpec, FRICTION_SMOOTHING};
 use crate::math::{Matrix, Point, Real, Rotation, Vector};
 
@@ -495,6 +495,31 @@ pub(crate) fn project_velocities(
     let rhs = DVector::from_iterator(rows.len(), rows.iter().map(|r| -apply(r, &nu)));
     let lambda = solve(&rows, bodies, rhs);
     spread(&rows, bodies, &lambda, true)
+}
+
+/// [`project_velocities`] (no extra rows) of several sets of velocities of the same bodies
+/// at the same poses (`bodies`' own velocities are not used): the rows' matrix built and
+/// factored once; each change the bits [`project_velocities`] gives it alone.
+pub(crate) fn project_velocities_each(
+    joints: &[JointSpec],
+    bodies: &[JointBody],
+    velocities: &[Vec<(Vector, Vector)>],
+) -> Vec<Vec<(Vector, Vector)>> {
+    let mut rows = Vec::new();
+    for joint in joints {
+        self::rows(joint, bodies, &mut rows);
+    }
+    if rows.is_empty() {
+        return vec![vec![(Vector::zeros(), Vector::zeros()); bodies.len()]; velocities.len()];
+    }
+    let rhs = velocities
+        .iter()
+        .map(|nu| DVector::from_iterator(rows.len(), rows.iter().map(|r| -apply(r, nu))))
+        .collect();
+    solve_each(&rows, bodies, rhs)
+        .iter()
+        .map(|lambda| spread(&rows, bodies, lambda, true))
+        .collect()
 }
 
 /// The position change per body (CG shift m, rotation vector rad) that brings every row's

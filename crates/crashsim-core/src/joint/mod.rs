@@ -30,7 +30,7 @@ mod solve;
 
 pub(crate) use constraint::{
     applied_torques, drift_rate, limit_angles, limit_rows, project_positions, project_velocities,
-    reactions, RESTING_ANGLE,
+    project_velocities_each, reactions, RESTING_ANGLE,
 };
 pub(crate) use row::JointBody;
 

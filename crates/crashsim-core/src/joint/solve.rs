@@ -37,12 +37,23 @@ const SPARSE_FROM_ROWS: usize = 30;
 
 /// Solves `(J W J^T) lambda = rhs` for the rows.
 pub(super) fn solve(rows: &[Row], bodies: &[JointBody], rhs: DVector<Real>) -> DVector<Real> {
+    let mut x = solve_each(rows, bodies, vec![rhs]);
+    x.pop().expect("one solution per right-hand side")
+}
+
+/// [`solve`] for several right-hand sides: the matrix built and factored once, each side
+/// solved with that factor (each solution the bits [`solve`] gives it alone).
+pub(super) fn solve_each(
+    rows: &[Row],
+    bodies: &[JointBody],
+    rhs: Vec<DVector<Real>>,
+) -> Vec<DVector<Real>> {
     let n = rows.len();
     if n < SPARSE_FROM_ROWS {
         let a = dense_matrix(rows, bodies);
         return match a.clone().cholesky() {
-            Some(chol) => chol.solve(&rhs),
-            None => least_squares(a, &rhs),
+            Some(chol) => rhs.iter().map(|b| chol.solve(b)).collect(),
+            None => rhs.iter().map(|b| least_squares(a.clone(), b)).collect(),
         };
     }
     KEPT.with(|kept| {
@@ -66,30 +77,39 @@ pub(super) fn solve(rows: &[Row], bodies: &[JointBody], rhs: DVector<Real>) -> D
         // The rows from the last to the first (see [`Symbolic::reversed`]), and the
         // reactions back in the rows' order.
         let reversed: Vec<Row> = rows.iter().rev().cloned().collect();
-        let rhs = DVector::from_iterator(n, rhs.iter().rev().copied());
-        let x = sparse_solve(&reversed, bodies, rhs, symbolic);
-        DVector::from_iterator(n, x.iter().rev().copied())
+        let rhs = rhs
+            .iter()
+            .map(|b| DVector::from_iterator(n, b.iter().rev().copied()))
+            .collect();
+        sparse_solve(&reversed, bodies, rhs, symbolic)
+            .into_iter()
+            .map(|x| DVector::from_iterator(n, x.iter().rev().copied()))
+            .collect()
     })
 }
 
-/// The solve of [`solve`] from [`SPARSE_FROM_ROWS`] rows on, the rows in the order
+/// The solve of [`solve_each`] from [`SPARSE_FROM_ROWS`] rows on, the rows in the order
 /// `symbolic` was made for.
 fn sparse_solve(
     rows: &[Row],
     bodies: &[JointBody],
-    rhs: DVector<Real>,
+    rhs: Vec<DVector<Real>>,
     symbolic: &Symbolic,
-) -> DVector<Real> {
+) -> Vec<DVector<Real>> {
     let mut l = matrix(rows, bodies);
     if !factor(&mut l, symbolic) {
         // (the matrix again: the factor wrote over it; this is rare, a set of rows that
         // holds a body twice)
-        return least_squares(matrix(rows, bodies), &rhs);
+        let a = matrix(rows, bodies);
+        return rhs.iter().map(|b| least_squares(a.clone(), b)).collect();
     }
-    let mut x = rhs;
-    solve_lower(&l, &symbolic.columns, &mut x);
-    solve_lower_transposed(&l, &symbolic.columns, &mut x);
-    x
+    rhs.into_iter()
+        .map(|mut x| {
+            solve_lower(&l, &symbolic.columns, &mut x);
+            solve_lower_transposed(&l, &symbolic.columns, &mut x);
+            x
+        })
+        .collect()
 }
 
 /// `L y = b` in place (b becomes y), L from [`factor`]: nalgebra 0.34's

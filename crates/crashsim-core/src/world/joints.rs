@@ -7,7 +7,10 @@ use std::sync::Arc;
 
 use super::{Motion, Prediction, World};
 use crate::error::{Error, Place, Result};
-use crate::joint::{drift_rate, project_positions, project_velocities, JointBody, JointSpec};
+use crate::joint::{
+    drift_rate, project_positions, project_velocities, project_velocities_each, JointBody,
+    JointSpec,
+};
 use crate::math::{Matrix, Point, Real, Vector};
 use crate::motion::{advance_mechanism, BodyContact, LimitHit, OnGround};
 use crate::vehicle::{wheel_loads, GRAVITY};
@@ -439,18 +442,21 @@ impl World {
         };
         let m = &self.mechanisms[g];
         let me = m.members.iter().position(|&k| k == i).expect("a member");
+        let jb = self.joint_bodies(g);
+        // per axis e: the free members' velocities after a unit impulse e at p (all at rest
+        // but this one), then projected onto the joints (one factor for the three)
+        let kicks: Vec<Vec<(Vector, Vector)>> = (0..3)
+            .map(|axis| {
+                let e = Vector::ith(axis, 1.0);
+                let mut nu = vec![(Vector::zeros(), Vector::zeros()); jb.len()];
+                nu[me] = (e * jb[me].inv_mass, jb[me].inv_inertia * r.cross(&e));
+                nu
+            })
+            .collect();
+        let changes = project_velocities_each(&m.joints, &jb, &kicks);
         let mut k = Matrix::zeros();
-        for axis in 0..3 {
-            let e = Vector::ith(axis, 1.0);
-            let mut jb = self.joint_bodies(g);
-            for b in jb.iter_mut() {
-                b.v = Vector::zeros();
-                b.w = Vector::zeros();
-            }
-            jb[me].v = e * jb[me].inv_mass;
-            jb[me].w = jb[me].inv_inertia * r.cross(&e);
-            let change = project_velocities(&m.joints, &jb, &[]);
-            let (dv, dw) = (jb[me].v + change[me].0, jb[me].w + change[me].1);
+        for (axis, (nu, change)) in kicks.iter().zip(&changes).enumerate() {
+            let (dv, dw) = (nu[me].0 + change[me].0, nu[me].1 + change[me].1);
             k.set_column(axis, &(dv + dw.cross(&r)));
         }
         k
@@ -473,21 +479,22 @@ impl World {
             p - self.bodies[i1].body.position(),
             p - self.bodies[i2].body.position(),
         );
+        let jb = self.joint_bodies(g);
+        // per axis e: -e on a and e on b at p, then projected onto the joints (one factor)
+        let kicks: Vec<Vec<(Vector, Vector)>> = (0..3)
+            .map(|axis| {
+                let e = Vector::ith(axis, 1.0);
+                let mut nu = vec![(Vector::zeros(), Vector::zeros()); jb.len()];
+                nu[a] = (-e * jb[a].inv_mass, jb[a].inv_inertia * ra.cross(&(-e)));
+                nu[b] = (e * jb[b].inv_mass, jb[b].inv_inertia * rb.cross(&e));
+                nu
+            })
+            .collect();
+        let changes = project_velocities_each(&m.joints, &jb, &kicks);
         let mut k = Matrix::zeros();
-        for axis in 0..3 {
-            let e = Vector::ith(axis, 1.0);
-            let mut jb = self.joint_bodies(g);
-            for body in jb.iter_mut() {
-                body.v = Vector::zeros();
-                body.w = Vector::zeros();
-            }
-            jb[a].v = -e * jb[a].inv_mass;
-            jb[a].w = jb[a].inv_inertia * ra.cross(&(-e));
-            jb[b].v = e * jb[b].inv_mass;
-            jb[b].w = jb[b].inv_inertia * rb.cross(&e);
-            let change = project_velocities(&m.joints, &jb, &[]);
+        for (axis, (nu, change)) in kicks.iter().zip(&changes).enumerate() {
             let point =
-                |i: usize, r: &Vector| (jb[i].v + change[i].0) + (jb[i].w + change[i].1).cross(r);
+                |i: usize, r: &Vector| (nu[i].0 + change[i].0) + (nu[i].1 + change[i].1).cross(r);
             k.set_column(axis, &(point(b, &rb) - point(a, &ra)));
         }
         k
