@@ -96,81 +96,23 @@ fn sparse_solve(
     rhs: Vec<DVector<Real>>,
     symbolic: &Symbolic,
 ) -> Vec<DVector<Real>> {
-    let mut l = matrix(rows, bodies);
+    let mut l = matrix(rows, bodies, &symbolic.pairs);
     if !factor(&mut l, symbolic) {
         // (the matrix again: the factor wrote over it; this is rare, a set of rows that
         // holds a body twice)
-        let a = matrix(rows, bodies);
+        let a = matrix(rows, bodies, &symbolic.pairs);
         return rhs.iter().map(|b| least_squares(a.clone(), b)).collect();
     }
     rhs.into_iter()
         .map(|mut x| {
-            solve_lower(&l, &symbolic.columns, &mut x);
-            solve_lower_transposed(&l, &symbolic.columns, &mut x);
+            // nalgebra's `Cholesky::solve`: L y = rhs, then L^T x = y. (Dense: over L's
+            // non-zeros only, with nalgebra's order of sums, the two took 7 % longer on a
+            // pedestrian strike: the dense loops run in SIMD.)
+            l.solve_lower_triangular_unchecked_mut(&mut x);
+            l.ad_solve_lower_triangular_unchecked_mut(&mut x);
             x
         })
         .collect()
-}
-
-/// `L y = b` in place (b becomes y), L from [`factor`]: nalgebra 0.34's
-/// `solve_lower_triangular_unchecked_mut` (column by column, `y_k = -c L_kj + y_k`) on the
-/// entries of L that can be non-zero only (`columns`): the same bits but for the sign of a
-/// zero (a zero entry's term would only add a zero).
-fn solve_lower(l: &DMatrix<Real>, columns: &[Vec<usize>], b: &mut DVector<Real>) {
-    let n = b.len();
-    let l = l.as_slice(); // column-major: L_ij at l[i + n j]
-    for j in 0..n {
-        let c = b[j] / l[j + n * j];
-        b[j] = c;
-        for &k in &columns[j] {
-            b[k] += -c * l[k + n * j];
-        }
-    }
-}
-
-/// `L^T x = y` in place (y becomes x): nalgebra 0.34's
-/// `ad_solve_lower_triangular_unchecked_mut`, from the last row up, `x_i = (y_i - d) / L_ii`
-/// with d the dot product of L's column i below the diagonal with x below i, which nalgebra
-/// sums in 8 running sums by position (each whole block of 8 from i + 1), adds them as
-/// (0 + 4) (1 + 5) (2 + 6) (3 + 7), then the rest one by one. Here the same sums over the
-/// entries that can be non-zero only (`columns`), each in its running sum: the same bits but
-/// for the sign of a zero.
-fn solve_lower_transposed(l: &DMatrix<Real>, columns: &[Vec<usize>], x: &mut DVector<Real>) {
-    let n = x.len();
-    let l = l.as_slice();
-    for i in (0..n).rev() {
-        let (start, len) = (i + 1, n - i - 1);
-        let blocks_end = start + len - len % 8; // the 8 running sums cover start..blocks_end
-        let mut acc = [0.0; 8];
-        let mut rest = 0.0;
-        let mut in_blocks = true;
-        for &k in &columns[i] {
-            let term = l[k + n * i] * x[k];
-            if k < blocks_end {
-                acc[(k - start) % 8] += term;
-            } else {
-                if in_blocks {
-                    rest = lanes(&acc);
-                    in_blocks = false;
-                }
-                rest += term;
-            }
-        }
-        if in_blocks {
-            rest = lanes(&acc);
-        }
-        x[i] = (x[i] - rest) / l[i + n * i];
-    }
-}
-
-/// nalgebra's sum of its 8 running sums: `0 + (a0 + a4)`, then `+ (a1 + a5)`, ...
-fn lanes(acc: &[Real; 8]) -> Real {
-    let mut res = 0.0;
-    res += acc[0] + acc[4];
-    res += acc[1] + acc[5];
-    res += acc[2] + acc[6];
-    res += acc[3] + acc[7];
-    res
 }
 
 /// Redundant rows: the least-squares reactions (the solve cannot fail for an SVD).
@@ -257,17 +199,17 @@ fn sharing_pairs(rows: &[Row], bodies: usize, mut f: impl FnMut(usize, usize)) {
     }
 }
 
-/// [`dense_matrix`], bit for bit, visiting only the pairs of rows that share a body (through
-/// each body's rows): a mechanism of many bodies costs what its joints' neighbours do, not
-/// the square of its rows.
-fn matrix(rows: &[Row], bodies: &[JointBody]) -> DMatrix<Real> {
+/// [`dense_matrix`], bit for bit, visiting only the pairs of rows that share a body (`pairs`,
+/// [`Symbolic::pairs`] for these rows): a mechanism of many bodies costs what its joints'
+/// neighbours do, not the square of its rows.
+fn matrix(rows: &[Row], bodies: &[JointBody], pairs: &[(usize, usize)]) -> DMatrix<Real> {
     let moves: Vec<_> = rows.iter().map(|r| mobility(r, bodies)).collect();
     let mut a = DMatrix::<Real>::zeros(rows.len(), rows.len());
-    sharing_pairs(rows, bodies.len(), |i, j| {
+    for &(i, j) in pairs {
         let s = entry(&rows[i], &rows[j], &moves[j]);
         a[(i, j)] = s;
         a[(j, i)] = s;
-    });
+    }
     a
 }
 
@@ -294,6 +236,9 @@ struct Symbolic {
     /// diagonal that can be non-zero in that order, and none beyond the matrix's own from
     /// the leaves in (the order reversed), where the factor then costs about a third.
     reversed: bool,
+    /// The pairs of rows (i <= j, in the order factored) that share a body: where the
+    /// matrix can be non-zero ([`sharing_pairs`]), kept so that [`matrix`] need not find them.
+    pairs: Vec<(usize, usize)>,
     /// Per column, the rows below the diagonal where L may be non-zero ([`structure`]), in
     /// the order factored.
     columns: Vec<Vec<usize>>,
@@ -309,6 +254,9 @@ impl Symbolic {
         let entries = |columns: &[Vec<usize>]| columns.iter().map(Vec::len).sum::<usize>();
         let reversed = entries(&backward) < entries(&forward);
         let columns = if reversed { backward } else { forward };
+        let mut pairs = Vec::new();
+        let ordered = if reversed { &reversed_rows[..] } else { rows };
+        sharing_pairs(ordered, bodies, |i, j| pairs.push((i, j)));
         let mut in_row = vec![Vec::new(); rows.len()];
         for (k, below) in columns.iter().enumerate() {
             for &i in below {
@@ -318,6 +266,7 @@ impl Symbolic {
         Symbolic {
             key: rows.iter().map(|r| (r.a, r.b)).collect(),
             reversed,
+            pairs,
             columns,
             in_row,
         }
@@ -562,7 +511,7 @@ mod tests {
             let symbolic = Symbolic::new(&rows, bodies.len());
             reversed += usize::from(symbolic.reversed && rows.len() >= SPARSE_FROM_ROWS);
             let ordered = in_order(&rows, &symbolic);
-            let a = matrix(&ordered, &bodies);
+            let a = matrix(&ordered, &bodies, &symbolic.pairs);
             assert_eq!(
                 bits(&a),
                 bits(&dense_matrix(&ordered, &bodies)),
