@@ -385,6 +385,61 @@ pub fn vehicle(
     drive: Vec<Option<Bound<'_, PyAny>>>,
     switches: Vec<Bound<'_, PyAny>>,
 ) -> PyResult<VehicleSpec> {
+    let wheels = wheel_specs(
+        centers,
+        radii,
+        steerable,
+        static_loads,
+        spring_rates,
+        damping,
+    )?;
+    // (in this order: the first bad input is the one reported)
+    let brake = brakings(brake)?;
+    let steer = steer_input(steer)?;
+    let inputs = DriverInputs {
+        steer,
+        brake,
+        drive: drive
+            .iter()
+            .enumerate()
+            .map(|(k, d)| {
+                d.as_ref()
+                    .map(|t| wheel_table(t, "drive force", k))
+                    .transpose()
+            })
+            .collect::<PyResult<_>>()?,
+        switches: switches.iter().map(switch).collect::<PyResult<_>>()?,
+    };
+    Ok(VehicleSpec {
+        wheels,
+        tyre: tyre.map_or_else(core::vehicle::Tyre::default, |t| t.inner.clone()),
+        steering: linkage,
+        anti_roll: anti_roll
+            .into_iter()
+            .map(|(left, right, roll_stiffness)| AntiRollBar {
+                left,
+                right,
+                roll_stiffness,
+            })
+            .collect(),
+        abs,
+        inputs,
+        coupling: None,
+        hitch_load: None,
+        load_groups: Vec::new(),
+    })
+}
+
+/// The wheels from the per-wheel arrays (n centres, m; radii m; steerable; static loads N;
+/// spring rates N/m; damping N s/m), each array's length checked against the centres'.
+fn wheel_specs(
+    centers: &Bound<'_, PyAny>,
+    radii: &Bound<'_, PyAny>,
+    steerable: &Bound<'_, PyAny>,
+    static_loads: &Bound<'_, PyAny>,
+    spring_rates: &Bound<'_, PyAny>,
+    damping: &Bound<'_, PyAny>,
+) -> PyResult<Vec<WheelSpec>> {
     let c = rows(centers, 3, "wheel centres").map_err(errors::to_py)?;
     let n = c.len();
     let radii = values(radii, n, "wheel radii")?;
@@ -400,7 +455,7 @@ pub fn vehicle(
             steerable.len()
         )));
     }
-    let wheels = (0..n)
+    Ok((0..n)
         .map(|k| WheelSpec {
             center: Point::new(c[k][0], c[k][1], c[k][2]),
             radius: radii[k],
@@ -409,7 +464,11 @@ pub fn vehicle(
             spring_rate: rates[k],
             damping: damp[k],
         })
-        .collect();
+        .collect())
+}
+
+/// Each wheel's braking: None, or (kind, table, share) as [`BrakeRow`] gives it.
+fn brakings(brake: Vec<Option<BrakeRow<'_>>>) -> PyResult<Vec<Option<Braking>>> {
     let mut brakes = Vec::with_capacity(brake.len());
     for (k, b) in brake.into_iter().enumerate() {
         brakes.push(match b {
@@ -433,7 +492,14 @@ pub fn vehicle(
             }
         });
     }
-    let steer = match steer {
+    Ok(brakes)
+}
+
+/// The steering input: None, or (kind, value) with kind "road_wheel" or "steering_wheel"
+/// (a table), "per_wheel" (a table or None per wheel) or "path" (points, preview,
+/// min_distance).
+fn steer_input(steer: Option<(String, Bound<'_, PyAny>)>) -> PyResult<Option<SteerInput>> {
+    Ok(match steer {
         None => None,
         Some((kind, value)) => {
             Some(match kind.as_str() {
@@ -483,36 +549,5 @@ pub fn vehicle(
                 }
             })
         }
-    };
-    let mut drives = Vec::with_capacity(drive.len());
-    for (k, d) in drive.into_iter().enumerate() {
-        drives.push(match d {
-            None => None,
-            Some(t) => Some(wheel_table(&t, "drive force", k)?),
-        });
-    }
-    let inputs = DriverInputs {
-        steer,
-        brake: brakes,
-        drive: drives,
-        switches: switches.iter().map(switch).collect::<PyResult<_>>()?,
-    };
-    Ok(VehicleSpec {
-        wheels,
-        tyre: tyre.map_or_else(core::vehicle::Tyre::default, |t| t.inner.clone()),
-        steering: linkage,
-        anti_roll: anti_roll
-            .into_iter()
-            .map(|(left, right, roll_stiffness)| AntiRollBar {
-                left,
-                right,
-                roll_stiffness,
-            })
-            .collect(),
-        abs,
-        inputs,
-        coupling: None,
-        hitch_load: None,
-        load_groups: Vec::new(),
     })
 }
