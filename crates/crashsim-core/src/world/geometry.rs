@@ -209,57 +209,7 @@ impl World {
             let (n, t) = reading(&r0, &b1_0, dt0)?;
             return Some((n, t, None));
         }
-        // The footprint at each time tried (s, m^2).
-        let tried = std::cell::RefCell::new(vec![(dt0, footprint(&r0, &b1_0, &b2_0))]);
-        let covers = |dt: Real| {
-            let (r, b1, b2) = region_at(dt);
-            let f = footprint(&r, &b1, &b2);
-            tried.borrow_mut().push((dt, f));
-            f >= NORMAL_FOOTPRINT
-        };
-        // Bracket by doubling the depth, then bisect to FOOTPRINT_DEPTH_TOLERANCE and
-        // interpolate the footprint linearly across the last bracket (so the reading moves
-        // continuously with the geometry, not by the bracket's jumps).
-        let (mut lo, mut hi) = (dt0, (2.0 * dt0).min(cap));
-        let mut covered = covers(hi);
-        while !covered && hi < cap {
-            (lo, hi) = (hi, (2.0 * hi).min(cap));
-            covered = covers(hi);
-        }
-        let dt = if covered {
-            let hi = bisect(lo, hi, FOOTPRINT_DEPTH_TOLERANCE * lo, &covers);
-            let tried = tried.borrow();
-            let below = tried
-                .iter()
-                .filter(|(t, f)| *t < hi && *f < NORMAL_FOOTPRINT)
-                .fold((dt0, 0.0), |a, &b| if b.0 > a.0 { b } else { a });
-            let at_hi = tried
-                .iter()
-                .find(|(t, _)| *t == hi)
-                .map_or(NORMAL_FOOTPRINT, |x| x.1);
-            if at_hi > below.1 {
-                let s = ((NORMAL_FOOTPRINT - below.1) / (at_hi - below.1)).clamp(0.0, 1.0);
-                below.0 + s * (hi - below.0)
-            } else {
-                hi
-            }
-        } else if !region_at(cap).0.is_empty() {
-            cap
-        } else {
-            // The narrow overlap ends before it covers the footprint (a corner passing by):
-            // read it where its footprint is largest, among samples up to its end.
-            let end = bisect(dt0, cap, FOOTPRINT_TOLERANCE, |dt| {
-                region_at(dt).0.is_empty()
-            });
-            (1..=FOOTPRINT_SAMPLES)
-                .map(|k| dt0 + (end - dt0) * k as Real / (FOOTPRINT_SAMPLES + 1) as Real)
-                .map(|dt| {
-                    let (r, b1, b2) = region_at(dt);
-                    (dt, footprint(&r, &b1, &b2))
-                })
-                .fold((dt0, 0.0), |best, x| if x.1 > best.1 { x } else { best })
-                .0
-        };
+        let dt = narrow_reading_time(&region_at, dt0, footprint(&r0, &b1_0, &b2_0), cap);
         let (r, b1, _) = region_at(dt);
         if r.is_empty() || !sound(&r) {
             // The narrow overlap was cut through on the way: keep the 2 cm reading.
@@ -458,5 +408,68 @@ impl World {
             effective_mass,
             normal_time,
         })
+    }
+}
+
+/// Rule 1 of [`World::early_normal`] for a narrow overlap (one whose footprint at the 2 cm
+/// reading, `footprint0` m^2 at `dt0` s, is under NORMAL_FOOTPRINT): the time after the
+/// timer's start (s, at most `cap`) at which it is read. `region_at(dt)` is the overlap
+/// region and the two bodies `dt` s after the timer's start.
+fn narrow_reading_time(
+    region_at: &dyn Fn(Real) -> (OverlapRegion, RigidBody, RigidBody),
+    dt0: Real,
+    footprint0: Real,
+    cap: Real,
+) -> Real {
+    // The footprint at each time tried (s, m^2).
+    let tried = std::cell::RefCell::new(vec![(dt0, footprint0)]);
+    let covers = |dt: Real| {
+        let (r, b1, b2) = region_at(dt);
+        let f = footprint(&r, &b1, &b2);
+        tried.borrow_mut().push((dt, f));
+        f >= NORMAL_FOOTPRINT
+    };
+    // Bracket by doubling the depth, then bisect to FOOTPRINT_DEPTH_TOLERANCE and
+    // interpolate the footprint linearly across the last bracket (so the reading moves
+    // continuously with the geometry, not by the bracket's jumps).
+    let (mut lo, mut hi) = (dt0, (2.0 * dt0).min(cap));
+    let mut covered = covers(hi);
+    while !covered && hi < cap {
+        (lo, hi) = (hi, (2.0 * hi).min(cap));
+        covered = covers(hi);
+    }
+    if covered {
+        let hi = bisect(lo, hi, FOOTPRINT_DEPTH_TOLERANCE * lo, &covers);
+        let tried = tried.borrow();
+        let below = tried
+            .iter()
+            .filter(|(t, f)| *t < hi && *f < NORMAL_FOOTPRINT)
+            .fold((dt0, 0.0), |a, &b| if b.0 > a.0 { b } else { a });
+        let at_hi = tried
+            .iter()
+            .find(|(t, _)| *t == hi)
+            .map_or(NORMAL_FOOTPRINT, |x| x.1);
+        if at_hi > below.1 {
+            let s = ((NORMAL_FOOTPRINT - below.1) / (at_hi - below.1)).clamp(0.0, 1.0);
+            below.0 + s * (hi - below.0)
+        } else {
+            hi
+        }
+    } else if !region_at(cap).0.is_empty() {
+        cap
+    } else {
+        // The narrow overlap ends before it covers the footprint (a corner passing by):
+        // read it where its footprint is largest, among samples up to its end.
+        let end = bisect(dt0, cap, FOOTPRINT_TOLERANCE, |dt| {
+            region_at(dt).0.is_empty()
+        });
+        (1..=FOOTPRINT_SAMPLES)
+            .map(|k| dt0 + (end - dt0) * k as Real / (FOOTPRINT_SAMPLES + 1) as Real)
+            .map(|dt| {
+                let (r, b1, b2) = region_at(dt);
+                (dt, footprint(&r, &b1, &b2))
+            })
+            .fold((dt0, 0.0), |best, x| if x.1 > best.1 { x } else { best })
+            .0
     }
 }
