@@ -308,32 +308,8 @@ impl World {
             },
             |(n, t)| (n, Some(t)),
         );
-        let normal = match &pair.params.normal {
-            NormalMode::Volume => volume_normal,
-            NormalMode::Fixed(v) => v.normalize(),
-            NormalMode::Horizontal { pitch } => {
-                let h = Vector::new(volume_normal.x, volume_normal.y, 0.0);
-                if h.norm() < 1e-9 {
-                    volume_normal
-                } else {
-                    h.normalize() * pitch.cos() + Vector::z() * pitch.sin()
-                }
-            }
-        };
-        let tangent = {
-            let t = Vector::z().cross(&normal);
-            if t.norm() > 1e-9 {
-                t.normalize()
-            } else {
-                Vector::x().cross(&normal).normalize()
-            }
-        };
-        let binormal = normal.cross(&tangent);
-        let frame = Matrix::from_rows(&[
-            normal.transpose(),
-            tangent.transpose(),
-            binormal.transpose(),
-        ]);
+        let normal = chosen_normal(&pair.params.normal, volume_normal);
+        let frame = contact_frame(&normal);
         let (mut rmin, mut rmax) = (
             frame * region.points[0].coords,
             frame * region.points[0].coords,
@@ -409,6 +385,43 @@ impl World {
             normal_time,
         })
     }
+}
+
+/// The exchange's normal (world, unit) by the pair's normal mode, from the overlap's volume
+/// normal (world, unit): that normal, a fixed direction, or its horizontal part pitched by
+/// `pitch` rad (the volume normal itself when it is vertical).
+fn chosen_normal(mode: &NormalMode, volume_normal: Vector) -> Vector {
+    match mode {
+        NormalMode::Volume => volume_normal,
+        NormalMode::Fixed(v) => v.normalize(),
+        NormalMode::Horizontal { pitch } => {
+            let h = Vector::new(volume_normal.x, volume_normal.y, 0.0);
+            if h.norm() < 1e-9 {
+                volume_normal
+            } else {
+                h.normalize() * pitch.cos() + Vector::z() * pitch.sin()
+            }
+        }
+    }
+}
+
+/// The contact frame (rows: the normal, a horizontal tangent z x n, the binormal n x t;
+/// world to contact coordinates) of a unit normal; the tangent from x when n is vertical.
+fn contact_frame(normal: &Vector) -> Matrix {
+    let tangent = {
+        let t = Vector::z().cross(normal);
+        if t.norm() > 1e-9 {
+            t.normalize()
+        } else {
+            Vector::x().cross(normal).normalize()
+        }
+    };
+    let binormal = normal.cross(&tangent);
+    Matrix::from_rows(&[
+        normal.transpose(),
+        tangent.transpose(),
+        binormal.transpose(),
+    ])
 }
 
 /// Rule 1 of [`World::early_normal`] for a narrow overlap (one whose footprint at the 2 cm
