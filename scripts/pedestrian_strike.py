@@ -75,7 +75,8 @@ def strike(speed_kmh: float, dtp: float, normal: str, duration: float, pose: str
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", cs.DepthOfPenetrationWarning)
-        result = scene.run(duration, dt=dt)
+        # (Scene.run takes a number: None means the engine's default step)
+        result = scene.run(duration) if dt is None else scene.run(duration, dt=dt)
     wall = time.perf_counter() - t0
     if soft is not None:
         soft_report(scene, result, ped, car, speed_kmh, soft, damping_ratio, wall, duration)
