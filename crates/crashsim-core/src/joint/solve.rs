@@ -2,8 +2,9 @@
 //! bodies' inverse masses and world inverse inertias. Symmetric positive definite for a tree
 //! of joints (Cholesky); redundant rows (a loop, a body held twice) by least squares.
 //!
-//! Results are those of nalgebra's dense Cholesky bit for bit (the tests compare them); only
-//! the zeros of the matrix and of its factor are passed over.
+//! Results are those of nalgebra's dense Cholesky of the rows in the order factored (their
+//! own, or reversed: [`Symbolic::reversed`]) bit for bit (the tests compare them); only the
+//! zeros of the matrix and of its factor are passed over.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -232,9 +233,10 @@ struct Symbolic {
     /// True when the rows are factored from the last to the first: the order whose factor
     /// has fewer entries that can be non-zero. A mechanism's rows come from its root out
     /// (a pedestrian's from the pelvis), and eliminating a body's joint before its children's
-    /// fills L in: a walking pedestrian's 57 rows leave 568 of 1,653 entries below the
-    /// diagonal that can be non-zero in that order, and none beyond the matrix's own from
-    /// the leaves in (the order reversed), where the factor then costs about a third.
+    /// fills L in: for a walking pedestrian's 57 rows, 545 entries below the diagonal can be
+    /// non-zero in that order, and 317 (the matrix's own: no fill) from the leaves in (the
+    /// order reversed), where the factor costs about a third (2.0 against 5.8 us measured on
+    /// a 64-row tree).
     reversed: bool,
     /// The pairs of rows (i <= j, in the order factored) that share a body: where the
     /// matrix can be non-zero ([`sharing_pairs`]), kept so that [`matrix`] need not find them.
