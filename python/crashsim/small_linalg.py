@@ -1,6 +1,8 @@
 """Products of small vectors and matrices (3-vectors, 3 x 3 rotations, N x 3 points) in one
-fixed order of operations, so that what crashsim builds and reports is the same bits on every
-machine.
+fixed order of operations, so that what crashsim builds and reports is the same bits whichever
+BLAS kernel and SIMD level numpy runs on this CPU. (The C library's sin, atan2... may still
+differ between CPUs with and without FMA: with glibc's FMA variants turned off
+(GLIBC_TUNABLES), the two jointed-vehicle cases of scripts/result_fingerprint.py change.)
 
 numpy's ``@``, ``dot`` and ``linalg.norm`` call OpenBLAS, which picks its kernels for the CPU
 when it loads (``OPENBLAS_CORETYPE``: Prescott, Haswell, SkylakeX, ...), and the kernels
