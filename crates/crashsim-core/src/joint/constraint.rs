@@ -477,38 +477,31 @@ pub(crate) fn reactions(
 
 /// The velocity change per body (linear, angular) that brings every row's rate to zero with
 /// the least kinetic energy change: `-W J^T (J W J^T)^-1 J nu` over the joints' rows and the
-/// extra rows given (the limits being stopped).
+/// extra rows given (the limits being stopped), nu the bodies' own velocities.
 pub(crate) fn project_velocities(
     joints: &[JointSpec],
     bodies: &[JointBody],
     extra: &[Row],
 ) -> Vec<(Vector, Vector)> {
-    let mut rows = Vec::new();
-    for joint in joints {
-        self::rows(joint, bodies, &mut rows);
-    }
-    rows.extend_from_slice(extra);
-    if rows.is_empty() {
-        return vec![(Vector::zeros(), Vector::zeros()); bodies.len()];
-    }
     let nu: Vec<_> = bodies.iter().map(|b| (b.v, b.w)).collect();
-    let rhs = DVector::from_iterator(rows.len(), rows.iter().map(|r| -apply(r, &nu)));
-    let lambda = solve(&rows, bodies, rhs);
-    spread(&rows, bodies, &lambda, true)
+    let mut change = project_velocities_each(joints, bodies, extra, &[nu]);
+    change.pop().expect("one change per set of velocities")
 }
 
-/// [`project_velocities`] (no extra rows) of several sets of velocities of the same bodies
-/// at the same poses (`bodies`' own velocities are not used): the rows' matrix built and
-/// factored once; each change the bits [`project_velocities`] gives it alone.
+/// [`project_velocities`] of several sets of velocities of the same bodies at the same poses
+/// (`bodies`' own velocities are not used: the rows' Jacobians depend on the poses only): the
+/// rows' matrix built and factored once; each change the bits it would get alone.
 pub(crate) fn project_velocities_each(
     joints: &[JointSpec],
     bodies: &[JointBody],
+    extra: &[Row],
     velocities: &[Vec<(Vector, Vector)>],
 ) -> Vec<Vec<(Vector, Vector)>> {
     let mut rows = Vec::new();
     for joint in joints {
         self::rows(joint, bodies, &mut rows);
     }
+    rows.extend_from_slice(extra);
     if rows.is_empty() {
         return vec![vec![(Vector::zeros(), Vector::zeros()); bodies.len()]; velocities.len()];
     }

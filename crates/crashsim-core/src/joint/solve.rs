@@ -54,7 +54,7 @@ pub(super) fn solve_each(
         let a = dense_matrix(rows, bodies);
         return match a.clone().cholesky() {
             Some(chol) => rhs.iter().map(|b| chol.solve(b)).collect(),
-            None => rhs.iter().map(|b| least_squares(a.clone(), b)).collect(),
+            None => least_squares(a, &rhs),
         };
     }
     KEPT.with(|kept| {
@@ -101,8 +101,7 @@ fn sparse_solve(
     if !factor(&mut l, symbolic) {
         // (the matrix again: the factor wrote over it; this is rare, a set of rows that
         // holds a body twice)
-        let a = matrix(rows, bodies, &symbolic.pairs);
-        return rhs.iter().map(|b| least_squares(a.clone(), b)).collect();
+        return least_squares(matrix(rows, bodies, &symbolic.pairs), &rhs);
     }
     rhs.into_iter()
         .map(|mut x| {
@@ -116,12 +115,14 @@ fn sparse_solve(
         .collect()
 }
 
-/// Redundant rows: the least-squares reactions (the solve cannot fail for an SVD).
-fn least_squares(a: DMatrix<Real>, rhs: &DVector<Real>) -> DVector<Real> {
-    let n = rhs.len();
-    a.svd(true, true)
-        .solve(rhs, 1e-12)
-        .unwrap_or_else(|_| DVector::zeros(n))
+/// Redundant rows: the least-squares reactions for each right-hand side, from one SVD (its
+/// solve cannot fail).
+fn least_squares(a: DMatrix<Real>, rhs: &[DVector<Real>]) -> Vec<DVector<Real>> {
+    let n = a.nrows();
+    let svd = a.svd(true, true);
+    rhs.iter()
+        .map(|b| svd.solve(b, 1e-12).unwrap_or_else(|_| DVector::zeros(n)))
+        .collect()
 }
 
 /// Entry (i, j) of `J W J^T`: row i's J on the bodies row j moves (`moves`, row j's

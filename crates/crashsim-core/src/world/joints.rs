@@ -453,7 +453,7 @@ impl World {
                 nu
             })
             .collect();
-        let changes = project_velocities_each(&m.joints, &jb, &kicks);
+        let changes = project_velocities_each(&m.joints, &jb, &[], &kicks);
         let mut k = Matrix::zeros();
         for (axis, (nu, change)) in kicks.iter().zip(&changes).enumerate() {
             let (dv, dw) = (nu[me].0 + change[me].0, nu[me].1 + change[me].1);
@@ -490,7 +490,7 @@ impl World {
                 nu
             })
             .collect();
-        let changes = project_velocities_each(&m.joints, &jb, &kicks);
+        let changes = project_velocities_each(&m.joints, &jb, &[], &kicks);
         let mut k = Matrix::zeros();
         for (axis, (nu, change)) in kicks.iter().zip(&changes).enumerate() {
             let point =
