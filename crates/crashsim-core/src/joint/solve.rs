@@ -215,15 +215,22 @@ fn matrix(rows: &[Row], bodies: &[JointBody], pairs: &[(usize, usize)]) -> DMatr
     a
 }
 
-/// Per column j of the matrix, the rows i > j that share a body with row j (ascending):
-/// where it can be non-zero below its diagonal.
-fn pattern(rows: &[Row], bodies: usize) -> Vec<Vec<usize>> {
-    let mut below = vec![Vec::new(); rows.len()];
-    sharing_pairs(rows, bodies, |i, j| {
+/// The pairs of rows (i <= j, j ascending) that share a body ([`sharing_pairs`]).
+fn sharing(rows: &[Row], bodies: usize) -> Vec<(usize, usize)> {
+    let mut pairs = Vec::new();
+    sharing_pairs(rows, bodies, |i, j| pairs.push((i, j)));
+    pairs
+}
+
+/// Per column j of the matrix of `n` rows, the rows i > j that share a body with row j
+/// (ascending), from their sharing pairs: where it can be non-zero below its diagonal.
+fn below_diagonal(pairs: &[(usize, usize)], n: usize) -> Vec<Vec<usize>> {
+    let mut below = vec![Vec::new(); n];
+    for &(i, j) in pairs {
         if i < j {
             below[i].push(j); // j ascends: each list is sorted
         }
-    });
+    }
     below
 }
 
@@ -251,15 +258,19 @@ struct Symbolic {
 
 impl Symbolic {
     fn new(rows: &[Row], bodies: usize) -> Symbolic {
-        let forward = structure(pattern(rows, bodies));
+        let n = rows.len();
+        let forward_pairs = sharing(rows, bodies);
         let reversed_rows: Vec<Row> = rows.iter().rev().cloned().collect();
-        let backward = structure(pattern(&reversed_rows, bodies));
+        let backward_pairs = sharing(&reversed_rows, bodies);
+        let forward = structure(below_diagonal(&forward_pairs, n));
+        let backward = structure(below_diagonal(&backward_pairs, n));
         let entries = |columns: &[Vec<usize>]| columns.iter().map(Vec::len).sum::<usize>();
         let reversed = entries(&backward) < entries(&forward);
-        let columns = if reversed { backward } else { forward };
-        let mut pairs = Vec::new();
-        let ordered = if reversed { &reversed_rows[..] } else { rows };
-        sharing_pairs(ordered, bodies, |i, j| pairs.push((i, j)));
+        let (columns, pairs) = if reversed {
+            (backward, backward_pairs)
+        } else {
+            (forward, forward_pairs)
+        };
         let mut in_row = vec![Vec::new(); rows.len()];
         for (k, below) in columns.iter().enumerate() {
             for &i in below {
@@ -313,9 +324,9 @@ fn key_hash(rows: &[Row]) -> u64 {
 }
 
 /// Where L can be non-zero below its diagonal, column by column (ascending rows), from where
-/// the matrix can be (`below`, [`matrix`]'s): column j's own rows and those of every column
-/// whose first row below the diagonal is j (the elimination tree's children), past j. A
-/// superset of L's non-zeros whatever the values.
+/// the matrix can be (`below`, [`below_diagonal`]'s): column j's own rows and those of every
+/// column whose first row below the diagonal is j (the elimination tree's children), past j.
+/// A superset of L's non-zeros whatever the values.
 fn structure(below: Vec<Vec<usize>>) -> Vec<Vec<usize>> {
     let mut columns = below;
     for j in 0..columns.len() {
@@ -472,6 +483,11 @@ mod tests {
 
     fn bits<'a>(m: impl IntoIterator<Item = &'a Real>) -> Vec<u64> {
         m.into_iter().map(|x| x.to_bits()).collect()
+    }
+
+    /// Where the matrix of the rows can be non-zero below its diagonal ([`below_diagonal`]).
+    fn pattern(rows: &[Row], bodies: usize) -> Vec<Vec<usize>> {
+        below_diagonal(&sharing(rows, bodies), rows.len())
     }
 
     /// The rows in the order a [`Symbolic`] factors them.
