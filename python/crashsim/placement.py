@@ -22,7 +22,7 @@ from crashsim.environment.ground import Ground
 from crashsim.environment.obstacles import Obstacle
 from crashsim.errors import ParameterError, SceneError
 from crashsim.records import rotation_matrix
-from crashsim.small_linalg import matmul, norm
+from crashsim.small_linalg import matmul, norm, rotation_about
 from crashsim.vehicles.checks import _as_float, _read_only
 from crashsim.vehicles.inputs import DriverInputs
 from crashsim.vehicles.vehicle import Vehicle
@@ -199,9 +199,7 @@ def _resting(ground: Ground | None, p: Placement) -> Placement:
     sin, cos = float(norm(axis)), float(n[2])
     tilt = np.eye(3)
     if sin > 0.0:
-        k_ = axis / sin
-        cross = np.array([[0, -k_[2], k_[1]], [k_[2], 0, -k_[0]], [-k_[1], k_[0], 0]])
-        tilt = np.eye(3) + sin * cross + (1.0 - cos) * matmul(cross, cross)
+        tilt = rotation_about(axis / sin, sin, cos)
     q = _quaternion_from_matrix(matmul(tilt, yaw))
     cg = np.array([x, y, a + b * x + c * y]) + h * n
     return dataclasses.replace(

@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim.errors import ParameterError
 from crashsim.names import check_name
-from crashsim.small_linalg import by_libm, dot, matmul, norm, transform_points
+from crashsim.small_linalg import by_libm, dot, matmul, norm, rotation_about, transform_points
 from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = ["KINDS", "Bicycle", "BicycleFit", "Parts"]
@@ -88,15 +88,14 @@ def _tube(a: ArrayLike, b: ArrayLike, radius: float) -> trimesh.Trimesh:
     length = float(norm(b - a))
     mesh = trimesh.creation.capsule(height=max(length, 1e-6), radius=radius,
                                     count=list(_TUBE_COUNT))  # fmt: skip
-    # trimesh's capsule lies along z, centred at the origin: turn z onto a -> b (Rodrigues,
-    # about z x d by the angle between them)
+    # trimesh's capsule lies along z, centred at the origin: turn z onto a -> b (about z x d
+    # by the angle between them)
     d = (b - a) / length
     k = np.array([-d[1], d[0], 0.0])  # z x d
     s, c = float(norm(k)), float(d[2])
     turn = np.eye(3)
     if s > 1e-12:
-        kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]]) / s
-        turn = np.eye(3) + s * kx + (1.0 - c) * matmul(kx, kx)
+        turn = rotation_about(k / s, s, c)
     elif c < 0.0:
         turn = np.diag([1.0, -1.0, -1.0])  # half a turn about x
     transform = np.eye(4)

@@ -36,7 +36,7 @@ from crashsim.errors import ParameterError
 from crashsim.human.anthropometry import Segment, body_segments
 from crashsim.human.cycling_pose import cycling_angles
 from crashsim.names import check_name
-from crashsim.small_linalg import dot, matmul, norm, transform_points
+from crashsim.small_linalg import dot, matmul, norm, rotation_about, transform_points
 from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = ["POSES", "Pedestrian", "PedestrianJoint"]
@@ -58,8 +58,7 @@ def _table() -> dict[str, Any]:
 def _rot(axis: Array, angle_deg: float) -> Array:
     """The rotation by ``angle_deg`` about the unit ``axis`` (Rodrigues)."""
     a = math.radians(angle_deg)
-    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    return np.eye(3) + math.sin(a) * k + (1.0 - math.cos(a)) * matmul(k, k)
+    return rotation_about(axis, math.sin(a), math.cos(a))
 
 
 @dataclass(frozen=True)
@@ -436,8 +435,7 @@ def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
 def _axis_angle(axis: Array, angle: float) -> Array:
     """The rotation matrix of ``angle`` rad about the unit ``axis`` (Rodrigues)."""
     k = np.asarray(axis, dtype=np.float64) / norm(axis)
-    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
-    return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * matmul(kx, kx)
+    return rotation_about(k, math.sin(angle), math.cos(angle))
 
 
 def _frame(z: Array, x_hint: Array) -> Array:
