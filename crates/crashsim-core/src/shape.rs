@@ -484,10 +484,13 @@ impl MeshShape {
             .collect()
     }
 
-    /// True when the body-frame point is inside (winding number above one half).
+    /// True when the body-frame point is inside (winding number above one half). A point
+    /// outside the mesh's box is outside without its winding number: the box holds the
+    /// convex hull, beyond which a closed mesh's winding number is 0 (and an open one's,
+    /// seen from one side, below one half), as the overlap's box culling already assumes.
     #[inline]
     pub fn contains_point(&self, q: &Point) -> bool {
-        self.winding_number(q) > 0.5
+        self.aabb().contains_local_point(q) && self.winding_number(q) > 0.5
     }
 }
 
@@ -611,6 +614,40 @@ pub(crate) mod tests {
         assert!(b.winding_number(&Point::new(30.0, 10.0, 0.0)).abs() < 1e-6);
         assert!(b.contains_point(&Point::new(1.99, 0.99, 0.49)));
         assert!(!b.contains_point(&Point::new(2.01, 0.0, 0.0)));
+    }
+
+    /// contains_point answers outside the box without a winding number: the same answer as
+    /// the winding number's, on a grid around a closed box and an open one (the box without
+    /// its two top triangles, whose winding number is near one half by the hole).
+    #[test]
+    fn outside_the_box_is_outside_as_the_winding_number_says() {
+        let closed = box_mesh(Vector::zeros(), Vector::new(2.0, 1.0, 0.5));
+        let top = |t: &[u32; 3]| t.iter().all(|&v| closed.vertices()[v as usize].z > 0.0);
+        let kept: Vec<[u32; 3]> = closed
+            .triangles()
+            .iter()
+            .copied()
+            .filter(|t| !top(t))
+            .collect();
+        assert_eq!(kept.len(), 10);
+        let open = MeshShape::new(closed.vertices().to_vec(), kept).unwrap();
+        assert!(!open.is_closed());
+        let mut outside_box = 0;
+        for mesh in [&closed, &open] {
+            for i in -12..=12 {
+                for j in -8..=8 {
+                    for k in -6..=6 {
+                        let q = Point::new(i as Real * 0.25, j as Real * 0.2, k as Real * 0.15);
+                        if !mesh.aabb().contains_local_point(&q) {
+                            outside_box += 1;
+                            assert!(mesh.winding_number(&q) < 0.5, "{q}");
+                        }
+                        assert_eq!(mesh.contains_point(&q), mesh.winding_number(&q) > 0.5);
+                    }
+                }
+            }
+        }
+        assert!(outside_box > 1000);
     }
 
     #[test]
