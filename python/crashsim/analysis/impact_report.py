@@ -325,35 +325,7 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
     else:
         reduced = float(penetration.reduced_mass(*m_eff))
     notes = list(impact.notes)
-    series: float | None = None
-    implied: float | None = None
-    # each party's k = B W as reported (None without data, or for a rigid obstacle)
-    party_rates: tuple[float | None, float | None] = (None, None) if k is None else k
-    if impact.obstacle is not None and (k is None or math.isinf(max(k))):
-        # A fixed obstacle without stiffness data is rigid (the engine's infinite rate): the
-        # vehicle takes the whole crush and energy (its EES is then the equivalent barrier
-        # speed); with the vehicle's B W, k' is that and sqrt(m'/k') its spring's time.
-        vehicle_first = names[0] != impact.obstacle
-        shares = (1.0, 0.0) if vehicle_first else (0.0, 1.0)
-        basis, crush_basis = RIGID_OBSTACLE, RIGID_OBSTACLE
-        if k is not None:
-            series = k[0] if vehicle_first else k[1]
-            implied = math.sqrt(reduced / series)
-            party_rates = (series, None) if vehicle_first else (None, series)
-        notes.append(
-            f"{impact.obstacle} taken as rigid (no stiffness data): the vehicle takes all the "
-            "crush and dissipated energy"
-        )
-    elif k is not None and k[0] > 0.0 and k[1] > 0.0:
-        series = float(penetration.series_stiffness(*k))
-        implied = math.sqrt(reduced / series)
-        # E1 = E k2 / (k1 + k2): the softer vehicle absorbs more (equal spring forces)
-        shares = (k[1] / (k[0] + k[1]), k[0] / (k[0] + k[1]))
-        basis, crush_basis = BY_STIFFNESS, BY_STIFFNESS
-    else:
-        party_rates = (None, None)
-        shares, basis, crush_basis = (0.5, 0.5), UNKNOWN, EQUAL_SHARES
-        notes.append("stiffness unknown: the dissipated energy is not split, no EES")
+    split = _EnergySplit.of(impact, k, reduced, notes)
     overlap_depth = float(impact.region_max[0] - impact.region_min[0])  # row 0 of the frame: n
     v_n = float(impact.closing_speed)
     total_crush = v_n * float(impact.depth_of_penetration)
@@ -373,7 +345,7 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
                 name=name,
                 role=role,
                 struck_face=str(impact.struck_faces.get(name, UNKNOWN)),
-                spring_rate=party_rates[role - 1],
+                spring_rate=split.party_rates[role - 1],
                 centroid_body=matmul(rotation.T, p - position),
             )
             continue
@@ -386,55 +358,13 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
             p,
             direction,
             overlap_depth,
-            shares[role - 1],
-            crush_basis,
+            split.shares[role - 1],
+            split.crush_basis,
             total_crush,
         )
-        dv = np.asarray(impact.delta_v[name], dtype=np.float64)
-        # the engine's EDR frame and PDOF (events.rs): a batch's columns are the same bits
-        dv_body = np.asarray(impact.delta_v_body[name], dtype=np.float64)
-        pdof_deg = impact.pdof_deg[name]
-        v0 = np.asarray(impact.velocity_before[name], dtype=np.float64)
-        v1 = np.asarray(impact.velocity_after[name], dtype=np.float64)
-        w0 = np.asarray(impact.angular_velocity_before[name], dtype=np.float64)
-        w1 = np.asarray(impact.angular_velocity_after[name], dtype=np.float64)
-        inertia_body = np.asarray(vehicle.inertia, dtype=np.float64)
-        inertia_world = matmul(matmul(rotation, inertia_body), rotation.T)
-        mass = float(vehicle.mass)
-        share_energy = None if basis == UNKNOWN else e * shares[role - 1]
-        ees = None if share_energy is None else math.sqrt(2.0 * max(share_energy, 0.0) / mass)
-        parties.append(
-            VehicleImpactReport(
-                name=name,
-                role=role,
-                mass=mass,
-                struck_face=str(impact.struck_faces.get(name, UNKNOWN)),
-                effective_mass=m_eff[role - 1],
-                spring_rate=party_rates[role - 1],
-                centroid_body=matmul(rotation.T, p - position),
-                impulse=np.asarray(impact.impulse_on(name), dtype=np.float64),
-                delta_v=dv,
-                delta_v_body=dv_body,
-                longitudinal=float(dv_body[0]),
-                lateral=float(-dv_body[1]),
-                vertical=float(dv_body[2]),
-                delta_v_magnitude=impact.speed_change(name),
-                pdof_deg=pdof_deg,
-                clock=clock_direction(pdof_deg),
-                yaw_rate_change=math.degrees(float(w1[2] - w0[2])),
-                delta_omega=w1 - w0,
-                velocity_before=v0,
-                velocity_after=v1,
-                speed_before=float(norm(v0)),
-                speed_after=float(norm(v1)),
-                translational_energy_change=0.5 * mass * float(dot(v1, v1) - dot(v0, v0)),
-                rotational_energy_change=0.5
-                * float(dot(w1, matmul(inertia_world, w1)) - dot(w0, matmul(inertia_world, w0))),
-                energy=share_energy,
-                ees=ees,
-                deformation=deformation,
-            )
-        )
+        party = _vehicle_party(impact, name, vehicle, role, position, rotation, p, e, m_eff, split,
+                               deformation)  # fmt: skip
+        parties.append(party)
     return ImpactReport(
         number=number,
         vehicles=names,
@@ -444,8 +374,8 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
         depth_of_penetration=float(impact.depth_of_penetration),
         depth_of_penetration_mode=str(impact.depth_of_penetration_mode),
         reduced_mass=reduced,
-        series_stiffness=series,
-        implied_depth_of_penetration=implied,
+        series_stiffness=split.series,
+        implied_depth_of_penetration=split.implied,
         centroid=p,
         normal=n,
         contact_frame=np.asarray(impact.contact_frame, dtype=np.float64),
@@ -454,7 +384,7 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
         impact_type=SLIDING if impact.sliding else FULL,
         closing_speed=v_n,
         energy_dissipated=e,
-        energy_split_basis=basis,
+        energy_split_basis=split.basis,
         overlap_depth=overlap_depth,
         overlap_width=float(impact.overlap_width),
         region_min=np.asarray(impact.region_min, dtype=np.float64),
@@ -462,4 +392,121 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
         parties=tuple(parties),
         notes=tuple(notes),
         obstacle=obstacle,
+    )
+
+
+@dataclass(frozen=True)
+class _EnergySplit:
+    """How an impact's crush and dissipated energy are shared between its two parties, from
+    their spring rates k = B W (N/m; None without data)."""
+
+    series: float | None  # N/m: k' (None: unknown)
+    implied: float | None  # s: sqrt(m'/k') (None: unknown)
+    party_rates: tuple[float | None, float | None]  # N/m: each party's k as reported
+    shares: tuple[float, float]  # of the energy and crush, vehicle 1's and 2's
+    basis: str  # the energy split's
+    crush_basis: str  # the crush split's
+
+    @classmethod
+    def of(
+        cls,
+        impact: Impact,
+        k: tuple[float, float] | None,
+        reduced: float,
+        notes: list[str],
+    ) -> _EnergySplit:
+        """The split of ``impact`` with the parties' rates ``k`` and the reduced mass (kg);
+        appends to ``notes`` why it is rigid or unknown."""
+        names = impact.vehicles
+        series: float | None = None
+        implied: float | None = None
+        # each party's k = B W as reported (None without data, or for a rigid obstacle)
+        party_rates: tuple[float | None, float | None] = (None, None) if k is None else k
+        if impact.obstacle is not None and (k is None or math.isinf(max(k))):
+            # A fixed obstacle without stiffness data is rigid (the engine's infinite rate):
+            # the vehicle takes the whole crush and energy (its EES is then the equivalent
+            # barrier speed); with the vehicle's B W, k' is that and sqrt(m'/k') its spring's
+            # time.
+            vehicle_first = names[0] != impact.obstacle
+            shares = (1.0, 0.0) if vehicle_first else (0.0, 1.0)
+            basis, crush_basis = RIGID_OBSTACLE, RIGID_OBSTACLE
+            if k is not None:
+                series = k[0] if vehicle_first else k[1]
+                implied = math.sqrt(reduced / series)
+                party_rates = (series, None) if vehicle_first else (None, series)
+            notes.append(
+                f"{impact.obstacle} taken as rigid (no stiffness data): the vehicle takes all "
+                "the crush and dissipated energy"
+            )
+        elif k is not None and k[0] > 0.0 and k[1] > 0.0:
+            series = float(penetration.series_stiffness(*k))
+            implied = math.sqrt(reduced / series)
+            # E1 = E k2 / (k1 + k2): the softer vehicle absorbs more (equal spring forces)
+            shares = (k[1] / (k[0] + k[1]), k[0] / (k[0] + k[1]))
+            basis, crush_basis = BY_STIFFNESS, BY_STIFFNESS
+        else:
+            party_rates = (None, None)
+            shares, basis, crush_basis = (0.5, 0.5), UNKNOWN, EQUAL_SHARES
+            notes.append("stiffness unknown: the dissipated energy is not split, no EES")
+        return cls(series, implied, party_rates, shares, basis, crush_basis)
+
+
+def _vehicle_party(
+    impact: Impact,
+    name: str,
+    vehicle: Any,
+    role: int,
+    position: Array,
+    rotation: Array,
+    p: Array,
+    e: float,
+    m_eff: tuple[float, float],
+    split: _EnergySplit,
+    deformation: DeformationReport,
+) -> VehicleImpactReport:
+    """A vehicle's part of the impact (``role`` 1 or 2; posed at the exchange: world
+    ``position`` m, body-to-world ``rotation``; ``p`` the centroid, m, world; ``e`` the
+    dissipated energy, J): its delta-V, PDOF, velocities, energy changes, share and EES."""
+    dv = np.asarray(impact.delta_v[name], dtype=np.float64)
+    # the engine's EDR frame and PDOF (events.rs): a batch's columns are the same bits
+    dv_body = np.asarray(impact.delta_v_body[name], dtype=np.float64)
+    pdof_deg = impact.pdof_deg[name]
+    v0 = np.asarray(impact.velocity_before[name], dtype=np.float64)
+    v1 = np.asarray(impact.velocity_after[name], dtype=np.float64)
+    w0 = np.asarray(impact.angular_velocity_before[name], dtype=np.float64)
+    w1 = np.asarray(impact.angular_velocity_after[name], dtype=np.float64)
+    inertia_body = np.asarray(vehicle.inertia, dtype=np.float64)
+    inertia_world = matmul(matmul(rotation, inertia_body), rotation.T)
+    mass = float(vehicle.mass)
+    share_energy = None if split.basis == UNKNOWN else e * split.shares[role - 1]
+    ees = None if share_energy is None else math.sqrt(2.0 * max(share_energy, 0.0) / mass)
+    return VehicleImpactReport(
+        name=name,
+        role=role,
+        mass=mass,
+        struck_face=str(impact.struck_faces.get(name, UNKNOWN)),
+        effective_mass=m_eff[role - 1],
+        spring_rate=split.party_rates[role - 1],
+        centroid_body=matmul(rotation.T, p - position),
+        impulse=np.asarray(impact.impulse_on(name), dtype=np.float64),
+        delta_v=dv,
+        delta_v_body=dv_body,
+        longitudinal=float(dv_body[0]),
+        lateral=float(-dv_body[1]),
+        vertical=float(dv_body[2]),
+        delta_v_magnitude=impact.speed_change(name),
+        pdof_deg=pdof_deg,
+        clock=clock_direction(pdof_deg),
+        yaw_rate_change=math.degrees(float(w1[2] - w0[2])),
+        delta_omega=w1 - w0,
+        velocity_before=v0,
+        velocity_after=v1,
+        speed_before=float(norm(v0)),
+        speed_after=float(norm(v1)),
+        translational_energy_change=0.5 * mass * float(dot(v1, v1) - dot(v0, v0)),
+        rotational_energy_change=0.5
+        * float(dot(w1, matmul(inertia_world, w1)) - dot(w0, matmul(inertia_world, w0))),
+        energy=share_energy,
+        ees=ees,
+        deformation=deformation,
     )

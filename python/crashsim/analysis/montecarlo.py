@@ -219,20 +219,7 @@ def dtp_montecarlo(
     at least one. seed: an int for reproducible bits (None: fresh entropy). classes: as the
     module docstring says (default ``crashsim.vehicles.vehicle_data.vehicle_classes()``).
     configurations: a subset of CONFIGURATIONS, in the order wanted."""
-    if isinstance(samples, bool) or not isinstance(samples, numbers.Integral):
-        raise ParameterError(f"samples must be a whole number, got {samples!r}")
-    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, numbers.Integral)):
-        raise ParameterError(f"seed must be a whole number or None, got {seed!r}")
-    if seed is not None and seed < 0:
-        raise ParameterError(f"seed must be >= 0, got {seed}")
-    configs = tuple(configurations)
-    if not configs:
-        raise ParameterError("give at least one configuration")
-    for c in configs:
-        if c not in _FACES:
-            raise ParameterError(f"unknown configuration {c!r}: use {', '.join(CONFIGURATIONS)}")
-    if len(set(configs)) != len(configs):
-        raise ParameterError(f"configurations repeat: {configs}")
+    configs = _check_run(samples, seed, configurations)
     items = _class_list(classes)
     names = tuple(n for n, _ in items)
     if len(names) > np.iinfo(np.int16).max:
@@ -240,32 +227,8 @@ def dtp_montecarlo(
 
     mass = np.array([_spread(c.mass, f"{n}: mass", "kg") for n, c in items])
     width = np.array([_spread(c.width, f"{n}: width", "m") for n, c in items])
-    face_b: dict[str, Array] = {}
-    for face in ("front", "rear", "side"):
-        rows = []
-        for n, c in items:
-            b = _face_b(c, face)
-            rows.append((np.nan, np.nan) if b is None else _spread(b, f"{n}: {face} B", "N/m^2"))
-        face_b[face] = np.array(rows)
-
-    pairs: dict[str, tuple[tuple[str, str], ...]] = {}
-    excluded: dict[str, tuple[str, ...]] = {}
-    pair_index: list[NDArray[np.int64]] = []
-    for c in configs:
-        f1, f2 = _FACES[c]
-        ok1 = np.flatnonzero(~np.isnan(face_b[f1][:, 0]))
-        ok2 = np.flatnonzero(~np.isnan(face_b[f2][:, 0]))
-        excluded[c] = tuple(
-            f"{names[i]} (vehicle {role}: no {face} B)"
-            for role, face, ok in ((1, f1, ok1), (2, f2, ok2))
-            for i in range(len(names))
-            if i not in set(ok.tolist())
-        )
-        if ok1.size == 0 or ok2.size == 0:
-            raise ParameterError(f"no class has the {f1} and {f2} B data that {c} needs")
-        p = np.array([(i, j) for i in ok1 for j in ok2], dtype=np.int64)
-        pair_index.append(p)
-        pairs[c] = tuple((names[i], names[j]) for i, j in p)
+    face_b = _face_spreads(items)
+    pairs, excluded, pair_index = _class_pairs(configs, names, face_b)
 
     total_pairs = sum(len(p) for p in pair_index)
     if samples < total_pairs:
@@ -273,24 +236,7 @@ def dtp_montecarlo(
             f"samples = {samples} is too few: give at least {total_pairs} so every one of the "
             f"{total_pairs} class pairs of the {len(configs)} configuration(s) is sampled"
         )
-
-    base, extra = divmod(int(samples), len(configs))
-    counts = [base + (1 if k < extra else 0) for k in range(len(configs))]
-    cfg = np.repeat(np.arange(len(configs), dtype=np.int8), counts)
-    i1 = np.empty(samples, dtype=np.int16)
-    i2 = np.empty(samples, dtype=np.int16)
-    b1_spread = np.empty((samples, 2))
-    b2_spread = np.empty((samples, 2))
-    start = 0
-    for k, (c, p) in enumerate(zip(configs, pair_index, strict=True)):
-        stop = start + counts[k]
-        which = p[np.arange(counts[k]) % len(p)]
-        i1[start:stop] = which[:, 0]
-        i2[start:stop] = which[:, 1]
-        f1, f2 = _FACES[c]
-        b1_spread[start:stop] = face_b[f1][which[:, 0]]
-        b2_spread[start:stop] = face_b[f2][which[:, 1]]
-        start = stop
+    cfg, i1, i2, b1_spread, b2_spread = _stratified(samples, configs, pair_index, face_b)
 
     rng = np.random.default_rng(seed)
     u = 2.0 * rng.random((6, samples)) - 1.0  # uniform in [-1, 1)
@@ -316,9 +262,100 @@ def dtp_montecarlo(
     )
 
 
+def _check_run(samples: Any, seed: Any, configurations: Sequence[str]) -> tuple[str, ...]:
+    """ParameterError for a bad sample count, seed or configuration list; the configurations."""
+    if isinstance(samples, bool) or not isinstance(samples, numbers.Integral):
+        raise ParameterError(f"samples must be a whole number, got {samples!r}")
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, numbers.Integral)):
+        raise ParameterError(f"seed must be a whole number or None, got {seed!r}")
+    if seed is not None and seed < 0:
+        raise ParameterError(f"seed must be >= 0, got {seed}")
+    configs = tuple(configurations)
+    if not configs:
+        raise ParameterError("give at least one configuration")
+    for c in configs:
+        if c not in _FACES:
+            raise ParameterError(f"unknown configuration {c!r}: use {', '.join(CONFIGURATIONS)}")
+    if len(set(configs)) != len(configs):
+        raise ParameterError(f"configurations repeat: {configs}")
+    return configs
+
+
+def _face_spreads(items: list[tuple[str, Any]]) -> dict[str, Array]:
+    """Each face's B (N/m^2) per class as (mean, half-width) rows; NaN where a class has no
+    B for that face."""
+    face_b: dict[str, Array] = {}
+    for face in ("front", "rear", "side"):
+        rows = []
+        for n, c in items:
+            b = _face_b(c, face)
+            rows.append((np.nan, np.nan) if b is None else _spread(b, f"{n}: {face} B", "N/m^2"))
+        face_b[face] = np.array(rows)
+    return face_b
+
+
+def _class_pairs(
+    configs: tuple[str, ...], names: tuple[str, ...], face_b: dict[str, Array]
+) -> tuple[
+    dict[str, tuple[tuple[str, str], ...]], dict[str, tuple[str, ...]], list[NDArray[np.int64]]
+]:
+    """Per configuration: the ordered class pairs (by name), the classes left out of a role
+    for want of its face's B, and the pairs as (P, 2) class indices."""
+    pairs: dict[str, tuple[tuple[str, str], ...]] = {}
+    excluded: dict[str, tuple[str, ...]] = {}
+    pair_index: list[NDArray[np.int64]] = []
+    for c in configs:
+        f1, f2 = _FACES[c]
+        ok1 = np.flatnonzero(~np.isnan(face_b[f1][:, 0]))
+        ok2 = np.flatnonzero(~np.isnan(face_b[f2][:, 0]))
+        excluded[c] = tuple(
+            f"{names[i]} (vehicle {role}: no {face} B)"
+            for role, face, ok in ((1, f1, ok1), (2, f2, ok2))
+            for i in range(len(names))
+            if i not in set(ok.tolist())
+        )
+        if ok1.size == 0 or ok2.size == 0:
+            raise ParameterError(f"no class has the {f1} and {f2} B data that {c} needs")
+        p = np.array([(i, j) for i in ok1 for j in ok2], dtype=np.int64)
+        pair_index.append(p)
+        pairs[c] = tuple((names[i], names[j]) for i, j in p)
+    return pairs, excluded, pair_index
+
+
+def _stratified(
+    samples: int,
+    configs: tuple[str, ...],
+    pair_index: list[NDArray[np.int64]],
+    face_b: dict[str, Array],
+) -> tuple[Array, Array, Array, Array, Array]:
+    """Each sample's configuration, vehicle 1's and 2's class and their struck faces' B
+    spreads: the samples split equally between the configurations (the first ones one
+    more), cyclically between each one's pairs."""
+    base, extra = divmod(int(samples), len(configs))
+    counts = [base + (1 if k < extra else 0) for k in range(len(configs))]
+    cfg = np.repeat(np.arange(len(configs), dtype=np.int8), counts)
+    i1 = np.empty(samples, dtype=np.int16)
+    i2 = np.empty(samples, dtype=np.int16)
+    b1_spread = np.empty((samples, 2))
+    b2_spread = np.empty((samples, 2))
+    start = 0
+    for k, (c, p) in enumerate(zip(configs, pair_index, strict=True)):
+        stop = start + counts[k]
+        which = p[np.arange(counts[k]) % len(p)]
+        i1[start:stop] = which[:, 0]
+        i2[start:stop] = which[:, 1]
+        f1, f2 = _FACES[c]
+        b1_spread[start:stop] = face_b[f1][which[:, 0]]
+        b2_spread[start:stop] = face_b[f2][which[:, 1]]
+        start = stop
+    return cfg, i1, i2, b1_spread, b2_spread
+
+
 # --- the picture ----------------------------------------------------------------------------
 
 _COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b")
+_BAND_COLOUR = "#d9f0d3"
+_MS = 1e3  # ms per s
 
 
 def plot_dtp_histogram(
@@ -340,13 +377,11 @@ def plot_dtp_histogram(
         from matplotlib.figure import Figure
     except ImportError as e:  # matplotlib is needed for pictures only
         raise ImportError("the histogram needs matplotlib: pip install matplotlib") from e
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
 
     if not bin_ms > 0.0:
         raise ParameterError(f"bin_ms must be > 0 ms, got {bin_ms}")
     summ = result.summary(band)
-    ms = 1e3
+    ms = _MS
     x_all = result.dtp * ms
     top = float(np.percentile(x_all, 99.5))
     x_max = max(band[1] * ms + 10.0, math.ceil(top / 10.0) * 10.0)
@@ -361,10 +396,51 @@ def plot_dtp_histogram(
     side = fig.add_subplot(grid[:, 1])
     side.axis("off")
 
+    colours = [_COLOURS[k % len(_COLOURS)] for k in range(len(result.configurations))]
+    _draw_stacked_histogram(ax, result, summ, colours, edges, band)
+    _draw_side_panel(side, ax, summ, band)
+    ax.set_ylabel(f"share of all samples per {bin_ms:g} ms bin (%)")
+    ax.grid(axis="y", color="0.9")
+    ax.set_axisbelow(True)
+    title = (
+        f"Depth of penetration $\\Delta t_p = \\sqrt{{m'/k'}}$ for vehicle-class pairs: "
+        f"{len(result):,} Monte Carlo samples (seed {result.seed})"
+    )
+    sub = (
+        f"{len(result.class_names)} classes, ordered pairs per configuration; full-width "
+        "in-line impacts over the narrower width; mass, width and B uniform within $\\pm$1 SD"
+    )
+    if source:
+        sub += f"\nclass data: {source}"
+    fig.suptitle(title + "\n" + sub, fontsize=10.5)
+    _draw_configuration_rows(ax2, result, summ, colours, band)
+    xlabel = "depth of penetration $\\Delta t_p$ (ms)"
+    if hidden:
+        xlabel += f"   ({hidden} samples above {edges[-1]:g} ms not drawn)"
+    ax2.set_xlabel(xlabel)
+    ax2.set_xlim(0.0, edges[-1])
+    ax2.grid(axis="x", color="0.9")
+    ax2.set_axisbelow(True)
+    if path is not None:
+        fig.savefig(Path(path), dpi=120)
+    return fig
+
+
+def _draw_stacked_histogram(
+    ax: Any,
+    result: DtpMonteCarlo,
+    summ: dict[str, Any],
+    colours: list[str],
+    edges: Array,
+    band: tuple[float, float],
+) -> None:
+    """The upper panel: the band shaded, the dt_p histogram (ms; % of all samples) stacked
+    by configuration, and the overall 2.5, 50 and 97.5 % percentiles marked."""
+    ms = _MS
+    x_all = result.dtp * ms
     per = [result.samples_of(c) * ms for c in result.configurations]
-    colours = [_COLOURS[k % len(_COLOURS)] for k in range(len(per))]
     weights = [np.full(s.size, 100.0 / x_all.size) for s in per]
-    ax.axvspan(band[0] * ms, band[1] * ms, color="#d9f0d3", zorder=0)
+    ax.axvspan(band[0] * ms, band[1] * ms, color=_BAND_COLOUR, zorder=0)
     ax.hist(
         per,
         bins=edges,
@@ -395,10 +471,19 @@ def plot_dtp_histogram(
             bbox={"boxstyle": "square,pad=0.15", "facecolor": "white", "edgecolor": "none"},
             zorder=4,
         )
+
+
+def _draw_side_panel(side: Any, ax: Any, summ: dict[str, Any], band: tuple[float, float]) -> None:
+    """The side panel: the upper panel's legend and the table of all samples' figures."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    ms = _MS
+    pc = summ["overall"]["percentiles"]
     handles, labels = ax.get_legend_handles_labels()
     handles = [
         *handles,
-        Patch(color="#d9f0d3"),
+        Patch(color=_BAND_COLOUR),
         Line2D([], [], color="black", linestyle="-"),
         Line2D([], [], color="black", linestyle=":"),
     ]
@@ -433,23 +518,19 @@ def plot_dtp_histogram(
         bbox={"boxstyle": "round", "facecolor": "white", "edgecolor": "0.6", "alpha": 0.95},
         zorder=5,
     )
-    ax.set_ylabel(f"share of all samples per {bin_ms:g} ms bin (%)")
-    ax.grid(axis="y", color="0.9")
-    ax.set_axisbelow(True)
-    title = (
-        f"Depth of penetration $\\Delta t_p = \\sqrt{{m'/k'}}$ for vehicle-class pairs: "
-        f"{len(result):,} Monte Carlo samples (seed {result.seed})"
-    )
-    sub = (
-        f"{len(result.class_names)} classes, ordered pairs per configuration; full-width "
-        "in-line impacts over the narrower width; mass, width and B uniform within $\\pm$1 SD"
-    )
-    if source:
-        sub += f"\nclass data: {source}"
-    fig.suptitle(title + "\n" + sub, fontsize=10.5)
 
-    # Lower panel: one row per configuration.
-    ax2.axvspan(band[0] * ms, band[1] * ms, color="#d9f0d3", zorder=0)
+
+def _draw_configuration_rows(
+    ax2: Any,
+    result: DtpMonteCarlo,
+    summ: dict[str, Any],
+    colours: list[str],
+    band: tuple[float, float],
+) -> None:
+    """The lower panel: one row per configuration, its median, 25-75 % and 2.5-97.5 % ranges
+    (ms) and its share in the band."""
+    ms = _MS
+    ax2.axvspan(band[0] * ms, band[1] * ms, color=_BAND_COLOUR, zorder=0)
     for k, c in enumerate(result.configurations):
         s = summ["by_configuration"][c]
         q = {key: v * ms for key, v in s["percentiles"].items()}
@@ -471,13 +552,3 @@ def plot_dtp_histogram(
     ax2.set_title(
         "per configuration: median (|), 25-75 % (thick), 2.5-97.5 % (thin)", fontsize=9, loc="left"
     )
-    xlabel = "depth of penetration $\\Delta t_p$ (ms)"
-    if hidden:
-        xlabel += f"   ({hidden} samples above {edges[-1]:g} ms not drawn)"
-    ax2.set_xlabel(xlabel)
-    ax2.set_xlim(0.0, edges[-1])
-    ax2.grid(axis="x", color="0.9")
-    ax2.set_axisbelow(True)
-    if path is not None:
-        fig.savefig(Path(path), dpi=120)
-    return fig

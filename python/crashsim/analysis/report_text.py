@@ -123,6 +123,39 @@ def _speed_cells(v: float | None) -> list[str]:
 def _impact_lines(imp: ImpactReport, primary: int | None = None) -> list[str]:
     """The text of one impact; ``primary``: the number of the impact a secondary one
     follows in its pair's engagement."""
+    lines = _impact_head_lines(imp, primary)
+    lines.append("")
+    lines += _delta_v_table(imp)
+    lines.append("")
+    lines += _table(
+        [
+            "Vehicle",
+            "v before (m/s)",
+            "v before (km/h)",
+            "v before (mph)",
+            "v after (m/s)",
+            "v after (km/h)",
+            "v after (mph)",
+        ],
+        [
+            [p.name, *_speed_cells(p.speed_before), *_speed_cells(p.speed_after)]
+            for p in imp.parties
+        ],
+    )
+    lines.append("")
+    lines += _energy_table(imp)
+    notes = list(imp.notes)
+    for p in imp.parties:
+        notes += [f"{p.name}: {x}" for x in p.deformation.notes]
+    if notes:
+        lines.append("  notes:")
+        lines += [f"  - {x}" for x in notes]
+    return lines
+
+
+def _impact_head_lines(imp: ImpactReport, primary: int | None) -> list[str]:
+    """An impact's heading, times, centroid, impulse and energy, and where the centroid is in
+    each party's frame."""
     v1, v2 = imp.vehicles
     c = imp.centroid
     n = imp.normal
@@ -166,8 +199,13 @@ def _impact_lines(imp: ImpactReport, primary: int | None = None) -> list[str]:
             f"frame {_fmt3(o.centroid_body, 4)} m; struck on its {o.struck_side} side (its "
             f"frame; the {o.struck_face} face for its stiffness)"
         )
-    lines.append("")
-    lines += _table(
+    return lines
+
+
+def _delta_v_table(imp: ImpactReport) -> list[str]:
+    """Each vehicle's delta-V (m/s, km/h, mph; body long and lat), PDOF, clock and yaw rate
+    change."""
+    return _table(
         [
             "Vehicle",
             "dV (m/s)",
@@ -192,24 +230,11 @@ def _impact_lines(imp: ImpactReport, primary: int | None = None) -> list[str]:
             for p in imp.parties
         ],
     )
-    lines.append("")
-    lines += _table(
-        [
-            "Vehicle",
-            "v before (m/s)",
-            "v before (km/h)",
-            "v before (mph)",
-            "v after (m/s)",
-            "v after (km/h)",
-            "v after (mph)",
-        ],
-        [
-            [p.name, *_speed_cells(p.speed_before), *_speed_cells(p.speed_after)]
-            for p in imp.parties
-        ],
-    )
-    lines.append("")
-    lines += _table(
+
+
+def _energy_table(imp: ImpactReport) -> list[str]:
+    """Each vehicle's share of the energy (J), EES and deformation figures (m)."""
+    return _table(
         [
             "Vehicle",
             "Energy (J)",
@@ -236,13 +261,6 @@ def _impact_lines(imp: ImpactReport, primary: int | None = None) -> list[str]:
             for p in imp.parties
         ],
     )
-    notes = list(imp.notes)
-    for p in imp.parties:
-        notes += [f"{p.name}: {x}" for x in p.deformation.notes]
-    if notes:
-        lines.append("  notes:")
-        lines += [f"  - {x}" for x in notes]
-    return lines
 
 
 def _vehicle_data_lines(result: Result) -> list[str]:

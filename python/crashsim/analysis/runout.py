@@ -387,6 +387,15 @@ def run_out_lines(reports: list[RunOutReport], table: Any, obstacles: bool = Fal
             for r in reports
         ],
     )
+    lines += _end_state_lines(reports)
+    lines += _marks_and_obstacle_lines(reports, obstacles)
+    return lines
+
+
+def _end_state_lines(reports: list[RunOutReport]) -> list[str]:
+    """The run-out's notes: a vehicle that ends tipped or not at rest, and what distance and
+    displacement mean."""
+    lines: list[str] = []
     for r in reports:
         if r.attitude != "upright":
             lines.append(
@@ -404,6 +413,13 @@ def run_out_lines(reports: list[RunOutReport], table: Any, obstacles: bool = Fal
         "  distance: along the CG path (3-D) from the start of the run-out to the end of the "
         "run; displacement: the straight line between them"
     )
+    return lines
+
+
+def _marks_and_obstacle_lines(reports: list[RunOutReport], obstacles: bool) -> list[str]:
+    """Each vehicle's tyre marks (m, count) and, when the scene has fixed obstacles, its
+    impacts with them ("none" too)."""
+    lines: list[str] = []
     lines.append(
         "  Tyre marks (where a tyre's contact patch slid at the friction limit; total length "
         "in m, number of marks):"

@@ -137,6 +137,19 @@ def _parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"crashsim {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="command")
+    _add_run(sub)
+    _add_view(sub)
+    _add_check(sub)
+    _add_demo(sub)
+    _add_sweep(sub)
+    _add_montecarlo(sub)
+    _add_fit(sub)
+    _add_dtp_montecarlo(sub)
+    return parser
+
+
+def _add_run(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """`crashsim run`: its help, options and function."""
     run = sub.add_parser(
         "run",
         help="run a scene file; print the summary; write the report, CSV, pictures, GLB",
@@ -165,6 +178,10 @@ def _parser() -> argparse.ArgumentParser:
         f"{PAGE_FILE} in the output folder, or PATH (docs/viewer.md)",
     )
     run.set_defaults(func=_run)
+
+
+def _add_view(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """`crashsim view`: its help, options and function."""
     view_cmd = sub.add_parser(
         "view",
         help="write the case page (offline HTML) of a report.json written by `run --out`",
@@ -190,6 +207,10 @@ def _parser() -> argparse.ArgumentParser:
         "page of `run --html`: tyre marks, zones, rest outlines)",
     )
     view_cmd.set_defaults(func=_view)
+
+
+def _add_check(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """`crashsim check`: its help, options and function."""
     check = sub.add_parser(
         "check",
         help="run a scene file and cross-check its first overlaps with python-fcl",
@@ -200,6 +221,10 @@ def _parser() -> argparse.ArgumentParser:
     )
     _scene_arguments(check)
     check.set_defaults(func=_check)
+
+
+def _add_demo(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """`crashsim demo`: its help, options and function."""
     demo = sub.add_parser(
         "demo",
         help="run the built-in intersection case to rest; print it; write pictures and page",
@@ -229,6 +254,10 @@ def _parser() -> argparse.ArgumentParser:
     demo.add_argument("--json", action="store_true", help="print the run's result as JSON "
                       "(Result.to_dict) instead of the summary")  # fmt: skip
     demo.set_defaults(func=_demo)
+
+
+def _add_sweep(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """`crashsim sweep`: its help, options and function."""
     sw = sub.add_parser(
         "sweep",
         help="run a grid of variants of a scene file (docs/studies.md)",
@@ -243,6 +272,10 @@ def _parser() -> argparse.ArgumentParser:
     sw.add_argument("--vary", action="append", metavar="PATH=VALUES",
                     help="a parameter path and its values, e.g. red.speed=10:20:5 (repeat)")
     sw.set_defaults(func=_sweep)
+
+
+def _add_montecarlo(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """`crashsim montecarlo`: its help, options and function."""
     mcs = sub.add_parser(
         "montecarlo",
         help="run a Monte Carlo study of a scene file (docs/studies.md)",
@@ -259,6 +292,10 @@ def _parser() -> argparse.ArgumentParser:
     mcs.add_argument("--seed", type=_seed, help="random seed, >= 0 (default: the file's, else "
                      "fresh entropy)")
     mcs.set_defaults(func=_montecarlo)
+
+
+def _add_fit(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """`crashsim fit`: its help, options and function."""
     fit_cmd = sub.add_parser(
         "fit",
         help="fit a scene file's unknowns to its evidence ([fit], [[evidence]]; docs/fitting.md)",
@@ -302,6 +339,10 @@ def _parser() -> argparse.ArgumentParser:
     fit_cmd.add_argument("--progress", action="store_true", help="show the progress line on "
                          "stderr even when it is not a terminal")
     fit_cmd.set_defaults(func=_fit)
+
+
+def _add_dtp_montecarlo(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """`crashsim dtp-montecarlo`: its help, options and function."""
     mc = sub.add_parser(
         "dtp-montecarlo",
         help="Monte Carlo of the depth of penetration over vehicle-class pairs",
@@ -316,4 +357,3 @@ def _parser() -> argparse.ArgumentParser:
     mc.add_argument("--plot", metavar="PATH", help="write the histogram picture (PNG) here")
     mc.add_argument("--json", action="store_true", help="print the summary as JSON (seconds)")
     mc.set_defaults(func=_dtp_montecarlo)
-    return parser

@@ -222,52 +222,9 @@ def body_segments(
     distribution was found. Bad input raises ParameterError saying what to give instead.
     """
     sex = _check_sex(sex)
-    if percentile is not None:
-        if height_m is not None:
-            raise ParameterError(
-                "give either height_m or percentile, not both: the percentile sets the stature"
-            )
-        height_m = stature_at_percentile(sex, percentile)
-    if height_m is None:
-        raise ParameterError("give height_m (stature in m) or a percentile")
-    if mass_kg is None:
-        raise ParameterError(
-            "give mass_kg (body mass in kg): no sourced body-mass distribution by percentile"
-        )
-    h = _check_number("height_m", height_m, *HEIGHT_RANGE_M, "m")
-    m = _check_number("mass_kg", mass_kg, *MASS_RANGE_KG, "kg")
-
-    t = _table()
-    ref_stature = float(t["reference"][sex]["stature"]["value"])  # mm
-    k = chain_factor(sex)
-    mass_sum = _mass_sum(sex)
-    density = {key: 1000.0 * float(v) for key, v in t["density"].items() if key != "source"}
-
-    def data(name: str) -> tuple[float, float, float, tuple[float, float, float]]:
-        length_mm, mass_pct, cg_pct, r_sag, r_trans, r_long = _row(name, sex)
-        length = k * length_mm / ref_stature * h
-        return (length, m * mass_pct / mass_sum, cg_pct / 100.0,
-                (r_sag / 100.0, r_trans / 100.0, r_long / 100.0))
-
-    def radius(name: str, mass: float, length: float) -> float:
-        # the cylinder of the segment's length, mass and density: m = rho pi r^2 L
-        key = t["segments"][name].get("density")
-        rho = density[key] if key else _TRUNK_DENSITY
-        return math.sqrt(mass / (rho * math.pi * length))
-
-    L = {n: data(n) for n in t["segments"]}
-    R = {n: radius(n, L[n][1], L[n][0]) for n in L}
-
-    # heights of the joint centres and landmarks in the standing posture
-    z_ajc = float(t["ankle_height"]["value"]) * h
-    z = {"AJC": z_ajc}
-    z["KJC"] = z["AJC"] + L["shank"][0]
-    z["HJC"] = z["MIDH"] = z["KJC"] + L["thigh"][0]
-    z["OMPH"] = z["MIDH"] + L["pelvis"][0]
-    z["XYPH"] = z["OMPH"] + L["lower_torso"][0]
-    z["CERV"] = z["XYPH"] + L["upper_torso"][0]
-    z["VERT"] = z["CERV"] + L["head"][0]
-
+    h, m = _checked_size(sex, height_m, mass_kg, percentile)
+    L, R = _scaled_segments(sex, h, m)
+    z = _standing_heights(h, L)
     y_hip = R["thigh"]  # the thighs' capsules side by side, touching at the mid-plane
     y_shoulder = R["upper_torso"] + R["upper_arm"]  # the arm's capsule against the torso's
 
@@ -275,27 +232,7 @@ def body_segments(
 
     def add(name: str, side: str | None, parent: str | None, origin: tuple[float, float, float],
             direction: tuple[float, float, float], joint: Joint | None) -> None:
-        length, mass, cg_frac, radii = L[name]
-        end = _add(origin, tuple(length * d for d in direction))  # type: ignore[arg-type]
-        cg = tuple(cg_frac * length * d for d in direction)
-        if direction[0] != 0.0:  # the foot: longitudinal along x, sagittal about z
-            r = (radii[2], radii[1], radii[0])
-        else:
-            r = radii
-        inertia = tuple(mass * (ri * length) ** 2 for ri in r)
-        seg_name = name if side is None else f"{name}_{side}"
-        b = tuple(length * d for d in direction)
-        segments.append(Segment(
-            name=seg_name, side=side,
-            parent=parent,
-            endpoints=tuple(t["segments"][name]["endpoints"]),  # type: ignore[arg-type]
-            mass=mass, length=length, origin=origin, end=end,
-            cg=cg,  # type: ignore[arg-type]
-            cg_fraction=cg_frac, radii=radii,
-            inertia=inertia,  # type: ignore[arg-type]
-            joint=joint,
-            contact=ContactShape("capsule", R[name], (0.0, 0.0, 0.0), b),  # type: ignore[arg-type]
-        ))
+        segments.append(_segment(name, side, parent, origin, direction, joint, L[name], R[name]))
 
     down, fwd = (0.0, 0.0, -1.0), (1.0, 0.0, 0.0)
     add("pelvis", None, None, (0.0, 0.0, z["OMPH"]), down, None)
@@ -321,6 +258,110 @@ def body_segments(
         heel = (0.0, s * y_hip, R["foot"])
         add("foot", side, f"shank_{side}", heel, fwd, _joint("ankle", sex, ajc))
     return segments
+
+
+def _checked_size(
+    sex: str, height_m: float | None, mass_kg: float | None, percentile: float | None
+) -> tuple[float, float]:
+    """body_segments' stature (m; from the percentile when given) and mass (kg), checked."""
+    if percentile is not None:
+        if height_m is not None:
+            raise ParameterError(
+                "give either height_m or percentile, not both: the percentile sets the stature"
+            )
+        height_m = stature_at_percentile(sex, percentile)
+    if height_m is None:
+        raise ParameterError("give height_m (stature in m) or a percentile")
+    if mass_kg is None:
+        raise ParameterError(
+            "give mass_kg (body mass in kg): no sourced body-mass distribution by percentile"
+        )
+    h = _check_number("height_m", height_m, *HEIGHT_RANGE_M, "m")
+    m = _check_number("mass_kg", mass_kg, *MASS_RANGE_KG, "kg")
+    return h, m
+
+
+_SegmentData = tuple[float, float, float, tuple[float, float, float]]
+"""A segment scaled to the body: length (m), mass (kg), CG fraction of the length from its
+origin, and radii of gyration (sagittal, transverse, longitudinal) as fractions of the
+length."""
+
+
+def _scaled_segments(
+    sex: str, h: float, m: float
+) -> tuple[dict[str, _SegmentData], dict[str, float]]:
+    """Each segment of the table scaled to stature ``h`` (m) and mass ``m`` (kg), and its
+    capsule's radius (m): the cylinder of its length, mass and density."""
+    t = _table()
+    ref_stature = float(t["reference"][sex]["stature"]["value"])  # mm
+    k = chain_factor(sex)
+    mass_sum = _mass_sum(sex)
+    density = {key: 1000.0 * float(v) for key, v in t["density"].items() if key != "source"}
+
+    def data(name: str) -> _SegmentData:
+        length_mm, mass_pct, cg_pct, r_sag, r_trans, r_long = _row(name, sex)
+        length = k * length_mm / ref_stature * h
+        return (length, m * mass_pct / mass_sum, cg_pct / 100.0,
+                (r_sag / 100.0, r_trans / 100.0, r_long / 100.0))
+
+    def radius(name: str, mass: float, length: float) -> float:
+        # the cylinder of the segment's length, mass and density: m = rho pi r^2 L
+        key = t["segments"][name].get("density")
+        rho = density[key] if key else _TRUNK_DENSITY
+        return math.sqrt(mass / (rho * math.pi * length))
+
+    L = {n: data(n) for n in t["segments"]}
+    R = {n: radius(n, L[n][1], L[n][0]) for n in L}
+    return L, R
+
+
+def _standing_heights(h: float, L: dict[str, _SegmentData]) -> dict[str, float]:
+    """Heights (m above the ground) of the joint centres and landmarks in the standing
+    posture of a body of stature ``h`` (m): the ankle's, then the segments stacked on it."""
+    z_ajc = float(_table()["ankle_height"]["value"]) * h
+    z = {"AJC": z_ajc}
+    z["KJC"] = z["AJC"] + L["shank"][0]
+    z["HJC"] = z["MIDH"] = z["KJC"] + L["thigh"][0]
+    z["OMPH"] = z["MIDH"] + L["pelvis"][0]
+    z["XYPH"] = z["OMPH"] + L["lower_torso"][0]
+    z["CERV"] = z["XYPH"] + L["upper_torso"][0]
+    z["VERT"] = z["CERV"] + L["head"][0]
+    return z
+
+
+def _segment(
+    name: str,
+    side: str | None,
+    parent: str | None,
+    origin: tuple[float, float, float],
+    direction: tuple[float, float, float],
+    joint: Joint | None,
+    data: _SegmentData,
+    radius: float,
+) -> Segment:
+    """One segment from ``origin`` (body frame, m) along the unit ``direction``, scaled by
+    ``data``, its contact a capsule of ``radius`` (m)."""
+    length, mass, cg_frac, radii = data
+    end = _add(origin, tuple(length * d for d in direction))  # type: ignore[arg-type]
+    cg = tuple(cg_frac * length * d for d in direction)
+    if direction[0] != 0.0:  # the foot: longitudinal along x, sagittal about z
+        r = (radii[2], radii[1], radii[0])
+    else:
+        r = radii
+    inertia = tuple(mass * (ri * length) ** 2 for ri in r)
+    seg_name = name if side is None else f"{name}_{side}"
+    b = tuple(length * d for d in direction)
+    return Segment(
+        name=seg_name, side=side,
+        parent=parent,
+        endpoints=tuple(_table()["segments"][name]["endpoints"]),  # type: ignore[arg-type]
+        mass=mass, length=length, origin=origin, end=end,
+        cg=cg,  # type: ignore[arg-type]
+        cg_fraction=cg_frac, radii=radii,
+        inertia=inertia,  # type: ignore[arg-type]
+        joint=joint,
+        contact=ContactShape("capsule", radius, (0.0, 0.0, 0.0), b),  # type: ignore[arg-type]
+    )
 
 
 def whole_body_cg(segments: list[Segment]) -> tuple[float, float, float]:

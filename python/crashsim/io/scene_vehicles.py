@@ -510,6 +510,30 @@ def _inputs(t: _Table) -> DriverInputs | None:
     if i.has("steering_ratio"):
         kwargs["steering_ratio"] = i.number("steering_ratio")
     i.taken.add("steering_ratio")
+    _path_inputs(i, kwargs)
+    brakes = _brake_inputs(i)
+    if brakes:
+        kwargs["brake"] = brakes
+    drives: dict[str, list[tuple[float, float]]] = {}
+    for r in _rows(i, "drive", DRIVE_KEYS):
+        where = r.string("wheels", "all")
+        drives.setdefault(where, []).append(
+            (r.quantity("time", "time"), r.quantity("force", "force"))
+        )
+        r.finish()
+    if drives:
+        kwargs["drive"] = drives
+    states = _wheel_state_inputs(i)
+    if states:
+        kwargs["wheel_states"] = states
+    i.taken.update(INPUT_KEYS)
+    i.finish()
+    return _wrap(i, None, lambda: DriverInputs(**kwargs))
+
+
+def _path_inputs(i: _Table, kwargs: dict[str, Any]) -> None:
+    """The inputs' path to follow ([x, y] points, lengths) and its preview and
+    min_distance into ``kwargs``; those two without a path are an error."""
     if i.has("path"):
         points = i.raw("path")
         if not isinstance(points, list) or not all(
@@ -531,6 +555,11 @@ def _inputs(t: _Table) -> DriverInputs | None:
     elif i.has("preview") or i.has("min_distance"):
         i.fail("preview" if i.has("preview") else "min_distance", "this is for a path: give path")
     i.taken.update(("path", "preview", "min_distance"))
+
+
+def _brake_inputs(i: _Table) -> dict[str, Brake]:
+    """The inputs' brake rows by their wheels ("all": the whole vehicle): a fraction of the
+    friction, a deceleration, or a deceleration split front/rear (front_share)."""
     brakes: dict[str, tuple[str, list[tuple[float, float]]]] = {}
     shares: dict[str, float] = {}
     for r in _rows(i, "brake", BRAKE_KEYS):
@@ -554,22 +583,17 @@ def _inputs(t: _Table) -> DriverInputs | None:
         if where in brakes and brakes[where][0] != kind:
             r.fail(kind, f'the brake rows of "{where}" mix kinds (fraction, deceleration, split)')
         brakes.setdefault(where, (kind, []))[1].append(row)
-    if brakes:
-        kwargs["brake"] = {
-            w: Brake.distributed(np.array(rows), shares[w])
-            if k == "distributed"
-            else Brake(k, np.array(rows))
-            for w, (k, rows) in brakes.items()
-        }
-    drives: dict[str, list[tuple[float, float]]] = {}
-    for r in _rows(i, "drive", DRIVE_KEYS):
-        where = r.string("wheels", "all")
-        drives.setdefault(where, []).append(
-            (r.quantity("time", "time"), r.quantity("force", "force"))
-        )
-        r.finish()
-    if drives:
-        kwargs["drive"] = drives
+    return {
+        w: Brake.distributed(np.array(rows), shares[w])
+        if k == "distributed"
+        else Brake(k, np.array(rows))
+        for w, (k, rows) in brakes.items()
+    }
+
+
+def _wheel_state_inputs(i: _Table) -> list[tuple[str, str, Any, float | None]]:
+    """The inputs' wheel-state switches: (wheel, state, when: a time or ("exchange", n),
+    fraction or None)."""
     states = []
     for r in _rows(i, "wheel_states", STATE_KEYS):
         wheel = r.string("wheel")
@@ -587,8 +611,4 @@ def _inputs(t: _Table) -> DriverInputs | None:
         fraction = r.number("fraction") if r.has("fraction") else None
         r.finish()
         states.append((wheel, state, at, fraction))
-    if states:
-        kwargs["wheel_states"] = states
-    i.taken.update(INPUT_KEYS)
-    i.finish()
-    return _wrap(i, None, lambda: DriverInputs(**kwargs))
+    return states

@@ -176,9 +176,6 @@ def plot_trajectories(
         count = _auto_count(result)
     if not isinstance(count, int | np.integer) or isinstance(count, bool) or count < 2:
         raise ParameterError(f"count must be an integer >= 2 (outlines per vehicle), got {count!r}")
-    from matplotlib.colors import to_rgba
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
 
     on_ground = bool(getattr(result, "on_ground", False))
     extended = on_ground or bool(result.obstacles)
@@ -194,7 +191,7 @@ def plot_trajectories(
         handles, labels = _draw_ground(ax, result)
         extra_points += _draw_wheels_and_marks(ax, result)
     _draw_paths(ax, result, split)
-    outlines = []
+    outlines: list[Any] = []
     tilts: dict[str, float] = {}
     spacing = _outline_spacing(result, int(count)) if on_ground else 0.0
     rests: list[str] = []
@@ -204,65 +201,11 @@ def plot_trajectories(
             rests.append(_draw_person(ax, result, person, members, vehicle_colour(k), spacing,
                                       times, on_ground, outlines))  # fmt: skip
             continue
-        name = person
-        c = vehicle_colour(k)
-        last: Array | None = None  # CG of the last time stamp written
-        vtimes = _spaced_times(result, name, spacing) if on_ground else times
-        for i, t in enumerate(vtimes):
-            pose = _Pose(result, name, float(t))
-            outlines.append(pose.outline)
-            tilts[name] = max(tilts.get(name, 0.0), pose.tilt)
-            share = i / max(len(vtimes) - 1, 1)
-            _draw_vehicle(
-                ax,
-                pose,
-                c,
-                fill_alpha=0.03 + 0.05 * share,
-                edge_alpha=0.3 + 0.5 * share,
-                lw=0.9,
-                details=False,
-                z=2.0 + share,
-            )
-            cg = pose.position
-            ax.plot([cg[0]], [cg[1]], marker=".", ms=5, color=c, zorder=3.5)
-            if last is not None and float(np.linalg.norm(cg[:2] - last)) < 0.4:
-                continue  # m: the previous stamp is in the way (the vehicle hardly moved)
-            last = cg[:2]
-            ax.annotate(
-                f"{t:.2f} s",
-                (cg[0], cg[1]),
-                xytext=(4, 4),
-                textcoords="offset points",
-                fontsize=7.5,
-                color=c,
-                alpha=0.9,
-                zorder=3.6,
-            )
-        for imp in result.impacts:
-            if name in imp.vehicles:  # the pose at each exchange, bold (numbered at its centroid)
-                pose = _Pose(result, name, imp.time)
-                outlines.append(pose.outline)
-                _draw_vehicle(ax, pose, c, fill_alpha=0.25, lw=1.8, z=4.0)
-        first = _Pose(result, name, t_start)
-        if on_ground:
-            end = _Pose(result, name, t_end)
-            outlines.append(end.outline)
-            tilts[name] = max(tilts.get(name, 0.0), end.tilt)
-            rest = result.rest(name)
-            _draw_vehicle(ax, end, c, fill_alpha=0.10, lw=1.6, ls=(0, (5, 3)), z=4.5)
-            when = (
-                f"at rest, t = {rest.time:.2f} s"
-                if rest is not None
-                else f"still moving at t = {t_end:.2f} s"
-            )
-            rests.append(_rest_words(result, name))
-            moved = float(np.linalg.norm(end.position[:2] - first.position[:2]))
-            turned = abs(math.degrees(_yaw_between(first.rotation, end.rotation)))
-            if moved < 0.15 * first.length and turned < 10.0:  # one label: it hardly moved
-                _label(ax, first, c, _path_points(result), f"{name} (start; {when})")
-                continue
-            _label(ax, end, c, _path_points(result), f"{name} {when}", small=True)
-        _label(ax, first, c, _path_points(result), f"{name} (start)")
+        vtimes = _spaced_times(result, person, spacing) if on_ground else times
+        _draw_vehicle_run(ax, result, person, vehicle_colour(k), vtimes, outlines, tilts)
+        _draw_start_and_end(
+            ax, result, person, vehicle_colour(k), on_ground, outlines, tilts, rests
+        )
     if result.obstacles:
         obstacle_handles, obstacle_labels, shown = _draw_obstacles(ax, result, outlines)
         handles += obstacle_handles
@@ -272,6 +215,123 @@ def plot_trajectories(
     for p in centroids:
         ax.plot([p[0]], [p[1]], marker="X", ms=11, mfc="gold", mec="black", zorder=9.5)
     ax.set_ylabel("world y (m)")
+    vehicle_handles, vehicle_labels = _vehicle_legend(result, on_ground, spacing, times)
+    if extended:
+        fig.legend(
+            vehicle_handles + handles,
+            vehicle_labels + labels,
+            loc="outside lower center",
+            ncols=3,
+            fontsize=8.5,
+            frameon=False,
+        )
+    else:
+        ax.legend(vehicle_handles, vehicle_labels, loc="best", fontsize=8.5, framealpha=0.9)
+    lines = _caption_lines(result, on_ground, tilts, rests)
+    fig.suptitle("\n".join(lines), fontsize=11)
+    _set_view(fig, [ax], _bounds(outlines, extra_points), 0.05)
+    _number_points(fig, ax, centroids, [_outline_points(o) for o in outlines])
+    if path is not None:
+        fig.savefig(Path(path), dpi=dpi)
+    return fig
+
+
+def _draw_vehicle_run(
+    ax: Axes,
+    result: Result,
+    name: str,
+    c: Any,
+    vtimes: Array,
+    outlines: list[Any],
+    tilts: dict[str, float],
+) -> None:
+    """A vehicle's faded outlines at ``vtimes`` (s; darker = later), each CG marked and
+    stamped with its time (unless the last stamp is in the way), then its outline at each of
+    its exchanges, bold. Appends to ``outlines`` and raises ``tilts[name]``."""
+    last: Array | None = None  # CG of the last time stamp written
+    for i, t in enumerate(vtimes):
+        pose = _Pose(result, name, float(t))
+        outlines.append(pose.outline)
+        tilts[name] = max(tilts.get(name, 0.0), pose.tilt)
+        share = i / max(len(vtimes) - 1, 1)
+        _draw_vehicle(
+            ax,
+            pose,
+            c,
+            fill_alpha=0.03 + 0.05 * share,
+            edge_alpha=0.3 + 0.5 * share,
+            lw=0.9,
+            details=False,
+            z=2.0 + share,
+        )
+        cg = pose.position
+        ax.plot([cg[0]], [cg[1]], marker=".", ms=5, color=c, zorder=3.5)
+        if last is not None and float(np.linalg.norm(cg[:2] - last)) < 0.4:
+            continue  # m: the previous stamp is in the way (the vehicle hardly moved)
+        last = cg[:2]
+        ax.annotate(
+            f"{t:.2f} s",
+            (cg[0], cg[1]),
+            xytext=(4, 4),
+            textcoords="offset points",
+            fontsize=7.5,
+            color=c,
+            alpha=0.9,
+            zorder=3.6,
+        )
+    for imp in result.impacts:
+        if name in imp.vehicles:  # the pose at each exchange, bold (numbered at its centroid)
+            pose = _Pose(result, name, imp.time)
+            outlines.append(pose.outline)
+            _draw_vehicle(ax, pose, c, fill_alpha=0.25, lw=1.8, z=4.0)
+
+
+def _draw_start_and_end(
+    ax: Axes,
+    result: Result,
+    name: str,
+    c: Any,
+    on_ground: bool,
+    outlines: list[Any],
+    tilts: dict[str, float],
+    rests: list[str],
+) -> None:
+    """A vehicle's start label and, on a ground, its outline at the end of the run (dashed,
+    labelled with its rest; one label for both when it hardly moved) and its rest's words
+    (appended to ``rests``)."""
+    t_start, t_end = float(result.t[0]), float(result.t[-1])
+    first = _Pose(result, name, t_start)
+    if on_ground:
+        end = _Pose(result, name, t_end)
+        outlines.append(end.outline)
+        tilts[name] = max(tilts.get(name, 0.0), end.tilt)
+        rest = result.rest(name)
+        _draw_vehicle(ax, end, c, fill_alpha=0.10, lw=1.6, ls=(0, (5, 3)), z=4.5)
+        when = (
+            f"at rest, t = {rest.time:.2f} s"
+            if rest is not None
+            else f"still moving at t = {t_end:.2f} s"
+        )
+        rests.append(_rest_words(result, name))
+        moved = float(np.linalg.norm(end.position[:2] - first.position[:2]))
+        turned = abs(math.degrees(_yaw_between(first.rotation, end.rotation)))
+        if moved < 0.15 * first.length and turned < 10.0:  # one label: it hardly moved
+            _label(ax, first, c, _path_points(result), f"{name} (start; {when})")
+            return
+        _label(ax, end, c, _path_points(result), f"{name} {when}", small=True)
+    _label(ax, first, c, _path_points(result), f"{name} (start)")
+
+
+def _vehicle_legend(
+    result: Result, on_ground: bool, spacing: float, times: Array
+) -> tuple[list[Any], list[str]]:
+    """The legend's entries for the vehicles (and people, bicycles) and the symbols; on a
+    ground also the end outline, the wheel paths and the tyre marks."""
+    from matplotlib.colors import to_rgba
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    person_of = _persons(result)
     vehicle_handles: list[Any] = []
     vehicle_labels: list[str] = []
     bicycles = _bicycle_bodies(result)
@@ -313,17 +373,15 @@ def plot_trajectories(
             "wheel paths (where each tyre met the ground)",
             "tyre marks (a tyre sliding at the friction limit)",
         ]
-    if extended:
-        fig.legend(
-            vehicle_handles + handles,
-            vehicle_labels + labels,
-            loc="outside lower center",
-            ncols=3,
-            fontsize=8.5,
-            frameon=False,
-        )
-    else:
-        ax.legend(vehicle_handles, vehicle_labels, loc="best", fontsize=8.5, framealpha=0.9)
+    return vehicle_handles, vehicle_labels
+
+
+def _caption_lines(
+    result: Result, on_ground: bool, tilts: dict[str, float], rests: list[str]
+) -> list[str]:
+    """The caption's lines: the run's span, the impacts, on a ground the run-out and the
+    ground, and the tilt note (each wrapped to CAPTION_CHARS)."""
+    t_start, t_end = float(result.t[0]), float(result.t[-1])
     summary = [
         f"{i + 1} at {imp.time:.3f} s {imp.vehicles[0]}-{imp.vehicles[1]}"
         + (" (secondary)" if imp.secondary else "")
@@ -337,9 +395,4 @@ def plot_trajectories(
         lines += _wrap(rests, "run-out: ")
         lines += _wrap([_ground_words(result)], "")
     lines += _wrap([note], "") if note else []
-    fig.suptitle("\n".join(lines), fontsize=11)
-    _set_view(fig, [ax], _bounds(outlines, extra_points), 0.05)
-    _number_points(fig, ax, centroids, [_outline_points(o) for o in outlines])
-    if path is not None:
-        fig.savefig(Path(path), dpi=dpi)
-    return fig
+    return lines

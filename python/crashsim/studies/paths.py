@@ -68,6 +68,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim.errors import StudyError
 from crashsim.records import rotation_matrix
+from crashsim.studies.vehicle_states import (
+    STATE_KEYS,
+    _base_states,
+    _qmul,
+    _set_vehicle_state,
+    _state_keys,
+    _yaw,
+)
 from crashsim.vehicles.checks import _read_only
 
 if TYPE_CHECKING:
@@ -311,35 +319,6 @@ def _pair_path(scene: SceneView, text: str, head: str, parameter: str) -> Parame
 # -- values -> the contract's override arrays -------------------------------------------------
 
 
-def _yaw(q: Array) -> float:
-    """Yaw of the body x axis from world x (rad) of a quaternion (w, x, y, z)."""
-    w, x, y, z = (float(c) for c in q)
-    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
-
-
-def _rz(angle: float) -> Array:
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-
-
-def _qmul(a: Array, b: Array) -> Array:
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return np.array(
-        [
-            aw * bw - ax * bx - ay * by - az * bz,
-            aw * bx + ax * bw + ay * bz - az * by,
-            aw * by - ax * bz + ay * bw + az * bx,
-            aw * bz + ax * by - ay * bx + az * bw,
-        ]
-    )
-
-
-def _body_x(q: Array) -> Array:
-    w, x, y, z = (float(c) for c in q)
-    return np.array([1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)])
-
-
 def _values(name: str, values: ArrayLike, n: int | None) -> Array:
     try:
         a = np.asarray(values, dtype=np.float64)
@@ -375,6 +354,37 @@ def overrides(
             + ", ".join(f"{k}: {a.size}" for k, a in arrays.items())
         )
     count = n if n is not None else (sizes.pop() if sizes else 0)
+    vehicles = _check_conflicts(scene, paths)
+    out: dict[str, Array] = {}
+    by_vehicle = {v: [p for p in paths if p.kind == "vehicle" and p.target == v] for v in vehicles}
+    state_keys = _state_keys(by_vehicle)
+    base = _base_states(scene.placements)
+    for key in STATE_KEYS:
+        if key in state_keys:
+            out[key] = np.repeat(base[key][None], count, axis=0).astype(np.float64)
+    ground = scene.ground
+    for j, v in enumerate(vehicles):
+        ps = {p.parameter: arrays[p.name] for p in by_vehicle[v]}
+        if not ps:
+            continue
+        _set_vehicle_state(out, j, ps, base, count, ground)
+    _move_combinations(scene, by_vehicle, base, out, count)
+    _set_contacts(scene, paths, arrays, out, count)
+    for p in paths:
+        if p.kind == "ground":
+            assert ground is not None
+            key = _GROUND_KEYS[p.parameter]
+            out[key] = arrays[p.name].copy()
+        elif p.kind == "pedestrian" or p.kind == "pedestrian pair" and (
+                p.parameter in SOFT_PARAMETERS):  # fmt: skip
+            out[_pedestrian_key(p)] = arrays[p.name].copy()
+    return out
+
+
+def _check_conflicts(scene: SceneView, paths: list[ParameterPath]) -> list[str]:
+    """StudyError when two paths set the same input, for a pedestrian's paths that do not
+    go together, or when a vehicle's speed/direction and velocity components are both
+    varied; the scene's vehicles."""
     seen: dict[tuple[Any, ...], str] = {}
     for p in paths:
         for key in _slots(scene, p):
@@ -394,88 +404,18 @@ def overrides(
                 "velocity: vary one or the other",
                 key=f"{v}.velocity_x" if "velocity_x" in given else f"{v}.velocity_y",
             )
-    out: dict[str, Array] = {}
-    placements = scene.placements
-    by_vehicle = {v: [p for p in paths if p.kind == "vehicle" and p.target == v] for v in vehicles}
-    state_keys = set()
-    for ps in by_vehicle.values():
-        for p in ps:
-            if p.parameter == "mass":
-                state_keys.add("mass")
-            elif p.parameter in ("position_x", "position_y"):
-                state_keys.add("position")
-            elif p.parameter == "heading":
-                state_keys.update(("orientation", "velocity", "angular_velocity"))
-            elif p.parameter == "yaw_rate":
-                state_keys.add("angular_velocity")
-            else:
-                state_keys.add("velocity")
-    base = {
-        "position": np.stack([p.position for p in placements]),
-        "orientation": np.stack([p.orientation for p in placements]),
-        "velocity": np.stack([p.velocity for p in placements]),
-        "angular_velocity": np.stack([p.angular_velocity for p in placements]),
-        "mass": np.array([p.vehicle.mass for p in placements], dtype=np.float64),
-    }
-    for key in ("position", "orientation", "velocity", "angular_velocity", "mass"):
-        if key in state_keys:
-            out[key] = np.repeat(base[key][None], count, axis=0).astype(np.float64)
-    ground = scene.ground
-    for j, v in enumerate(vehicles):
-        ps = {p.parameter: arrays[p.name] for p in by_vehicle[v]}
-        if not ps:
-            continue
-        p0 = base["position"][j]
-        q0 = base["orientation"][j]
-        if "mass" in ps:
-            out["mass"][:, j] = ps["mass"]
-        if "position_x" in ps or "position_y" in ps:
-            xs = ps.get("position_x", np.full(count, p0[0]))
-            ys = ps.get("position_y", np.full(count, p0[1]))
-            out["position"][:, j, 0] = xs
-            out["position"][:, j, 1] = ys
-            if ground is not None and ground.terrain is not None:
-                h0 = ground.height_at(p0[0], p0[1])
-                for i in range(count):
-                    h = ground.height_at(xs[i], ys[i])
-                    if h is None or h0 is None:
-                        h = math.nan  # off the terrain: that variant fails (non-finite z)
-                    out["position"][i, j, 2] = p0[2] + (h - (h0 or 0.0))
-        if "heading" in ps:
-            h0 = _yaw(q0)
-            level = q0[1] == 0.0 and q0[2] == 0.0
-            for i, h in enumerate(ps["heading"]):
-                turn = float(h) - h0
-                rz = _rz(turn)
-                if level:  # exactly what Scene.add(heading=h) gives
-                    out["orientation"][i, j] = [math.cos(h / 2.0), 0.0, 0.0, math.sin(h / 2.0)]
-                else:
-                    dq = np.array([math.cos(turn / 2.0), 0.0, 0.0, math.sin(turn / 2.0)])
-                    out["orientation"][i, j] = _qmul(dq, q0)
-                if turn != 0.0:
-                    out["velocity"][i, j] = rz @ base["velocity"][j]
-                    out["angular_velocity"][i, j] = rz @ base["angular_velocity"][j]
-        if "direction" in ps:
-            for i, d in enumerate(ps["direction"]):
-                vel = out["velocity"][i, j]
-                s = math.hypot(vel[0], vel[1])
-                out["velocity"][i, j, :2] = (s * math.cos(d), s * math.sin(d))
-        if "speed" in ps:
-            for i, s in enumerate(ps["speed"]):
-                vel = out["velocity"][i, j]
-                size = float(np.linalg.norm(vel))
-                if size > 0.0:
-                    out["velocity"][i, j] = vel * (float(s) / size)
-                else:
-                    q = out["orientation"][i, j] if "orientation" in out else q0
-                    out["velocity"][i, j] = float(s) * _body_x(q)
-        if "velocity_x" in ps:
-            out["velocity"][:, j, 0] = ps["velocity_x"]
-        if "velocity_y" in ps:
-            out["velocity"][:, j, 1] = ps["velocity_y"]
-        if "yaw_rate" in ps:
-            out["angular_velocity"][:, j, 2] = ps["yaw_rate"]
-    _move_combinations(scene, by_vehicle, base, out, count)
+    return vehicles
+
+
+def _set_contacts(
+    scene: SceneView,
+    paths: list[ParameterPath],
+    arrays: Mapping[str, Array],
+    out: dict[str, Array],
+    count: int,
+) -> None:
+    """The pair parameters' arrays ``contact.<parameter>`` [variant, pair]: the paths' values
+    for the pairs they name, the scene's own for the others ("auto" as NaN)."""
     pairs = scene.pairs()
     for p in paths:
         if p.kind not in ("pairs", "pair", "pedestrian pair") or p.parameter in SOFT_PARAMETERS:
@@ -490,15 +430,6 @@ def overrides(
         for k, (a, b, _) in enumerate(pairs):
             if (a, b) in chosen:
                 out[key][:, k] = arrays[p.name]
-    for p in paths:
-        if p.kind == "ground":
-            assert ground is not None
-            key = _GROUND_KEYS[p.parameter]
-            out[key] = arrays[p.name].copy()
-        elif p.kind == "pedestrian" or p.kind == "pedestrian pair" and (
-                p.parameter in SOFT_PARAMETERS):  # fmt: skip
-            out[_pedestrian_key(p)] = arrays[p.name].copy()
-    return out
 
 
 def _pedestrian_key(p: ParameterPath) -> str:

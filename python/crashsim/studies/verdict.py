@@ -214,13 +214,7 @@ def judge(
     chi2 = float(values @ values)
     m = len(values)
     best, lo, hi, sigma = (np.asarray(a, dtype=np.float64) for a in (best, lo, hi, sigma))
-    span = hi - lo
-    at_bound: dict[str, str] = {}
-    for j, n in enumerate(names):
-        if best[j] - lo[j] <= AT_BOUND * span[j]:
-            at_bound[n] = "lower"
-        elif hi[j] - best[j] <= AT_BOUND * span[j]:
-            at_bound[n] = "upper"
+    at_bound = _at_bounds(names, best, lo, hi)
     free = len(names) - len(at_bound)
     dof = m - free
     tested = max(dof, 1)
@@ -237,19 +231,7 @@ def judge(
     for label, why in unavailable.items():
         fail.append(f"{label}: {why}")
     if p is not None:
-        worst = ", ".join(f"{k} {v:+.3g}" for k, v in sorted(residuals, key=lambda r: -abs(r[1]))
-                          [:WORST])  # fmt: skip
-        test = f"chi^2 {chi2:.4g} with {_count(tested, 'degree')} of freedom: p = {p:.2g}"
-        if p < P_REJECT:
-            fail.append(f"{test} < {P_REJECT:.2g} (5 sigma): the model cannot give the evidence "
-                        f"within its tolerances (largest residuals, in tolerances: {worst})")
-        elif p < P_POOR:
-            poor.append(f"{test} < {P_POOR:g}: the residuals are larger than the tolerances "
-                        f"allow (largest, in tolerances: {worst})")  # fmt: skip
-        if dof <= 0:
-            notes.append(f"{_count(dof, 'degree')} of freedom ({_count(m, 'residual')}, "
-                         f"{_count(free, 'free unknown')}): the evidence has no residual to "
-                         "spare, so chi^2 tests little")  # fmt: skip
+        _chi2_reasons(residuals, chi2, tested, p, dof, m, free, fail, poor, notes)
     for n, side in at_bound.items():
         j = list(names).index(n)
         bound = lo[j] if side == "lower" else hi[j]
@@ -274,23 +256,8 @@ def judge(
                 else "withheld: the fit was interrupted")  # fmt: skip
     else:
         withheld = tuple(n for n in names if n in at_bound or n in not_fixed)
-        parts = []
-        if p is not None and p < P_POOR:
-            scale = math.sqrt(chi2 / tested)
-            parts.append(f"widened by the Birge ratio sqrt(chi^2/dof) = {scale:.3g}")
-        if withheld:
-            parts.append(f"withheld for {', '.join(withheld)} (at a bound or not fixed)")
-        rule = "; ".join(parts) if parts else "as computed"
-        from scipy.stats import norm
-
-        z = float(norm.ppf(0.975))  # 1.96: the Jacobian's two-sided 95 %
-        for j, n in enumerate(names):
-            if n in withheld:
-                continue
-            reach = scale * z * sigma[j]
-            if best[j] - reach <= lo[j] or best[j] + reach >= hi[j]:
-                notes.append(f"{n}'s 95 % range reaches a bound: that end is the bound's, "
-                             "not the evidence's")  # fmt: skip
+        scale, rule = _range_rule(p, chi2, tested, withheld)
+        _note_ranges_at_bounds(names, withheld, scale, best, lo, hi, sigma, notes)
     return Verdict(
         status=status,
         chi2=chi2,
@@ -309,3 +276,83 @@ def judge(
         reasons=tuple(fail + poor),
         notes=tuple(notes),
     )
+
+
+def _at_bounds(names: Sequence[str], best: Array, lo: Array, hi: Array) -> dict[str, str]:
+    """The unknowns whose best value is within AT_BOUND of its range from a bound: "lower"
+    or "upper"."""
+    span = hi - lo
+    at_bound: dict[str, str] = {}
+    for j, n in enumerate(names):
+        if best[j] - lo[j] <= AT_BOUND * span[j]:
+            at_bound[n] = "lower"
+        elif hi[j] - best[j] <= AT_BOUND * span[j]:
+            at_bound[n] = "upper"
+    return at_bound
+
+
+def _chi2_reasons(
+    residuals: Sequence[tuple[str, float]],
+    chi2: float,
+    tested: int,
+    p: float,
+    dof: int,
+    m: int,
+    free: int,
+    fail: list[str],
+    poor: list[str],
+    notes: list[str],
+) -> None:
+    """The chi^2 test's reason (does not fit below P_REJECT, poor below P_POOR, with the
+    largest residuals) and a note when there are no degrees of freedom to spare."""
+    worst = ", ".join(f"{k} {v:+.3g}" for k, v in sorted(residuals, key=lambda r: -abs(r[1]))
+                      [:WORST])  # fmt: skip
+    test = f"chi^2 {chi2:.4g} with {_count(tested, 'degree')} of freedom: p = {p:.2g}"
+    if p < P_REJECT:
+        fail.append(f"{test} < {P_REJECT:.2g} (5 sigma): the model cannot give the evidence "
+                    f"within its tolerances (largest residuals, in tolerances: {worst})")
+    elif p < P_POOR:
+        poor.append(f"{test} < {P_POOR:g}: the residuals are larger than the tolerances "
+                    f"allow (largest, in tolerances: {worst})")  # fmt: skip
+    if dof <= 0:
+        notes.append(f"{_count(dof, 'degree')} of freedom ({_count(m, 'residual')}, "
+                     f"{_count(free, 'free unknown')}): the evidence has no residual to "
+                     "spare, so chi^2 tests little")  # fmt: skip
+
+
+def _range_rule(
+    p: float | None, chi2: float, tested: int, withheld: tuple[str, ...]
+) -> tuple[float, str]:
+    """The ranges' scale (the Birge ratio when the chi^2 test is poor, else 1) and the rule's
+    words, for a fit that fits or fits poorly."""
+    scale = 1.0
+    parts = []
+    if p is not None and p < P_POOR:
+        scale = math.sqrt(chi2 / tested)
+        parts.append(f"widened by the Birge ratio sqrt(chi^2/dof) = {scale:.3g}")
+    if withheld:
+        parts.append(f"withheld for {', '.join(withheld)} (at a bound or not fixed)")
+    return scale, "; ".join(parts) if parts else "as computed"
+
+
+def _note_ranges_at_bounds(
+    names: Sequence[str],
+    withheld: tuple[str, ...],
+    scale: float,
+    best: Array,
+    lo: Array,
+    hi: Array,
+    sigma: Array,
+    notes: list[str],
+) -> None:
+    """A note for each quoted 95 % range (the Jacobian's, scaled) that reaches a bound."""
+    from scipy.stats import norm
+
+    z = float(norm.ppf(0.975))  # 1.96: the Jacobian's two-sided 95 %
+    for j, n in enumerate(names):
+        if n in withheld:
+            continue
+        reach = scale * z * sigma[j]
+        if best[j] - reach <= lo[j] or best[j] + reach >= hi[j]:
+            notes.append(f"{n}'s 95 % range reaches a bound: that end is the bound's, "
+                         "not the evidence's")  # fmt: skip

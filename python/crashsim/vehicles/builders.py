@@ -10,6 +10,7 @@ read in two files of one concept each. Frames and units as crashsim.vehicles.veh
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import math
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -133,26 +134,13 @@ class VehicleBuilders:
         mass_kg, mass_source = _mass(mass, weight_lb)
         stiff = Stiffness.coerce(stiffness)
         wheel_keys = _wheel_keys(wheelbase, track, wheel_radius, cg_to_front_axle, tyre, wheels)
-        if solid not in SOLIDS:
-            raise ParameterError(f"solid = {solid!r} is unknown: use one of {', '.join(SOLIDS)}")
-        cg_mode = _mode(cg, "cg", ("mesh",))
-        inertia_mode = _mode(inertia, "inertia", ("mesh", "empirical"))
-        if wheelbase is not None and inertia_mode != "empirical" and wheel_keys is None:
-            raise ParameterError(
-                'wheelbase is only used by inertia="empirical" and by wheels: drop it, ask for '
-                "that rule, or give the wheels' track, wheel_radius and cg_to_front_axle too"
-            )
-        if inertia_mode == "empirical" and wheelbase is None:
-            raise ParameterError('inertia="empirical" needs the wheelbase (m): give wheelbase=')
+        cg_mode, inertia_mode = _mesh_rules(solid, cg, inertia, wheelbase, wheel_keys)
         what = describe(source)
         mesh = load_mesh(source, units=units, up=up, forward=forward, ground=ground, center=center)
         scale = unit_scale(units)
         units_name = units.strip().lower() if isinstance(units, str) else f"{scale:g} m per unit"
         if name is None:
-            if isinstance(source, trimesh.Trimesh | trimesh.Scene):
-                name = "vehicle"
-            else:
-                name = Path(source).stem
+            name = _mesh_name(source)
         sources: dict[str, str] = {}
         details: dict[str, str] = {}
         solid_props = None
@@ -163,24 +151,15 @@ class VehicleBuilders:
             cg_v, sources["cg"], details["cg"] = solid_props[1], kind, detail
         else:
             cg_v, sources["cg"] = _point(cg, "cg"), USER
-        inertia_v: ArrayLike
         if inertia_mode == "mesh":
             assert solid_props is not None
             volume, centroid, unit_inertia = solid_props
             scaled = unit_inertia * (mass_kg / volume)
-            inertia_v = _parallel_axis(scaled, mass_kg, cg_v - centroid)
+            inertia_v: ArrayLike = _parallel_axis(scaled, mass_kg, cg_v - centroid)
             sources["inertia"], details["inertia"] = kind, detail
-        elif inertia_mode == "empirical":
-            length, width, height = (float(e) for e in mesh.extents)
-            wb = _wheelbase(wheelbase, length)
-            inertia_v = empirical_inertia(mass_kg, wb, length, width, height)
-            sources["inertia"] = EMPIRICAL
-            details["inertia"] = (
-                f"{EMPIRICAL}: Izz = m (0.5 WB)^2 with WB = {wb:.3f} m; Ixx, Iyy of the "
-                f"uniform {length:.2f} x {width:.2f} x {height:.2f} m box"
-            )
         else:
-            inertia_v, sources["inertia"] = np.asarray(inertia, dtype=np.float64), USER
+            inertia_v = _mesh_inertia(inertia_mode, inertia, mesh, mass_kg, wheelbase, sources,
+                                      details)  # fmt: skip
         with _rule_hint(inertia_mode, _EMPIRICAL_FIX):
             vehicle = cls(
                 mesh, mass_kg, cg_v, inertia_v, name=name, sources=sources, stiffness=stiff
@@ -300,6 +279,7 @@ class VehicleBuilders:
         return vehicle
 
     @classmethod
+    # Over 100 lines: the docstring (72 lines) documents every keyword and rule; the body is 78.
     def generate(
         cls,
         preset: str = "sedan",
@@ -385,15 +365,7 @@ class VehicleBuilders:
                 "tyre": tyre,
                 **shape,
             }
-            given = [k for k, v in others.items() if v is not None] + (
-                ["resolution"] if resolution != 1.0 else []
-            )
-            if given:
-                raise ParameterError(
-                    f"Vehicle.generate({preset!r}) takes mass, length and name; give "
-                    f"{', '.join(given)} to crashsim.{COMBINATION_PRESETS[preset].__name__}"
-                    f"({preset!r}, ...) instead"
-                )
+            _check_combination_keywords(preset, others, resolution)
             return COMBINATION_PRESETS[preset](mass=mass, length=length, name=name)
         vc, key = _preset_class(preset)
         table = f"class table ({key})"
@@ -409,69 +381,24 @@ class VehicleBuilders:
         inertia_mode = "class" if inertia is None else _mode(inertia, "inertia", _INERTIA_WORDS)
         asked = {"length": length, "width": width, "height": height, "wheelbase": wheelbase}
         dims = {k: getattr(vc, k).value if v is None else v for k, v in asked.items()}
-        for k, v in {**dims, **shape}.items():  # the generator's geometry fails beyond it
-            if isinstance(v, int | float) and not isinstance(v, bool):
-                if math.isfinite(v) and abs(v) > plausibility.SIZE_IMPOSSIBLE[1]:
-                    raise ParameterError(
-                        f"{k} = {v:g} m: no vehicle is longer than 10 km; give metres"
-                    )
+        _check_generator_sizes({**dims, **shape})
         params = body_params(key, **dims, **shape)
         mesh = generate_body(params, resolution)
         # Ratios to the class (exactly 1.0 for the class's own numbers).
-        wb_ratio = params.wheelbase / vc.wheelbase.value
-        h_ratio = params.height / vc.height.value
-        m_ratio = mass_kg / vc.mass.value
+        ratios = _ClassRatios(
+            wb=params.wheelbase / vc.wheelbase.value,
+            h=params.height / vc.height.value,
+            m=mass_kg / vc.mass.value,
+        )
         sources: dict[str, str] = {}
         details: dict[str, str] = {}
         solid = solid_properties(mesh)  # closed and outward by construction: volume > 0
-        volume, centroid, unit_inertia = solid
-        if cg_mode == "class":
-            front_axle = params.length / 2.0 - params.front_overhang
-            to_axle = vc.cg_to_front_axle.value * wb_ratio
-            cg_v = np.array([front_axle - to_axle, 0.0, vc.cg_height.value * h_ratio])
-            scaled = _scaled_to(
-                ("wheelbase", wb_ratio, params.wheelbase, "m"),
-                ("height", h_ratio, params.height, "m"),
-            )
-            sources["cg"] = table + scaled
-            details["cg"] = (
-                f"{table}{scaled}: {to_axle:.3f} m behind the front axle, "
-                f"{cg_v[2]:.3f} m above the ground"
-            )
-        elif cg_mode == "mesh":
-            cg_v, sources["cg"] = centroid, GENERATED_SOLID
-            details["cg"] = f"{GENERATED_SOLID} ({volume:.4g} m^3)"
-        else:
-            cg_v, sources["cg"] = _point(cg, "cg"), USER
-        inertia_v: ArrayLike
-        if inertia_mode in ("class", "mesh"):
-            inertia_v = _parallel_axis(unit_inertia * (mass_kg / volume), mass_kg, cg_v - centroid)
-            if inertia_mode == "class":
-                izz = vc.yaw_inertia.value * m_ratio * wb_ratio**2
-                inertia_v[2, 2] = izz
-                inertia_v[0, 2] = inertia_v[2, 0] = inertia_v[1, 2] = inertia_v[2, 1] = 0.0
-                scaled = _scaled_to(
-                    ("mass", m_ratio, mass_kg, "kg"),
-                    ("wheelbase", wb_ratio, params.wheelbase, "m"),
-                )
-                sources["inertia"] = f"Izz {table}{scaled}; Ixx, Iyy: {GENERATED_SOLID}"
-                details["inertia"] = (
-                    f"Izz {table}{scaled}; Ixx, Iyy, Ixy: {GENERATED_SOLID} "
-                    f"({volume:.4g} m^3) at the CG; Ixz = Iyz = 0"
-                )
-            else:
-                sources["inertia"] = GENERATED_SOLID
-                details["inertia"] = f"{GENERATED_SOLID} ({volume:.4g} m^3) at the CG"
-        elif inertia_mode == "empirical":
-            ext_l, ext_w, ext_h = (float(e) for e in mesh.extents)
-            inertia_v = empirical_inertia(mass_kg, params.wheelbase, ext_l, ext_w, ext_h)
-            sources["inertia"] = EMPIRICAL
-            details["inertia"] = (
-                f"{EMPIRICAL}: Izz = m (0.5 WB)^2 with WB = {params.wheelbase:.3f} m; Ixx, Iyy "
-                f"of the uniform {ext_l:.2f} x {ext_w:.2f} x {ext_h:.2f} m box"
-            )
-        else:
-            inertia_v, sources["inertia"] = np.asarray(inertia, dtype=np.float64), USER
+        volume = solid[0]
+        cg_v = _generated_cg(cg_mode, cg, vc, params, table, ratios, solid, sources, details)
+        inertia_v = _generated_inertia(
+            inertia_mode, inertia, vc, params, mesh, mass_kg, cg_v, table, ratios, solid,
+            sources, details,
+        )  # fmt: skip
         sources["mass"] = mass_source
         sources["dimensions"] = _given_or(asked, table)
         defaults = f"generator defaults ({key})"
@@ -494,28 +421,7 @@ class VehicleBuilders:
             )
         vehicle._mass_source, vehicle._details = mass_source, details
         vehicle._generator_params = params
-        w_ratio = params.width / vc.width.value
-        if track is None:
-            track_v: float | tuple[float, float] = (
-                vc.track_front.value * w_ratio,
-                vc.track_rear.value * w_ratio,
-            )
-            wheel_source = f"track: {table}" + _scaled_to(("width", w_ratio, params.width, "m"))
-        else:
-            track_v, wheel_source = track, "track: user"
-        wheel_source += "; axles and tyre radius: the generated body"
-        wheel_source += f"; anti-roll bars: the roll gradient of {table}"
-        front_axle = params.length / 2.0 - params.front_overhang
-        vehicle = vehicle.with_wheels(
-            wheelbase=params.wheelbase,
-            track=track_v,
-            radius=params.wheel_radius,
-            cg_to_front_axle=front_axle - float(vehicle.cg[0]),
-            cg_height=float(vehicle.cg[2]),
-            tyre=tyre,
-            source=wheel_source,
-            roll_gradient=vc.roll_gradient.value,
-        )
+        vehicle = _with_generated_wheels(vehicle, vc, params, table, track, tyre)
         findings = plausibility.size_findings(mesh.extents)
         findings += plausibility.check_density(
             mass_kg, volume, "the generated body's solid", findings
@@ -527,6 +433,203 @@ class VehicleBuilders:
 
 
 _INERTIA_WORDS = ("class", "mesh", "empirical")
+
+
+def _mesh_rules(
+    solid: Any, cg: Any, inertia: Any, wheelbase: Any, wheel_keys: dict[str, Any] | None
+) -> tuple[str, str]:
+    """Vehicle.from_mesh's cg and inertia rules ("mesh", "user"; "empirical" for the inertia)
+    after checking ``solid`` and that the wheelbase is given exactly when it is used."""
+    if solid not in SOLIDS:
+        raise ParameterError(f"solid = {solid!r} is unknown: use one of {', '.join(SOLIDS)}")
+    cg_mode = _mode(cg, "cg", ("mesh",))
+    inertia_mode = _mode(inertia, "inertia", ("mesh", "empirical"))
+    if wheelbase is not None and inertia_mode != "empirical" and wheel_keys is None:
+        raise ParameterError(
+            'wheelbase is only used by inertia="empirical" and by wheels: drop it, ask for '
+            "that rule, or give the wheels' track, wheel_radius and cg_to_front_axle too"
+        )
+    if inertia_mode == "empirical" and wheelbase is None:
+        raise ParameterError('inertia="empirical" needs the wheelbase (m): give wheelbase=')
+    return cg_mode, inertia_mode
+
+
+def _mesh_name(source: MeshSource) -> str:
+    """Vehicle.from_mesh's default name: the file's stem, "vehicle" for an in-memory mesh."""
+    if isinstance(source, trimesh.Trimesh | trimesh.Scene):
+        return "vehicle"
+    return Path(source).stem
+
+
+def _mesh_inertia(
+    inertia_mode: str,
+    inertia: Any,
+    mesh: trimesh.Trimesh,
+    mass_kg: float,
+    wheelbase: Any,
+    sources: dict[str, str],
+    details: dict[str, str],
+) -> ArrayLike:
+    """Vehicle.from_mesh's inertia about the CG (body axes, kg m^2) by the "empirical" rule
+    (from the wheelbase and the mesh's extents) or the user's tensor; writes its source and
+    details."""
+    if inertia_mode == "empirical":
+        length, width, height = (float(e) for e in mesh.extents)
+        wb = _wheelbase(wheelbase, length)
+        inertia_v = empirical_inertia(mass_kg, wb, length, width, height)
+        sources["inertia"] = EMPIRICAL
+        details["inertia"] = (
+            f"{EMPIRICAL}: Izz = m (0.5 WB)^2 with WB = {wb:.3f} m; Ixx, Iyy of the "
+            f"uniform {length:.2f} x {width:.2f} x {height:.2f} m box"
+        )
+        return inertia_v
+    inertia_v, sources["inertia"] = np.asarray(inertia, dtype=np.float64), USER
+    return inertia_v
+
+
+def _check_combination_keywords(preset: str, others: dict[str, Any], resolution: float) -> None:
+    """ParameterError when Vehicle.generate of a combination preset ("tractor", ...) is given
+    a keyword other than mass, length and name (a resolution other than 1 counts)."""
+    given = [k for k, v in others.items() if v is not None] + (
+        ["resolution"] if resolution != 1.0 else []
+    )
+    if given:
+        raise ParameterError(
+            f"Vehicle.generate({preset!r}) takes mass, length and name; give "
+            f"{', '.join(given)} to crashsim.{COMBINATION_PRESETS[preset].__name__}"
+            f"({preset!r}, ...) instead"
+        )
+
+
+def _check_generator_sizes(values: dict[str, Any]) -> None:
+    """ParameterError for a dimension or shape parameter (m) beyond any vehicle's size: the
+    generator's geometry fails beyond it."""
+    for k, v in values.items():
+        if isinstance(v, int | float) and not isinstance(v, bool):
+            if math.isfinite(v) and abs(v) > plausibility.SIZE_IMPOSSIBLE[1]:
+                raise ParameterError(f"{k} = {v:g} m: no vehicle is longer than 10 km; give metres")
+
+
+@dataclasses.dataclass(frozen=True)
+class _ClassRatios:
+    """A generated vehicle's numbers over its class's (exactly 1.0 for the class's own)."""
+
+    wb: float  # wheelbase
+    h: float  # height
+    m: float  # mass
+
+
+def _generated_cg(
+    cg_mode: str,
+    cg: Any,
+    vc: VehicleClass,
+    params: Any,
+    table: str,
+    ratios: _ClassRatios,
+    solid: tuple[float, Any, Any],
+    sources: dict[str, str],
+    details: dict[str, str],
+) -> Any:
+    """Vehicle.generate's CG (model frame, m) by its rule ("class", "mesh" or the user's
+    point); writes its source and details."""
+    volume, centroid, _ = solid
+    if cg_mode == "class":
+        front_axle = params.length / 2.0 - params.front_overhang
+        to_axle = vc.cg_to_front_axle.value * ratios.wb
+        cg_v = np.array([front_axle - to_axle, 0.0, vc.cg_height.value * ratios.h])
+        scaled = _scaled_to(
+            ("wheelbase", ratios.wb, params.wheelbase, "m"),
+            ("height", ratios.h, params.height, "m"),
+        )
+        sources["cg"] = table + scaled
+        details["cg"] = (
+            f"{table}{scaled}: {to_axle:.3f} m behind the front axle, "
+            f"{cg_v[2]:.3f} m above the ground"
+        )
+    elif cg_mode == "mesh":
+        cg_v, sources["cg"] = centroid, GENERATED_SOLID
+        details["cg"] = f"{GENERATED_SOLID} ({volume:.4g} m^3)"
+    else:
+        cg_v, sources["cg"] = _point(cg, "cg"), USER
+    return cg_v
+
+
+def _generated_inertia(
+    inertia_mode: str,
+    inertia: Any,
+    vc: VehicleClass,
+    params: Any,
+    mesh: trimesh.Trimesh,
+    mass_kg: float,
+    cg_v: Any,
+    table: str,
+    ratios: _ClassRatios,
+    solid: tuple[float, Any, Any],
+    sources: dict[str, str],
+    details: dict[str, str],
+) -> ArrayLike:
+    """Vehicle.generate's inertia about the CG (body axes, kg m^2) by its rule ("class",
+    "mesh", "empirical" or the user's tensor); writes its source and details."""
+    volume, centroid, unit_inertia = solid
+    inertia_v: ArrayLike
+    if inertia_mode in ("class", "mesh"):
+        inertia_v = _parallel_axis(unit_inertia * (mass_kg / volume), mass_kg, cg_v - centroid)
+        if inertia_mode == "class":
+            izz = vc.yaw_inertia.value * ratios.m * ratios.wb**2
+            inertia_v[2, 2] = izz
+            inertia_v[0, 2] = inertia_v[2, 0] = inertia_v[1, 2] = inertia_v[2, 1] = 0.0
+            scaled = _scaled_to(
+                ("mass", ratios.m, mass_kg, "kg"),
+                ("wheelbase", ratios.wb, params.wheelbase, "m"),
+            )
+            sources["inertia"] = f"Izz {table}{scaled}; Ixx, Iyy: {GENERATED_SOLID}"
+            details["inertia"] = (
+                f"Izz {table}{scaled}; Ixx, Iyy, Ixy: {GENERATED_SOLID} "
+                f"({volume:.4g} m^3) at the CG; Ixz = Iyz = 0"
+            )
+        else:
+            sources["inertia"] = GENERATED_SOLID
+            details["inertia"] = f"{GENERATED_SOLID} ({volume:.4g} m^3) at the CG"
+    elif inertia_mode == "empirical":
+        ext_l, ext_w, ext_h = (float(e) for e in mesh.extents)
+        inertia_v = empirical_inertia(mass_kg, params.wheelbase, ext_l, ext_w, ext_h)
+        sources["inertia"] = EMPIRICAL
+        details["inertia"] = (
+            f"{EMPIRICAL}: Izz = m (0.5 WB)^2 with WB = {params.wheelbase:.3f} m; Ixx, Iyy "
+            f"of the uniform {ext_l:.2f} x {ext_w:.2f} x {ext_h:.2f} m box"
+        )
+    else:
+        inertia_v, sources["inertia"] = np.asarray(inertia, dtype=np.float64), USER
+    return inertia_v
+
+
+def _with_generated_wheels(
+    vehicle: Any, vc: VehicleClass, params: Any, table: str, track: Any, tyre: Any
+) -> Any:
+    """The generated vehicle on wheels: the body's axles and tyre radius, the class's track
+    scaled to the width (unless ``track``, m), the class's roll gradient."""
+    w_ratio = params.width / vc.width.value
+    if track is None:
+        track_v: float | tuple[float, float] = (
+            vc.track_front.value * w_ratio,
+            vc.track_rear.value * w_ratio,
+        )
+        wheel_source = f"track: {table}" + _scaled_to(("width", w_ratio, params.width, "m"))
+    else:
+        track_v, wheel_source = track, "track: user"
+    wheel_source += "; axles and tyre radius: the generated body"
+    wheel_source += f"; anti-roll bars: the roll gradient of {table}"
+    front_axle = params.length / 2.0 - params.front_overhang
+    return vehicle.with_wheels(
+        wheelbase=params.wheelbase,
+        track=track_v,
+        radius=params.wheel_radius,
+        cg_to_front_axle=front_axle - float(vehicle.cg[0]),
+        cg_height=float(vehicle.cg[2]),
+        tyre=tyre,
+        source=wheel_source,
+        roll_gradient=vc.roll_gradient.value,
+    )
 
 
 def _wheel_keys(

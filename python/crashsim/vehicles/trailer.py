@@ -449,21 +449,7 @@ class Trailer:
         ln, wd, ht = dims
         front = ln / 2.0
         body = _box((-front, -wd / 2, lo_z), (front, wd / 2, lo_z + ht))
-        bar = _positive(coupler, "coupler") if kind == "centre_axle" else float(coupler)
-        hz = _positive(coupler_height, "coupler_height")
-        if kind in ("semitrailer", "drawbar_body"):
-            if not 0.0 <= bar < ln:
-                raise ParameterError(
-                    f"coupler = {coupler} m: a semitrailer's kingpin lies behind the body's "
-                    f"front and ahead of its rear (0 to {ln} m)"
-                )
-            point = np.array([front - bar, 0.0, hz])
-            mesh = body
-        else:
-            point = np.array([front + bar, 0.0, hz])
-            half = DRAWBAR_SECTION / 2.0
-            drawbar = _box((front - 0.05, -half, hz - half), (front + bar, half, hz + half))
-            mesh = trimesh.util.concatenate([body, drawbar])
+        point, mesh = _box_coupler(kind, body, ln, coupler, coupler_height)
         axles_x = [front - _positive(a, f"axles[{k}]") for k, a in enumerate(axles)]
         if not axles_x:
             raise ParameterError(
@@ -503,6 +489,28 @@ class Trailer:
             load_sharing=load_sharing,
         )
         return vehicle
+
+
+def _box_coupler(
+    kind: str, body: trimesh.Trimesh, ln: float, coupler: float, coupler_height: float
+) -> tuple[np.ndarray, trimesh.Trimesh]:
+    """Trailer.box's coupling point (model frame, m) and mesh: a kingpin or turntable ring
+    ``coupler`` m behind the front of the ``ln`` m ``body``, or (centre-axle) a drawbar's
+    coupler that far ahead of it, the drawbar drawn into the mesh."""
+    front = ln / 2.0
+    bar = _positive(coupler, "coupler") if kind == "centre_axle" else float(coupler)
+    hz = _positive(coupler_height, "coupler_height")
+    if kind in ("semitrailer", "drawbar_body"):
+        if not 0.0 <= bar < ln:
+            raise ParameterError(
+                f"coupler = {coupler} m: a semitrailer's kingpin lies behind the body's "
+                f"front and ahead of its rear (0 to {ln} m)"
+            )
+        return np.array([front - bar, 0.0, hz]), body
+    point = np.array([front + bar, 0.0, hz])
+    half = DRAWBAR_SECTION / 2.0
+    drawbar = _box((front - 0.05, -half, hz - half), (front + bar, half, hz + half))
+    return point, trimesh.util.concatenate([body, drawbar])
 
 
 def _wheel_options(given: dict[str, Any]) -> dict[str, Any]:

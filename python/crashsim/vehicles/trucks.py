@@ -127,6 +127,91 @@ def tractor(
         "radius": radius,
         "length": length,
     }
+    given, width, cab_height, yaw_inertia = _tractor_numbers(
+        preset, given, width, cab_height, inertia
+    )
+    m = _positive(given["mass"], "mass")
+    wb = _positive(given["wheelbase"], "wheelbase")
+    ln = _positive(given["length"], "length")
+    overhang = _positive(front_overhang, "front_overhang")
+    if driven_axles not in (1, 2):
+        raise ParameterError(f"driven_axles = {driven_axles!r}: a tractor has 1 (4x2) or 2 (6x4)")
+    front = ln / 2.0
+    x_front_axle = front - overhang
+    x_rear = x_front_axle - wb
+    spread = _positive(given["tandem_spread"], "tandem_spread") if driven_axles == 2 else 0.0
+    rear_axles = [x_rear + spread / 2.0, x_rear - spread / 2.0] if driven_axles == 2 else [x_rear]
+    radius = given["radius"]
+    r_front, r_rear = radius if isinstance(radius, tuple | list) else (radius, radius)
+    r_front, r_rear = _positive(r_front, "radius"), _positive(r_rear, "radius")
+    cab, frame = _tractor_parts(front, overhang, width, cab_height, given["fifth_wheel_height"])
+    mesh = trimesh.util.concatenate([cab, frame])
+    cg = np.array(
+        [
+            x_front_axle - _positive(given["cg_to_front_axle"], "cg_to_front_axle"),
+            0.0,
+            _positive(given["cg_height"], "cg_height"),
+        ]
+    )
+    if inertia is None:
+        inertia = _boxes_by_volume_inertia(m, [cab, frame], cg)
+        if yaw_inertia is not None:
+            _with_yaw_inertia(inertia, float(yaw_inertia))
+    sources = {"cg": "user", "inertia": "uniform boxes"}
+    vehicle = Vehicle(mesh, m, cg, inertia, name=name or preset or "tractor", sources=sources)
+    running = {"natural_frequency": natural_frequency, "damping_ratio": damping_ratio,
+               "tyre": tyre, "steering_ratio": steering_ratio,
+               "steering_reference": steering_reference, "abs": abs}  # fmt: skip
+    wheels = _tractor_wheels([x_front_axle, *rear_axles], given["track"], r_front, r_rear, cg,
+                             driven_axles, load_sharing, running)  # fmt: skip
+    vehicle = vehicle.with_wheels(wheels)
+    kingpin = np.array(
+        [x_rear + float(given["fifth_wheel_ahead"]), 0.0, float(given["fifth_wheel_height"])]
+    )
+    return vehicle.with_hitch(kingpin, "fifth_wheel")
+
+
+def _check_given(builder: str, given: dict[str, Any]) -> None:
+    """ParameterError naming the numbers neither given nor from the preset (None)."""
+    missing = [k for k, v in given.items() if v is None]
+    if missing:
+        raise ParameterError(
+            f"{builder}: give {', '.join(missing)} (m, kg), or a preset "
+            "(crashsim.vehicles.combination_data)"
+        )
+
+
+def _tractor_wheels(
+    axles_x: list[float],
+    track: Any,
+    r_front: float,
+    r_rear: float,
+    cg: np.ndarray,
+    driven_axles: int,
+    load_sharing: bool,
+    running: dict[str, Any],
+) -> Wheels:
+    """The tractor's wheels: a steered front axle and the driven ones at ``axles_x`` (model
+    frame x, m), each axle's centre at its own tyre's radius; a tandem shares its load when
+    ``load_sharing``. ``running``: Wheels.custom's springs, tyre, steering and ABS."""
+    names = ["steer", *(["drive"] if driven_axles == 1 else ["drive1", "drive2"])]
+    centers, flags, wheel_names = _axle_wheels(
+        axles_x, _positive(track, "track"), r_front, cg, [True] + [False] * driven_axles, names
+    )
+    radii = np.array([r_front] * 2 + [r_rear] * (2 * driven_axles))
+    centers[2:, 2] += r_rear - r_front  # each axle's centre at its own tyre's radius
+    return Wheels.custom(
+        centers, radii, flags, names=wheel_names, **running,
+        load_groups=_load_groups(axles_x[1:], names[1:]) if load_sharing else (),
+    )  # fmt: skip
+
+
+def _tractor_numbers(
+    preset: str | None, given: dict[str, Any], width: float, cab_height: float, inertia: Any
+) -> tuple[dict[str, Any], float, float, Any]:
+    """The tractor's numbers: those ``given`` (None: not given), the rest from the preset's
+    combination class; its width, cab height and yaw inertia (kg m^2, None unless the class
+    gives it and no ``inertia`` is given). ParameterError naming what is still missing."""
     yaw_inertia = None
     if preset is not None:
         data = _from_class(preset, TRACTOR_FIELDS)
@@ -136,81 +221,35 @@ def tractor(
         width = data.get("width", width)
         cab_height = data.get("cab_height", cab_height)
         yaw_inertia = data.get("yaw_inertia") if inertia is None else None
-    missing = [k for k, v in given.items() if v is None]
-    if missing:
-        raise ParameterError(
-            f"tractor: give {', '.join(missing)} (m, kg), or a preset "
-            "(crashsim.vehicles.combination_data)"
-        )
-    mass, wheelbase, tandem_spread, fifth_wheel_ahead, fifth_wheel_height = (
-        given[k]
-        for k in ("mass", "wheelbase", "tandem_spread", "fifth_wheel_ahead", "fifth_wheel_height")
-    )
-    cg_to_front_axle, cg_height, track, radius, length = (
-        given[k] for k in ("cg_to_front_axle", "cg_height", "track", "radius", "length")
-    )
-    m = _positive(mass, "mass")
-    wb = _positive(wheelbase, "wheelbase")
-    ln = _positive(length, "length")
-    overhang = _positive(front_overhang, "front_overhang")
-    if driven_axles not in (1, 2):
-        raise ParameterError(f"driven_axles = {driven_axles!r}: a tractor has 1 (4x2) or 2 (6x4)")
-    front = ln / 2.0
-    x_front_axle = front - overhang
-    x_rear = x_front_axle - wb
-    spread = _positive(tandem_spread, "tandem_spread") if driven_axles == 2 else 0.0
-    rear_axles = [x_rear + spread / 2.0, x_rear - spread / 2.0] if driven_axles == 2 else [x_rear]
-    r_front, r_rear = radius if isinstance(radius, tuple | list) else (radius, radius)
-    r_front, r_rear = _positive(r_front, "radius"), _positive(r_rear, "radius")
+    _check_given("tractor", given)
+    return given, width, cab_height, yaw_inertia
+
+
+def _tractor_parts(
+    front: float, overhang: float, width: float, cab_height: float, fifth_wheel_height: float
+) -> tuple[trimesh.Trimesh, trimesh.Trimesh]:
+    """The tractor's cab (``overhang`` + 1.0 m long from the bumper at x = ``front``) and its
+    chassis frame back to -``front``, its top 0.05 m under the fifth wheel (model frame, m)."""
     cab_len = overhang + 1.0
     cab = _box(
         (front - cab_len, -width / 2, 0.45), (front, width / 2, _positive(cab_height, "cab_height"))
     )
     frame_top = _positive(fifth_wheel_height, "fifth_wheel_height") - 0.05
     frame = _box((-front, -0.55, 0.45), (front - cab_len + 0.05, 0.55, frame_top))
-    mesh = trimesh.util.concatenate([cab, frame])
-    cg = np.array(
-        [
-            x_front_axle - _positive(cg_to_front_axle, "cg_to_front_axle"),
-            0.0,
-            _positive(cg_height, "cg_height"),
-        ]
-    )
-    if inertia is None:
-        parts = [(cab, cab.volume), (frame, frame.volume)]
-        total = sum(v for _, v in parts)
-        inertia = np.zeros((3, 3))
-        for part, v in parts:
-            lo, hi = part.bounds
-            mp = m * v / total
-            inertia += _parallel_axis(_box_inertia(mp, *(hi - lo)), mp, cg - (lo + hi) / 2.0)
-        if yaw_inertia is not None:
-            _with_yaw_inertia(inertia, float(yaw_inertia))
-    sources = {"cg": "user", "inertia": "uniform boxes"}
-    vehicle = Vehicle(mesh, m, cg, inertia, name=name or preset or "tractor", sources=sources)
-    axles_x = [x_front_axle, *rear_axles]
-    names = ["steer", *(["drive"] if driven_axles == 1 else ["drive1", "drive2"])]
-    centers, flags, wheel_names = _axle_wheels(
-        axles_x, _positive(track, "track"), r_front, cg, [True] + [False] * driven_axles, names
-    )
-    radii = np.array([r_front] * 2 + [r_rear] * (2 * driven_axles))
-    centers[2:, 2] += r_rear - r_front  # each axle's centre at its own tyre's radius
-    wheels = Wheels.custom(
-        centers,
-        radii,
-        flags,
-        names=wheel_names,
-        natural_frequency=natural_frequency,
-        damping_ratio=damping_ratio,
-        tyre=tyre,
-        steering_ratio=steering_ratio,
-        steering_reference=steering_reference,
-        abs=abs,
-        load_groups=_load_groups(axles_x[1:], names[1:]) if load_sharing else (),
-    )
-    vehicle = vehicle.with_wheels(wheels)
-    kingpin = np.array([x_rear + float(fifth_wheel_ahead), 0.0, float(fifth_wheel_height)])
-    return vehicle.with_hitch(kingpin, "fifth_wheel")
+    return cab, frame
+
+
+def _boxes_by_volume_inertia(m: float, boxes: list[trimesh.Trimesh], cg: np.ndarray) -> Any:
+    """The inertia (kg m^2) about ``cg`` of ``boxes`` as uniform solids sharing the mass ``m``
+    (kg) by volume."""
+    parts = [(box, box.volume) for box in boxes]
+    total = sum(v for _, v in parts)
+    inertia = np.zeros((3, 3))
+    for part, v in parts:
+        lo, hi = part.bounds
+        mp = m * v / total
+        inertia += _parallel_axis(_box_inertia(mp, *(hi - lo)), mp, cg - (lo + hi) / 2.0)
+    return inertia
 
 
 # The rigid-truck builder's keywords a combination class gives: keyword -> the class's quantity.
@@ -283,12 +322,7 @@ def rigid_truck(
     if preset is not None:
         data = _from_class(preset, RIGID_FIELDS)
         given = {k: data.get(k) if v is None else v for k, v in given.items()}
-    missing = [k for k, v in given.items() if v is None]
-    if missing:
-        raise ParameterError(
-            f"rigid_truck: give {', '.join(missing)} (m, kg), or a preset "
-            "(crashsim.vehicles.combination_data)"
-        )
+    _check_given("rigid_truck", given)
     m = _positive(given["mass"], "mass")
     wb = _positive(given["wheelbase"], "wheelbase")
     ln = _positive(given["length"], "length")
@@ -300,22 +334,8 @@ def rigid_truck(
     front = ln / 2.0
     x_front_axle = front - overhang
     x_rear_axle = x_front_axle - wb
-    if not -front < x_rear_axle < x_front_axle:
-        raise ParameterError(
-            f"rigid_truck: front_overhang {overhang} m + wheelbase {wb} m reach past its length "
-            f"{ln} m"
-        )
-    if not 0.45 < floor < top:
-        raise ParameterError(
-            f"rigid_truck: floor_height = {floor} m must lie between the frame's 0.45 m and "
-            f"the body's top {top} m"
-        )
-    cab_len = overhang + 1.0
-    cab_top = _positive(cab_height, "cab_height")
-    cab = _box((front - cab_len, -wd / 2, 0.45), (front, wd / 2, cab_top))
-    body = _box((-front, -wd / 2, floor), (front - cab_len - 0.1, wd / 2, top))
-    frame = _box((-front, -0.55, 0.45), (front - cab_len + 0.05, 0.55, floor))
-    parts = [cab, body, frame]
+    _check_rigid_layout(front, x_front_axle, x_rear_axle, overhang, wb, ln, floor, top)
+    parts = _rigid_parts(front, overhang, wd, floor, top, cab_height)
     volume = sum(p.volume for p in parts)
     uniform_cg, inertia = _solid_box_parts([(p, m * p.volume / volume) for p in parts])
     cg = np.array(
@@ -333,26 +353,55 @@ def rigid_truck(
     vehicle = Vehicle(
         trimesh.util.concatenate(parts), m, cg, inertia, name=name or preset or "rigid_truck",
         sources=sources,
-    )
+    )  # fmt: skip
     centers, flags, wheel_names = _axle_wheels(
         [x_front_axle, x_rear_axle], _positive(given["track"], "track"), r, cg,
         [True, False], ["steer", "drive"],
-    )
+    )  # fmt: skip
     wheels = Wheels.custom(
-        centers,
-        r,
-        flags,
-        names=wheel_names,
-        natural_frequency=natural_frequency,
-        damping_ratio=damping_ratio,
-        tyre=tyre,
-        steering_ratio=steering_ratio,
-        steering_reference=steering_reference,
-        abs=abs,
-    )
+        centers, r, flags, names=wheel_names, natural_frequency=natural_frequency,
+        damping_ratio=damping_ratio, tyre=tyre, steering_ratio=steering_ratio,
+        steering_reference=steering_reference, abs=abs,
+    )  # fmt: skip
     vehicle = vehicle.with_wheels(wheels)
     hz = (0.45 + floor) / 2.0 if hitch_height is None else _positive(hitch_height, "hitch_height")
     return vehicle.with_hitch(np.array([-front + 0.05, 0.0, hz]), "ball")
+
+
+def _check_rigid_layout(
+    front: float,
+    x_front_axle: float,
+    x_rear_axle: float,
+    overhang: float,
+    wb: float,
+    ln: float,
+    floor: float,
+    top: float,
+) -> None:
+    """ParameterError when the rigid truck's axles reach past its length or its load body's
+    floor is not between the frame (0.45 m) and the body's top (m)."""
+    if not -front < x_rear_axle < x_front_axle:
+        raise ParameterError(
+            f"rigid_truck: front_overhang {overhang} m + wheelbase {wb} m reach past its length "
+            f"{ln} m"
+        )
+    if not 0.45 < floor < top:
+        raise ParameterError(
+            f"rigid_truck: floor_height = {floor} m must lie between the frame's 0.45 m and "
+            f"the body's top {top} m"
+        )
+
+
+def _rigid_parts(
+    front: float, overhang: float, wd: float, floor: float, top: float, cab_height: float
+) -> list[trimesh.Trimesh]:
+    """The rigid truck's cab, load body and chassis frame as boxes (model frame, m)."""
+    cab_len = overhang + 1.0
+    cab_top = _positive(cab_height, "cab_height")
+    cab = _box((front - cab_len, -wd / 2, 0.45), (front, wd / 2, cab_top))
+    body = _box((-front, -wd / 2, floor), (front - cab_len - 0.1, wd / 2, top))
+    frame = _box((-front, -0.55, 0.45), (front - cab_len + 0.05, 0.55, floor))
+    return [cab, body, frame]
 
 
 def _generated(preset: str) -> Any:

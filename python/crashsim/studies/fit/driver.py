@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -122,6 +123,81 @@ def fit(
     (``scan_points`` per unknown) for the check and the picture. ``progress``: True a line
     on stderr, a callable (runs, best chi^2), or False. FitError (a StudyError) naming the
     unknown or evidence item for bad input."""
+    _check_settings(scene, method, until, duration, dt, max_duration, step, max_nfev, popsize,
+                    maxiter, patience, scan_points, samples, seed)  # fmt: skip
+    names, lo, hi, units = _check_unknowns(scene, unknowns)
+    items = [evidence] if isinstance(evidence, Evidence) else list(evidence)
+    labels = check_evidence(scene, items)
+    x0 = _start(scene, names, lo, hi, start)
+    bar = _Progress() if progress is True else None
+    callback = bar if bar is not None else (progress if callable(progress) else None)
+    run = {"duration": duration, "dt": dt, "until": until, "max_duration": max_duration}
+    prob = _Problem(scene, names, items, labels, run, threads, callback)
+    began = time.monotonic()
+    n_samples = 50 * len(names) if samples is None else int(samples)
+    solved = _solve(prob, names, x0, lo, hi, method, seed, popsize, maxiter, patience, step,
+               max_nfev, n_samples, scan, scan_points, bar)  # fmt: skip
+    best, sigma = solved.best, solved.sigma
+    interrupted, sampled = solved.interrupted, solved.sampled
+    values = {n: float(v) for n, v in zip(names, best, strict=True)}
+    fitted = paths.with_(scene, values)
+    result = None if interrupted else _fitted_run(prob, fitted)
+    ran = not interrupted or prob.best_x is not None  # best is a candidate that ran
+    r_best = prob.residuals(best[None])[0] if ran else np.full(prob.m, MISSING)
+    residuals = _item_residuals(items, labels, r_best, result)
+    verdict = _verdict(prob, items, residuals, names, units, best, lo, hi, sigma, result,
+                       ran, until == "rest", interrupted, solved.lower_sample)  # fmt: skip
+    ranges, joint_ranges, sample_ranges = _ranges(names, best, sigma, lo, hi, sampled)
+
+    def quoted(r: dict[str, tuple[float, float]] | None) -> Any:
+        return verdict.apply(names, best, lo, hi, r)  # widened or withheld by the verdict
+
+    return FitResult(
+        names=names,
+        units=units,
+        values=values,
+        start={n: float(v) for n, v in zip(names, x0, strict=True)},
+        bounds={n: (float(a), float(b)) for n, a, b in zip(names, lo, hi, strict=True)},
+        objective=prob.chi2(r_best),
+        residuals=residuals,
+        covariance=solved.cov,
+        sigma={n: float(s) for n, s in zip(names, sigma, strict=True)},
+        ranges=quoted(ranges),
+        joint_ranges=quoted(joint_ranges),
+        evidence=items,
+        scene=fitted,
+        result=result,
+        method=method,
+        n_runs=prob.n_runs,
+        interrupted=interrupted,
+        message=solved.message,
+        scan=solved.scans,
+        scan_ranges=quoted(solved.scan_ranges),
+        sample_ranges=quoted(sample_ranges),
+        samples=sampled,
+        verdict=verdict,
+        elapsed=time.monotonic() - began,
+        extra={"global_history": solved.history} if method == "global" else {},
+    )
+
+
+def _check_settings(
+    scene: Scene,
+    method: str,
+    until: str | None,
+    duration: float | None,
+    dt: float,
+    max_duration: float,
+    step: float,
+    max_nfev: int,
+    popsize: int,
+    maxiter: int,
+    patience: int,
+    scan_points: int,
+    samples: int | None,
+    seed: int | None,
+) -> None:
+    """FitError for a bad setting of :func:`fit` (all but the unknowns and the evidence)."""
     if method not in METHODS:
         raise FitError(f"method {method!r} is unknown: use {' or '.join(METHODS)}")
     if until not in (None, "rest"):
@@ -143,65 +219,115 @@ def fit(
             raise FitError(f"{what} = {v!r} must be a whole number >= {least}")
     if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int | np.integer)):
         raise FitError(f"seed = {seed!r} must be a whole number or None")
-    names, lo, hi, units = _check_unknowns(scene, unknowns)
-    items = [evidence] if isinstance(evidence, Evidence) else list(evidence)
-    labels = check_evidence(scene, items)
-    x0 = _start(scene, names, lo, hi, start)
-    bar = _Progress() if progress is True else None
-    callback = bar if bar is not None else (progress if callable(progress) else None)
-    run = {"duration": duration, "dt": dt, "until": until, "max_duration": max_duration}
-    prob = _Problem(scene, names, items, labels, run, threads, callback)
-    began = time.monotonic()
-    interrupted = False
-    message = ""
-    best = x0.copy()
+
+
+@dataclass
+class _Solve:
+    """What the solve found so far (kept when it is interrupted part way)."""
+
+    best: Array  # SI, one per unknown
+    sigma: Array  # SI, one per unknown (inf: unknown)
+    interrupted: bool = False
+    message: str = ""
     cov: Array | None = None
-    sigma = np.full(len(names), math.inf)
-    scans = scan_ranges = None
+    scans: Any = None
+    scan_ranges: Any = None
     sampled: _Samples | None = None
-    history: list[float] = []
+    history: list[float] = field(default_factory=list)
     lower_sample: float | None = None
-    n_samples = 50 * len(names) if samples is None else int(samples)
+
+
+def _solve(
+    prob: _Problem,
+    names: list[str],
+    x0: Array,
+    lo: Array,
+    hi: Array,
+    method: str,
+    seed: int | None,
+    popsize: int,
+    maxiter: int,
+    patience: int,
+    step: float,
+    max_nfev: int,
+    n_samples: int,
+    scan: bool,
+    scan_points: int,
+    bar: _Progress | None,
+) -> _Solve:
+    """The solve from ``x0`` (_solve_steps); interrupted (Ctrl-C, or the progress callback),
+    what it found so far with the best candidate that ran. Closes the progress ``bar``."""
+    s = _Solve(best=x0.copy(), sigma=np.full(len(names), math.inf))
     try:
-        u0 = (x0 - lo) / (hi - lo)
-        if method == "global":
-            u0, m, history = _global(prob, u0, lo, hi, seed, popsize, maxiter, patience)
-            message = f"differential evolution: {m}; "
-        u, m = _least_squares(prob, u0, lo, hi, step, max_nfev)
-        message += f"least squares: {m}"
-        best = lo + u * (hi - lo)
-        if prob.best_x is not None and prob.best < prob.chi2(prob.residuals(best[None])[0]):
-            best = prob.best_x.copy()
-        cov, sigma = _uncertainty(prob, best, lo, hi, step)
-        if n_samples > 0:
-            sampled = _sample(prob, best, cov, lo, hi, n_samples, seed)
-            if sampled is not None:
-                c_best = prob.chi2(prob.residuals(best[None])[0])
-                if sampled.chi2.min() < c_best - 1.0:
-                    lower_sample = float(sampled.chi2.min())
-                    message += (f"; a sample has chi^2 {lower_sample:.4g} < the "
-                                f"optimum's {c_best:.4g}: the solve stopped short")  # fmt: skip
-        if scan:
-            scans, scan_ranges = _scan(prob, names, best, sigma, lo, hi, scan_points)
+        _solve_steps(s, prob, names, x0, lo, hi, method, seed, popsize, maxiter, patience, step,
+                     max_nfev, n_samples, scan, scan_points)  # fmt: skip
     except (_Interrupted, KeyboardInterrupt):
-        interrupted = True
-        message += "interrupted (Ctrl-C): the best candidate so far"
+        s.interrupted = True
+        s.message += "interrupted (Ctrl-C): the best candidate so far"
         if prob.best_x is not None:
-            best = prob.best_x.copy()
+            s.best = prob.best_x.copy()
     finally:
         if bar is not None:
             bar.close()
-    values = {n: float(v) for n, v in zip(names, best, strict=True)}
-    fitted = paths.with_(scene, values)
-    result = None
+    return s
+
+
+def _solve_steps(
+    s: _Solve,
+    prob: _Problem,
+    names: list[str],
+    x0: Array,
+    lo: Array,
+    hi: Array,
+    method: str,
+    seed: int | None,
+    popsize: int,
+    maxiter: int,
+    patience: int,
+    step: float,
+    max_nfev: int,
+    n_samples: int,
+    scan: bool,
+    scan_points: int,
+) -> None:
+    """The global search (for method "global"), the least-squares solve, the uncertainty, the
+    sampling and the scan, each writing into ``s`` as it ends."""
+    u0 = (x0 - lo) / (hi - lo)
+    if method == "global":
+        u0, m, s.history = _global(prob, u0, lo, hi, seed, popsize, maxiter, patience)
+        s.message = f"differential evolution: {m}; "
+    u, m = _least_squares(prob, u0, lo, hi, step, max_nfev)
+    s.message += f"least squares: {m}"
+    s.best = lo + u * (hi - lo)
+    if prob.best_x is not None and prob.best < prob.chi2(prob.residuals(s.best[None])[0]):
+        s.best = prob.best_x.copy()
+    s.cov, s.sigma = _uncertainty(prob, s.best, lo, hi, step)
+    if n_samples > 0:
+        s.sampled = _sample(prob, s.best, s.cov, lo, hi, n_samples, seed)
+        if s.sampled is not None:
+            c_best = prob.chi2(prob.residuals(s.best[None])[0])
+            if s.sampled.chi2.min() < c_best - 1.0:
+                s.lower_sample = float(s.sampled.chi2.min())
+                s.message += (f"; a sample has chi^2 {s.lower_sample:.4g} < the "
+                              f"optimum's {c_best:.4g}: the solve stopped short")  # fmt: skip
+    if scan:
+        s.scans, s.scan_ranges = _scan(prob, names, s.best, s.sigma, lo, hi, scan_points)
+
+
+def _fitted_run(prob: _Problem, fitted: Scene) -> Result | None:
+    """The run of the fitted scene (None when it fails)."""
+    try:
+        return prob.run_one(fitted)
+    except CrashsimError:
+        return None
+
+
+def _item_residuals(
+    items: list[Evidence], labels: list[str], r_best: Array, result: Result | None
+) -> list[ItemResidual]:
+    """Each evidence item's residual at the best: measured on the fitted run's ``result``, or
+    (without it) rebuilt from the normalised residuals ``r_best`` of the best candidate."""
     residuals: list[ItemResidual] = []
-    if not interrupted:
-        try:
-            result = prob.run_one(fitted)
-        except CrashsimError:
-            result = None
-    ran = not interrupted or prob.best_x is not None  # best is a candidate that ran
-    r_best = prob.residuals(best[None])[0] if ran else np.full(prob.m, MISSING)
     at = 0
     for e, label in zip(items, labels, strict=True):
         nr = r_best[at : at + e.size]
@@ -214,8 +340,14 @@ def fit(
             measured = e.target() + diff
         residuals.append(ItemResidual(label, e.unit, e.components, np.asarray(measured, float),
                                       e.target(), np.asarray(diff, float), nr))  # fmt: skip
-    verdict = _verdict(prob, items, residuals, names, units, best, lo, hi, sigma, result,
-                       ran, until == "rest", interrupted, lower_sample)  # fmt: skip
+    return residuals
+
+
+def _ranges(
+    names: list[str], best: Array, sigma: Array, lo: Array, hi: Array, sampled: _Samples | None
+) -> tuple[dict[str, tuple[float, float]], dict[str, tuple[float, float]], Any]:
+    """The unknowns' 95 % ranges (SI) before the verdict: each on its own, the joint box and
+    the sampled ones (None without samples)."""
     ranges = {  # within the bounds: the unknowns' prior
         n: (float(max(lo[j], best[j] - Z_95 * sigma[j])),
             float(min(hi[j], best[j] + Z_95 * sigma[j])))
@@ -235,34 +367,4 @@ def fit(
         n: (float(sampled.ranges[j, 0]), float(sampled.ranges[j, 1]))
         for j, n in enumerate(names)
     }  # fmt: skip
-
-    def quoted(r: dict[str, tuple[float, float]] | None) -> Any:
-        return verdict.apply(names, best, lo, hi, r)  # widened or withheld by the verdict
-
-    return FitResult(
-        names=names,
-        units=units,
-        values=values,
-        start={n: float(v) for n, v in zip(names, x0, strict=True)},
-        bounds={n: (float(a), float(b)) for n, a, b in zip(names, lo, hi, strict=True)},
-        objective=prob.chi2(r_best),
-        residuals=residuals,
-        covariance=cov,
-        sigma={n: float(s) for n, s in zip(names, sigma, strict=True)},
-        ranges=quoted(ranges),
-        joint_ranges=quoted(joint_ranges),
-        evidence=items,
-        scene=fitted,
-        result=result,
-        method=method,
-        n_runs=prob.n_runs,
-        interrupted=interrupted,
-        message=message,
-        scan=scans,
-        scan_ranges=quoted(scan_ranges),
-        sample_ranges=quoted(sample_ranges),
-        samples=sampled,
-        verdict=verdict,
-        elapsed=time.monotonic() - began,
-        extra={"global_history": history} if method == "global" else {},
-    )
+    return ranges, joint_ranges, sample_ranges

@@ -111,13 +111,21 @@ def _number(value: Any, name: str) -> float:
 
 def _check(p: BodyParams) -> None:
     """ParameterError for combinations that give no valid body (all sizes are > 0 here)."""
-    L, W, H = p.length, p.width, p.height
+    _check_axles(p)
+    _check_heights(p)
+    _check_positions(p)
+    _check_widths(p)
+    _check_section_room(p)
+
+
+def _check_axles(p: BodyParams) -> None:
+    """The wheelbase, the overhangs and the wheel arches along the body (m)."""
+    L = p.length
     if p.wheelbase >= L:
         _fail(
             f"wheelbase = {p.wheelbase} m is not shorter than length = {L} m: give a shorter "
             "wheelbase"
         )
-    half = W / 2.0
     ra = p.arch_radius
     fo, ro = p.front_overhang, p.rear_overhang
     # The axles and wheel arches along the body.
@@ -143,7 +151,11 @@ def _check(p: BodyParams) -> None:
             f"wheelbase = {p.wheelbase} m is too short for two wheel arches of radius "
             f"{ra:.4g} m (needs at least {2 * ra + 0.1:.4g} m): lower wheel_radius or arch_gap"
         )
-    # Heights.
+
+
+def _check_heights(p: BodyParams) -> None:
+    """The heights (m above the ground): clearance, bumper, beltline, nose, hood, deck, tail."""
+    H = p.height
     if p.ground_clearance >= p.wheel_radius:
         _fail(
             f"ground_clearance = {p.ground_clearance} m is not below the wheel centres "
@@ -164,7 +176,11 @@ def _check(p: BodyParams) -> None:
         value = getattr(p, name)
         if value > H:
             _fail(f"{name} = {value} m is above the roof (height = {H} m): lower {name}")
-    # Positions along the body (from the front).
+
+
+def _check_positions(p: BodyParams) -> None:
+    """The profile's positions along the body (m from the front), in order and inside it."""
+    L = p.length
     order = ("windshield_base", "roof_start", "roof_end", "rear_window_end")
     previous_name, previous = "the front face", 0.0
     for name in order:
@@ -181,7 +197,14 @@ def _check(p: BodyParams) -> None:
             f"rear_window_end = {p.rear_window_end:.4g} m (from the front) is behind the rear "
             f"face (length = {L} m): give at most the length"
         )
-    # Widths and roundings.
+
+
+def _check_widths(p: BodyParams) -> None:
+    """The widths and roundings (m): bumper and edge radii, arch depth, tumblehome, and the
+    end faces' height for the edge radius."""
+    half = p.width / 2.0
+    ra = p.arch_radius
+    fo, ro = p.front_overhang, p.rear_overhang
     if p.bumper_radius >= half:
         _fail(
             f"bumper_radius = {p.bumper_radius} m is not less than half the width "
@@ -223,7 +246,10 @@ def _check(p: BodyParams) -> None:
                 f"least {need:.4g} m (2 edge_radius + {fixed:.2f} m): raise {name}, lower "
                 "bumper_bottom or edge_radius"
             )
-    # Every section: the wheel arches and sill must fit under the hood, beltline and deck.
+
+
+def _check_section_room(p: BodyParams) -> None:
+    """Every section: the wheel arches and sill must fit under the hood, beltline and deck."""
     d = _check_stations(p)
     prof = _profiles(p, d)
     room = prof["z_shoulder"] - (prof["z_notch"] + _SILL_RADIUS + _MARGIN)
