@@ -486,8 +486,9 @@ impl MeshShape {
 
     /// True when the body-frame point is inside (winding number above one half). A point
     /// outside the mesh's box is outside without its winding number: the box holds the
-    /// convex hull, beyond which a closed mesh's winding number is 0 (and an open one's,
-    /// seen from one side, below one half), as the overlap's box culling already assumes.
+    /// convex hull, beyond which a closed mesh's winding number is 0 (and an open one's
+    /// below one half, unless its faces seen from the point lie over one another with the
+    /// same orientation), as the overlap's box culling already assumes.
     #[inline]
     pub fn contains_point(&self, q: &Point) -> bool {
         self.aabb().contains_local_point(q) && self.winding_number(q) > 0.5
