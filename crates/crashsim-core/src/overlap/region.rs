@@ -61,17 +61,32 @@ pub fn overlap_region(
     s2: &MeshShape,
     pose2: &Isometry,
 ) -> OverlapRegion {
-    overlap_region_with(s1, pose1, s2, pose2, true)
+    overlap_region_with(s1, pose1, s2, pose2, true, true)
+}
+
+/// The overlap region's point set S and its counts alone, the vector areas left at zero:
+/// where only the region's extent is needed (the early normal's footprint), this skips
+/// deciding which part of each cut triangle is inside, most of a region's work against an
+/// open mesh. The points are [`overlap_region`]'s.
+pub fn overlap_points(
+    s1: &MeshShape,
+    pose1: &Isometry,
+    s2: &MeshShape,
+    pose2: &Isometry,
+) -> OverlapRegion {
+    overlap_region_with(s1, pose1, s2, pose2, true, false)
 }
 
 /// [`overlap_region`], deciding inside and outside per patch (`use_patches`, for closed
-/// meshes) or per triangle and vertex (the reference the patches are tested against).
+/// meshes) or per triangle and vertex (the reference the patches are tested against);
+/// without `areas`, the point set alone ([`overlap_points`]).
 pub(super) fn overlap_region_with(
     s1: &MeshShape,
     pose1: &Isometry,
     s2: &MeshShape,
     pose2: &Isometry,
     use_patches: bool,
+    areas: bool,
 ) -> OverlapRegion {
     let pose12 = pose1.inv_mul(pose2);
     let pose21 = pose12.inverse();
@@ -117,6 +132,7 @@ pub(super) fn overlap_region_with(
         &by_1,
         |o| map_tri(&s2.triangle(o), &map12),
         use_patches,
+        areas,
         nudge,
     );
     // Mesh 2's side, in frame 2: its triangles' segments run the other way (n2 x n1).
@@ -135,6 +151,7 @@ pub(super) fn overlap_region_with(
         &by_2,
         |o| map_tri(&s1.triangle(o), &map21),
         use_patches,
+        areas,
         nudge,
     );
     region.inside_vertex_count = inside1.len() + inside2.len();

@@ -112,7 +112,9 @@ fn inside_vector_area(
 /// inside or outside, decided by one winding number per patch (none for a patch reaching out
 /// of the other's box), and a vertex takes the status of a patch it belongs to. Otherwise
 /// (an open mesh, whose winding number also changes near its holes) every triangle and vertex
-/// is decided alone.
+/// is decided alone. Without `areas` the vector area is not summed (zero) and only the
+/// vertices are decided.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn surface_inside(
     own: &MeshShape,
     other: &MeshShape,
@@ -120,6 +122,7 @@ pub(super) fn surface_inside(
     crossings: &[Crossing],
     other_tri_in_own: impl Fn(u32) -> Tri,
     use_patches: bool,
+    areas: bool,
     nudge: Real,
 ) -> (Vector, Vec<Point>) {
     let mut inside = Vec::new();
@@ -163,8 +166,8 @@ pub(super) fn surface_inside(
         nudge,
     };
     // The triangles to look at, ascending: those in the box and the crossed ones (every
-    // other triangle is uncut and out of the box: outside).
-    let order = (0..n as u32).filter(|&t| in_box[t as usize] || crossed[t as usize]);
+    // other triangle is uncut and out of the box: outside); none without `areas`.
+    let order = (0..n as u32).filter(|&t| areas && (in_box[t as usize] || crossed[t as usize]));
     let mut total = Vector::zeros();
     let mut k = 0;
     let mut local: Vec<(Tri, Point, Point, bool)> = Vec::new();

@@ -114,7 +114,7 @@ fn coplanar_bottoms_and_tops_do_not_tilt_the_normal() {
 }
 
 #[test]
-fn patch_classification_equals_the_per_triangle_one() {
+fn patch_classification_equals_the_per_triangle_one_and_the_points_alone_are_the_regions() {
     // Closed meshes (a subdivided box and a tilted, subdivided box) at random poses: the
     // region decided per patch must equal the one decided per triangle and vertex.
     use rand::rngs::SmallRng;
@@ -162,14 +162,43 @@ fn patch_classification_equals_the_per_triangle_one() {
             ),
         );
         let id = Isometry::identity();
-        let a = overlap_region_with(&car, &id, &other, &pose2, true);
-        let b = overlap_region_with(&car, &id, &other, &pose2, false);
+        let a = overlap_region_with(&car, &id, &other, &pose2, true, true);
+        let b = overlap_region_with(&car, &id, &other, &pose2, false, true);
         assert_eq!(a.points.len(), b.points.len());
         for (p, q) in a.points.iter().zip(&b.points) {
             assert_eq!(p, q);
         }
         assert!((a.area_normal_1_in_2 - b.area_normal_1_in_2).norm() < 1e-12);
         assert!((a.area_normal_2_in_1 - b.area_normal_2_in_1).norm() < 1e-12);
+        // The point set alone is the region's, bit for bit, against the closed mesh and
+        // against it opened (its top face gone: each triangle and vertex decided alone).
+        let top = |t: &[u32; 3]| t.iter().all(|&v| other.vertices()[v as usize].z > 0.59);
+        let kept: Vec<[u32; 3]> = other
+            .triangles()
+            .iter()
+            .copied()
+            .filter(|t| !top(t))
+            .collect();
+        let open = MeshShape::new(other.vertices().to_vec(), kept).unwrap();
+        assert!(!open.is_closed());
+        for mesh in [&other, &open] {
+            let full = overlap_region(&car, &id, mesh, &pose2);
+            let points = overlap_points(&car, &id, mesh, &pose2);
+            assert_eq!(full.points, points.points);
+            assert_eq!(
+                (
+                    full.segment_count,
+                    full.inside_vertex_count,
+                    full.inside_1_count
+                ),
+                (
+                    points.segment_count,
+                    points.inside_vertex_count,
+                    points.inside_1_count
+                )
+            );
+            assert_eq!(points.area_normal_1_in_2, Vector::zeros());
+        }
         overlapping += usize::from(!a.points.is_empty());
     }
     assert!(overlapping > 20, "{overlapping}");

@@ -10,7 +10,7 @@ use crate::contact::{
     NORMAL_PROBES, NORMAL_PROBE_RATIO, TYPICAL_DEPTH_OF_PENETRATION,
 };
 use crate::math::{Matrix, Point, Real, Vector};
-use crate::overlap::{overlap_region, OverlapRegion};
+use crate::overlap::{overlap_points, overlap_region, OverlapRegion};
 use crate::stiffness::{crush_share, effective_mass, series_rate, Face};
 
 /// The time tolerance (s) of the end of a narrow overlap that ends before it covers the
@@ -154,6 +154,15 @@ impl World {
             let region = overlap_region(&wb1.shape, &b1.pose(), &wb2.shape, &b2.pose());
             (region, b1, b2)
         };
+        // Its point set alone, where only the footprint is read.
+        let points_at = |dt: Real| -> (OverlapRegion, RigidBody, RigidBody) {
+            let (b1, b2) = (
+                self.predicted(pair.body1, base + dt),
+                self.predicted(pair.body2, base + dt),
+            );
+            let points = overlap_points(&wb1.shape, &b1.pose(), &wb2.shape, &b2.pose());
+            (points, b1, b2)
+        };
         let reading = |r: &OverlapRegion, b1: &RigidBody, dt: Real| {
             r.volume_normal()
                 .map(|n| (b1.pose().inverse_transform_vector(&n), started + dt))
@@ -209,7 +218,7 @@ impl World {
             let (n, t) = reading(&r0, &b1_0, dt0)?;
             return Some((n, t, None));
         }
-        let dt = narrow_reading_time(&region_at, dt0, footprint(&r0, &b1_0, &b2_0), cap);
+        let dt = narrow_reading_time(&points_at, dt0, footprint(&r0, &b1_0, &b2_0), cap);
         let (r, b1, _) = region_at(dt);
         if r.is_empty() || !sound(&r) {
             // The narrow overlap was cut through on the way: keep the 2 cm reading.
@@ -426,10 +435,11 @@ fn contact_frame(normal: &Vector) -> Matrix {
 
 /// Rule 1 of [`World::early_normal`] for a narrow overlap (one whose footprint at the 2 cm
 /// reading, `footprint0` m^2 at `dt0` s, is under NORMAL_FOOTPRINT): the time after the
-/// timer's start (s, at most `cap`) at which it is read. `region_at(dt)` is the overlap
-/// region and the two bodies `dt` s after the timer's start.
+/// timer's start (s, at most `cap`) at which it is read. `points_at(dt)` is the overlap
+/// region's point set (its vector areas are not read here) and the two bodies `dt` s after
+/// the timer's start.
 fn narrow_reading_time(
-    region_at: &dyn Fn(Real) -> (OverlapRegion, RigidBody, RigidBody),
+    points_at: &dyn Fn(Real) -> (OverlapRegion, RigidBody, RigidBody),
     dt0: Real,
     footprint0: Real,
     cap: Real,
@@ -437,7 +447,7 @@ fn narrow_reading_time(
     // The footprint at each time tried (s, m^2).
     let tried = std::cell::RefCell::new(vec![(dt0, footprint0)]);
     let covers = |dt: Real| {
-        let (r, b1, b2) = region_at(dt);
+        let (r, b1, b2) = points_at(dt);
         let f = footprint(&r, &b1, &b2);
         tried.borrow_mut().push((dt, f));
         f >= NORMAL_FOOTPRINT
@@ -468,18 +478,18 @@ fn narrow_reading_time(
         } else {
             hi
         }
-    } else if !region_at(cap).0.is_empty() {
+    } else if !points_at(cap).0.is_empty() {
         cap
     } else {
         // The narrow overlap ends before it covers the footprint (a corner passing by):
         // read it where its footprint is largest, among samples up to its end.
         let end = bisect(dt0, cap, FOOTPRINT_TOLERANCE, |dt| {
-            region_at(dt).0.is_empty()
+            points_at(dt).0.is_empty()
         });
         (1..=FOOTPRINT_SAMPLES)
             .map(|k| dt0 + (end - dt0) * k as Real / (FOOTPRINT_SAMPLES + 1) as Real)
             .map(|dt| {
-                let (r, b1, b2) = region_at(dt);
+                let (r, b1, b2) = points_at(dt);
                 (dt, footprint(&r, &b1, &b2))
             })
             .fold((dt0, 0.0), |best, x| if x.1 > best.1 { x } else { best })
