@@ -291,7 +291,7 @@ impl World {
     }
 
     /// The impulse problem of `pair` with its bodies as they are now, at `centroid` (world,
-    /// m) along the unit `normal` (world, body 1 towards body 2's inside); its relative
+    /// m) along the unit `normal` (world, from body 1 into body 2); its relative
     /// velocity is body 1's point velocity less body 2's at the centroid (m/s).
     fn impulse_problem(&self, pair: &Pair, centroid: &Point, normal: &Vector) -> ImpulseProblem {
         let (i1, i2) = (pair.body1, pair.body2);
