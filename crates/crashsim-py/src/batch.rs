@@ -29,19 +29,7 @@ pub fn run_batch<'py>(
     progress: Option<Py<PyAny>>,
     max_impacts: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let mut given = Vec::new();
-    if let Some(d) = overrides {
-        for (key, value) in d.iter() {
-            let name: String = key
-                .extract()
-                .map_err(|_| errors::parameter(format!("override keys are strings, got {key}")))?;
-            let a: PyArrayLikeDyn<'_, f64, AllowTypeChange> = value.extract().map_err(|_| {
-                errors::parameter(format!("override {name:?} must be an array of numbers"))
-            })?;
-            let a = a.as_array();
-            given.push((name, a.shape().to_vec(), a.iter().copied().collect()));
-        }
-    }
+    let given = override_arrays(overrides)?;
     if threads == Some(0) {
         return Err(errors::parameter(
             "threads = 0 is invalid: give at least 1 (None: one per core)".into(),
@@ -55,52 +43,14 @@ pub fn run_batch<'py>(
     };
     let control = core::batch::Control::default();
     let mut failure: Option<PyErr> = None;
-    // The batch's end unparks the caller: sleeping out the poll added 25 ms on average (up
-    // to 50) to every batch, 1.2 % of a 2,000-variant box batch (2 s) and of a study's chunks.
-    let ended = AtomicBool::new(false);
-    let out = py.detach(|| {
-        let caller = std::thread::current();
-        std::thread::scope(|s| {
-            let worker = s.spawn(|| {
-                let out = core::batch::run_batch(base, &o, &options, &control);
-                ended.store(true, Ordering::Release);
-                caller.unpark();
-                out
-            });
-            let mut reported = usize::MAX;
-            loop {
-                // a spurious wake-up only polls early
-                std::thread::park_timeout(POLL);
-                let finished = ended.load(Ordering::Acquire);
-                let done = control.done.load(Ordering::Relaxed);
-                Python::attach(|py| {
-                    if failure.is_none() {
-                        if let Err(e) = py.check_signals() {
-                            // Ctrl-C: keep what finished
-                            control.interrupt.store(true, Ordering::Relaxed);
-                            if !e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
-                                failure = Some(e);
-                            }
-                        }
-                    }
-                    if let (Some(f), true) = (&progress, done != reported && failure.is_none()) {
-                        reported = done;
-                        if let Err(e) = f.call1(py, (done, n)) {
-                            control.interrupt.store(true, Ordering::Relaxed);
-                            // Ctrl-C while the callback ran: keep what finished, as above
-                            if !e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
-                                failure = Some(e);
-                            }
-                        }
-                    }
-                });
-                if finished {
-                    break;
-                }
-            }
-            worker.join()
-        })
-    });
+    let out = run_polling(
+        py,
+        || core::batch::run_batch(base, &o, &options, &control),
+        &control,
+        &progress,
+        n,
+        &mut failure,
+    );
     if let Some(e) = failure {
         return Err(e);
     }
@@ -112,6 +62,111 @@ pub fn run_batch<'py>(
             )))
         }
     };
+    batch_dict(py, out, &control)
+}
+
+/// An override as the core takes it: its name, its array's shape and its values (C order).
+type OverrideArray = (String, Vec<usize>, Vec<f64>);
+
+/// The overrides, in the dict's order.
+fn override_arrays(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<OverrideArray>> {
+    let mut given = Vec::new();
+    if let Some(d) = overrides {
+        for (key, value) in d.iter() {
+            let name: String = key
+                .extract()
+                .map_err(|_| errors::parameter(format!("override keys are strings, got {key}")))?;
+            let a: PyArrayLikeDyn<'_, f64, AllowTypeChange> = value.extract().map_err(|_| {
+                errors::parameter(format!("override {name:?} must be an array of numbers"))
+            })?;
+            let a = a.as_array();
+            given.push((name, a.shape().to_vec(), a.iter().copied().collect()));
+        }
+    }
+    Ok(given)
+}
+
+/// Runs `batch` on its own thread with the GIL released while the caller's thread polls it
+/// every POLL ([`poll`]) until it ends; what the batch's thread returned (Err: it panicked).
+/// A Python exception that stopped it is left in `failure`.
+fn run_polling<T: Send>(
+    py: Python<'_>,
+    batch: impl FnOnce() -> T + Send,
+    control: &core::batch::Control,
+    progress: &Option<Py<PyAny>>,
+    n: usize,
+    failure: &mut Option<PyErr>,
+) -> std::thread::Result<T> {
+    // The batch's end unparks the caller: sleeping out the poll added 25 ms on average (up
+    // to 50) to every batch, 1.2 % of a 2,000-variant box batch (2 s) and of a study's chunks.
+    let ended = AtomicBool::new(false);
+    py.detach(|| {
+        let caller = std::thread::current();
+        std::thread::scope(|s| {
+            let worker = s.spawn(|| {
+                let out = batch();
+                ended.store(true, Ordering::Release);
+                caller.unpark();
+                out
+            });
+            let mut reported = usize::MAX;
+            loop {
+                // a spurious wake-up only polls early
+                std::thread::park_timeout(POLL);
+                let finished = ended.load(Ordering::Acquire);
+                let done = control.done.load(Ordering::Relaxed);
+                Python::attach(|py| poll(py, control, progress, done, n, &mut reported, failure));
+                if finished {
+                    break;
+                }
+            }
+            worker.join()
+        })
+    })
+}
+
+/// One look at the batch from the caller's thread, `done` of its `n` variants finished: a
+/// signal (Ctrl-C) sets the interrupt flag, and `progress(done, n)` is called when `done`
+/// has changed since `reported`; an exception from either, other than KeyboardInterrupt,
+/// is kept in `failure` (after which neither is looked at again).
+fn poll(
+    py: Python<'_>,
+    control: &core::batch::Control,
+    progress: &Option<Py<PyAny>>,
+    done: usize,
+    n: usize,
+    reported: &mut usize,
+    failure: &mut Option<PyErr>,
+) {
+    if failure.is_none() {
+        if let Err(e) = py.check_signals() {
+            // Ctrl-C: keep what finished
+            control.interrupt.store(true, Ordering::Relaxed);
+            if !e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                *failure = Some(e);
+            }
+        }
+    }
+    if let (Some(f), true) = (progress, done != *reported && failure.is_none()) {
+        *reported = done;
+        if let Err(e) = f.call1(py, (done, n)) {
+            control.interrupt.store(true, Ordering::Relaxed);
+            // Ctrl-C while the callback ran: keep what finished, as above
+            if !e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                *failure = Some(e);
+            }
+        }
+    }
+}
+
+/// The batch's output as the dict python/crashsim/batch.py reads: numpy columns, the
+/// variants' errors, which finished and whether it was interrupted (by the core's flag in
+/// `control` too).
+fn batch_dict<'py>(
+    py: Python<'py>,
+    out: core::batch::BatchOutput,
+    control: &core::batch::Control,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let columns = PyList::empty(py);
     for (name, values) in out.columns.columns {

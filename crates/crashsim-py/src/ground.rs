@@ -181,72 +181,9 @@ impl Tyre {
         load_sensitivity: Option<Real>,
         longitudinal_stiffness: Option<Real>,
     ) -> PyResult<Tyre> {
-        let mut t = core::vehicle::Tyre::default();
-        let foreign = |names: &[(&str, bool)], model: &str| -> PyResult<()> {
-            let given: Vec<&str> = names.iter().filter(|(_, g)| *g).map(|(n, _)| *n).collect();
-            if given.is_empty() {
-                Ok(())
-            } else {
-                Err(errors::parameter(format!(
-                    "tyre {} do(es) not belong to model {model:?} (linear: cornering or \
-                     saturation_angle; linear_friction_scaled: saturation_angle; \
-                     magic_formula: b, c, e)",
-                    given.join(", ")
-                )))
-            }
-        };
-        let mf = [("b", b.is_some()), ("c", c.is_some()), ("e", e.is_some())];
-        t.model = match model {
-            "linear" => {
-                foreign(&mf, model)?;
-                let cornering =
-                    match (cornering, saturation_angle) {
-                        (Some(_), Some(_)) => return Err(errors::parameter(
-                            "tyre: give the cornering coefficient or the saturation angle, not \
-                             both (the saturation angle at mu = 1 is 1 / cornering)"
-                                .into(),
-                        )),
-                        (Some(c), None) => c,
-                        (None, Some(a)) => {
-                            if !(a.is_finite() && a > 0.0) {
-                                return Err(errors::parameter(format!(
-                                    "tyre saturation_angle = {a} is invalid: it must be > 0 rad"
-                                )));
-                            }
-                            1.0 / a
-                        }
-                        (None, None) => core::vehicle::DEFAULT_CORNERING_COEFFICIENT,
-                    };
-                core::vehicle::TyreModel::Linear { cornering }
-            }
-            "linear_friction_scaled" => {
-                foreign(&mf, model)?;
-                foreign(&[("cornering", cornering.is_some())], model)?;
-                core::vehicle::TyreModel::LinearFrictionScaled {
-                    saturation_angle: saturation_angle.unwrap_or(10f64.to_radians()),
-                }
-            }
-            "magic_formula" => {
-                foreign(
-                    &[
-                        ("cornering", cornering.is_some()),
-                        ("saturation_angle", saturation_angle.is_some()),
-                    ],
-                    model,
-                )?;
-                let [b0, c0, e0] = core::vehicle::MAGIC_FORMULA_DEFAULTS;
-                core::vehicle::TyreModel::MagicFormula {
-                    b: b.unwrap_or(b0),
-                    c: c.unwrap_or(c0),
-                    e: e.unwrap_or(e0),
-                }
-            }
-            other => {
-                return Err(errors::parameter(format!(
-                    "tyre model {other:?} is unknown: use \"linear\" (the reconstruction \
-                     programs' tyre), \"linear_friction_scaled\" or \"magic_formula\""
-                )))
-            }
+        let mut t = core::vehicle::Tyre {
+            model: tyre_model(model, cornering, saturation_angle, b, c, e)?,
+            ..Default::default()
         };
         if let Some(v) = relaxation_length {
             t.relaxation_length = v;
@@ -258,20 +195,7 @@ impl Tyre {
             t.load_sensitivity = v;
         }
         if let Some(v) = combined {
-            t.combined = match v {
-                "braking_priority" => CombinedSlip::BrakingPriority,
-                "circle" => CombinedSlip::Circle,
-                "nicolas_comstock" => CombinedSlip::NicolasComstock,
-                other => {
-                    return Err(errors::parameter(format!(
-                        "tyre combined = {other:?} is unknown: use \"braking_priority\" (the \
-                         brake force kept, the lateral force from what the friction leaves), \
-                         \"circle\" (both scaled onto the friction circle) or \
-                         \"nicolas_comstock\" (Brach and Brach's modified Nicolas-Comstock \
-                         combination of the pure-slip forces)"
-                    )))
-                }
-            };
+            t.combined = combined_slip(v)?;
         }
         t.longitudinal_stiffness = longitudinal_stiffness;
         t.validate().map_err(errors::to_py)?;
@@ -321,6 +245,113 @@ impl Tyre {
     fn __repr__(&self) -> String {
         format!("Tyre({:?})", self.inner)
     }
+}
+
+/// The tyre model named `model` with its own parameters (cornering 1/rad or
+/// saturation_angle rad; b 1/rad, c, e; None: the engine's default); an error for another
+/// model's parameter, both cornering and saturation_angle, or an unknown model.
+fn tyre_model(
+    model: &str,
+    cornering: Option<Real>,
+    saturation_angle: Option<Real>,
+    b: Option<Real>,
+    c: Option<Real>,
+    e: Option<Real>,
+) -> PyResult<TyreModel> {
+    let mf = [("b", b.is_some()), ("c", c.is_some()), ("e", e.is_some())];
+    Ok(match model {
+        "linear" => {
+            foreign(&mf, model)?;
+            let cornering = linear_cornering(cornering, saturation_angle)?;
+            core::vehicle::TyreModel::Linear { cornering }
+        }
+        "linear_friction_scaled" => {
+            foreign(&mf, model)?;
+            foreign(&[("cornering", cornering.is_some())], model)?;
+            core::vehicle::TyreModel::LinearFrictionScaled {
+                saturation_angle: saturation_angle.unwrap_or(10f64.to_radians()),
+            }
+        }
+        "magic_formula" => {
+            foreign(
+                &[
+                    ("cornering", cornering.is_some()),
+                    ("saturation_angle", saturation_angle.is_some()),
+                ],
+                model,
+            )?;
+            let [b0, c0, e0] = core::vehicle::MAGIC_FORMULA_DEFAULTS;
+            core::vehicle::TyreModel::MagicFormula {
+                b: b.unwrap_or(b0),
+                c: c.unwrap_or(c0),
+                e: e.unwrap_or(e0),
+            }
+        }
+        other => {
+            return Err(errors::parameter(format!(
+                "tyre model {other:?} is unknown: use \"linear\" (the reconstruction \
+                 programs' tyre), \"linear_friction_scaled\" or \"magic_formula\""
+            )))
+        }
+    })
+}
+
+/// An error naming the parameters in `names` that are given (true) when they do not belong
+/// to tyre model `model`.
+fn foreign(names: &[(&str, bool)], model: &str) -> PyResult<()> {
+    let given: Vec<&str> = names.iter().filter(|(_, g)| *g).map(|(n, _)| *n).collect();
+    if given.is_empty() {
+        Ok(())
+    } else {
+        Err(errors::parameter(format!(
+            "tyre {} do(es) not belong to model {model:?} (linear: cornering or \
+             saturation_angle; linear_friction_scaled: saturation_angle; \
+             magic_formula: b, c, e)",
+            given.join(", ")
+        )))
+    }
+}
+
+/// The linear tyre's cornering coefficient (1/rad): as given, or 1 / saturation_angle (rad,
+/// > 0), or the default; an error for both.
+fn linear_cornering(cornering: Option<Real>, saturation_angle: Option<Real>) -> PyResult<Real> {
+    Ok(match (cornering, saturation_angle) {
+        (Some(_), Some(_)) => {
+            return Err(errors::parameter(
+                "tyre: give the cornering coefficient or the saturation angle, not \
+                 both (the saturation angle at mu = 1 is 1 / cornering)"
+                    .into(),
+            ))
+        }
+        (Some(c), None) => c,
+        (None, Some(a)) => {
+            if !(a.is_finite() && a > 0.0) {
+                return Err(errors::parameter(format!(
+                    "tyre saturation_angle = {a} is invalid: it must be > 0 rad"
+                )));
+            }
+            1.0 / a
+        }
+        (None, None) => core::vehicle::DEFAULT_CORNERING_COEFFICIENT,
+    })
+}
+
+/// The combined-slip law named `v`.
+fn combined_slip(v: &str) -> PyResult<CombinedSlip> {
+    Ok(match v {
+        "braking_priority" => CombinedSlip::BrakingPriority,
+        "circle" => CombinedSlip::Circle,
+        "nicolas_comstock" => CombinedSlip::NicolasComstock,
+        other => {
+            return Err(errors::parameter(format!(
+                "tyre combined = {other:?} is unknown: use \"braking_priority\" (the \
+                 brake force kept, the lateral force from what the friction leaves), \
+                 \"circle\" (both scaled onto the friction circle) or \
+                 \"nicolas_comstock\" (Brach and Brach's modified Nicolas-Comstock \
+                 combination of the pure-slip forces)"
+            )))
+        }
+    })
 }
 
 /// One wheel-state switch: (wheel, "time" | "exchange", when, "free" | "locked" |

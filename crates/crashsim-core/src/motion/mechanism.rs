@@ -100,6 +100,59 @@ pub fn advance_mechanism(
     if dt <= 0.0 {
         return Ok(span);
     }
+    let n = mechanism_substeps(bodies, motions, joints, dt)?;
+    let h = dt / n as Real;
+    for (body, motion) in bodies.iter().zip(motions.iter_mut()) {
+        motion.keep_ground_near(body, ground, dt);
+    }
+    let mut excursions = Excursions::new(bodies);
+    let mut s: Vec<Stage> = bodies
+        .iter()
+        .zip(motions.iter())
+        .map(|(b, g)| g.stage_of(b))
+        .collect();
+    for i in 0..n {
+        let t = t0 + i as Real * h;
+        // The limits the joints rest on hold over the whole sub-step (updated by `project`).
+        let mut next = runge_kutta_step(bodies, motions, joints, engaged, ground, &s, t, h)?;
+        for (k, st) in next.iter_mut().enumerate() {
+            st.q = *Rotation::new_normalize(st.q).quaternion();
+            motions[k].land(bodies[k].props(), ground, st);
+        }
+        project(bodies, joints, engaged, &mut next, t + h, &mut span.hits);
+        for (k, st) in next.iter().enumerate() {
+            motions[k].hold_anchors(bodies[k].props(), ground, st);
+        }
+        s = next;
+        for (k, st) in s.iter().enumerate() {
+            check_finite(k, st, t + h)?;
+            let w = joint_body(&bodies[k], st).w;
+            excursions.record(k, st.v, w);
+        }
+    }
+    for (k, st) in s.into_iter().enumerate() {
+        let props = bodies[k].props().clone();
+        bodies[k] = RigidBody::from_momentum(
+            props,
+            Point::from(st.x),
+            Rotation::new_normalize(st.q),
+            st.v,
+            st.l,
+        );
+        motions[k].deflections = st.u;
+        span.bounds[k] = excursions.bound(k);
+    }
+    Ok(span)
+}
+
+/// The sub-steps of a mechanism's span of `dt` s: the most any member needs, and enough for
+/// the joints' fastest spring and damper mode; an error past MAX_SUBSTEPS_PER_SECOND.
+fn mechanism_substeps(
+    bodies: &[RigidBody],
+    motions: &[OnGround],
+    joints: &[JointSpec],
+    dt: Real,
+) -> Result<usize> {
     let mut n = 1;
     for (body, motion) in bodies.iter().zip(motions.iter()) {
         n = n.max(motion.substeps(body, dt)?);
@@ -117,94 +170,114 @@ pub fn advance_mechanism(
         )));
     }
     n = n.max(by_joints as usize);
-    let h = dt / n as Real;
-    for (body, motion) in bodies.iter().zip(motions.iter_mut()) {
-        motion.keep_ground_near(body, ground, dt);
-    }
-    let start: Vec<(Vector, Vector)> = bodies
-        .iter()
-        .map(|b| (b.velocity(), b.angular_velocity()))
-        .collect();
-    let mut track: Vec<[Real; 4]> = start
-        .iter()
-        .map(|(_, w)| [0.0, 0.0, w.norm(), 0.0])
-        .collect(); // dv, dw, |w| max, (unused)
-    let mut steps = vec![(0.0, 0.0); m];
-    let mut prev = start.clone();
-    let mut s: Vec<Stage> = bodies
-        .iter()
-        .zip(motions.iter())
-        .map(|(b, g)| g.stage_of(b))
-        .collect();
-    // The limits the joints rest on hold over the whole sub-step (updated by `project`).
-    let rates = |motions: &[OnGround], t: Real, s: &[Stage], engaged: &[Vec<bool>]| {
+    Ok(n)
+}
+
+/// One classical Runge-Kutta sub-step of `h` s from the members' stages `s` at time `t` (s),
+/// the `engaged` limits held over it: the stages at `t + h`, before landing and projection.
+#[allow(clippy::too_many_arguments)]
+fn runge_kutta_step(
+    bodies: &[RigidBody],
+    motions: &[OnGround],
+    joints: &[JointSpec],
+    engaged: &[Vec<bool>],
+    ground: &Ground,
+    s: &[Stage],
+    t: Real,
+    h: Real,
+) -> Result<Vec<Stage>> {
+    let rates = |t: Real, s: &[Stage]| {
         mechanism_rates(bodies, motions, joints, engaged, ground, t, s, false).map(|r| r.0)
     };
     let combine = |s: &[Stage], d: &[Stage], h: Real| -> Vec<Stage> {
         s.iter().zip(d).map(|(a, b)| a.axpy(h, b)).collect()
     };
-    for i in 0..n {
-        let t = t0 + i as Real * h;
-        let k1 = rates(motions, t, &s, engaged)?;
-        let k2 = rates(motions, t + 0.5 * h, &combine(&s, &k1, 0.5 * h), engaged)?;
-        let k3 = rates(motions, t + 0.5 * h, &combine(&s, &k2, 0.5 * h), engaged)?;
-        let k4 = rates(motions, t + h, &combine(&s, &k3, h), engaged)?;
-        let mut next = combine(&s, &k1, h / 6.0);
-        next = combine(&next, &k2, h / 3.0);
-        next = combine(&next, &k3, h / 3.0);
-        next = combine(&next, &k4, h / 6.0);
-        for (k, st) in next.iter_mut().enumerate() {
-            st.q = *Rotation::new_normalize(st.q).quaternion();
-            motions[k].land(bodies[k].props(), ground, st);
-        }
-        project(bodies, joints, engaged, &mut next, t + h, &mut span.hits);
-        for (k, st) in next.iter().enumerate() {
-            motions[k].hold_anchors(bodies[k].props(), ground, st);
-        }
-        s = next;
-        for (k, st) in s.iter().enumerate() {
-            let finite =
-                st.x.iter()
-                    .chain(st.v.iter())
-                    .chain(st.l.iter())
-                    .all(|c| c.is_finite())
-                    && st.u.iter().flatten().all(|c| c.is_finite());
-            if !finite {
-                return Err(Error::simulation(format!(
-                    "the motion of jointed body {k} became non-finite at t = {:.6} s: the \
-                     joints, wheels or inputs ask for more than the integration can follow; \
-                     check them",
-                    t + h
-                )));
-            }
-            let w = joint_body(&bodies[k], st).w;
-            let (v0, w0) = start[k];
-            let tr = &mut track[k];
-            tr[0] = tr[0].max((st.v - v0).norm());
-            tr[1] = tr[1].max((w - w0).norm());
-            tr[2] = tr[2].max(w.norm());
-            steps[k].0 = Real::max(steps[k].0, (st.v - prev[k].0).norm());
-            steps[k].1 = Real::max(steps[k].1, (w - prev[k].1).norm());
-            prev[k] = (st.v, w);
+    let k1 = rates(t, s)?;
+    let k2 = rates(t + 0.5 * h, &combine(s, &k1, 0.5 * h))?;
+    let k3 = rates(t + 0.5 * h, &combine(s, &k2, 0.5 * h))?;
+    let k4 = rates(t + h, &combine(s, &k3, h))?;
+    let mut next = combine(s, &k1, h / 6.0);
+    next = combine(&next, &k2, h / 3.0);
+    next = combine(&next, &k3, h / 3.0);
+    next = combine(&next, &k4, h / 6.0);
+    Ok(next)
+}
+
+/// An error when member `k`'s stage at time `t` (s) is no longer finite.
+fn check_finite(k: usize, st: &Stage, t: Real) -> Result<()> {
+    let finite =
+        st.x.iter()
+            .chain(st.v.iter())
+            .chain(st.l.iter())
+            .all(|c| c.is_finite())
+            && st.u.iter().flatten().all(|c| c.is_finite());
+    if !finite {
+        return Err(Error::simulation(format!(
+            "the motion of jointed body {k} became non-finite at t = {:.6} s: the \
+             joints, wheels or inputs ask for more than the integration can follow; \
+             check them",
+            t
+        )));
+    }
+    Ok(())
+}
+
+/// How far each member's motion strays over a span from its start (world frame), for its
+/// [`MotionBound`]: the largest changes seen at the sub-steps' ends, plus the largest
+/// change in one sub-step (for what happens between them).
+struct Excursions {
+    /// Per member, the velocity (m/s) and angular velocity (rad/s) at the span's start.
+    start: Vec<(Vector, Vector)>,
+    /// Per member, the largest |v - v0| (m/s), |w - w0| (rad/s) and |w| (rad/s); the last
+    /// is unused.
+    track: Vec<[Real; 4]>,
+    /// Per member, the largest change of v (m/s) and of w (rad/s) over one sub-step.
+    steps: Vec<(Real, Real)>,
+    /// Per member, v and w at the last sub-step's end.
+    prev: Vec<(Vector, Vector)>,
+}
+
+impl Excursions {
+    fn new(bodies: &[RigidBody]) -> Excursions {
+        let start: Vec<(Vector, Vector)> = bodies
+            .iter()
+            .map(|b| (b.velocity(), b.angular_velocity()))
+            .collect();
+        let track: Vec<[Real; 4]> = start
+            .iter()
+            .map(|(_, w)| [0.0, 0.0, w.norm(), 0.0])
+            .collect(); // dv, dw, |w| max, (unused)
+        let steps = vec![(0.0, 0.0); bodies.len()];
+        let prev = start.clone();
+        Excursions {
+            start,
+            track,
+            steps,
+            prev,
         }
     }
-    for (k, st) in s.into_iter().enumerate() {
-        let props = bodies[k].props().clone();
-        bodies[k] = RigidBody::from_momentum(
-            props,
-            Point::from(st.x),
-            Rotation::new_normalize(st.q),
-            st.v,
-            st.l,
-        );
-        motions[k].deflections = st.u;
-        span.bounds[k] = MotionBound {
-            velocity_change: track[k][0] + steps[k].0,
-            angular_speed: track[k][2] + steps[k].1,
-            angular_velocity_change: track[k][1] + steps[k].1,
-        };
+
+    /// Member `k`'s velocity `v` (m/s) and angular velocity `w` (rad/s) at a sub-step's end.
+    fn record(&mut self, k: usize, v: Vector, w: Vector) {
+        let (v0, w0) = self.start[k];
+        let tr = &mut self.track[k];
+        tr[0] = tr[0].max((v - v0).norm());
+        tr[1] = tr[1].max((w - w0).norm());
+        tr[2] = tr[2].max(w.norm());
+        let steps = &mut self.steps;
+        steps[k].0 = Real::max(steps[k].0, (v - self.prev[k].0).norm());
+        steps[k].1 = Real::max(steps[k].1, (w - self.prev[k].1).norm());
+        self.prev[k] = (v, w);
     }
-    Ok(span)
+
+    /// Member `k`'s bound over the span.
+    fn bound(&self, k: usize) -> MotionBound {
+        MotionBound {
+            velocity_change: self.track[k][0] + self.steps[k].0,
+            angular_speed: self.track[k][2] + self.steps[k].1,
+            angular_velocity_change: self.track[k][1] + self.steps[k].1,
+        }
+    }
 }
 
 /// The rates of the members' stages at time `t` with the joints' torques and reactions (the

@@ -18,8 +18,8 @@ use std::sync::Arc;
 
 use crate::body::{MassProperties, RigidBody};
 use crate::error::{Error, Place, Result};
-use crate::ground::Ground;
-use crate::math::{Point, Real, Rotation, Vector};
+use crate::ground::{Ground, GroundPoint};
+use crate::math::{Matrix, Point, Real, Rotation, Vector};
 use crate::vehicle::{Braking, VehicleSpec, WheelAction, WheelState, GRAVITY};
 
 mod ground_contact;
@@ -167,7 +167,7 @@ pub fn suspension_rate(spec: &VehicleSpec, props: &MassProperties) -> Real {
 /// and CG.
 fn shared_loads(
     spec: &VehicleSpec,
-    below: &[(Point, crate::ground::GroundPoint, Real)],
+    below: &[(Point, GroundPoint, Real)],
     v: &Vector,
     w: &Vector,
     x: &Point,
@@ -209,6 +209,72 @@ fn shared_loads(
         }
     }
     out
+}
+
+/// Each wheel's centre (world, m), the ground below it and its height above it (m), for
+/// the body at CG `x` (m) with rotation `r` (body to world) at time `t` (s); an error (at
+/// the wheel) when a wheel has left the terrain.
+fn wheels_below(
+    spec: &VehicleSpec,
+    ground: &Ground,
+    x: &Point,
+    r: &Matrix,
+    t: Real,
+) -> Result<Vec<(Point, GroundPoint, Real)>> {
+    let mut below = Vec::with_capacity(spec.wheels.len());
+    for (k, wheel) in spec.wheels.iter().enumerate() {
+        let c = x + r * wheel.center.coords;
+        let g = ground.below(&c).ok_or_else(|| {
+            Error::simulation(format!(
+                "it left the terrain at ({:.2}, {:.2}) m, t = {t:.4} s: the terrain \
+                 mesh has no surface there (extend it or add ground under the \
+                 vehicle's path)",
+                c.x, c.y
+            ))
+            .at(Place::Wheel(k))
+        })?;
+        let h = (c - g.point).dot(&g.normal);
+        below.push((c, g, h));
+    }
+    Ok(below)
+}
+
+/// The anti-roll bars' loads per wheel (N, + pushing the body up), each wheel's travel held
+/// at its full droop (spring unloaded) once it hangs free; `below[k]` as from
+/// [`wheels_below`].
+fn anti_roll_loads(spec: &VehicleSpec, below: &[(Point, GroundPoint, Real)]) -> Vec<Real> {
+    let mut bar_load = vec![0.0; spec.wheels.len()];
+    for bar in &spec.anti_roll {
+        let travel = |k: usize| {
+            let wh = &spec.wheels[k];
+            (wh.radius - below[k].2).max(-wh.static_load / wh.spring_rate)
+        };
+        let f = bar.rate(&spec.wheels) * (travel(bar.left) - travel(bar.right));
+        bar_load[bar.left] += f;
+        bar_load[bar.right] -= f;
+    }
+    bar_load
+}
+
+/// A tyre's rolling direction and lateral direction (world, unit, in the ground's plane of
+/// unit normal `n`) for its wheel steered `steer` rad about the body's z axis, the body's
+/// rotation `r` (body to world).
+fn tyre_axes(r: &Matrix, n: &Vector, steer: Real) -> (Vector, Vector) {
+    let heading = if steer != 0.0 {
+        let (sin, cos) = steer.sin_cos();
+        r * Vector::new(cos, sin, 0.0)
+    } else {
+        r * Vector::x()
+    };
+    let along = heading - n * heading.dot(n);
+    let ex = if along.norm() > 1e-9 {
+        along.normalize()
+    } else {
+        // The wheel points straight up or down: no rolling direction.
+        n.cross(&(r * Vector::y())).normalize()
+    };
+    let ey = n.cross(&ex);
+    (ex, ey)
 }
 
 impl OnGround {
@@ -293,34 +359,8 @@ impl OnGround {
         let mut wheels = Vec::with_capacity(s.u.len());
         if let Some(spec) = &self.vehicle {
             let steering = spec.steering_at(t, &x, r, &s.v);
-            // Each wheel's centre, the ground below it and its height above it (m).
-            let mut below = Vec::with_capacity(spec.wheels.len());
-            for (k, wheel) in spec.wheels.iter().enumerate() {
-                let c = x + r * wheel.center.coords;
-                let g = ground.below(&c).ok_or_else(|| {
-                    Error::simulation(format!(
-                        "it left the terrain at ({:.2}, {:.2}) m, t = {t:.4} s: the terrain \
-                         mesh has no surface there (extend it or add ground under the \
-                         vehicle's path)",
-                        c.x, c.y
-                    ))
-                    .at(Place::Wheel(k))
-                })?;
-                let h = (c - g.point).dot(&g.normal);
-                below.push((c, g, h));
-            }
-            // The anti-roll bars' loads (N, + pushing the body up), each wheel's travel held
-            // at its full droop (spring unloaded) once it hangs free.
-            let mut bar_load = vec![0.0; spec.wheels.len()];
-            for bar in &spec.anti_roll {
-                let travel = |k: usize| {
-                    let wh = &spec.wheels[k];
-                    (wh.radius - below[k].2).max(-wh.static_load / wh.spring_rate)
-                };
-                let f = bar.rate(&spec.wheels) * (travel(bar.left) - travel(bar.right));
-                bar_load[bar.left] += f;
-                bar_load[bar.right] -= f;
-            }
+            let below = wheels_below(spec, ground, &x, r, t)?;
+            let bar_load = anti_roll_loads(spec, &below);
             let shared = shared_loads(spec, &below, &s.v, &w, &x, &bar_load);
             for (k, wheel) in spec.wheels.iter().enumerate() {
                 let (c, g, h) = below[k];
@@ -332,20 +372,7 @@ impl OnGround {
                     None => wheel.normal_load(wheel.radius - h, -vc.dot(&n), bar_load[k]),
                 };
                 let steer = spec.wheel_steer(k, t, &steering);
-                let heading = if steer != 0.0 {
-                    let (sin, cos) = steer.sin_cos();
-                    r * Vector::new(cos, sin, 0.0)
-                } else {
-                    r * Vector::x()
-                };
-                let along = heading - n * heading.dot(&n);
-                let ex = if along.norm() > 1e-9 {
-                    along.normalize()
-                } else {
-                    // The wheel points straight up or down: no rolling direction.
-                    n.cross(&(r * Vector::y())).normalize()
-                };
-                let ey = n.cross(&ex);
+                let (ex, ey) = tyre_axes(r, &n, steer);
                 let vp = s.v + w.cross(&(contact - x));
                 let mu = ground.tyre_friction_at(contact.x, contact.y);
                 let action = self.action(spec, k, t, fz, mu, m);

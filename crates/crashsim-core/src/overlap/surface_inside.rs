@@ -125,20 +125,9 @@ pub(super) fn surface_inside(
     areas: bool,
     nudge: Real,
 ) -> (Vector, Vec<Point>) {
-    let mut inside = Vec::new();
     let other_box_in_own = other.aabb().transform_by(&own_to_other.inverse());
     let n = own.triangles().len();
-    let mut crossed = vec![false; n];
-    // Own vertices on a plane of an other triangle they meet: on (or within the band of) the
-    // other surface, where the side depends on the triangle they are seen from.
-    let mut on_other = vec![false; own.vertices().len()];
-    for x in crossings {
-        crossed[x.0 as usize] = true;
-        let tri = own.triangles()[x.0 as usize];
-        for k in 0..3 {
-            on_other[tri[k] as usize] |= x.5[k];
-        }
-    }
+    let (crossed, on_other) = crossed_and_on_other(own, crossings);
     // Only the own triangles whose box meets the other's can be inside it (found through the
     // own tree: a shallow overlap's few hundred, not the mesh's every triangle).
     let in_box = triangles_in_box(own, &other_box_in_own);
@@ -192,38 +181,28 @@ pub(super) fn surface_inside(
         }
         let mut edges = [EdgeStatus::Unknown; 3];
         if patches.is_some() && !local.is_empty() {
-            let tri = own.triangles()[ti as usize];
-            for (k, &nb) in own.neighbors(ti).iter().enumerate() {
-                edges[k] = match (nb != u32::MAX && !crossed[nb as usize])
-                    .then(|| cls.patch(nb))
-                    .flatten()
-                {
-                    Some(is_inside) => EdgeStatus::Whole(is_inside),
-                    None => EdgeStatus::Ends(
-                        cls.vertex_seen_from(tri[k], &t),
-                        cls.vertex_seen_from(tri[(k + 1) % 3], &t),
-                    ),
-                };
-            }
+            edges = cls.cut_edges(ti, &t);
         }
         total += inside_vector_area(&t, &local, other, own_to_other, edges, nudge);
     }
-    // A vertex in the box is a corner of a triangle in it, or of none (an unused vertex).
-    let mut corner = vec![false; own.vertices().len()];
-    for &ti in &candidates {
-        for v in own.triangles()[ti as usize] {
-            corner[v as usize] = true;
-        }
-    }
-    let corners = (0..own.vertices().len() as u32)
-        .filter(|&v| corner[v as usize] || own.vertex_triangle(v) == u32::MAX);
-    for vi in corners {
-        let v = own.vertices()[vi as usize];
-        if other_box_in_own.contains_local_point(&v) && cls.vertex(vi) {
-            inside.push(v);
-        }
-    }
+    let inside = cls.inside_vertices(&candidates, &other_box_in_own);
     (total, inside)
+}
+
+/// Per own triangle, whether a crossing touches it; per own vertex, whether it lies on a
+/// plane of an other triangle it meets: on (or within the band of) the other surface, where
+/// the side depends on the triangle it is seen from.
+fn crossed_and_on_other(own: &MeshShape, crossings: &[Crossing]) -> (Vec<bool>, Vec<bool>) {
+    let mut crossed = vec![false; own.triangles().len()];
+    let mut on_other = vec![false; own.vertices().len()];
+    for x in crossings {
+        crossed[x.0 as usize] = true;
+        let tri = own.triangles()[x.0 as usize];
+        for k in 0..3 {
+            on_other[tri[k] as usize] |= x.5[k];
+        }
+    }
+    (crossed, on_other)
 }
 
 /// Per triangle of `own`, whether its box meets `bx` (own frame), found through its tree.
@@ -353,6 +332,51 @@ impl Classifier<'_> {
         });
         self.vertex_status[vi as usize] = Some(is_inside);
         is_inside
+    }
+
+    /// What is known of the edges of cut triangle ti (`t`, with patches): wholly inside or
+    /// outside where the triangle across is uncut (its patch's status), else whether the
+    /// edge's ends are inside seen from `t`.
+    fn cut_edges(&mut self, ti: u32, t: &Tri) -> [EdgeStatus; 3] {
+        let own = self.own;
+        let mut edges = [EdgeStatus::Unknown; 3];
+        let tri = own.triangles()[ti as usize];
+        for (k, &nb) in own.neighbors(ti).iter().enumerate() {
+            edges[k] = match (nb != u32::MAX && !self.crossed[nb as usize])
+                .then(|| self.patch(nb))
+                .flatten()
+            {
+                Some(is_inside) => EdgeStatus::Whole(is_inside),
+                None => EdgeStatus::Ends(
+                    self.vertex_seen_from(tri[k], t),
+                    self.vertex_seen_from(tri[(k + 1) % 3], t),
+                ),
+            };
+        }
+        edges
+    }
+
+    /// The own vertices inside the other mesh (own frame, ascending), from those in its box
+    /// `other_box` (own frame) that are corners of the `candidates` triangles or unused.
+    fn inside_vertices(&mut self, candidates: &[u32], other_box: &Aabb) -> Vec<Point> {
+        let own = self.own;
+        let mut inside = Vec::new();
+        // A vertex in the box is a corner of a triangle in it, or of none (an unused vertex).
+        let mut corner = vec![false; own.vertices().len()];
+        for &ti in candidates {
+            for v in own.triangles()[ti as usize] {
+                corner[v as usize] = true;
+            }
+        }
+        let corners = (0..own.vertices().len() as u32)
+            .filter(|&v| corner[v as usize] || own.vertex_triangle(v) == u32::MAX);
+        for vi in corners {
+            let v = own.vertices()[vi as usize];
+            if other_box.contains_local_point(&v) && self.vertex(vi) {
+                inside.push(v);
+            }
+        }
+        inside
     }
 
     /// Whether vertex vi, as an end of an edge of the cut triangle `t`, is inside: as for

@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
-use super::{BodyMotion, RunSpec, SceneSpec};
+use super::{BodyMotion, BodySpec, RunSpec, SceneSpec};
 use crate::body::{BodyState, MassProperties};
 use crate::contact::{CentroidMode, ContactParams, DepthOfPenetration, NormalMode};
 use crate::error::{Error, Place, Result};
@@ -359,40 +359,40 @@ fn params_doc(p: &ContactParams) -> ParamsDoc {
     }
 }
 
-fn document(spec: &SceneSpec) -> Document {
-    let mut meshes = Meshes::default();
-    let bodies = spec
-        .bodies
-        .iter()
-        .map(|b| BodyDoc {
-            name: b.name.clone(),
-            mesh: meshes.index(&b.shape),
-            stiffness: Face::ALL.map(|f| b.stiffness.face(f).map(|s| [s.a, s.b])),
-            motion: match &b.motion {
-                BodyMotion::Moving {
-                    props,
-                    state,
-                    vehicle,
-                } => {
-                    let i = props.inertia();
-                    MotionDoc::Moving {
-                        mass: props.mass(),
-                        inertia: [0, 1, 2].map(|r| [i[(r, 0)], i[(r, 1)], i[(r, 2)]]),
-                        position: v3(&state.position.coords),
-                        orientation: quat(&state.orientation),
-                        velocity: v3(&state.velocity),
-                        angular_velocity: v3(&state.angular_velocity),
-                        vehicle: vehicle.as_ref().map(|v| Box::new(vehicle_doc(v))),
-                    }
+/// A body's document; its mesh is indexed in `meshes` (added when new).
+fn body_doc(b: &BodySpec, meshes: &mut Meshes) -> BodyDoc {
+    BodyDoc {
+        name: b.name.clone(),
+        mesh: meshes.index(&b.shape),
+        stiffness: Face::ALL.map(|f| b.stiffness.face(f).map(|s| [s.a, s.b])),
+        motion: match &b.motion {
+            BodyMotion::Moving {
+                props,
+                state,
+                vehicle,
+            } => {
+                let i = props.inertia();
+                MotionDoc::Moving {
+                    mass: props.mass(),
+                    inertia: [0, 1, 2].map(|r| [i[(r, 0)], i[(r, 1)], i[(r, 2)]]),
+                    position: v3(&state.position.coords),
+                    orientation: quat(&state.orientation),
+                    velocity: v3(&state.velocity),
+                    angular_velocity: v3(&state.angular_velocity),
+                    vehicle: vehicle.as_ref().map(|v| Box::new(vehicle_doc(v))),
                 }
-                BodyMotion::Fixed { pose } => MotionDoc::Fixed {
-                    position: v3(&pose.translation.vector),
-                    orientation: quat(&pose.rotation),
-                },
+            }
+            BodyMotion::Fixed { pose } => MotionDoc::Fixed {
+                position: v3(&pose.translation.vector),
+                orientation: quat(&pose.rotation),
             },
-        })
-        .collect();
-    let ground = spec.ground.as_ref().map(|g| GroundDoc {
+        },
+    }
+}
+
+/// The ground's document; a terrain's mesh is indexed in `meshes` (added when new).
+fn ground_doc(g: &Ground, meshes: &mut Meshes) -> GroundDoc {
+    GroundDoc {
         surface: match g.surface() {
             Surface::Plane { height } => SurfaceDoc::Plane { height: *height },
             Surface::Terrain(mesh) => SurfaceDoc::Terrain {
@@ -409,7 +409,37 @@ fn document(spec: &SceneSpec) -> Document {
                 friction: z.friction,
             })
             .collect(),
-    });
+    }
+}
+
+fn joint_doc(j: &JointSpec) -> JointDoc {
+    JointDoc {
+        name: j.name.clone(),
+        kind: j.kind.name().into(),
+        body1: j.body1,
+        body2: j.body2,
+        frame1: (v3(&j.frame1.0.coords), quat(&j.frame1.1)),
+        frame2: (v3(&j.frame2.0.coords), quat(&j.frame2.1)),
+        limits: j
+            .limits
+            .iter()
+            .map(|l| (l.angle, l.lower, l.upper))
+            .collect(),
+        stiffness: j.stiffness,
+        damping: j.damping,
+        friction: j.friction,
+        collide: j.collide,
+    }
+}
+
+fn document(spec: &SceneSpec) -> Document {
+    let mut meshes = Meshes::default();
+    let bodies = spec
+        .bodies
+        .iter()
+        .map(|b| body_doc(b, &mut meshes))
+        .collect();
+    let ground = spec.ground.as_ref().map(|g| ground_doc(g, &mut meshes));
     let o = &spec.run.options;
     Document {
         format: FORMAT.into(),
@@ -439,27 +469,7 @@ fn document(spec: &SceneSpec) -> Document {
             .iter()
             .map(|&(a, b, s)| (a, b, s.stiffness, s.damping_ratio))
             .collect(),
-        joints: spec
-            .joints
-            .iter()
-            .map(|j| JointDoc {
-                name: j.name.clone(),
-                kind: j.kind.name().into(),
-                body1: j.body1,
-                body2: j.body2,
-                frame1: (v3(&j.frame1.0.coords), quat(&j.frame1.1)),
-                frame2: (v3(&j.frame2.0.coords), quat(&j.frame2.1)),
-                limits: j
-                    .limits
-                    .iter()
-                    .map(|l| (l.angle, l.lower, l.upper))
-                    .collect(),
-                stiffness: j.stiffness,
-                damping: j.damping,
-                friction: j.friction,
-                collide: j.collide,
-            })
-            .collect(),
+        joints: spec.joints.iter().map(joint_doc).collect(),
         run: RunDoc {
             duration: spec.run.duration,
             dt: spec.run.dt,
@@ -584,6 +594,116 @@ fn params(p: ParamsDoc) -> ContactParams {
     }
 }
 
+/// The meshes of the document, each checked and built (`MeshError` names the first broken
+/// one).
+fn mesh_shapes(meshes: Vec<MeshDoc>) -> Result<Vec<Arc<MeshShape>>> {
+    let mut shapes = Vec::with_capacity(meshes.len());
+    for (k, m) in meshes.into_iter().enumerate() {
+        let v = m.vertices.into_iter().map(point).collect();
+        let shape = MeshShape::new(v, m.triangles)
+            .map_err(|e| Error::mesh(format!("scene spec mesh {k}: {e}")))?;
+        shapes.push(Arc::new(shape));
+    }
+    Ok(shapes)
+}
+
+/// Mesh `k` of the document's `shapes`; an error when there is none.
+fn mesh_at(shapes: &[Arc<MeshShape>], k: usize) -> Result<Arc<MeshShape>> {
+    shapes.get(k).cloned().ok_or_else(|| {
+        Error::invalid(format!(
+            "the scene spec refers to mesh {k} but has {} meshes",
+            shapes.len()
+        ))
+    })
+}
+
+/// Adds body `b` (its mesh `shape`) to `out`: a moving body (with its vehicle, if any) or
+/// an obstacle, then its stiffness.
+fn add_body(out: &mut SceneSpec, b: BodyDoc, shape: Arc<MeshShape>) -> Result<()> {
+    let name = Some(b.name);
+    let i = match b.motion {
+        MotionDoc::Moving {
+            mass,
+            inertia,
+            position,
+            orientation,
+            velocity,
+            angular_velocity,
+            vehicle: v,
+        } => {
+            let props = MassProperties::new(mass, Matrix::from_fn(|r, c| inertia[r][c]))?;
+            let state = BodyState {
+                position: point(position),
+                orientation: rotation(orientation)?,
+                velocity: point(velocity).coords,
+                angular_velocity: point(angular_velocity).coords,
+            };
+            let i = out.add_body(name, shape, props, state)?;
+            if let Some(v) = v {
+                out.set_vehicle(i, vehicle(*v)?)?;
+            }
+            i
+        }
+        MotionDoc::Fixed {
+            position,
+            orientation,
+        } => {
+            let pose = Isometry::from_parts(point(position).into(), rotation(orientation)?);
+            out.add_obstacle(name, shape, pose)?
+        }
+    };
+    let mut s = Stiffness::none();
+    for (face, value) in Face::ALL.iter().zip(b.stiffness) {
+        if let Some([a, bb]) = value {
+            s = s.with(*face, FaceStiffness::new(a, bb)?);
+        }
+    }
+    out.set_stiffness(i, s)
+}
+
+fn joint(j: JointDoc) -> Result<JointSpec> {
+    let mut joint = JointSpec::new(
+        JointKind::from_name(&j.kind)?,
+        j.body1,
+        j.body2,
+        (point(j.frame1.0), rotation(j.frame1.1)?),
+        (point(j.frame2.0), rotation(j.frame2.1)?),
+    );
+    joint.limits = j
+        .limits
+        .iter()
+        .map(|&(angle, lower, upper)| AngleLimit {
+            angle,
+            lower,
+            upper,
+        })
+        .collect();
+    joint.stiffness = j.stiffness;
+    joint.damping = j.damping;
+    joint.friction = j.friction;
+    joint.collide = j.collide;
+    joint.name = j.name;
+    Ok(joint)
+}
+
+/// The ground of `g` (a terrain's mesh from the document's `shapes`).
+fn ground(g: GroundDoc, shapes: &[Arc<MeshShape>]) -> Result<Ground> {
+    let base = match g.surface {
+        SurfaceDoc::Plane { height } => Ground::plane(height)?,
+        SurfaceDoc::Terrain { mesh: k } => Ground::terrain(mesh_at(shapes, k)?)?,
+    };
+    let zones = g
+        .zones
+        .into_iter()
+        .map(|z| FrictionZone {
+            polygon: z.polygon,
+            friction: z.friction,
+        })
+        .collect();
+    base.with_friction(g.tyre_friction, g.body_friction)?
+        .with_zones(zones)
+}
+
 fn spec(doc: Document) -> Result<SceneSpec> {
     if doc.format != FORMAT || !(2..=VERSION).contains(&doc.version) {
         return Err(Error::invalid(format!(
@@ -592,63 +712,11 @@ fn spec(doc: Document) -> Result<SceneSpec> {
             doc.format, doc.version
         )));
     }
-    let mut shapes = Vec::with_capacity(doc.meshes.len());
-    for (k, m) in doc.meshes.into_iter().enumerate() {
-        let v = m.vertices.into_iter().map(point).collect();
-        let shape = MeshShape::new(v, m.triangles)
-            .map_err(|e| Error::mesh(format!("scene spec mesh {k}: {e}")))?;
-        shapes.push(Arc::new(shape));
-    }
-    let mesh = |k: usize| -> Result<Arc<MeshShape>> {
-        shapes.get(k).cloned().ok_or_else(|| {
-            Error::invalid(format!(
-                "the scene spec refers to mesh {k} but has {} meshes",
-                shapes.len()
-            ))
-        })
-    };
+    let shapes = mesh_shapes(doc.meshes)?;
     let mut out = SceneSpec::new();
     for b in doc.bodies {
-        let shape = mesh(b.mesh)?;
-        let name = Some(b.name);
-        let i = match b.motion {
-            MotionDoc::Moving {
-                mass,
-                inertia,
-                position,
-                orientation,
-                velocity,
-                angular_velocity,
-                vehicle: v,
-            } => {
-                let props = MassProperties::new(mass, Matrix::from_fn(|r, c| inertia[r][c]))?;
-                let state = BodyState {
-                    position: point(position),
-                    orientation: rotation(orientation)?,
-                    velocity: point(velocity).coords,
-                    angular_velocity: point(angular_velocity).coords,
-                };
-                let i = out.add_body(name, shape, props, state)?;
-                if let Some(v) = v {
-                    out.set_vehicle(i, vehicle(*v)?)?;
-                }
-                i
-            }
-            MotionDoc::Fixed {
-                position,
-                orientation,
-            } => {
-                let pose = Isometry::from_parts(point(position).into(), rotation(orientation)?);
-                out.add_obstacle(name, shape, pose)?
-            }
-        };
-        let mut s = Stiffness::none();
-        for (face, value) in Face::ALL.iter().zip(b.stiffness) {
-            if let Some([a, bb]) = value {
-                s = s.with(*face, FaceStiffness::new(a, bb)?);
-            }
-        }
-        out.set_stiffness(i, s)?;
+        let shape = mesh_at(&shapes, b.mesh)?;
+        add_body(&mut out, b, shape)?;
     }
     for c in doc.contacts {
         out.set_contact(c.body1, c.body2, params(c.params))?;
@@ -667,46 +735,10 @@ fn spec(doc: Document) -> Result<SceneSpec> {
         )?;
     }
     for j in doc.joints {
-        let mut joint = JointSpec::new(
-            JointKind::from_name(&j.kind)?,
-            j.body1,
-            j.body2,
-            (point(j.frame1.0), rotation(j.frame1.1)?),
-            (point(j.frame2.0), rotation(j.frame2.1)?),
-        );
-        joint.limits = j
-            .limits
-            .iter()
-            .map(|&(angle, lower, upper)| AngleLimit {
-                angle,
-                lower,
-                upper,
-            })
-            .collect();
-        joint.stiffness = j.stiffness;
-        joint.damping = j.damping;
-        joint.friction = j.friction;
-        joint.collide = j.collide;
-        joint.name = j.name;
-        out.add_joint(joint)?;
+        out.add_joint(joint(j)?)?;
     }
     if let Some(g) = doc.ground {
-        let base = match g.surface {
-            SurfaceDoc::Plane { height } => Ground::plane(height)?,
-            SurfaceDoc::Terrain { mesh: k } => Ground::terrain(mesh(k)?)?,
-        };
-        let zones = g
-            .zones
-            .into_iter()
-            .map(|z| FrictionZone {
-                polygon: z.polygon,
-                friction: z.friction,
-            })
-            .collect();
-        out.set_ground(
-            base.with_friction(g.tyre_friction, g.body_friction)?
-                .with_zones(zones)?,
-        );
+        out.set_ground(ground(g, &shapes)?);
     }
     out.run = RunSpec {
         duration: doc.run.duration,

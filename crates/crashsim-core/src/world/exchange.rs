@@ -7,11 +7,12 @@ use crate::bisect::bisect;
 use crate::contact::{
     DepthOfPenetration, DEEPEST_ITERATIONS, MAX_DEPTH_OF_PENETRATION, OVERLAP_SAMPLES,
 };
-use crate::impulse::ImpulseProblem;
+use crate::impulse::{ImpulseProblem, ImpulseSolution};
 use crate::math::{Point, Real, Vector};
 use crate::overlap::{overlap_region, shapes_overlap, shapes_overlap_hinted, QueryWorkspace};
 
 use super::events::{ContactEvent, ContactEventKind, Impact, RunOutput};
+use super::geometry::ContactGeometry;
 
 /// Separation instants are resolved to this (s).
 const SEPARATION_TOLERANCE: Real = 1e-6;
@@ -218,73 +219,25 @@ impl World {
         Some((at, share, note))
     }
 
-    /// Exchange the impulse of pair `pi` now (its timer expired). (Over 100 lines for the
-    /// two refusals' messages and the Impact record's 30 fields, each written once here.)
+    /// Exchange the impulse of pair `pi` now (its timer expired).
     pub(super) fn exchange(&mut self, pi: usize, out: &mut RunOutput) {
-        let (started, timer, secondary, notes, early_normal, share) = match &self.pairs[pi].phase {
-            Phase::Timer {
-                started,
-                timer,
-                secondary,
-                notes,
-                early_normal,
-                impulse_share,
-                ..
-            } => (
-                *started,
-                *timer,
-                *secondary,
-                notes.clone(),
-                *early_normal,
-                *impulse_share,
-            ),
-            _ => return,
+        let Some(timer) = self.expired_timer(pi) else {
+            return;
         };
         let pair = self.pairs[pi].clone();
         let (i1, i2) = (pair.body1, pair.body2);
-        let skip = |world: &mut World, out: &mut RunOutput, why: String, phase: Phase| {
-            out.contacts.push(ContactEvent {
-                body1: i1,
-                body2: i2,
-                time: world.time,
-                kind: ContactEventKind::NoExchange(why),
-            });
-            world.pairs[pi].phase = phase;
-        };
-        let elapsed_ms = (self.time - started) * 1e3;
+        let elapsed_ms = (self.time - timer.started) * 1e3;
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
-        let normal = early_normal.map(|(n, t)| (b1.pose() * n, t));
+        let normal = timer.early_normal.map(|(n, t)| (b1.pose() * n, t));
         let Some(geometry) = self.contact_geometry(&pair, b1, b2, normal) else {
-            skip(
-                self,
-                out,
-                format!(
-                    "the meshes no longer overlap at the exchange instant, {elapsed_ms:.1} ms after \
-                     the {} (they separated during the timer): no impulse. A shorter \
-                     depth_of_penetration exchanges while they still overlap",
-                    timer_start(secondary)
-                ),
-                Phase::Apart,
-            );
+            let why = separated_note(elapsed_ms, timer.secondary);
+            self.no_exchange(pi, out, why, Phase::Apart);
             return;
         };
         let (pose1, pose2) = (b1.pose(), b2.pose());
         let (centroid, normal) = (geometry.centroid, geometry.normal);
-        let r1 = centroid - b1.position();
-        let r2 = centroid - b2.position();
-        let u = b1.point_velocity(&centroid) - b2.point_velocity(&centroid);
-        let problem = ImpulseProblem {
-            inverse_mass_sum: 1.0 / b1.props().mass() + 1.0 / b2.props().mass(),
-            inverse_inertia: [b1.world_inverse_inertia(), b2.world_inverse_inertia()],
-            lever: [r1, r2],
-            relative_velocity: u,
-            normal,
-            restitution: pair.params.restitution,
-            friction: pair.params.friction,
-            mode: pair.params.restitution_mode,
-            joined: (self.mechanism_of[i1].is_some() || self.mechanism_of[i2].is_some())
-                .then(|| self.pair_mobility(i1, i2, &centroid)),
-        };
+        let problem = self.impulse_problem(&pair, &centroid, &normal);
+        let u = problem.relative_velocity;
         let engaged = Phase::Engaged {
             centroid_in: [
                 pose1.inverse_transform_point(&centroid),
@@ -293,49 +246,108 @@ impl World {
             normal_in_1: pose1.inverse_transform_vector(&normal),
         };
         let Some(solution) = problem.solve() else {
-            let depth = geometry.region_max.x - geometry.region_min.x;
-            skip(
-                self,
-                out,
-                format!(
-                    "the vehicles are not approaching at the centroid along the normal \
-                     (relative normal velocity {:.3} m/s; normal ({:.3}, {:.3}, {:.3}); overlap \
-                     {:.3} m deep along it, {:.3} m wide, {elapsed_ms:.1} ms after the {}): no \
-                     impulse; the pair stays engaged and gets one if it turns closing. If the \
-                     overlap represents a real impact, give the normal (or a shorter \
-                     depth_of_penetration)",
-                    u.dot(&normal),
-                    normal.x,
-                    normal.y,
-                    normal.z,
-                    depth,
-                    geometry.width,
-                    timer_start(secondary)
-                ),
-                engaged,
-            );
+            let why = not_approaching_note(&u, &geometry, elapsed_ms, timer.secondary);
+            self.no_exchange(pi, out, why, engaged);
             return;
         };
+        let impact = self.exchange_and_record(&pair, timer, geometry, u, &solution);
+        out.impacts.push(impact);
+        self.pairs[pi].exchanges += 1;
+        self.pairs[pi].phase = engaged;
+    }
+
+    /// Pair `pi`'s timer as set when it started; None when the pair has no timer running.
+    fn expired_timer(&self, pi: usize) -> Option<ExpiredTimer> {
+        match &self.pairs[pi].phase {
+            Phase::Timer {
+                started,
+                timer,
+                secondary,
+                notes,
+                early_normal,
+                impulse_share,
+                ..
+            } => Some(ExpiredTimer {
+                started: *started,
+                timer: *timer,
+                secondary: *secondary,
+                notes: notes.clone(),
+                early_normal: *early_normal,
+                share: *impulse_share,
+            }),
+            _ => None,
+        }
+    }
+
+    /// Logs that pair `pi` exchanges nothing now, and why, and puts it in `phase`.
+    fn no_exchange(&mut self, pi: usize, out: &mut RunOutput, why: String, phase: Phase) {
+        out.contacts.push(ContactEvent {
+            body1: self.pairs[pi].body1,
+            body2: self.pairs[pi].body2,
+            time: self.time,
+            kind: ContactEventKind::NoExchange(why),
+        });
+        self.pairs[pi].phase = phase;
+    }
+
+    /// The impulse problem of `pair` with its bodies as they are now, at `centroid` (world,
+    /// m) along the unit `normal` (world, from body 1 into body 2); its relative
+    /// velocity is body 1's point velocity less body 2's at the centroid (m/s).
+    fn impulse_problem(&self, pair: &Pair, centroid: &Point, normal: &Vector) -> ImpulseProblem {
+        let (i1, i2) = (pair.body1, pair.body2);
+        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        let r1 = centroid - b1.position();
+        let r2 = centroid - b2.position();
+        let u = b1.point_velocity(centroid) - b2.point_velocity(centroid);
+        ImpulseProblem {
+            inverse_mass_sum: 1.0 / b1.props().mass() + 1.0 / b2.props().mass(),
+            inverse_inertia: [b1.world_inverse_inertia(), b2.world_inverse_inertia()],
+            lever: [r1, r2],
+            relative_velocity: u,
+            normal: *normal,
+            restitution: pair.params.restitution,
+            friction: pair.params.friction,
+            mode: pair.params.restitution_mode,
+            joined: (self.mechanism_of[i1].is_some() || self.mechanism_of[i2].is_some())
+                .then(|| self.pair_mobility(i1, i2, centroid)),
+        }
+    }
+
+    /// Applies `solution`'s impulse (times the timer's share) to `pair` at the geometry's
+    /// centroid and returns the Impact record (world frame, SI); `u` is the relative velocity
+    /// at the centroid before it (m/s).
+    fn exchange_and_record(
+        &mut self,
+        pair: &Pair,
+        timer: ExpiredTimer,
+        geometry: ContactGeometry,
+        u: Vector,
+        solution: &ImpulseSolution,
+    ) -> Impact {
+        let (i1, i2) = (pair.body1, pair.body2);
+        let (started, timer_set) = (timer.started, timer.timer);
+        let (centroid, normal) = (geometry.centroid, geometry.normal);
+        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
         let before = [b1.state(), b2.state()];
-        let j = solution.impulse * share;
+        let j = solution.impulse * timer.share;
         let energy_dissipated = self.apply_exchange(i1, i2, &centroid, &j);
         let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
         let after = [b1.state(), b2.state()];
         let u_after = b1.point_velocity(&centroid) - b2.point_velocity(&centroid);
-        out.impacts.push(Impact {
+        Impact {
             body1: i1,
             body2: i2,
             first_contact_time: started,
             time: self.time,
             // The timer as set (dt_p itself, not started + dt_p - started rounded), unless
             // the exchange came later than set (a timer started at an instant already past).
-            depth_of_penetration: if self.time == started + timer {
-                timer
+            depth_of_penetration: if self.time == started + timer_set {
+                timer_set
             } else {
                 self.time - started
             },
             depth_of_penetration_mode: pair.params.depth_of_penetration,
-            secondary: secondary || pair.exchanges > 0,
+            secondary: timer.secondary || pair.exchanges > 0,
             centroid,
             normal,
             impulse: j,
@@ -356,11 +368,9 @@ impl World {
             spring_rates: geometry.spring_rates,
             effective_mass: geometry.effective_mass,
             normal_time: geometry.normal_time.unwrap_or(self.time),
-            notes,
+            notes: timer.notes,
             orientation: [after[0].orientation, after[1].orientation],
-        });
-        self.pairs[pi].exchanges += 1;
-        self.pairs[pi].phase = engaged;
+        }
     }
 
     /// Applies the impulse `j` (N s) at `centroid` (world) to body `i2` and `-j` to body
@@ -555,4 +565,58 @@ fn timer_start(secondary: bool) -> &'static str {
     } else {
         "first overlap"
     }
+}
+
+/// A pair's timer as it was set, read when it expires.
+struct ExpiredTimer {
+    /// When the timer started (s).
+    started: Real,
+    /// Its length (s): dt_p, or less when the overlap ends early.
+    timer: Real,
+    /// True for an engaged pair closing again.
+    secondary: bool,
+    notes: Vec<String>,
+    /// The volume normal of the shallow overlap (body 1's frame) and when it was taken (s).
+    early_normal: Option<(Vector, Real)>,
+    /// The share of the model's impulse exchanged, in (0, 1].
+    share: Real,
+}
+
+/// Why there is no exchange when the meshes separated during the timer (`elapsed_ms` ms
+/// after its start).
+fn separated_note(elapsed_ms: Real, secondary: bool) -> String {
+    format!(
+        "the meshes no longer overlap at the exchange instant, {elapsed_ms:.1} ms after \
+         the {} (they separated during the timer): no impulse. A shorter \
+         depth_of_penetration exchanges while they still overlap",
+        timer_start(secondary)
+    )
+}
+
+/// Why there is no exchange when the bodies do not approach at the centroid along the
+/// normal: `u` the relative velocity there (m/s, world), the geometry's overlap depth along
+/// the normal and width (m), `elapsed_ms` ms after the timer's start.
+fn not_approaching_note(
+    u: &Vector,
+    geometry: &ContactGeometry,
+    elapsed_ms: Real,
+    secondary: bool,
+) -> String {
+    let normal = geometry.normal;
+    let depth = geometry.region_max.x - geometry.region_min.x;
+    format!(
+        "the vehicles are not approaching at the centroid along the normal \
+         (relative normal velocity {:.3} m/s; normal ({:.3}, {:.3}, {:.3}); overlap \
+         {:.3} m deep along it, {:.3} m wide, {elapsed_ms:.1} ms after the {}): no \
+         impulse; the pair stays engaged and gets one if it turns closing. If the \
+         overlap represents a real impact, give the normal (or a shorter \
+         depth_of_penetration)",
+        u.dot(&normal),
+        normal.x,
+        normal.y,
+        normal.z,
+        depth,
+        geometry.width,
+        timer_start(secondary)
+    )
 }

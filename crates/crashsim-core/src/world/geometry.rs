@@ -294,68 +294,22 @@ impl World {
         if region.is_empty() {
             return None;
         }
-        let bbox_center = {
-            let (mut lo, mut hi) = (region.points[0], region.points[0]);
-            for p in &region.points {
-                lo = lo.inf(p);
-                hi = hi.sup(p);
-            }
-            nalgebra::center(&lo, &hi)
-        };
         let (volume_normal, normal_time) = volume_normal.map_or_else(
-            || {
-                let n = region.volume_normal().unwrap_or_else(|| {
-                    // No usable inside area (e.g. open meshes): fall back on the approach direction.
-                    let u = b1.point_velocity(&bbox_center) - b2.point_velocity(&bbox_center);
-                    if u.norm() > 0.0 {
-                        u.normalize()
-                    } else {
-                        (b2.position() - b1.position()).normalize()
-                    }
-                });
-                (n, None)
-            },
+            || (own_volume_normal(&region, b1, b2), None),
             |(n, t)| (n, Some(t)),
         );
         let normal = chosen_normal(&pair.params.normal, volume_normal);
         let frame = contact_frame(&normal);
-        let (mut rmin, mut rmax) = (
-            frame * region.points[0].coords,
-            frame * region.points[0].coords,
-        );
-        for p in &region.points {
-            let c = frame * p.coords;
-            rmin = rmin.inf(&c);
-            rmax = rmax.sup(&c);
-        }
+        let (rmin, rmax) = extent_in_frame(&region, &frame);
         let faces = [
             Face::facing(&pose1.inverse_transform_vector(&normal)),
             Face::facing(&pose2.inverse_transform_vector(&-normal)),
         ];
         let width = rmax.y - rmin.y;
-        // A fixed obstacle without stiffness data is rigid: an infinite rate (contact.rs).
-        let rate = |i: usize, face: Face| match self.bodies[i].stiffness.face(face) {
-            Some(s) => Some(s.spring_rate(width)),
-            None if self.is_rigid(i) => Some(Real::INFINITY),
-            None => None,
-        };
-        let spring_rates = match (rate(pair.body1, faces[0]), rate(pair.body2, faces[1])) {
-            (Some(k1), Some(k2)) => Some([k1, k2]),
-            _ => None,
-        };
+        let spring_rates = self.spring_rates(pair, faces, width);
         let centroid = match &pair.params.centroid {
             CentroidMode::Auto => Point::from(frame.transpose() * ((rmin + rmax) * 0.5)),
-            CentroidMode::Stiffness => {
-                // Body 1's undeformed surface is at the region's far end along +n, body 2's at
-                // the near end: C1 = rmax.n - P.n, C2 = P.n - rmin.n, C1 : C2 = k2 : k1. A
-                // rigid obstacle takes no crush: P is on its surface, the common-tangent plane
-                // through its part of the region (a barrier's edge).
-                let mut c = (rmin + rmax) * 0.5;
-                if let Some(share) = spring_rates.and_then(|[k1, k2]| crush_share(k1, k2)) {
-                    c.x = rmax.x - share * (rmax.x - rmin.x);
-                }
-                Point::from(frame.transpose() * c)
-            }
+            CentroidMode::Stiffness => stiffness_centroid(&frame, rmin, rmax, spring_rates),
             CentroidMode::World(p) => *p,
             CentroidMode::Body { body, point } => {
                 if *body == pair.body1 {
@@ -365,21 +319,10 @@ impl World {
                 }
             }
         };
-        // A mechanism's member feels the mass the joints bring along (its point's mobility
-        // through them, at the members' current poses).
-        let felt = |i: usize, b: &RigidBody| {
-            if self.mechanism_of.get(i).copied().flatten().is_some() {
-                1.0 / normal.dot(&(self.point_mobility(i, &centroid) * normal))
-            } else {
-                effective_mass(
-                    b.props().mass(),
-                    &b.world_inverse_inertia(),
-                    &(centroid - b.position()),
-                    &normal,
-                )
-            }
-        };
-        let effective_mass = [felt(pair.body1, b1), felt(pair.body2, b2)];
+        let effective_mass = [
+            self.felt_mass(pair.body1, b1, &centroid, &normal),
+            self.felt_mass(pair.body2, b2, &centroid, &normal),
+        ];
         Some(ContactGeometry {
             region,
             normal,
@@ -394,6 +337,95 @@ impl World {
             normal_time,
         })
     }
+
+    /// k = B W (N/m) of the pair's struck `faces` over the overlap `width` (m); infinite for
+    /// a rigid fixed obstacle; None when either body's struck face has no stiffness data.
+    fn spring_rates(&self, pair: &Pair, faces: [Face; 2], width: Real) -> Option<[Real; 2]> {
+        // A fixed obstacle without stiffness data is rigid: an infinite rate (contact.rs).
+        let rate = |i: usize, face: Face| match self.bodies[i].stiffness.face(face) {
+            Some(s) => Some(s.spring_rate(width)),
+            None if self.is_rigid(i) => Some(Real::INFINITY),
+            None => None,
+        };
+        match (rate(pair.body1, faces[0]), rate(pair.body2, faces[1])) {
+            (Some(k1), Some(k2)) => Some([k1, k2]),
+            _ => None,
+        }
+    }
+
+    /// The effective mass (kg) of body `i` (state `b`) at `centroid` (world, m) along the
+    /// unit `normal` (world). A mechanism's member feels the mass the joints bring along (its
+    /// point's mobility through them, at the members' current poses).
+    fn felt_mass(&self, i: usize, b: &RigidBody, centroid: &Point, normal: &Vector) -> Real {
+        if self.mechanism_of.get(i).copied().flatten().is_some() {
+            1.0 / normal.dot(&(self.point_mobility(i, centroid) * normal))
+        } else {
+            effective_mass(
+                b.props().mass(),
+                &b.world_inverse_inertia(),
+                &(centroid - b.position()),
+                normal,
+            )
+        }
+    }
+}
+
+/// The overlap's own volume normal (world, unit) with the bodies at `b1`, `b2`; without a
+/// usable inside area (e.g. open meshes), the approach direction at the centre of the
+/// region's box, else the line from body 1's CG to body 2's. `region` is not empty.
+fn own_volume_normal(region: &OverlapRegion, b1: &RigidBody, b2: &RigidBody) -> Vector {
+    let bbox_center = {
+        let (mut lo, mut hi) = (region.points[0], region.points[0]);
+        for p in &region.points {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        nalgebra::center(&lo, &hi)
+    };
+    region.volume_normal().unwrap_or_else(|| {
+        // No usable inside area (e.g. open meshes): fall back on the approach direction.
+        let u = b1.point_velocity(&bbox_center) - b2.point_velocity(&bbox_center);
+        if u.norm() > 0.0 {
+            u.normalize()
+        } else {
+            (b2.position() - b1.position()).normalize()
+        }
+    })
+}
+
+/// The corners of the box of a non-empty `region` in contact coordinates (`frame`'s rows:
+/// n, t, b; m): the least and the largest of each coordinate over its points.
+fn extent_in_frame(region: &OverlapRegion, frame: &Matrix) -> (Vector, Vector) {
+    let (mut rmin, mut rmax) = (
+        frame * region.points[0].coords,
+        frame * region.points[0].coords,
+    );
+    for p in &region.points {
+        let c = frame * p.coords;
+        rmin = rmin.inf(&c);
+        rmax = rmax.sup(&c);
+    }
+    (rmin, rmax)
+}
+
+/// The centroid (world, m) that splits the crush along the normal in the inverse ratio of
+/// the `spring_rates` (N/m), the middle of the region's box (`rmin`, `rmax`, contact
+/// coordinates of `frame`, m) across it; the box's middle without stiffness data.
+fn stiffness_centroid(
+    frame: &Matrix,
+    rmin: Vector,
+    rmax: Vector,
+    spring_rates: Option<[Real; 2]>,
+) -> Point {
+    // Body 1's undeformed surface is at the region's far end along +n, body 2's at
+    // the near end: C1 = rmax.n - P.n, C2 = P.n - rmin.n, C1 : C2 = k2 : k1. A
+    // rigid obstacle takes no crush: P is on its surface, the common-tangent plane
+    // through its part of the region (a barrier's edge).
+    let mut c = (rmin + rmax) * 0.5;
+    if let Some(share) = spring_rates.and_then(|[k1, k2]| crush_share(k1, k2)) {
+        c.x = rmax.x - share * (rmax.x - rmin.x);
+    }
+    Point::from(frame.transpose() * c)
 }
 
 /// The exchange's normal (world, unit) by the pair's normal mode, from the overlap's volume
