@@ -9,8 +9,9 @@ use crate::contact::{
     CentroidMode, NormalMode, MAX_DEPTH_OF_PENETRATION, NORMAL_COLLAPSE, NORMAL_FOOTPRINT,
     NORMAL_PROBES, NORMAL_PROBE_RATIO, TYPICAL_DEPTH_OF_PENETRATION,
 };
-use crate::math::{Matrix, Point, Real, Vector};
+use crate::math::{Isometry, Matrix, Point, Real, Vector};
 use crate::overlap::{overlap_points, overlap_region, OverlapRegion};
+use crate::shape::MeshShape;
 use crate::stiffness::{crush_share, effective_mass, series_rate, Face};
 
 /// The time tolerance (s) of the end of a narrow overlap that ends before it covers the
@@ -145,24 +146,20 @@ impl World {
             }
         };
         let base = started - self.time;
-        // The overlap region `dt` s after `started`, with body 1's pose then.
-        let region_at = |dt: Real| -> (OverlapRegion, RigidBody, RigidBody) {
-            let (b1, b2) = (
-                self.predicted(pair.body1, base + dt),
-                self.predicted(pair.body2, base + dt),
-            );
-            let region = overlap_region(&wb1.shape, &b1.pose(), &wb2.shape, &b2.pose());
-            (region, b1, b2)
+        // The overlap region `dt` s after `started` (`query`: overlap_region, or
+        // overlap_points where only the footprint is read), with the bodies then.
+        type Query = fn(&MeshShape, &Isometry, &MeshShape, &Isometry) -> OverlapRegion;
+        let at = |query: Query, dt: Real| -> (OverlapRegion, RigidBody, RigidBody) {
+            let b1 = self.predicted(pair.body1, base + dt);
+            let b2 = self.predicted(pair.body2, base + dt);
+            (
+                query(&wb1.shape, &b1.pose(), &wb2.shape, &b2.pose()),
+                b1,
+                b2,
+            )
         };
-        // Its point set alone, where only the footprint is read.
-        let points_at = |dt: Real| -> (OverlapRegion, RigidBody, RigidBody) {
-            let (b1, b2) = (
-                self.predicted(pair.body1, base + dt),
-                self.predicted(pair.body2, base + dt),
-            );
-            let points = overlap_points(&wb1.shape, &b1.pose(), &wb2.shape, &b2.pose());
-            (points, b1, b2)
-        };
+        let region_at = |dt: Real| at(overlap_region, dt);
+        let points_at = |dt: Real| at(overlap_points, dt);
         let reading = |r: &OverlapRegion, b1: &RigidBody, dt: Real| {
             r.volume_normal()
                 .map(|n| (b1.pose().inverse_transform_vector(&n), started + dt))
