@@ -135,8 +135,9 @@ def fit(
     prob = _Problem(scene, names, items, labels, run, threads, callback)
     began = time.monotonic()
     n_samples = 50 * len(names) if samples is None else int(samples)
-    solved = _solve(prob, names, x0, lo, hi, method, seed, popsize, maxiter, patience, step,
-               max_nfev, n_samples, scan, scan_points, bar)  # fmt: skip
+    how = _SolveSettings(method, seed, popsize, maxiter, patience, step, max_nfev, n_samples,
+                         scan, scan_points)  # fmt: skip
+    solved = _solve(prob, names, x0, lo, hi, how, bar)
     best, sigma = solved.best, solved.sigma
     interrupted, sampled = solved.interrupted, solved.sampled
     values = {n: float(v) for n, v in zip(names, best, strict=True)}
@@ -237,30 +238,36 @@ class _Solve:
     lower_sample: float | None = None
 
 
+@dataclass(frozen=True)
+class _SolveSettings:
+    """How the solve runs (fit's arguments of the same names, checked by _check_settings)."""
+
+    method: str
+    seed: int | None
+    popsize: int
+    maxiter: int
+    patience: int
+    step: float
+    max_nfev: int
+    n_samples: int
+    scan: bool
+    scan_points: int
+
+
 def _solve(
     prob: _Problem,
     names: list[str],
     x0: Array,
     lo: Array,
     hi: Array,
-    method: str,
-    seed: int | None,
-    popsize: int,
-    maxiter: int,
-    patience: int,
-    step: float,
-    max_nfev: int,
-    n_samples: int,
-    scan: bool,
-    scan_points: int,
+    how: _SolveSettings,
     bar: _Progress | None,
 ) -> _Solve:
     """The solve from ``x0`` (_solve_steps); interrupted (Ctrl-C, or the progress callback),
     what it found so far with the best candidate that ran. Closes the progress ``bar``."""
     s = _Solve(best=x0.copy(), sigma=np.full(len(names), math.inf))
     try:
-        _solve_steps(s, prob, names, x0, lo, hi, method, seed, popsize, maxiter, patience, step,
-                     max_nfev, n_samples, scan, scan_points)  # fmt: skip
+        _solve_steps(s, prob, names, x0, lo, hi, how)
     except (_Interrupted, KeyboardInterrupt):
         s.interrupted = True
         s.message += "interrupted (Ctrl-C): the best candidate so far"
@@ -279,39 +286,31 @@ def _solve_steps(
     x0: Array,
     lo: Array,
     hi: Array,
-    method: str,
-    seed: int | None,
-    popsize: int,
-    maxiter: int,
-    patience: int,
-    step: float,
-    max_nfev: int,
-    n_samples: int,
-    scan: bool,
-    scan_points: int,
+    how: _SolveSettings,
 ) -> None:
     """The global search (for method "global"), the least-squares solve, the uncertainty, the
     sampling and the scan, each writing into ``s`` as it ends."""
     u0 = (x0 - lo) / (hi - lo)
-    if method == "global":
-        u0, m, s.history = _global(prob, u0, lo, hi, seed, popsize, maxiter, patience)
+    if how.method == "global":
+        u0, m, s.history = _global(prob, u0, lo, hi, how.seed, how.popsize, how.maxiter,
+                                   how.patience)  # fmt: skip
         s.message = f"differential evolution: {m}; "
-    u, m = _least_squares(prob, u0, lo, hi, step, max_nfev)
+    u, m = _least_squares(prob, u0, lo, hi, how.step, how.max_nfev)
     s.message += f"least squares: {m}"
     s.best = lo + u * (hi - lo)
     if prob.best_x is not None and prob.best < prob.chi2(prob.residuals(s.best[None])[0]):
         s.best = prob.best_x.copy()
-    s.cov, s.sigma = _uncertainty(prob, s.best, lo, hi, step)
-    if n_samples > 0:
-        s.sampled = _sample(prob, s.best, s.cov, lo, hi, n_samples, seed)
+    s.cov, s.sigma = _uncertainty(prob, s.best, lo, hi, how.step)
+    if how.n_samples > 0:
+        s.sampled = _sample(prob, s.best, s.cov, lo, hi, how.n_samples, how.seed)
         if s.sampled is not None:
             c_best = prob.chi2(prob.residuals(s.best[None])[0])
             if s.sampled.chi2.min() < c_best - 1.0:
                 s.lower_sample = float(s.sampled.chi2.min())
                 s.message += (f"; a sample has chi^2 {s.lower_sample:.4g} < the "
                               f"optimum's {c_best:.4g}: the solve stopped short")  # fmt: skip
-    if scan:
-        s.scans, s.scan_ranges = _scan(prob, names, s.best, s.sigma, lo, hi, scan_points)
+    if how.scan:
+        s.scans, s.scan_ranges = _scan(prob, names, s.best, s.sigma, lo, hi, how.scan_points)
 
 
 def _fitted_run(prob: _Problem, fitted: Scene) -> Result | None:
