@@ -607,6 +607,19 @@ pub(crate) mod tests {
         MeshShape::cuboid(c, h)
     }
 
+    /// `mesh` without its triangles whose three vertices lie above the height `z` (m): a
+    /// closed box opened at its top.
+    pub fn without_top(mesh: &MeshShape, z: Real) -> MeshShape {
+        let top = |t: &[u32; 3]| t.iter().all(|&v| mesh.vertices()[v as usize].z > z);
+        let kept: Vec<[u32; 3]> = mesh
+            .triangles()
+            .iter()
+            .copied()
+            .filter(|t| !top(t))
+            .collect();
+        MeshShape::new(mesh.vertices().to_vec(), kept).unwrap()
+    }
+
     #[test]
     fn winding_number_of_a_box_is_one_inside_and_zero_outside() {
         let b = box_mesh(Vector::zeros(), Vector::new(2.0, 1.0, 0.5));
@@ -623,15 +636,8 @@ pub(crate) mod tests {
     #[test]
     fn outside_the_box_is_outside_as_the_winding_number_says() {
         let closed = box_mesh(Vector::zeros(), Vector::new(2.0, 1.0, 0.5));
-        let top = |t: &[u32; 3]| t.iter().all(|&v| closed.vertices()[v as usize].z > 0.0);
-        let kept: Vec<[u32; 3]> = closed
-            .triangles()
-            .iter()
-            .copied()
-            .filter(|t| !top(t))
-            .collect();
-        assert_eq!(kept.len(), 10);
-        let open = MeshShape::new(closed.vertices().to_vec(), kept).unwrap();
+        let open = without_top(&closed, 0.0);
+        assert_eq!(open.triangles().len(), 10);
         assert!(!open.is_closed());
         let mut outside_box = 0;
         for mesh in [&closed, &open] {

@@ -205,13 +205,7 @@ fn runge_kutta_step(
 
 /// An error when member `k`'s stage at time `t` (s) is no longer finite.
 fn check_finite(k: usize, st: &Stage, t: Real) -> Result<()> {
-    let finite =
-        st.x.iter()
-            .chain(st.v.iter())
-            .chain(st.l.iter())
-            .all(|c| c.is_finite())
-            && st.u.iter().flatten().all(|c| c.is_finite());
-    if !finite {
+    if !st.is_finite() {
         return Err(Error::simulation(format!(
             "the motion of jointed body {k} became non-finite at t = {:.6} s: the \
              joints, wheels or inputs ask for more than the integration can follow; \

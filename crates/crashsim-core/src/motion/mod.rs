@@ -105,6 +105,17 @@ struct Stage {
 }
 
 impl Stage {
+    /// Whether every component (position, velocity, angular momentum, wheel states) is
+    /// finite (the quaternion is normalised from these, so it is not looked at).
+    fn is_finite(&self) -> bool {
+        self.x
+            .iter()
+            .chain(self.v.iter())
+            .chain(self.l.iter())
+            .all(|c| c.is_finite())
+            && self.u.iter().flatten().all(|c| c.is_finite())
+    }
+
     fn axpy(&self, h: Real, d: &Stage) -> Stage {
         Stage {
             x: self.x + d.x * h,
@@ -544,13 +555,7 @@ impl OnGround {
             self.land(&props, ground, &mut next);
             self.hold_anchors(&props, ground, &next);
             s = next;
-            let finite =
-                s.x.iter()
-                    .chain(s.v.iter())
-                    .chain(s.l.iter())
-                    .all(|c| c.is_finite())
-                    && s.u.iter().flatten().all(|c| c.is_finite());
-            if !finite {
+            if !s.is_finite() {
                 return Err(Error::simulation(format!(
                     "the motion on the ground became non-finite at t = {:.6} s: the wheels, \
                      tyre or inputs ask for more than the integration can follow (a very short \
