@@ -11,6 +11,9 @@ use crate::error::{require_coordinate, require_finite, Error, Place, Result};
 use crate::math::{Point, Real, Vector};
 use crate::shape::MeshShape;
 
+mod columns;
+use columns::Columns;
+
 /// Default tyre-road friction outside every zone: 0.8, dry asphalt (docs/ground.md;
 /// the sourced table of surfaces is the Python package's `ground_surfaces`).
 pub const DEFAULT_TYRE_FRICTION: Real = 0.8;
@@ -72,6 +75,9 @@ const MIN_BOUND_NORMAL_Z: Real = 0.2;
 #[derive(Clone, Debug)]
 pub struct Ground {
     surface: Surface,
+    /// A terrain's triangles by column (None for the plane, or for a terrain whose columns
+    /// would be too large: the mesh's tree is searched then).
+    columns: Option<Arc<Columns>>,
     zones: Vec<FrictionZone>,
     tyre_friction: Real,
     body_friction: Real,
@@ -101,6 +107,7 @@ impl Ground {
         require_coordinate("ground height", height)?;
         Ok(Ground {
             surface: Surface::Plane { height },
+            columns: None,
             zones: Vec::new(),
             tyre_friction: DEFAULT_TYRE_FRICTION,
             body_friction: DEFAULT_BODY_FRICTION,
@@ -119,6 +126,7 @@ impl Ground {
             ));
         }
         Ok(Ground {
+            columns: Columns::new(&mesh).map(Arc::new),
             surface: Surface::Terrain(mesh),
             zones: Vec::new(),
             tyre_friction: DEFAULT_TYRE_FRICTION,
@@ -193,7 +201,7 @@ impl Ground {
                 point: Point::new(p.x, p.y, *height),
                 normal: Vector::z(),
             }),
-            Surface::Terrain(mesh) => terrain_below(mesh, p),
+            Surface::Terrain(mesh) => terrain_below(mesh, self.columns.as_deref(), p),
         }
     }
 
@@ -218,42 +226,15 @@ impl Ground {
 }
 
 /// The highest terrain point straight above or below `p` (a ray cast down from above the
-/// terrain's box), with the upward normal of its triangle.
-fn terrain_below(mesh: &MeshShape, p: &Point) -> Option<GroundPoint> {
-    use parry3d_f64::query::{Ray, RayCast};
-    use parry3d_f64::shape::Triangle;
+/// terrain's box), with the upward normal of its triangle: found in `p`'s column when the
+/// terrain has columns, else by a descent through the mesh's tree.
+fn terrain_below(mesh: &MeshShape, columns: Option<&Columns>, p: &Point) -> Option<GroundPoint> {
     let top = mesh.aabb().maxs.z + 1.0;
     let depth = top - mesh.aabb().mins.z + 1.0;
-    let ray = Ray::new(Point::new(p.x, p.y, top), -Vector::z());
-    let nodes = mesh.bvh().nodes();
-    let mut stack = [0u32; MAX_DEPTH];
-    let mut n = 1;
-    let mut best: Option<(Real, u32)> = None;
-    while n > 0 {
-        n -= 1;
-        let node = &nodes[stack[n] as usize];
-        let reach = best.map_or(depth, |(d, _)| d);
-        if !node.aabb.intersects_local_ray(&ray, reach) {
-            continue;
-        }
-        if node.is_leaf() {
-            for &t in mesh.bvh().leaf_primitives(node) {
-                let [a, b, c] = mesh.triangle(t);
-                if let Some(toi) = Triangle::new(a, b, c).cast_local_ray(&ray, reach, false) {
-                    // Ties (a shared edge) go to the lower triangle index: deterministic.
-                    if best.is_none_or(|(d, bt)| toi < d || (toi == d && t < bt)) {
-                        best = Some((toi, t));
-                    }
-                }
-            }
-        } else {
-            let (l, r) = mesh.bvh().children(stack[n]);
-            stack[n] = l;
-            stack[n + 1] = r;
-            n += 2;
-        }
-    }
-    let (toi, t) = best?;
+    let (toi, t) = match columns {
+        Some(columns) => columns.hit_below(mesh, p, top, depth),
+        None => tree_hit_below(mesh, p, top, depth),
+    }?;
     let [a, b, c] = mesh.triangle(t);
     let mut normal = (b - a).cross(&(c - a));
     let len = normal.norm();
@@ -268,6 +249,61 @@ fn terrain_below(mesh: &MeshShape, p: &Point) -> Option<GroundPoint> {
         point: Point::new(p.x, p.y, top - toi),
         normal,
     })
+}
+
+/// [`Columns::hit_below`] by a descent through the mesh's tree. The ray is vertical, so a box
+/// it can meet is one whose (x, y) extent holds (p.x, p.y) and whose top is within reach below
+/// `top`, and a triangle is cast against only when its (x, y) extent, widened by a margin far
+/// above rounding, holds the point. The reach is widened by the margin too: a triangle that
+/// ties with the best hit at a vertex on its box's top is still cast against, so the tie goes
+/// to the lower index whatever the order of the descent.
+fn tree_hit_below(mesh: &MeshShape, p: &Point, top: Real, depth: Real) -> Option<(Real, u32)> {
+    use parry3d_f64::query::{Ray, RayCast};
+    use parry3d_f64::shape::Triangle;
+    let ray = Ray::new(Point::new(p.x, p.y, top), -Vector::z());
+    let margin = 1e-9 * (1.0 + p.x.abs().max(p.y.abs()));
+    let nodes = mesh.bvh().nodes();
+    let mut stack = [0u32; MAX_DEPTH];
+    let mut n = 1;
+    let mut best: Option<(Real, u32)> = None;
+    while n > 0 {
+        n -= 1;
+        let node = &nodes[stack[n] as usize];
+        let reach = best.map_or(depth, |(d, _)| d);
+        let b = &node.aabb;
+        if p.x < b.mins.x
+            || p.x > b.maxs.x
+            || p.y < b.mins.y
+            || p.y > b.maxs.y
+            || top - b.maxs.z > reach + margin
+        {
+            continue;
+        }
+        if node.is_leaf() {
+            for &t in mesh.bvh().leaf_primitives(node) {
+                let [a, b, c] = mesh.triangle(t);
+                if p.x < a.x.min(b.x).min(c.x) - margin
+                    || p.x > a.x.max(b.x).max(c.x) + margin
+                    || p.y < a.y.min(b.y).min(c.y) - margin
+                    || p.y > a.y.max(b.y).max(c.y) + margin
+                {
+                    continue;
+                }
+                if let Some(toi) = Triangle::new(a, b, c).cast_local_ray(&ray, reach, false) {
+                    // Ties (a shared edge) go to the lower triangle index: deterministic.
+                    if best.is_none_or(|(d, bt)| toi < d || (toi == d && t < bt)) {
+                        best = Some((toi, t));
+                    }
+                }
+            }
+        } else {
+            let (l, r) = mesh.bvh().children(stack[n]);
+            stack[n] = l;
+            stack[n + 1] = r;
+            n += 2;
+        }
+    }
+    best
 }
 
 /// The terrain's [`GroundBound`] over the box `lo`..`hi` seen from above (see
