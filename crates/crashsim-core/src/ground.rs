@@ -282,11 +282,7 @@ fn tree_hit_below(mesh: &MeshShape, p: &Point, top: Real, depth: Real) -> Option
         if node.is_leaf() {
             for &t in mesh.bvh().leaf_primitives(node) {
                 let [a, b, c] = mesh.triangle(t);
-                if p.x < a.x.min(b.x).min(c.x) - margin
-                    || p.x > a.x.max(b.x).max(c.x) + margin
-                    || p.y < a.y.min(b.y).min(c.y) - margin
-                    || p.y > a.y.max(b.y).max(c.y) + margin
-                {
+                if !columns::extent_holds([a, b, c], p, margin) {
                     continue;
                 }
                 if let Some(toi) = Triangle::new(a, b, c).cast_local_ray(&ray, reach, false) {

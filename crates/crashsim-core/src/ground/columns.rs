@@ -161,11 +161,7 @@ impl Columns {
         let mut best: Option<(Real, u32)> = None;
         for &t in &self.entries[self.starts[k] as usize..self.starts[k + 1] as usize] {
             let [a, b, c] = mesh.triangle(t);
-            if p.x < a.x.min(b.x).min(c.x) - m
-                || p.x > a.x.max(b.x).max(c.x) + m
-                || p.y < a.y.min(b.y).min(c.y) - m
-                || p.y > a.y.max(b.y).max(c.y) + m
-            {
+            if !extent_holds([a, b, c], p, m) {
                 continue;
             }
             let reach = best.map_or(depth, |(d, _)| d);
@@ -177,6 +173,16 @@ impl Columns {
         }
         best
     }
+}
+
+/// Whether triangle `tri`'s (x, y) extent, widened by `margin` (m), holds (p.x, p.y): the
+/// test before a vertical ray is cast against the triangle.
+pub(crate) fn extent_holds(tri: [Point; 3], p: &Point, margin: Real) -> bool {
+    let [a, b, c] = tri;
+    p.x >= a.x.min(b.x).min(c.x) - margin
+        && p.x <= a.x.max(b.x).max(c.x) + margin
+        && p.y >= a.y.min(b.y).min(c.y) - margin
+        && p.y <= a.y.max(b.y).max(c.y) + margin
 }
 
 #[cfg(test)]
