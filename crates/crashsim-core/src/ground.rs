@@ -235,7 +235,19 @@ fn terrain_below(mesh: &MeshShape, columns: Option<&Columns>, p: &Point) -> Opti
         Some(columns) => columns.hit_below(mesh, p, top, depth),
         None => tree_hit_below(mesh, p, top, depth),
     }?;
-    let [a, b, c] = mesh.triangle(t);
+    let normal = match columns {
+        Some(columns) => columns.normal(t),
+        None => upward_normal(mesh.triangle(t)),
+    }?;
+    Some(GroundPoint {
+        point: Point::new(p.x, p.y, top - toi),
+        normal,
+    })
+}
+
+/// The unit normal of triangle `tri` on its upper side (n.z >= 0); None for a degenerate one.
+fn upward_normal(tri: [Point; 3]) -> Option<Vector> {
+    let [a, b, c] = tri;
     let mut normal = (b - a).cross(&(c - a));
     let len = normal.norm();
     if len == 0.0 || !len.is_finite() {
@@ -245,10 +257,7 @@ fn terrain_below(mesh: &MeshShape, columns: Option<&Columns>, p: &Point) -> Opti
     if normal.z < 0.0 {
         normal = -normal;
     }
-    Some(GroundPoint {
-        point: Point::new(p.x, p.y, top - toi),
-        normal,
-    })
+    Some(normal)
 }
 
 /// [`Columns::hit_below`] by a descent through the mesh's tree. The ray is vertical, so a box
@@ -258,9 +267,7 @@ fn terrain_below(mesh: &MeshShape, columns: Option<&Columns>, p: &Point) -> Opti
 /// ties with the best hit at a vertex on its box's top is still cast against, so the tie goes
 /// to the lower index whatever the order of the descent.
 fn tree_hit_below(mesh: &MeshShape, p: &Point, top: Real, depth: Real) -> Option<(Real, u32)> {
-    use parry3d_f64::query::{Ray, RayCast};
-    use parry3d_f64::shape::Triangle;
-    let ray = Ray::new(Point::new(p.x, p.y, top), -Vector::z());
+    let from = Point::new(p.x, p.y, top);
     let margin = 1e-9 * (1.0 + p.x.abs().max(p.y.abs()));
     let nodes = mesh.bvh().nodes();
     let mut stack = [0u32; MAX_DEPTH];
@@ -281,16 +288,7 @@ fn tree_hit_below(mesh: &MeshShape, p: &Point, top: Real, depth: Real) -> Option
         }
         if node.is_leaf() {
             for &t in mesh.bvh().leaf_primitives(node) {
-                let [a, b, c] = mesh.triangle(t);
-                if !columns::extent_holds([a, b, c], p, margin) {
-                    continue;
-                }
-                if let Some(toi) = Triangle::new(a, b, c).cast_local_ray(&ray, reach, false) {
-                    // Ties (a shared edge) go to the lower triangle index: deterministic.
-                    if best.is_none_or(|(d, bt)| toi < d || (toi == d && t < bt)) {
-                        best = Some((toi, t));
-                    }
-                }
+                columns::keep_nearer(&mut best, mesh, t, &from, depth, margin);
             }
         } else {
             let (l, r) = mesh.bvh().children(stack[n]);
