@@ -275,7 +275,7 @@ mod tests {
                 t.push([a, b + 1, a + 1]);
             }
         }
-        let mut quad = |v: &mut Vec<Point>, t: &mut Vec<[u32; 3]>, c: [Point; 4]| {
+        let quad = |v: &mut Vec<Point>, t: &mut Vec<[u32; 3]>, c: [Point; 4]| {
             let k = v.len() as u32;
             v.extend(c);
             t.push([k, k + 1, k + 2]);
