@@ -227,7 +227,7 @@ impl World {
         let pair = self.pairs[pi].clone();
         let (i1, i2) = (pair.body1, pair.body2);
         let elapsed_ms = (self.time - timer.started) * 1e3;
-        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        let (b1, b2) = (self.bodies[i1].body(), self.bodies[i2].body());
         let normal = timer.early_normal.map(|(n, t)| (b1.pose() * n, t));
         let Some(geometry) = self.contact_geometry(&pair, b1, b2, normal) else {
             let why = separated_note(elapsed_ms, timer.secondary);
@@ -295,7 +295,7 @@ impl World {
     /// velocity is body 1's point velocity less body 2's at the centroid (m/s).
     fn impulse_problem(&self, pair: &Pair, centroid: &Point, normal: &Vector) -> ImpulseProblem {
         let (i1, i2) = (pair.body1, pair.body2);
-        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        let (b1, b2) = (self.bodies[i1].body(), self.bodies[i2].body());
         let r1 = centroid - b1.position();
         let r2 = centroid - b2.position();
         let u = b1.point_velocity(centroid) - b2.point_velocity(centroid);
@@ -327,11 +327,11 @@ impl World {
         let (i1, i2) = (pair.body1, pair.body2);
         let (started, timer_set) = (timer.started, timer.timer);
         let (centroid, normal) = (geometry.centroid, geometry.normal);
-        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        let (b1, b2) = (self.bodies[i1].body(), self.bodies[i2].body());
         let before = [b1.state(), b2.state()];
         let j = solution.impulse * timer.share;
         let energy_dissipated = self.apply_exchange(i1, i2, &centroid, &j);
-        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        let (b1, b2) = (self.bodies[i1].body(), self.bodies[i2].body());
         let after = [b1.state(), b2.state()];
         let u_after = b1.point_velocity(&centroid) - b2.point_velocity(&centroid);
         Impact {
@@ -374,29 +374,27 @@ impl World {
     }
 
     /// Applies the impulse `j` (N s) at `centroid` (world) to body `i2` and `-j` to body
-    /// `i1`, shares it through their joints and forgets what the velocity change leaves
-    /// stale; the kinetic energy (J) the bodies it moves lose: the pair and, through joints,
+    /// `i1` and shares it through their joints (the jumps make what was predicted from the
+    /// bodies' motions stale: world_body.rs); the kinetic energy (J) the bodies it moves lose: the pair and, through joints,
     /// their mechanisms' other members.
     fn apply_exchange(&mut self, i1: usize, i2: usize, centroid: &Point, j: &Vector) -> Real {
         let moved = self.moved_by(i1, i2);
         let energy_before: Real = moved
             .iter()
-            .map(|&k| self.bodies[k].body.kinetic_energy())
+            .map(|&k| self.bodies[k].body().kinetic_energy())
             .sum();
-        self.bodies[i1].body.apply_impulse(&(-j), centroid);
-        self.bodies[i2].body.apply_impulse(j, centroid);
+        self.bodies[i1].apply_impulse(&(-j), centroid);
+        self.bodies[i2].apply_impulse(j, centroid);
         self.share_impulse(i1);
         self.share_impulse(i2);
         for i in [i1, i2] {
             if let Motion::OnGround(g) = &mut self.bodies[i].motion {
                 g.exchanges += 1; // wheel states may switch at an exchange
             }
-            self.forget_clearance(i);
         }
-        self.forget_predictions();
         let energy_after: Real = moved
             .iter()
-            .map(|&k| self.bodies[k].body.kinetic_energy())
+            .map(|&k| self.bodies[k].body().kinetic_energy())
             .sum();
         energy_before - energy_after
     }
@@ -410,12 +408,12 @@ impl World {
             return false;
         }
         let (a, b) = (&self.bodies[i1], &self.bodies[i2]);
-        let (pose1, pose2) = (a.body.pose(), b.body.pose());
+        let (pose1, pose2) = (a.body().pose(), b.body().pose());
         let region = overlap_region(&a.shape, &pose1, &b.shape, &pose2);
         let Some(point) = region.center() else {
             return false;
         };
-        let speed = (a.body.point_velocity(&point) - b.body.point_velocity(&point)).norm();
+        let speed = (a.body().point_velocity(&point) - b.body().point_velocity(&point)).norm();
         if speed >= RESTING_CONTACT_SPEED {
             return false;
         }
@@ -450,7 +448,7 @@ impl World {
             return;
         }
         let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
-        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        let (b1, b2) = (self.bodies[i1].body(), self.bodies[i2].body());
         let c = nalgebra::center(&(b1.pose() * point_in[0]), &(b2.pose() * point_in[1]));
         let speed = (b1.point_velocity(&c) - b2.point_velocity(&c)).norm();
         if self.at_rest(i1) && self.at_rest(i2) && speed < RESTING_CONTACT_SPEED {
@@ -472,9 +470,9 @@ impl World {
         let mut hint = self.pairs[pi].crossing;
         let overlapping = shapes_overlap_hinted(
             &a.shape,
-            &a.body.pose(),
+            &a.body().pose(),
             &b.shape,
-            &b.body.pose(),
+            &b.body().pose(),
             &mut self.ws,
             &mut hint,
         );

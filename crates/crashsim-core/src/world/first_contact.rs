@@ -37,9 +37,9 @@ impl World {
             let (a, b) = (&self.bodies[p.body1], &self.bodies[p.body2]);
             if shapes_overlap(
                 &a.shape,
-                &a.body.pose(),
+                &a.body().pose(),
                 &b.shape,
-                &b.body.pose(),
+                &b.body().pose(),
                 &mut self.ws,
             ) {
                 return Err(Error::initial_overlap(
@@ -62,10 +62,10 @@ impl World {
         let wb = &self.bodies[i];
         match wb.motion {
             Motion::Free => {
-                let w = wb.body.angular_speed_bound();
-                let turn = wb.body.props().inverse_inertia().norm()
+                let w = wb.body().angular_speed_bound();
+                let turn = wb.body().props().inverse_inertia().norm()
                     * w
-                    * wb.body.angular_momentum().norm();
+                    * wb.body().angular_momentum().norm();
                 MotionBound {
                     velocity_change: 0.0,
                     angular_speed: w,
@@ -96,15 +96,15 @@ impl World {
             self.motion_bound(pair.body2, span),
         ];
         let (v, w) = (
-            [wb1.body.velocity(), wb2.body.velocity()],
-            [wb1.body.angular_velocity(), wb2.body.angular_velocity()],
+            [wb1.body().velocity(), wb2.body().velocity()],
+            [wb1.body().angular_velocity(), wb2.body().angular_velocity()],
         );
         let speed = (v[0] - v[1]).norm()
             + bound[0].velocity_change
             + bound[1].velocity_change
             + bound[0].angular_speed * wb1.shape.radius()
             + bound[1].angular_speed * wb2.shape.radius();
-        let pose = [wb1.body.pose(), wb2.body.pose()];
+        let pose = [wb1.body().pose(), wb2.body().pose()];
         PairMotion {
             rot: [
                 pose[0].rotation.to_rotation_matrix().into_inner(),
@@ -130,7 +130,7 @@ impl World {
     /// Box swept by a body over the next `dt` s (world).
     pub(super) fn swept_box(&self, i: usize, dt: Real) -> Aabb {
         let wb = &self.bodies[i];
-        let b0 = wb.body.pose();
+        let b0 = wb.body().pose();
         let b1 = self.predicted(i, dt).pose();
         if let Motion::OnGround(_) = wb.motion {
             // Under forces the path bends: the chord's spheres grown by how far the path can
@@ -142,7 +142,7 @@ impl World {
             );
             return Aabb::new(c0.inf(&c1) - r, c0.sup(&c1) + r);
         }
-        if wb.body.angular_speed_bound() == 0.0 {
+        if wb.body().angular_speed_bound() == 0.0 {
             wb.shape
                 .aabb()
                 .transform_by(&b0)
@@ -173,10 +173,12 @@ impl World {
         span: Real,
         poll: &mut dyn FnMut(Real) -> bool,
     ) -> Result<Option<Real>> {
-        if span <= 0.0 || self.pairs[pi].clear_until >= self.time + span {
+        let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
+        let jumps = [self.bodies[i1].jumps(), self.bodies[i2].jumps()];
+        let pair = &self.pairs[pi];
+        if span <= 0.0 || (pair.clear_until >= self.time + span && pair.clear_jumps == jumps) {
             return Ok(None);
         }
-        let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
         if !self
             .swept_box(i1, span)
             .intersects(&self.swept_box(i2, span))
@@ -207,6 +209,7 @@ impl World {
                 let free = |i: usize| matches!(self.bodies[i].motion, Motion::Free | Motion::Fixed);
                 if free(i1) && free(i2) && margin > 0.0 {
                     self.pairs[pi].clear_until = self.time + margin / m.speed;
+                    self.pairs[pi].clear_jumps = jumps;
                 }
                 None
             }

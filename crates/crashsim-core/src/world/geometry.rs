@@ -135,9 +135,9 @@ impl World {
     ) -> Option<(Vector, Real, Option<String>)> {
         let pair = &self.pairs[pi];
         let (wb1, wb2) = (&self.bodies[pair.body1], &self.bodies[pair.body2]);
-        let speed = (wb1.body.velocity() - wb2.body.velocity()).norm()
-            + wb1.body.angular_velocity().norm() * wb1.shape.radius()
-            + wb2.body.angular_velocity().norm() * wb2.shape.radius();
+        let speed = (wb1.body().velocity() - wb2.body().velocity()).norm()
+            + wb1.body().angular_velocity().norm() * wb1.shape.radius()
+            + wb2.body().angular_velocity().norm() * wb2.shape.radius();
         let time_for = |depth: Real| -> Real {
             if speed > 0.0 {
                 (depth / speed).min(cap)

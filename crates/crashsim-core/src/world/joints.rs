@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use super::{Motion, Prediction, World};
+use super::{Motion, Prediction, PredictionKey, World};
 use crate::error::{Error, Place, Result};
 use crate::joint::{
     drift_rate, project_positions, project_velocities, project_velocities_each, JointBody,
@@ -81,9 +81,9 @@ impl World {
             }
         }
         // The anchor (world, as the joint is made) near at least one of the bodies.
-        let anchor = self.bodies[joint.body1].body.pose() * joint.frame1.0;
+        let anchor = self.bodies[joint.body1].body().pose() * joint.frame1.0;
         let outside = |b: usize| {
-            let pose = self.bodies[b].body.pose();
+            let pose = self.bodies[b].body().pose();
             let local = pose.inverse_transform_point(&anchor);
             let aabb = self.bodies[b].shape.aabb();
             let d = (aabb.mins - local)
@@ -183,7 +183,7 @@ impl World {
     /// load on its coupling (0 without one).
     fn set_static_loads(&mut self, i: usize, towed: Option<([Real; 2], Real)>) -> Result<Real> {
         let wb = &mut self.bodies[i];
-        let mass = wb.body.props().mass();
+        let mass = wb.body().props().mass();
         let spec = wb.vehicle.as_mut().expect("a vehicle in a towing chain");
         let spec = Arc::make_mut(spec);
         let xy: Vec<[Real; 2]> = spec
@@ -311,15 +311,15 @@ impl World {
             let total: Real = m
                 .members
                 .iter()
-                .map(|&i| self.bodies[i].body.props().mass())
+                .map(|&i| self.bodies[i].body().props().mass())
                 .sum();
             for &i in &m.members {
                 let wb = &mut self.bodies[i];
                 if wb.vehicle.is_some() {
                     continue;
                 }
+                let own = wb.body().props().mass();
                 if let Motion::OnGround(g) = &mut wb.motion {
-                    let own = wb.body.props().mass();
                     let contact = BodyContact::new(&wb.shape, own, total, None)?;
                     g.contact = Arc::new(contact.with_static_friction());
                 }
@@ -331,8 +331,13 @@ impl World {
     /// The prediction of member `i` of mechanism `g` `dt` s from now (or back into the
     /// current step for dt < 0): the whole mechanism is advanced and every member's
     /// prediction kept. None (the error kept for the stepper) when the motion fails.
-    pub(super) fn predicted_mechanism(&self, g: usize, i: usize, dt: Real) -> Option<Prediction> {
-        let (time, dt_bits) = (self.time.to_bits(), dt.to_bits());
+    pub(super) fn predicted_mechanism(
+        &self,
+        g: usize,
+        i: usize,
+        dt: Real,
+        key: PredictionKey,
+    ) -> Option<Prediction> {
         let ground = self.ground.as_ref().expect("a mechanism has a ground");
         let m = &self.mechanisms[g];
         let (mut bodies, mut motions, mut engaged, from, span) = if dt >= 0.0 {
@@ -341,7 +346,7 @@ impl World {
                 .iter()
                 .map(|&k| {
                     (
-                        self.bodies[k].body.clone(),
+                        self.bodies[k].body().clone(),
                         on_ground(&self.bodies[k].motion),
                     )
                 })
@@ -385,7 +390,6 @@ impl World {
             hits: outcome.hits,
         });
         let mut mine = None;
-        let mut kept = self.predictions.lock().expect("not poisoned");
         for (k, ((state, motion), bound)) in bodies
             .into_iter()
             .zip(motions)
@@ -393,9 +397,7 @@ impl World {
             .enumerate()
         {
             let p = Prediction {
-                body: m.members[k],
-                time,
-                dt: dt_bits,
+                key: PredictionKey::new(m.members[k], self.time, dt, key.jumps()),
                 state,
                 motion,
                 bound: (dt >= 0.0).then_some(bound),
@@ -404,10 +406,7 @@ impl World {
             if m.members[k] == i {
                 mine = Some(p.clone());
             }
-            if kept.len() >= self.predictions_kept() {
-                kept.remove(0);
-            }
-            kept.push(p);
+            self.predictions.keep(p, self.predictions_kept());
         }
         mine
     }
@@ -432,7 +431,7 @@ impl World {
     /// joints' reactions share the impulse with the other members), else the free body's
     /// `I/m - [r]x I^-1 [r]x`.
     pub(super) fn point_mobility(&self, i: usize, p: &Point) -> Matrix {
-        let body = &self.bodies[i].body;
+        let body = self.bodies[i].body();
         let r = p - body.position();
         let rx = r.cross_matrix();
         let free =
@@ -476,8 +475,8 @@ impl World {
         let at = |i: usize| m.members.iter().position(|&k| k == i).expect("a member");
         let (a, b) = (at(i1), at(i2));
         let (ra, rb) = (
-            p - self.bodies[i1].body.position(),
-            p - self.bodies[i2].body.position(),
+            p - self.bodies[i1].body().position(),
+            p - self.bodies[i2].body().position(),
         );
         let jb = self.joint_bodies(g);
         // per axis e: -e on a and e on b at p, then projected onto the joints (one factor)
@@ -510,14 +509,7 @@ impl World {
         let change = project_velocities(&self.mechanisms[g].joints, &jb, &[]);
         let members = self.mechanisms[g].members.clone();
         for (k, (dv, dw)) in members.into_iter().zip(change) {
-            let wb = &mut self.bodies[k];
-            let state = wb.body.state();
-            let mut s = state;
-            s.velocity += dv;
-            s.angular_velocity += dw;
-            wb.body = crate::body::RigidBody::new(wb.body.props().clone(), &s)
-                .expect("a moved state stays finite");
-            self.forget_clearance(k);
+            self.bodies[k].change_velocity(&dv, &dw);
         }
     }
 
@@ -544,7 +536,7 @@ impl World {
             .members
             .iter()
             .map(|&k| {
-                let b = &self.bodies[k].body;
+                let b = self.bodies[k].body();
                 let r = *b.orientation().to_rotation_matrix().matrix();
                 JointBody {
                     x: b.position(),

@@ -18,8 +18,10 @@ mod exchange;
 mod first_contact;
 mod geometry;
 mod joints;
+mod predictions;
 mod soft;
 mod stepper;
+mod world_body;
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
@@ -30,13 +32,15 @@ use crate::error::{Error, Place, Result};
 use crate::ground::Ground;
 use crate::joint::JointSpec;
 use crate::math::{Isometry, Point, Real, Vector};
-use crate::motion::{BodyContact, MotionBound, OnGround};
+use crate::motion::{BodyContact, OnGround};
 use crate::overlap::QueryWorkspace;
 use crate::shape::MeshShape;
 use crate::soft::SoftContact;
 use crate::stiffness::Stiffness;
 use crate::vehicle::VehicleSpec;
 use clearance::Front;
+use predictions::{Prediction, PredictionKey, Predictions};
+use world_body::WorldBody;
 
 pub use events::{
     degrees, heading, magnitude, pdof_deg, ContactEvent, ContactEventKind, Impact, RunOutput,
@@ -107,8 +111,10 @@ struct Pair {
     front: Option<Box<Front>>,
     /// Before this time (s) the apart pair of torque-free or fixed bodies cannot touch (the
     /// front's margin over their speed bound, which holds until an exchange changes a
-    /// velocity): no work at all. Forgotten when either body's motion jumps.
+    /// velocity): no work at all. It holds while both bodies' jump counts are still
+    /// `clear_jumps`, the counts when it was found.
     clear_until: Real,
+    clear_jumps: [u64; 2],
     /// The closest pair of triangles (of body 1, body 2) at the pair's last distance query:
     /// the next query starts from it.
     closest: Option<(u32, u32)>,
@@ -133,19 +139,6 @@ enum Motion {
     OnGround(Box<OnGround>),
     /// Fixed in the world (an obstacle): never moves, infinite mass in the exchange.
     Fixed,
-}
-
-#[derive(Clone, Debug)]
-struct WorldBody {
-    shape: Arc<MeshShape>,
-    body: RigidBody,
-    /// Distance (m) from the CG to the farthest corner of the mesh's box (body frame): how
-    /// fast a turn moves the body's points, for the rest test.
-    reach: Real,
-    stiffness: Stiffness,
-    /// Wheels, tyre and inputs, used when the world has a ground.
-    vehicle: Option<Arc<VehicleSpec>>,
-    motion: Motion,
 }
 
 /// Bodies, pairs, the ground and the clock.
@@ -179,9 +172,8 @@ pub struct World {
     /// Since when each body on the ground has been settled (s), if it is: on the ground with
     /// every velocity component small (stepper.rs, a run until rest).
     settled_since: Vec<Option<Real>>,
-    /// The latest predictions of bodies on the ground (each an integration of its own):
-    /// a step asks for the same ones several times (swept box, speed bound, search, advance).
-    predictions: Mutex<Vec<Prediction>>,
+    /// The latest predictions of bodies on the ground (predictions.rs).
+    predictions: Predictions,
     /// The joints, in the order added (joints.rs).
     joints: Vec<JointSpec>,
     /// The jointed bodies' mechanisms (built at the first run).
@@ -192,20 +184,6 @@ pub struct World {
     engaged_at_step_start: Vec<Vec<Vec<bool>>>,
     /// Limits hit since the stepper last took them into the run's output.
     joint_events: Vec<JointEvent>,
-}
-
-/// A body on the ground as predicted `dt` s after `time` (keys as bits: exact matches only).
-#[derive(Clone, Debug)]
-struct Prediction {
-    body: usize,
-    time: u64,
-    dt: u64,
-    state: RigidBody,
-    motion: OnGround,
-    /// How the motion is bounded over the prediction's span (forward predictions only).
-    bound: Option<MotionBound>,
-    /// For a mechanism's member: what the mechanism's span left (shared by its members).
-    mechanism: Option<Arc<joints::MechanismOutcome>>,
 }
 
 /// How many predictions are kept.
@@ -245,7 +223,7 @@ impl World {
 
     /// Body `i`'s current state.
     pub fn state(&self, i: usize) -> BodyState {
-        self.bodies[i].body.state()
+        self.bodies[i].body().state()
     }
 
     /// Adds a body; every new pair gets default contact parameters. Returns its index.
@@ -299,27 +277,14 @@ impl World {
                 exchanges: 0,
                 front: None,
                 clear_until: Real::NEG_INFINITY,
+                clear_jumps: [0, 0],
                 closest: None,
                 crossing: None,
                 soft: None,
                 soft_substeps: 1,
             });
         }
-        let b = shape.aabb();
-        let reach = Vector::new(
-            b.mins.x.abs().max(b.maxs.x.abs()),
-            b.mins.y.abs().max(b.maxs.y.abs()),
-            b.mins.z.abs().max(b.maxs.z.abs()),
-        )
-        .norm();
-        self.bodies.push(WorldBody {
-            shape,
-            body,
-            reach,
-            stiffness: Stiffness::none(),
-            vehicle: None,
-            motion,
-        });
+        self.bodies.push(WorldBody::new(shape, body, motion));
         self.slow_since.push(None);
         self.stopped_at.push(None);
         self.settled_since.push(None);
@@ -354,7 +319,7 @@ impl World {
                     .at(Place::body(i)),
             );
         }
-        spec.validate(Some(wb.shape.aabb()), wb.body.props().mass())?;
+        spec.validate(Some(wb.shape.aabb()), wb.body().props().mass())?;
         wb.vehicle = Some(Arc::new(spec));
         Ok(())
     }
@@ -394,10 +359,10 @@ impl World {
             if matches!(wb.motion, Motion::Fixed) {
                 continue;
             }
-            let mass = wb.body.props().mass();
+            let mass = wb.body().props().mass();
             let contact = BodyContact::new(&wb.shape, mass, mass, wb.vehicle.as_deref())?;
             let on_ground = OnGround::new(wb.vehicle.clone(), Arc::new(contact));
-            if let Some((depth, p)) = on_ground.deepest(&wb.body, ground) {
+            if let Some((depth, p)) = on_ground.deepest(wb.body(), ground) {
                 if depth > PLACEMENT_TOLERANCE {
                     return Err(Error::initial_overlap(format!(
                         "it starts {depth:.3} m into the ground (its lowest point outside \
@@ -414,13 +379,9 @@ impl World {
         Ok(())
     }
 
-    /// Forgets the clearance certificates of every pair with body `i` (its motion jumped).
-    fn forget_clearance(&mut self, i: usize) {
-        for p in &mut self.pairs {
-            if p.body1 == i || p.body2 == i {
-                p.clear_until = Real::NEG_INFINITY;
-            }
-        }
+    /// How many times the bodies' velocities have jumped, in all ([`WorldBody::jumps`]).
+    fn jumps(&self) -> u64 {
+        self.bodies.iter().map(WorldBody::jumps).sum()
     }
 
     /// Body `i` as it will be `dt` s from now (or was, for dt < 0, within the current step),
@@ -429,29 +390,23 @@ impl World {
     fn predicted(&self, i: usize, dt: Real) -> RigidBody {
         let wb = &self.bodies[i];
         match &wb.motion {
-            Motion::Free => wb.body.advanced(dt),
-            Motion::Fixed => wb.body.clone(),
+            Motion::Free => wb.body().advanced(dt),
+            Motion::Fixed => wb.body().clone(),
             Motion::OnGround(_) => self
                 .predicted_on_ground(i, dt)
-                .map_or_else(|| wb.body.advanced(dt), |p| p.state),
+                .map_or_else(|| wb.body().advanced(dt), |p| p.state),
         }
     }
 
     /// A prediction of body `i` (on the ground) `dt` s from now, from the kept ones when
     /// there; None (the error kept for the stepper) when a wheel leaves the terrain.
     fn predicted_on_ground(&self, i: usize, dt: Real) -> Option<Prediction> {
-        let (time, dt_bits) = (self.time.to_bits(), dt.to_bits());
-        {
-            let kept = self.predictions.lock().expect("not poisoned");
-            if let Some(p) = kept
-                .iter()
-                .find(|p| p.body == i && p.time == time && p.dt == dt_bits)
-            {
-                return Some(p.clone());
-            }
+        let key = PredictionKey::new(i, self.time, dt, self.jumps());
+        if let Some(p) = self.predictions.find(&key) {
+            return Some(p);
         }
         if let Some(g) = self.mechanism_of.get(i).copied().flatten() {
-            return self.predicted_mechanism(g, i, dt);
+            return self.predicted_mechanism(g, i, dt, key);
         }
         let wb = &self.bodies[i];
         match &wb.motion {
@@ -461,7 +416,7 @@ impl World {
                     .as_ref()
                     .expect("a body on the ground has a ground");
                 let (mut body, mut motion, from, span) = if dt >= 0.0 {
-                    (wb.body.clone(), g.as_ref().clone(), self.time, dt)
+                    (wb.body().clone(), g.as_ref().clone(), self.time, dt)
                 } else {
                     let (t0, states) = self
                         .step_start
@@ -491,28 +446,17 @@ impl World {
                     }
                 };
                 let p = Prediction {
-                    body: i,
-                    time,
-                    dt: dt_bits,
+                    key,
                     state: body,
                     motion,
                     bound,
                     mechanism: None,
                 };
-                let mut kept = self.predictions.lock().expect("not poisoned");
-                if kept.len() >= self.predictions_kept() {
-                    kept.remove(0);
-                }
-                kept.push(p.clone());
+                self.predictions.keep(p.clone(), self.predictions_kept());
                 Some(p)
             }
             _ => None,
         }
-    }
-
-    /// Forgets every kept prediction (a body's state jumped at the current time).
-    fn forget_predictions(&self) {
-        self.predictions.lock().expect("not poisoned").clear();
     }
 
     /// Sets body `i`'s face stiffness (used by automatic dt_p, the stiffness centroid and
@@ -612,5 +556,46 @@ impl World {
     /// Advances by `duration` s with steps of at most `dt` s.
     pub fn run(&mut self, duration: Real, dt: Real) -> Result<RunOutput> {
         self.run_with_progress(duration, dt, &mut |_| true)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Matrix;
+
+    /// A 1 m, 1,000 kg box sliding along x at 5 m/s on the plane z = 0, after a first run
+    /// of 0.01 s (which puts it on the ground).
+    fn sliding_box() -> World {
+        let mut w = World::new();
+        w.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+        let props = MassProperties::new(1000.0, Matrix::identity() * (1000.0 / 6.0)).unwrap();
+        let state = BodyState {
+            position: Point::new(0.0, 0.0, 0.5),
+            orientation: crate::math::Rotation::identity(),
+            velocity: Vector::x() * 5.0,
+            angular_velocity: Vector::zeros(),
+        };
+        let cube = Arc::new(MeshShape::cuboid(Vector::zeros(), Vector::repeat(0.5)));
+        w.add_body(cube, props, &state).unwrap();
+        w.run(0.01, 1e-3).unwrap();
+        w
+    }
+
+    #[test]
+    fn a_kept_prediction_is_not_used_after_an_impulse_changed_the_body() {
+        let mut w = sliding_box();
+        let before = w.predicted(0, 0.01);
+        assert_eq!(w.predicted(0, 0.01).velocity(), before.velocity(), "kept");
+        // 1,000 N s along y at the CG: +1 m/s sideways, at the same instant.
+        let cg = w.bodies[0].body().position();
+        w.bodies[0].apply_impulse(&(Vector::y() * 1000.0), &cg);
+        let after = w.predicted(0, 0.01);
+        assert!(after.velocity().y > 0.9, "{:?}", after.velocity());
+        // The same as a prediction that was never kept.
+        w.predictions = Predictions::default();
+        let fresh = w.predicted(0, 0.01);
+        assert_eq!(after.velocity(), fresh.velocity());
+        assert_eq!(after.position(), fresh.position());
     }
 }

@@ -20,7 +20,7 @@ impl World {
             let Some(soft) = p.soft else { continue };
             let mass = [p.body1, p.body2]
                 .iter()
-                .map(|&i| self.bodies[i].body.props().mass())
+                .map(|&i| self.bodies[i].body().props().mass())
                 .filter(|m| m.is_finite())
                 .fold(Real::INFINITY, Real::min);
             let angle = (soft.stiffness / mass).sqrt() * dt;
@@ -78,7 +78,7 @@ impl World {
         let before = *before;
         let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
         let span = self.time - t_prev;
-        let (b1, b2) = (&self.bodies[i1].body, &self.bodies[i2].body);
+        let (b1, b2) = (self.bodies[i1].body(), self.bodies[i2].body());
         let Some(g) = self.contact_geometry(&self.pairs[pi], b1, b2, None) else {
             out.contacts.push(ContactEvent {
                 body1: i1,
@@ -116,14 +116,10 @@ impl World {
             let stop = along(&t) * sliding.norm();
             j += t * (self.pairs[pi].params.friction * normal).min(stop);
         }
-        self.bodies[i1].body.apply_impulse(&(-j), &c);
-        self.bodies[i2].body.apply_impulse(&j, &c);
+        self.bodies[i1].apply_impulse(&(-j), &c);
+        self.bodies[i2].apply_impulse(&j, &c);
         self.share_impulse(i1);
         self.share_impulse(i2);
-        for i in [i1, i2] {
-            self.forget_clearance(i);
-        }
-        self.forget_predictions();
     }
 }
 

@@ -372,7 +372,7 @@ impl World {
             let snapshot = self
                 .bodies
                 .iter()
-                .map(|b| (b.body.clone(), b.motion.clone()));
+                .map(|b| (b.body().clone(), b.motion.clone()));
             self.step_start = Some((self.time, snapshot.collect()));
             self.engaged_at_step_start =
                 self.mechanisms.iter().map(|m| m.engaged.clone()).collect();
@@ -478,7 +478,7 @@ impl World {
         let mut mechanism_carried: Vec<Option<bool>> = vec![None; self.mechanisms.len()];
         let mut carried = |i: usize, bodies: &[WorldBody]| -> bool {
             let on = |k: usize| match &bodies[k].motion {
-                Motion::OnGround(m) => m.supported(&bodies[k].body, ground),
+                Motion::OnGround(m) => m.supported(bodies[k].body(), ground),
                 _ => false,
             };
             if on(i) {
@@ -494,8 +494,8 @@ impl World {
             let Motion::OnGround(motion) = &wb.motion else {
                 continue;
             };
-            let v = wb.body.velocity();
-            let w = wb.body.angular_velocity();
+            let v = wb.body().velocity();
+            let w = wb.body().angular_velocity();
             let along = v.x.hypot(v.y);
             let yaw_limit = REST_YAW_RATE.max(REST_TURN_SPEED / wb.reach);
             let travel_slow = along < REST_SPEED && w.z.abs() < yaw_limit;
@@ -588,7 +588,7 @@ impl World {
         for wb in &self.bodies {
             if let (Motion::OnGround(g), Some(ground)) = (&wb.motion, &self.ground) {
                 out.wheels
-                    .extend(g.wheel_samples(&wb.body, ground, self.time)?);
+                    .extend(g.wheel_samples(wb.body(), ground, self.time)?);
             }
         }
         if !self.joints.is_empty() {
@@ -606,7 +606,7 @@ impl World {
                         let Motion::OnGround(g) = &wb.motion else {
                             unreachable!("a mechanism's members move on the ground")
                         };
-                        (wb.body.clone(), g.as_ref().clone())
+                        (wb.body().clone(), g.as_ref().clone())
                     })
                     .unzip();
                 let samples =
@@ -618,7 +618,7 @@ impl World {
         }
         out.times.push(self.time);
         out.states
-            .extend(self.bodies.iter().map(|b| b.body.state()));
+            .extend(self.bodies.iter().map(|b| b.body().state()));
         Ok(())
     }
 
@@ -638,13 +638,13 @@ impl World {
                     }
                 }
                 let wb = &mut self.bodies[i];
-                wb.body = p.state;
+                wb.move_to(p.state);
                 wb.motion = Motion::OnGround(Box::new(p.motion));
                 continue;
             }
             let wb = &mut self.bodies[i];
             match &mut wb.motion {
-                Motion::Free => wb.body.advance(dt),
+                Motion::Free => wb.advance(dt),
                 Motion::Fixed | Motion::OnGround(_) => {}
             }
         }

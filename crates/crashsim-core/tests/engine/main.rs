@@ -725,3 +725,53 @@ fn a_rigid_obstacle_takes_no_crush_in_the_spring_model() {
     let dv = imp.velocity_after[0] - imp.velocity_before[0];
     assert!((dv.x + (1.0 + eps) * v).abs() < 1e-12 * v && dv.y.abs() < 1e-12);
 }
+
+/// A body struck into a third one meets it: what the world had worked out from the struck
+/// body's motion before the exchange (here its pair with the third body, certified clear for
+/// about half a minute at its creeping speed) does not outlive the impulse (world_body.rs,
+/// the jump count). 1 m boxes: A at 10 m/s along x, 1 m behind B, which creeps at 1 cm/s;
+/// C turned 45 deg about z, its lowest corner 0.1 m above B's top edge and 0.6 m ahead, so
+/// the boxes of B and C overlap (the pair is searched) while the meshes are 0.35 m apart.
+#[test]
+fn a_struck_body_meets_the_next_one_its_new_speed_reaches() {
+    let mut w = World::new();
+    let cube = (1.0, 1.0, 1.0);
+    let a = add_box(
+        &mut w,
+        1000.0,
+        cube,
+        &state(0.0, 0.0, 0.5, 0.0, Vector::x() * 10.0),
+    );
+    let b = add_box(
+        &mut w,
+        1000.0,
+        cube,
+        &state(2.0, 0.0, 0.5, 0.0, Vector::x() * 0.01),
+    );
+    let c = add_box(
+        &mut w,
+        1000.0,
+        cube,
+        &state(3.1, 1.1, 0.5, FRAC_PI_4, Vector::zeros()),
+    );
+    let out = w.run(0.5, 1e-3).unwrap();
+    let pairs: Vec<(usize, usize)> = out.impacts.iter().map(|i| (i.body1, i.body2)).collect();
+    assert_eq!(pairs.first(), Some(&(a, b)), "A strikes B first: {pairs:?}");
+    let first = &out.impacts[0];
+    let struck = first.velocity_after[1].x;
+    assert!(struck > 4.0, "B leaves at {struck} m/s");
+    // C's edge crosses B's top face (y = 0.5) at x = 3.1 - (0.5^0.5 - 0.6): B's front face
+    // (x = 2.5 at the start) gets there after the exchange at B's new speed.
+    let edge = 3.1 - (0.5f64.sqrt() - 0.6);
+    let expected = first.time + (edge - 2.5 - 0.01 * first.time) / struck;
+    let bc = out
+        .impacts
+        .iter()
+        .find(|i| (i.body1, i.body2) == (b, c))
+        .unwrap_or_else(|| panic!("B meets C: {pairs:?}"));
+    assert!(
+        (bc.first_contact_time - expected).abs() < 1e-3,
+        "B meets C at {} s, expected {expected} s",
+        bc.first_contact_time
+    );
+}
