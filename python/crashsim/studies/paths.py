@@ -357,7 +357,7 @@ def overrides(
     vehicles = _check_conflicts(scene, paths)
     out: dict[str, Array] = {}
     by_vehicle = {v: [p for p in paths if p.kind == "vehicle" and p.target == v] for v in vehicles}
-    state_keys = _state_keys(by_vehicle)
+    state_keys = _state_keys(p.parameter for ps in by_vehicle.values() for p in ps)
     base = _base_states(scene.placements)
     for key in STATE_KEYS:
         if key in state_keys:

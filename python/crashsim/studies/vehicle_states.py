@@ -10,13 +10,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-
-if TYPE_CHECKING:
-    from crashsim.studies.paths import ParameterPath
 
 Array = NDArray[np.float64]
 
@@ -53,22 +50,21 @@ def _body_x(q: Array) -> Array:
     return np.array([1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)])
 
 
-def _state_keys(by_vehicle: Mapping[str, list[ParameterPath]]) -> set[str]:
-    """The state arrays the vehicles' paths change (a heading turns the orientation, the
-    velocity and the angular velocity)."""
+def _state_keys(parameters: Iterable[str]) -> set[str]:
+    """The state arrays that the vehicle parameters named change (a heading turns the
+    orientation, the velocity and the angular velocity)."""
     state_keys = set()
-    for ps in by_vehicle.values():
-        for p in ps:
-            if p.parameter == "mass":
-                state_keys.add("mass")
-            elif p.parameter in ("position_x", "position_y"):
-                state_keys.add("position")
-            elif p.parameter == "heading":
-                state_keys.update(("orientation", "velocity", "angular_velocity"))
-            elif p.parameter == "yaw_rate":
-                state_keys.add("angular_velocity")
-            else:
-                state_keys.add("velocity")
+    for parameter in parameters:
+        if parameter == "mass":
+            state_keys.add("mass")
+        elif parameter in ("position_x", "position_y"):
+            state_keys.add("position")
+        elif parameter == "heading":
+            state_keys.update(("orientation", "velocity", "angular_velocity"))
+        elif parameter == "yaw_rate":
+            state_keys.add("angular_velocity")
+        else:
+            state_keys.add("velocity")
     return state_keys
 
 
