@@ -25,6 +25,7 @@ from crashsim.cli.output import CSV_FILE, GLB_FILE, REPORT_FILE, TRAJECTORIES_FI
 from crashsim.cli.scenes import _check, _run, _view
 from crashsim.cli.studies import _montecarlo, _sweep
 from crashsim.io.viewer import PAGE_FILE
+from crashsim.studies.backends import backend_names
 
 
 def _study_arguments(p: argparse.ArgumentParser) -> None:
@@ -37,8 +38,9 @@ def _study_arguments(p: argparse.ArgumentParser) -> None:
                    "(each input at its low and high value: the grid's ends, or the "
                    "distribution's 5th and 95th percentiles) and print (and with --plots draw) "
                    "the tornado of the first impact's delta-V")
-    p.add_argument("--backend", choices=("local", "dask"), default="local",
-                   help="where the variants run: this machine (local) or a Dask cluster")
+    p.add_argument("--backend", choices=backend_names(), default="local",
+                   help="where the variants run: this machine (local), a Dask cluster (dask) "
+                   "or a registered backend (crashsim.studies.backends)")
     p.add_argument("--scheduler", metavar="ADDR", help="with --backend dask: the address of a "
                    "running scheduler (tcp://host:8786); default a LocalCluster on this machine")
     p.add_argument("--threads", type=_positive_int, help="threads (local) or worker processes "

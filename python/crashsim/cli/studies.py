@@ -13,6 +13,7 @@ import numpy as np
 from crashsim.cli.common import RunFailed, _check_writable, _header
 from crashsim.errors import ParameterError
 from crashsim.io.scenefile import SceneFile, load_scene
+from crashsim.studies.backends import get_backend
 
 
 def _study_out(text: str | None) -> Path | None:
@@ -76,7 +77,7 @@ def _study(args: argparse.Namespace, kind: str) -> int:
     plots = Path(args.plots) if args.plots is not None else None
     if plots is not None:
         _check_writable(plots)
-    if args.backend != "dask" and args.scheduler is not None:
+    if args.scheduler is not None and not get_backend(args.backend).takes_scheduler:
         raise ParameterError("--scheduler is for --backend dask")
     duration = case.run.longest if args.duration is None else args.duration
     dt = case.run.dt if args.dt is None else args.dt

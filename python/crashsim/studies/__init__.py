@@ -12,6 +12,7 @@ Parameter paths (what varies) are crashsim.studies.paths's; the runs go through 
 engine (crashsim.batch.run_batch) in chunks.
 """
 
+from crashsim.studies.backends import Backend, backend_names, register_backend
 from crashsim.studies.design import Linspace, grid, linspace, monte_carlo_sample, one_at_a_time
 from crashsim.studies.distributions import (
     Choice,
@@ -31,6 +32,7 @@ from crashsim.studies.run import FailedVariant, Study, monte_carlo, run_study, s
 from crashsim.studies.sensitivity import Sobol, Tornado, sobol, tornado
 
 __all__ = [
+    "Backend",
     "Choice",
     "ClassTable",
     "Distribution",
@@ -42,6 +44,7 @@ __all__ = [
     "Tornado",
     "Triangular",
     "Uniform",
+    "backend_names",
     "choice",
     "class_table",
     "grid",
@@ -51,6 +54,7 @@ __all__ = [
     "normal",
     "one_at_a_time",
     "parse_path",
+    "register_backend",
     "run_study",
     "sobol",
     "sweep",

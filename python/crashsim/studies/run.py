@@ -29,7 +29,8 @@ from numpy.typing import NDArray
 
 from crashsim.errors import StudyError
 from crashsim.studies import design, paths
-from crashsim.studies.chunks import chunk_bounds, empty_columns, place_chunk
+from crashsim.studies.backends import get_backend
+from crashsim.studies.chunks import empty_columns
 from crashsim.studies.distributions import Distribution
 
 if TYPE_CHECKING:
@@ -50,7 +51,6 @@ __all__ = [
 
 Array = NDArray[np.float64]
 
-DEFAULT_CHUNK = 256  # variants per batch call on this machine
 OK, FAILED, NOT_RUN = "ok", "failed", "not run"
 # Bytes a study's arrays may take at most (inputs, the engine's override arrays, outputs,
 # status), unless ``max_study_bytes`` says otherwise; as a run's history limit (1 GiB).
@@ -248,12 +248,7 @@ def check_size(
 def _check_options(
     backend: str, duration: float | None, dt: float, until: str | None
 ) -> tuple[float, float]:
-    if backend not in ("local", "dask"):
-        raise StudyError(f'backend = {backend!r} is unknown: use "local" or "dask"')
-    if backend == "dask":
-        from crashsim.studies.dask_backend import require_distributed
-
-        require_distributed()
+    get_backend(backend).check()
     if until is not None and until != "rest":
         raise StudyError(f'until = {until!r} is unknown: use until="rest" or None')
     if duration is None:
@@ -298,23 +293,19 @@ def run_study(
     ):
         raise StudyError(f"chunk_size = {chunk_size!r} is invalid: give an integer >= 1")
     options = {"duration": duration, "dt": dt, "until": until, "max_impacts": max_impacts}
-    if scene.pedestrians:
-        _check_pedestrian_study(backend)
+    runner = get_backend(backend)
+    if scene.pedestrians and not runner.runs_people:
+        raise StudyError(
+            f'a study of a scene with pedestrians runs on this machine (backend="local"), not '
+            f'on backend "{backend}": its variants run as Scenes, whose trajectories give the '
+            "person's figures, not through the batch engine other backends distribute"
+        )
     bar = _Progress(progress, n)
     try:
-        if scene.pedestrians:
-            from crashsim.studies.scene_runs import run_scenes
-
-            result = run_scenes(scene, overrides, n, options, threads, bar)
-        elif backend == "dask":
-            from crashsim.studies.dask_backend import run_dask
-
-            result = run_dask(
-                scene, overrides, n, options, client=client, chunk_size=chunk_size,
-                progress=bar, threads=threads,
-            )
-        else:
-            result = _run_local(scene, overrides, n, options, threads, chunk_size, bar)
+        result = runner.run(
+            scene, overrides, n, options, client=client, threads=threads,
+            chunk_size=chunk_size, progress=bar,
+        )
     finally:
         bar.close()
     columns, errors, finished, interrupted = result
@@ -343,54 +334,6 @@ def run_study(
         distributions=dict(distributions or {}),
         settings={**options, "backend": backend},
     )
-
-
-def _check_pedestrian_study(backend: str) -> None:
-    """A study of a scene with pedestrians runs its variants as Scenes on this machine
-    (crashsim.studies.pedestrians)."""
-    if backend != "local":
-        raise StudyError(
-            'a study of a scene with pedestrians runs on this machine (backend="local"): its '
-            "variants run as Scenes, whose trajectories give the person's figures, not through "
-            "the batch engine the Dask backend distributes"
-        )
-
-
-def _run_local(
-    scene: Scene,
-    overrides: Mapping[str, Array],
-    n: int,
-    options: Mapping[str, Any],
-    threads: int | None,
-    chunk_size: int | None,
-    bar: Callable[[int], None],
-) -> tuple[dict[str, np.ndarray], list[Any], NDArray[np.bool_], bool]:
-    """Chunks through run_batch on this machine, in variant order."""
-    from crashsim.batch import run_batch
-
-    columns: dict[str, np.ndarray] = {}
-    errors: list[Any] = []
-    finished = np.zeros(n, dtype=bool)
-    interrupted = False
-    for start, stop in chunk_bounds(n, chunk_size or DEFAULT_CHUNK):
-        part = {k: v[start:stop] for k, v in overrides.items()}
-        try:
-            b = run_batch(
-                scene, part, n=stop - start, threads=threads,
-                progress=lambda done, _m, s=start: bar(s + done), **options,
-            )
-        except KeyboardInterrupt:
-            interrupted = True
-            break
-        place_chunk(columns, b.columns, start, n)
-        finished[start:stop] = b.finished
-        errors += [e.shifted(start) for e in b.errors]
-        if b.interrupted:
-            interrupted = True
-            break
-    if not columns:  # interrupted before the first chunk returned: empty columns
-        columns = empty_columns(scene, n, int(options["max_impacts"]))
-    return columns, errors, finished, interrupted
 
 
 def sweep(
