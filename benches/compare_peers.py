@@ -84,19 +84,24 @@ import json
 import math
 import os
 import platform
-import shutil
 import statistics
-import subprocess
 import sys
 import time
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from importlib import metadata
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+from pycrash_peer import (  # benches/pycrash_peer.py (this folder is on sys.path)
+    DEFAULT_PYCRASH_PYTHON,
+    dist_version,
+    git_revision,
+    pycrash_imports,
+    run_worker,
+    worker_environment,
+)
 
 # -- configuration ---------------------------------------------------------------------------
 
@@ -124,8 +129,6 @@ DURATION = 1.0  # s
 DT = 1e-3  # s
 
 TARGETS = {"query": 0.5, "region": 0.2, "scene": 0.1, "runout": 0.1, "pycrash": 1e-3}
-DEFAULT_PYCRASH_PYTHON = "/tmp/pycrash-venv/bin/python"
-PYCRASH_VERSION = "0.0.18"
 
 # pycrash units
 M_PER_FT = 0.3048
@@ -224,13 +227,6 @@ def _verdict(ratio: float, target: float) -> str:
 # -- machine ---------------------------------------------------------------------------------
 
 
-def _version(dist: str) -> str:
-    try:
-        return metadata.version(dist)
-    except metadata.PackageNotFoundError:
-        return "not installed"
-
-
 def _cpu_model() -> str:
     try:
         for line in Path("/proc/cpuinfo").read_text().splitlines():
@@ -245,24 +241,15 @@ def machine_lines(pycrash_info: str) -> list[str]:
     from crashsim import _core
 
     load = os.getloadavg()
-    try:
-        repo = Path(__file__).resolve().parent.parent
-        rev = subprocess.run(
-            ["git", "-C", str(repo), "describe", "--always", "--dirty"],
-            capture_output=True,
-            text=True,
-            check=False,
-        ).stdout.strip()
-    except OSError:
-        rev = ""
+    rev = git_revision()
     return [
         f"date: {datetime.datetime.now().isoformat(timespec='seconds')}",
         f"machine: {_cpu_model()}, {os.cpu_count()} logical cores, {platform.system()} "
         f"{platform.release()}; load average (1/5/15 min) at start {load[0]:.2f} / "
         f"{load[1]:.2f} / {load[2]:.2f}",
         f"python {platform.python_version()}, numpy {np.__version__}, "
-        f"trimesh {_version('trimesh')}, python-fcl {_version('python-fcl')}, "
-        f"manifold3d {_version('manifold3d')}, pycrash {pycrash_info}",
+        f"trimesh {dist_version('trimesh')}, python-fcl {dist_version('python-fcl')}, "
+        f"manifold3d {dist_version('manifold3d')}, pycrash {pycrash_info}",
         f"crashsim {_core.__version__} (git {rev or 'unknown'}), extension "
         f"{Path(_core.__file__).name}",
     ]
@@ -1494,15 +1481,7 @@ def pycrash_worker(spec: dict[str, Any]) -> dict[str, Any]:
         import pycrash
         from pycrash import Impact, Vehicle
 
-        out: dict[str, Any] = {
-            "pycrash": _version("pycrash"),
-            "pandas": pd.__version__,
-            "numpy": np.__version__,
-            "python": platform.python_version(),
-            "executable": sys.executable,
-            "module": getattr(pycrash, "__file__", ""),
-            "runs": [],
-        }
+        out: dict[str, Any] = {**worker_environment(pycrash, pd, np), "runs": []}
         duration = spec["duration"]
         for dt in spec["dts"]:
             times = []
@@ -1550,35 +1529,13 @@ def pycrash_worker(spec: dict[str, Any]) -> dict[str, Any]:
 
 def run_pycrash(spec: dict[str, Any], python: str | None) -> tuple[dict[str, Any] | None, str, str]:
     """(worker output or None, where it ran, what failed)."""
-    try:
-        with contextlib.redirect_stdout(io.StringIO()), warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            import pycrash  # noqa: F401 - GPL: only ever imported here, never in the package
-        in_process = True
-    except ImportError:
-        in_process = False
-    if in_process:
+    if pycrash_imports():
         return pycrash_worker(spec), "this process", ""
-    exe = python or DEFAULT_PYCRASH_PYTHON
-    if not (Path(exe).exists() or shutil.which(exe)):
-        return (
-            None,
-            "",
-            f"pycrash not installed (not importable here, and no interpreter at {exe}); "
-            f"set up: python3 -m venv /tmp/pycrash-venv && /tmp/pycrash-venv/bin/pip "
-            f"install pycrash=={PYCRASH_VERSION}",
-        )
-    proc = subprocess.run(
-        [exe, str(Path(__file__).resolve()), "--pycrash-worker"],
-        input=json.dumps(spec),
-        capture_output=True,
-        text=True,
-        check=False,
-    )
-    if proc.returncode != 0:
-        tail = "\n".join(proc.stderr.strip().splitlines()[-5:])
-        return None, exe, f"pycrash worker failed in {exe} (exit {proc.returncode}):\n{tail}"
-    return json.loads(proc.stdout), f"subprocess {exe}", ""
+    try:
+        out, where = run_worker(__file__, spec, python)
+    except RuntimeError as e:
+        return None, python or DEFAULT_PYCRASH_PYTHON, str(e)
+    return out, where, ""
 
 
 def _worker_main() -> None:

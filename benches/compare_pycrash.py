@@ -58,10 +58,7 @@ import io
 import json
 import math
 import os
-import platform
-import shutil
 import statistics
-import subprocess
 import sys
 import time
 import warnings
@@ -70,6 +67,13 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from pycrash_peer import (  # benches/pycrash_peer.py (this folder is on sys.path)
+    DEFAULT_PYCRASH_PYTHON,
+    git_revision,
+    pycrash_imports,
+    run_worker,
+    worker_environment,
+)
 
 # -- configuration ---------------------------------------------------------------------------
 
@@ -83,8 +87,6 @@ REST_YAW_RATE = math.radians(0.5)  # rad/s
 REST_TIME = 0.2  # s
 
 CASES = ("skid", "corner", "step", "lane", "brake_turn", "impact", "speed")
-DEFAULT_PYCRASH_PYTHON = "/tmp/pycrash-venv/bin/python"
-PYCRASH_VERSION = "0.0.18"
 
 # pycrash units (ft, lb, mph, slug)
 M_PER_FT = 0.3048
@@ -425,15 +427,7 @@ def pycrash_worker(spec: dict[str, Any]) -> dict[str, Any]:
         from pycrash.model_calcs.position_data import position_data_motion
         from pycrash.vehicle_model import vehicle_model
 
-        out: dict[str, Any] = {
-            "pycrash": _dist_version("pycrash"),
-            "pandas": pd.__version__,
-            "numpy": np.__version__,
-            "python": platform.python_version(),
-            "executable": sys.executable,
-            "module": getattr(pycrash, "__file__", ""),
-            "cases": {},
-        }
+        out: dict[str, Any] = {**worker_environment(pycrash, pd, np), "cases": {}}
         drawing = pycrash.impact_main.position_data_motion
         pycrash.impact_main.position_data_motion = lambda veh: veh
         try:
@@ -520,44 +514,11 @@ def _plain(obj: Any) -> Any:
         return str(obj)
 
 
-def _dist_version(dist: str) -> str:
-    from importlib import metadata
-
-    try:
-        return metadata.version(dist)
-    except metadata.PackageNotFoundError:
-        return "not installed"
-
-
 def run_pycrash(spec: dict[str, Any], python: str | None) -> tuple[dict[str, Any], str]:
     """(worker output, where it ran). Raises RuntimeError when pycrash cannot be run."""
-    try:
-        with contextlib.redirect_stdout(io.StringIO()), warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            import pycrash  # noqa: F401 - GPL: only ever imported here, never in the package
-        in_process = True
-    except ImportError:
-        in_process = False
-    if in_process and not python:
+    if pycrash_imports() and not python:
         return pycrash_worker(spec), "this process"
-    exe = python or DEFAULT_PYCRASH_PYTHON
-    if not (Path(exe).exists() or shutil.which(exe)):
-        raise RuntimeError(
-            f"pycrash is not importable here and there is no interpreter at {exe}; set up: "
-            f"python3 -m venv /tmp/pycrash-venv && /tmp/pycrash-venv/bin/pip install "
-            f"pycrash=={PYCRASH_VERSION}"
-        )
-    proc = subprocess.run(
-        [exe, str(Path(__file__).resolve()), "--pycrash-worker"],
-        input=json.dumps(spec),
-        capture_output=True,
-        text=True,
-        check=False,
-    )
-    if proc.returncode != 0:
-        tail = "\n".join(proc.stderr.strip().splitlines()[-8:])
-        raise RuntimeError(f"the pycrash worker failed in {exe} (exit {proc.returncode}):\n{tail}")
-    return json.loads(proc.stdout), f"subprocess {exe}"
+    return run_worker(__file__, spec, python, tail=8)
 
 
 def pycrash_trace(model: dict[str, list[float]]) -> Trace:
@@ -1474,16 +1435,7 @@ def machine_lines(pycrash_where: str, pycrash_info: dict[str, Any]) -> list[str]
     from machine import describe  # benches/machine.py
 
     load = os.getloadavg()
-    repo = Path(__file__).resolve().parent.parent
-    try:
-        rev = subprocess.run(
-            ["git", "-C", str(repo), "describe", "--always", "--dirty"],
-            capture_output=True,
-            text=True,
-            check=False,
-        ).stdout.strip()
-    except OSError:
-        rev = ""
+    rev = git_revision()
     return [
         f"date: {datetime.datetime.now().isoformat(timespec='seconds')}; crashsim git "
         f"{rev or 'unknown'}; load average (1/5/15 min) {load[0]:.2f} / {load[1]:.2f} / "
