@@ -374,9 +374,9 @@ impl World {
     }
 
     /// Applies the impulse `j` (N s) at `centroid` (world) to body `i2` and `-j` to body
-    /// `i1` and shares it through their joints (the jumps make what was predicted from the
-    /// bodies' motions stale: world_body.rs); the kinetic energy (J) the bodies it moves lose: the pair and, through joints,
-    /// their mechanisms' other members.
+    /// `i1` and shares it through their joints (jumps: what was predicted from the bodies'
+    /// motions is stale, world_body.rs); the kinetic energy (J) the bodies it moves lose:
+    /// the pair and, through joints, their mechanisms' other members.
     fn apply_exchange(&mut self, i1: usize, i2: usize, centroid: &Point, j: &Vector) -> Real {
         let moved = self.moved_by(i1, i2);
         let energy_before: Real = moved
