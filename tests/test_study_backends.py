@@ -4,7 +4,6 @@ gives the local backend's columns bit for bit; the registry's refusals."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -17,7 +16,13 @@ from crashsim.batch import run_batch
 from crashsim.cli import main
 from crashsim.errors import StudyError
 from crashsim.io.scenefile import load_scene
-from crashsim.studies.backends import _BACKENDS, backend_names, get_backend, register_backend
+from crashsim.studies.backends import (
+    _BACKENDS,
+    Variants,
+    backend_names,
+    get_backend,
+    register_backend,
+)
 from crashsim.studies.chunks import empty_columns, place_chunk
 
 SEED = REPO / "examples" / "seed-90deg.toml"
@@ -38,20 +43,18 @@ class OneByOne:
     def check(self) -> None:
         return None
 
-    def run(self, scene: Any, overrides: Mapping[str, np.ndarray], n: int,
-            options: Mapping[str, Any], *, client: Any, threads: int | None,
-            chunk_size: int | None, progress: Callable[[int], None]) -> Any:
-        columns = empty_columns(scene, n, int(options["max_impacts"]))
+    def run(self, v: Variants) -> Any:
+        columns = empty_columns(v.scene, v.n, int(v.options["max_impacts"]))
         errors: list[Any] = []
-        finished = np.zeros(n, dtype=bool)
-        for k in reversed(range(n)):
-            b = run_batch(scene, {p: v[k : k + 1] for p, v in overrides.items()}, n=1,
-                          threads=1, progress=None, **options)
-            place_chunk(columns, b.columns, k, n)
+        finished = np.zeros(v.n, dtype=bool)
+        for k in reversed(range(v.n)):
+            b = run_batch(v.scene, {p: a[k : k + 1] for p, a in v.overrides.items()}, n=1,
+                          threads=1, progress=None, **v.options)
+            place_chunk(columns, b.columns, k, v.n)
             finished[k] = bool(b.finished[0])
             errors += [e.shifted(k) for e in b.errors]
             self.runs += 1
-            progress(n - k)
+            v.progress(v.n - k)
         return columns, errors, finished, False
 
 

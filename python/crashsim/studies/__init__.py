@@ -12,7 +12,7 @@ Parameter paths (what varies) are crashsim.studies.paths's; the runs go through 
 engine (crashsim.batch.run_batch) in chunks.
 """
 
-from crashsim.studies.backends import Backend, backend_names, register_backend
+from crashsim.studies.backends import Backend, Variants, backend_names, register_backend
 from crashsim.studies.design import Linspace, grid, linspace, monte_carlo_sample, one_at_a_time
 from crashsim.studies.distributions import (
     Choice,
@@ -44,6 +44,7 @@ __all__ = [
     "Tornado",
     "Triangular",
     "Uniform",
+    "Variants",
     "backend_names",
     "choice",
     "class_table",

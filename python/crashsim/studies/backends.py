@@ -11,6 +11,7 @@ A third backend implements :class:`Backend` and is registered with :func:`regist
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
@@ -33,6 +34,24 @@ BackendResult = tuple[dict[str, np.ndarray], list[Any], NDArray[np.bool_], bool]
 DEFAULT_CHUNK = 256
 
 
+@dataclass(frozen=True)
+class Variants:
+    """What a backend runs: the ``n`` variants of ``scene`` given by the engine's
+    ``overrides`` ({path: (n, ...) arrays, SI}), each run with ``options`` (the batch's
+    duration, dt, until and max_impacts); where and how: ``client`` (a scheduler, for a
+    backend that takes one), ``threads`` (None: every core), ``chunk_size`` (None: the
+    backend's own), and ``progress(done)`` to call as variants finish."""
+
+    scene: Scene
+    overrides: Mapping[str, Array]
+    n: int
+    options: Mapping[str, Any]
+    client: Any
+    threads: int | None
+    chunk_size: int | None
+    progress: Callable[[int], None]
+
+
 class Backend(Protocol):
     """A place to run a study's variants."""
 
@@ -47,20 +66,8 @@ class Backend(Protocol):
     def check(self) -> None:
         """Raises StudyError saying what is missing when it cannot run here."""
 
-    def run(
-        self,
-        scene: Scene,
-        overrides: Mapping[str, Array],
-        n: int,
-        options: Mapping[str, Any],
-        *,
-        client: Any,
-        threads: int | None,
-        chunk_size: int | None,
-        progress: Callable[[int], None],
-    ) -> BackendResult:
-        """Runs the ``n`` variants (the engine's ``overrides``, SI; ``options`` the batch's
-        duration, dt, until and max_impacts), calling ``progress(done)`` as they finish."""
+    def run(self, v: Variants) -> BackendResult:
+        """Runs the variants ``v``, in any order, returning them in variant order."""
         ...
 
 
@@ -75,33 +82,24 @@ class LocalBackend:
     def check(self) -> None:
         return None
 
-    def run(
-        self,
-        scene: Scene,
-        overrides: Mapping[str, Array],
-        n: int,
-        options: Mapping[str, Any],
-        *,
-        client: Any,
-        threads: int | None,
-        chunk_size: int | None,
-        progress: Callable[[int], None],
-    ) -> BackendResult:
-        if scene.pedestrians:
+    def run(self, v: Variants) -> BackendResult:
+        if v.scene.pedestrians:
             from crashsim.studies.scene_runs import run_scenes
 
-            return run_scenes(scene, overrides, n, options, threads, progress)
+            return run_scenes(v.scene, v.overrides, v.n, v.options, v.threads, v.progress)
         from crashsim.batch import run_batch
+
+        scene, overrides, n, options, progress = v.scene, v.overrides, v.n, v.options, v.progress
 
         columns: dict[str, np.ndarray] = {}
         errors: list[Any] = []
         finished = np.zeros(n, dtype=bool)
         interrupted = False
-        for start, stop in chunk_bounds(n, chunk_size or DEFAULT_CHUNK):
-            part = {k: v[start:stop] for k, v in overrides.items()}
+        for start, stop in chunk_bounds(n, v.chunk_size or DEFAULT_CHUNK):
+            part = {k: a[start:stop] for k, a in overrides.items()}
             try:
                 b = run_batch(
-                    scene, part, n=stop - start, threads=threads,
+                    scene, part, n=stop - start, threads=v.threads,
                     progress=lambda done, _m, s=start: progress(s + done), **options,
                 )
             except KeyboardInterrupt:
@@ -131,23 +129,12 @@ class DaskBackend:
 
         require_distributed()
 
-    def run(
-        self,
-        scene: Scene,
-        overrides: Mapping[str, Array],
-        n: int,
-        options: Mapping[str, Any],
-        *,
-        client: Any,
-        threads: int | None,
-        chunk_size: int | None,
-        progress: Callable[[int], None],
-    ) -> BackendResult:
+    def run(self, v: Variants) -> BackendResult:
         from crashsim.studies.dask_backend import run_dask
 
         return run_dask(
-            scene, overrides, n, options, client=client, chunk_size=chunk_size,
-            progress=progress, threads=threads,
+            v.scene, v.overrides, v.n, v.options, client=v.client, chunk_size=v.chunk_size,
+            progress=v.progress, threads=v.threads,
         )
 
 

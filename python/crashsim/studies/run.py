@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 
 from crashsim.errors import StudyError
 from crashsim.studies import design, paths
-from crashsim.studies.backends import get_backend
+from crashsim.studies.backends import Variants, get_backend
 from crashsim.studies.chunks import empty_columns
 from crashsim.studies.distributions import Distribution
 
@@ -302,10 +302,8 @@ def run_study(
         )
     bar = _Progress(progress, n)
     try:
-        result = runner.run(
-            scene, overrides, n, options, client=client, threads=threads,
-            chunk_size=chunk_size, progress=bar,
-        )
+        result = runner.run(Variants(scene, overrides, n, options, client=client,
+                                     threads=threads, chunk_size=chunk_size, progress=bar))
     finally:
         bar.close()
     columns, errors, finished, interrupted = result
