@@ -231,14 +231,16 @@ impl Ground {
 fn terrain_below(mesh: &MeshShape, columns: Option<&Columns>, p: &Point) -> Option<GroundPoint> {
     let top = mesh.aabb().maxs.z + 1.0;
     let depth = top - mesh.aabb().mins.z + 1.0;
-    let (toi, t) = match columns {
-        Some(columns) => columns.hit_below(mesh, p, top, depth),
-        None => tree_hit_below(mesh, p, top, depth),
-    }?;
-    let normal = match columns {
-        Some(columns) => columns.normal(t),
-        None => upward_normal(mesh.triangle(t)),
-    }?;
+    let (toi, normal) = match columns {
+        Some(columns) => {
+            let (toi, t) = columns.hit_below(mesh, p, top, depth)?;
+            (toi, columns.normal(t)?)
+        }
+        None => {
+            let (toi, t) = tree_hit_below(mesh, p, top, depth)?;
+            (toi, upward_normal(mesh.triangle(t))?)
+        }
+    };
     Some(GroundPoint {
         point: Point::new(p.x, p.y, top - toi),
         normal,

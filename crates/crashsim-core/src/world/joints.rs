@@ -397,7 +397,7 @@ impl World {
             .enumerate()
         {
             let p = Prediction {
-                key: PredictionKey::new(m.members[k], self.time, dt, key.jumps()),
+                key: key.for_body(m.members[k]),
                 state,
                 motion,
                 bound: (dt >= 0.0).then_some(bound),

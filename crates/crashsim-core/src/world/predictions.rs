@@ -33,9 +33,10 @@ impl PredictionKey {
         }
     }
 
-    /// The world's jump count it was made at.
-    pub(super) fn jumps(&self) -> u64 {
-        self.jumps
+    /// The same instant, span and jump count for body `body` (a mechanism's other members,
+    /// predicted together).
+    pub(super) fn for_body(&self, body: usize) -> PredictionKey {
+        PredictionKey { body, ..*self }
     }
 }
 
