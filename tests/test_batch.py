@@ -330,13 +330,3 @@ def test_contact_parameters_are_one_typed_value_checked_by_the_engine() -> None:
             _core.ContactParams(**bad)
     with pytest.raises(cs.ParameterError, match="restitution"):
         cs.Scene(restitution=2.0)
-
-
-def test_impacts_cross_as_typed_records() -> None:
-    raw = seed().to_spec(0.3, 1e-3).run()
-    (imp,) = raw["impacts"]
-    assert isinstance(imp, _core.Impact)
-    assert imp.delta_v_body.shape == (2, 3) and len(imp.pdof_deg) == 2
-    result = seed().run(0.3, 1e-3)
-    assert result.impacts[0].time == imp.time
-    assert result.impacts[0].pdof_deg["blue"] == imp.pdof_deg[1]

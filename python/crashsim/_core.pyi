@@ -16,7 +16,6 @@ __version__: str
 __all__ = [
     "ContactParams",
     "CrashsimError",
-    "Impact",
     "InitialOverlapError",
     "InputError",
     "Joint",
@@ -517,89 +516,6 @@ class SceneSpec:
     def __reduce__(self) -> tuple[Callable[[bytes], SceneSpec], tuple[bytes]]:
         """Pickled as its JSON."""
 
-@final
-class Impact:
-    """One impulse exchange between body1 and body2 (world frame, SI; per-body values are
-    rows for body1 and body2). The normal points from body1 into body2; the impulse acts on
-    body2 (body1 gets its negative)."""
-
-    @property
-    def body1(self) -> int: ...
-    @property
-    def body2(self) -> int: ...
-    @property
-    def first_contact_time(self) -> float:
-        """When the timer started (s): the first overlap, or the closing again."""
-    @property
-    def time(self) -> float:
-        """The exchange instant (s)."""
-    @property
-    def depth_of_penetration(self) -> float: ...
-    @property
-    def depth_of_penetration_mode(self) -> str:
-        """"fixed" or "auto"."""
-    @property
-    def secondary(self) -> bool: ...
-    @property
-    def centroid(self) -> NDArray[np.float64]: ...
-    @property
-    def normal(self) -> NDArray[np.float64]: ...
-    @property
-    def impulse(self) -> NDArray[np.float64]: ...
-    @property
-    def sliding(self) -> bool: ...
-    @property
-    def velocity_before(self) -> NDArray[np.float64]:
-        """(2, 3) CG velocities (m/s)."""
-    @property
-    def velocity_after(self) -> NDArray[np.float64]: ...
-    @property
-    def angular_velocity_before(self) -> NDArray[np.float64]: ...
-    @property
-    def angular_velocity_after(self) -> NDArray[np.float64]: ...
-    @property
-    def delta_v_body(self) -> NDArray[np.float64]:
-        """(2, 3) each body's velocity change in its frame at the exchange (m/s; x forward,
-        y left, z up): the EDR components."""
-    @property
-    def pdof_deg(self) -> tuple[float | None, float | None]:
-        """Each body's SAE principal direction of force (deg in [0, 360)); None without a
-        horizontal delta-V."""
-    @property
-    def orientation(self) -> NDArray[np.float64]:
-        """(2, 4) orientations (w, x, y, z) at the exchange."""
-    @property
-    def relative_velocity_before(self) -> NDArray[np.float64]:
-        """(3,) body1's point velocity minus body2's at the centroid (m/s)."""
-    @property
-    def relative_velocity_after(self) -> NDArray[np.float64]: ...
-    @property
-    def energy_dissipated(self) -> float:
-        """J."""
-    @property
-    def region_points(self) -> NDArray[np.float64]:
-        """(p, 3) the overlap region S (m)."""
-    @property
-    def contact_frame(self) -> NDArray[np.float64]:
-        """(3, 3) rows n, t, b."""
-    @property
-    def region_min(self) -> NDArray[np.float64]: ...
-    @property
-    def region_max(self) -> NDArray[np.float64]: ...
-    @property
-    def struck_faces(self) -> tuple[str, str]: ...
-    @property
-    def overlap_width(self) -> float: ...
-    @property
-    def spring_rates(self) -> tuple[float, float] | None: ...
-    @property
-    def effective_mass(self) -> tuple[float, float]: ...
-    @property
-    def notes(self) -> list[str]: ...
-    @property
-    def normal_time(self) -> float:
-        """When the overlap's volume normal behind ``normal`` was taken (s)."""
-
 def run_batch(
     spec: SceneSpec,
     overrides: dict[str, ArrayLike] | None,
@@ -647,7 +563,9 @@ class World:
         every exchange; the state at an exchange is the one after it); ``record_interval``
         the spacing of the kept step ends (s); ``position``,
         ``velocity``, ``angular_velocity`` (n_bodies, k, 3); ``orientation`` (n_bodies, k, 4);
-        ``impacts``: a list of Impact records, one per impulse exchange, in time order;
+        ``impacts``: one dict per impulse exchange, in time order, keyed by the core record's
+        field names (crates/crashsim-core/src/world/events.rs ``Impact``; vectors as lists
+        [x, y, z], per-body values as [body 1, body 2]; python/crashsim/records.py reads it);
         ``contacts``: a list of dicts ``body1``, ``body2``, ``time``, ``kind``
         ("first_overlap", "closing_again", "separation" or "no_exchange") and ``reason``
         (str or None); the wheels of the bodies on the ground (W in all, body after body):

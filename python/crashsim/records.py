@@ -1,9 +1,10 @@
 """The records a run returns, one per thing recorded (plain data: numpy and the engine's
 records only): a body's ``Trajectory``, the contact log's ``ContactEvent``, an impulse
-exchange's ``Impact`` (``Impact.from_core`` reads the engine's impact records, the one place
-that does), on the ground a vehicle's ``WheelRecord`` and ``RestState``, and its
-``SeparationState`` at a pair's separation; ``rotation_matrix`` of quaternions.
-crashsim.result's Result builds them and re-exports them (import either way).
+exchange's ``Impact`` (``Impact.from_core`` reads the engine's impact records, dicts keyed by
+the core record's field names, the one place that does), on the ground a vehicle's
+``WheelRecord`` and ``RestState``, and its ``SeparationState`` at a pair's separation;
+``rotation_matrix`` of quaternions. crashsim.result's Result builds them and re-exports them
+(import either way).
 
 Everything is SI and world frame unless a name says otherwise: positions m, velocities m/s,
 angular velocities rad/s, impulses N s, energies J, forces N, times s, quaternions (w, x, y,
@@ -12,7 +13,10 @@ z) rotating body-frame vectors into the world. Arrays are read-only.
 
 from __future__ import annotations
 
+import functools
 import math
+import types
+import typing
 from collections.abc import Collection
 from dataclasses import dataclass, field, fields
 from typing import Any, NamedTuple
@@ -20,7 +24,6 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from crashsim import _core
 from crashsim.errors import SceneError
 from crashsim.small_linalg import dot, norm
 
@@ -51,6 +54,75 @@ def _name_of(vehicle: Any) -> str:
 def _finite_or_none(x: Any) -> Any:
     """None for an infinite float (JSON has no Infinity), else x."""
     return None if isinstance(x, float) and not math.isfinite(x) else x
+
+
+# How Impact.from_core reads a field (dataclass field metadata): keyed by vehicle name from the
+# engine's per-body pair, computed from other fields, or reshaped.
+_HOW = "engine"
+_SHAPE = "shape"
+
+
+def _per_vehicle(*, obstacle_too: bool = False, **kw: Any) -> Any:
+    """An Impact field the engine records per body ([body 1, body 2]), kept as a dict keyed
+    by vehicle name: the moving vehicles' entries (a fixed obstacle has no velocity or
+    delta-V), or both with ``obstacle_too``."""
+    return field(metadata={_HOW: "both" if obstacle_too else "moving"}, **kw)
+
+
+def _derived(**kw: Any) -> Any:
+    """An Impact field that from_core computes from others (the engine has none of its name)."""
+    return field(metadata={_HOW: "derived"}, **kw)
+
+
+def _points(**kw: Any) -> Any:
+    """An Impact field of points, (p, 3) m, also when there are none."""
+    return field(metadata={_SHAPE: (-1, 3)}, **kw)
+
+
+@functools.cache
+def _engine_fields(cls: type) -> tuple[tuple[Any, Any], ...]:
+    """(field, resolved annotation) of each field of ``cls`` read from the engine's record."""
+    hints = typing.get_type_hints(cls)
+    return tuple((f, hints[f.name]) for f in fields(cls) if f.metadata.get(_HOW) != "derived")
+
+
+def _engine_value(f: Any, tp: Any, raw: Any, pair: tuple[str, str], moving: list[str]) -> Any:
+    """The engine's value ``raw`` of field ``f`` as its annotation ``tp`` says: a per-body
+    pair as a dict keyed by name (see ``_per_vehicle``), else ``_as_type``."""
+    how = f.metadata.get(_HOW)
+    if how is None:
+        out = _as_type(tp, raw)
+        shape = f.metadata.get(_SHAPE)
+        return out if shape is None else _frozen(np.reshape(out, shape))
+    if raw is None:
+        return None
+    _, value_type = typing.get_args(_not_none(tp))
+    keep = pair if how == "both" else moving
+    values = dict(zip(pair, raw, strict=True))
+    return {name: _as_type(value_type, values[name]) for name in keep}
+
+
+def _as_type(tp: Any, raw: Any) -> Any:
+    """One engine value (float, int, bool, str, None or nested lists) as the type ``tp``:
+    arrays as read-only float64, tuples, numbers and strings; None where ``tp`` allows it."""
+    if raw is None:
+        return None
+    tp = _not_none(tp)
+    if tp in (float, int, bool, str):
+        return tp(raw)
+    if tp == Array:
+        return _frozen(raw)
+    if typing.get_origin(tp) is tuple:
+        return tuple(raw)
+    raise TypeError(f"records.py cannot read an engine value as {tp}")
+
+
+def _not_none(tp: Any) -> Any:
+    """``X`` of ``X | None``; any other type as it is."""
+    if isinstance(tp, types.UnionType):
+        (inner,) = [a for a in typing.get_args(tp) if a is not type(None)]
+        return inner
+    return tp
 
 
 def rotation_matrix(q: ArrayLike) -> Array:
@@ -134,8 +206,8 @@ class Impact:
     without a horizontal delta-V), both computed by the engine (the report and a batch's
     columns read these)."""
 
-    vehicles: tuple[str, str]
-    bodies: tuple[int, int]  # the engine's body indices (order of Scene.add)
+    vehicles: tuple[str, str] = _derived()
+    bodies: tuple[int, int] = _derived()  # the engine's body indices (order of Scene.add)
     first_contact_time: float
     time: float
     depth_of_penetration: float
@@ -144,89 +216,56 @@ class Impact:
     centroid: Array
     normal: Array
     impulse: Array
-    delta_v: dict[str, Array]
-    delta_omega: dict[str, Array]
-    velocity_before: dict[str, Array]
-    velocity_after: dict[str, Array]
-    angular_velocity_before: dict[str, Array]
-    angular_velocity_after: dict[str, Array]
+    delta_v: dict[str, Array] = _derived()
+    delta_omega: dict[str, Array] = _derived()
+    velocity_before: dict[str, Array] = _per_vehicle()
+    velocity_after: dict[str, Array] = _per_vehicle()
+    angular_velocity_before: dict[str, Array] = _per_vehicle()
+    angular_velocity_after: dict[str, Array] = _per_vehicle()
     relative_velocity_before: Array
     relative_velocity_after: Array
     energy_dissipated: float
-    region_points: Array
+    region_points: Array = _points()
     contact_frame: Array
     region_min: Array
     region_max: Array
     depth_of_penetration_mode: str = "fixed"
-    struck_faces: dict[str, str] = field(default_factory=dict)
+    struck_faces: dict[str, str] = _per_vehicle(obstacle_too=True, default_factory=dict)
     overlap_width: float = 0.0
-    spring_rates: dict[str, float] | None = None
-    effective_mass: dict[str, float] = field(default_factory=dict)
+    spring_rates: dict[str, float] | None = _per_vehicle(obstacle_too=True, default=None)
+    effective_mass: dict[str, float] = _per_vehicle(obstacle_too=True, default_factory=dict)
     notes: tuple[str, ...] = ()
     normal_time: float = float("nan")
-    obstacle: str | None = None
-    delta_v_body: dict[str, Array] = field(default_factory=dict)
-    pdof_deg: dict[str, float | None] = field(default_factory=dict)
+    obstacle: str | None = _derived(default=None)
+    delta_v_body: dict[str, Array] = _per_vehicle(default_factory=dict)
+    pdof_deg: dict[str, float | None] = _per_vehicle(default_factory=dict)
 
     @classmethod
     def from_core(
-        cls, raw: _core.Impact, names: list[str], obstacles: Collection[str] = ()
+        cls, raw: dict[str, Any], names: list[str], obstacles: Collection[str] = ()
     ) -> Impact:
-        """An Impact from the engine's record of one exchange and the bodies' names
-        (vehicles then obstacles); ``obstacles`` names the fixed ones: their per-body entries
-        (delta-V, velocities) are left out and their effective mass is infinite. The one
-        place that reads the engine's impact records."""
-        bodies = (int(raw.body1), int(raw.body2))
+        """An Impact from the engine's record of one exchange (a dict keyed by the core
+        record's field names, world/events.rs) and the bodies' names (vehicles then
+        obstacles); ``obstacles`` names the fixed ones: their per-body entries (delta-V,
+        velocities) are left out and their effective mass is infinite. The one place that
+        reads the engine's impact records: every field but the derived ones is the engine's
+        value of the same name, read as its annotation says (see ``_engine_value``)."""
+        bodies = (int(raw["body1"]), int(raw["body2"]))
         pair = (names[bodies[0]], names[bodies[1]])
         fixed = [n for n in pair if n in obstacles]
         moving = [n for n in pair if n not in obstacles]
-
-        def per_vehicle(rows: Any) -> dict[str, Array]:
-            rows = np.asarray(rows, dtype=np.float64)
-            out = {pair[0]: _frozen(rows[0]), pair[1]: _frozen(rows[1])}
-            return {k: v for k, v in out.items() if k in moving}
-
-        v0, v1 = per_vehicle(raw.velocity_before), per_vehicle(raw.velocity_after)
-        w0 = per_vehicle(raw.angular_velocity_before)
-        w1 = per_vehicle(raw.angular_velocity_after)
-        pdof = dict(zip(pair, raw.pdof_deg, strict=True))
-        spring_rates = raw.spring_rates
+        values: dict[str, Any] = {}
+        for f, tp in _engine_fields(cls):
+            values[f.name] = _engine_value(f, tp, raw[f.name], pair, moving)
+        v0, v1 = values["velocity_before"], values["velocity_after"]
+        w0, w1 = values["angular_velocity_before"], values["angular_velocity_after"]
         return cls(
             vehicles=pair,
             bodies=bodies,
-            first_contact_time=float(raw.first_contact_time),
-            time=float(raw.time),
-            depth_of_penetration=float(raw.depth_of_penetration),
-            secondary=bool(raw.secondary),
-            sliding=bool(raw.sliding),
-            centroid=_frozen(raw.centroid),
-            normal=_frozen(raw.normal),
-            impulse=_frozen(raw.impulse),
             delta_v={k: _frozen(v1[k] - v0[k]) for k in moving},
             delta_omega={k: _frozen(w1[k] - w0[k]) for k in moving},
-            velocity_before=v0,
-            velocity_after=v1,
-            angular_velocity_before=w0,
-            angular_velocity_after=w1,
-            relative_velocity_before=_frozen(raw.relative_velocity_before),
-            relative_velocity_after=_frozen(raw.relative_velocity_after),
-            energy_dissipated=float(raw.energy_dissipated),
-            region_points=_frozen(np.reshape(raw.region_points, (-1, 3))),
-            contact_frame=_frozen(raw.contact_frame),
-            region_min=_frozen(raw.region_min),
-            region_max=_frozen(raw.region_max),
-            depth_of_penetration_mode=str(raw.depth_of_penetration_mode),
-            struck_faces=dict(zip(pair, raw.struck_faces, strict=True)),
-            overlap_width=float(raw.overlap_width),
-            spring_rates=None
-            if spring_rates is None
-            else dict(zip(pair, map(float, spring_rates), strict=True)),
-            effective_mass=dict(zip(pair, map(float, raw.effective_mass), strict=True)),
-            notes=tuple(raw.notes),
-            normal_time=float(raw.normal_time),
             obstacle=fixed[0] if fixed else None,
-            delta_v_body=per_vehicle(raw.delta_v_body),
-            pdof_deg={k: None if pdof[k] is None else float(pdof[k]) for k in moving},
+            **values,
         )
 
     @property

@@ -437,14 +437,14 @@ fn summary(spec: &SceneSpec, out: &RunOutput, max_impacts: usize) -> (i64, Vec<R
             match (imp, side) {
                 (Some(i), Some(s)) => {
                     let dv = i.delta_v(s);
-                    let body = i.delta_v_body(s);
+                    let body = i.delta_v_body[s];
                     row.extend([
                         magnitude(&dv),
                         dv.x,
                         dv.y,
                         body.x,
                         -body.y,
-                        crate::world::pdof_deg(&body).unwrap_or(Real::NAN),
+                        i.pdof_deg[s].unwrap_or(Real::NAN),
                     ]);
                 }
                 _ => row.extend([Real::NAN; 6]),

@@ -7,8 +7,13 @@
 use crate::error::{require_finite, Error, Result};
 use crate::math::{Real, Vector};
 
-/// A face of a vehicle, body frame.
+/// A face of a vehicle, body frame (serialized by its [`name`](Face::name)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize),
+    serde(rename_all = "lowercase")
+)]
 pub enum Face {
     /// +x.
     Front,

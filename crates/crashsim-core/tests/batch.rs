@@ -164,7 +164,7 @@ fn each_variant_equals_its_scene_run_alone() {
             Some(imp) => {
                 assert_eq!(column(&out, "impact1.time")[i], imp.time);
                 assert_eq!(column(&out, "impact1.energy")[i], imp.energy_dissipated);
-                let body = imp.delta_v_body(1);
+                let body = imp.delta_v_body[1];
                 assert_eq!(column(&out, "impact1.blue.delta_v_long")[i], body.x);
                 assert_eq!(column(&out, "impact1.blue.delta_v_lat")[i], -body.y);
                 assert_eq!(

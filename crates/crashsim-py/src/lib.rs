@@ -364,7 +364,7 @@ fn run_output_to_dict<'py>(
     )?;
     let impacts = PyList::empty(py);
     for imp in &out.impacts {
-        impacts.append(Bound::new(py, records::Impact { inner: imp.clone() })?)?;
+        impacts.append(records::impact(py, imp)?)?;
     }
     d.set_item("impacts", impacts)?;
     let contacts = PyList::empty(py);
@@ -760,7 +760,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<spec::SceneSpec>()?;
     m.add_class::<spec::ContactParams>()?;
     m.add_class::<spec::Joint>()?;
-    m.add_class::<records::Impact>()?;
     m.add_class::<ground::Tyre>()?;
     m.add_class::<ground::GroundValue>()?;
     m.add_function(wrap_pyfunction!(batch::run_batch, m)?)?;

@@ -33,7 +33,13 @@ pub struct ContactEvent {
 }
 
 /// One impulse exchange, world frame, SI.
+///
+/// With the `serde` feature it serializes field by field, each under its own name (vectors and
+/// points as [x, y, z], per-body pairs as [body 1, body 2], the contact frame as its rows, the
+/// faces and the dt_p mode by name): the binding hands that on to Python as it is
+/// (python/crashsim/records.py reads it), so a new field needs no binding code.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Impact {
     /// World index of body 1 (the normal points from it into body 2).
     pub body1: usize,
@@ -45,7 +51,9 @@ pub struct Impact {
     pub time: Real,
     /// The depth-of-penetration time used (s): exchange time minus timer start.
     pub depth_of_penetration: Real,
-    /// How it was chosen: the pair's fixed value, or automatic (sqrt(m'/k')).
+    /// How it was chosen: the pair's fixed value, or automatic (sqrt(m'/k')); by name,
+    /// "fixed" or "auto".
+    #[cfg_attr(feature = "serde", serde(serialize_with = "serialize::mode_name"))]
     pub depth_of_penetration_mode: DepthOfPenetration,
     /// True for an exchange after the first one of an engagement.
     pub secondary: bool,
@@ -74,6 +82,7 @@ pub struct Impact {
     /// The overlap region S (m).
     pub region_points: Vec<Point>,
     /// Contact frame: rows n, t (horizontal tangent), b = n x t.
+    #[cfg_attr(feature = "serde", serde(serialize_with = "serialize::rows"))]
     pub contact_frame: Matrix,
     /// Extent of S in the contact frame: minimum (m).
     pub region_min: Vector,
@@ -94,9 +103,13 @@ pub struct Impact {
     pub normal_time: Real,
     /// Remarks on this exchange (e.g. an automatic dt_p outside the typical 10-60 ms).
     pub notes: Vec<String>,
-    /// Orientations of bodies 1 and 2 at the exchange (body -> world; an impulse does not
-    /// change them): the frames of [`Impact::delta_v_body`].
-    pub orientation: [Rotation; 2],
+    /// Each body's velocity change in its own frame at the exchange (m/s; ISO 8855: x
+    /// forward, y left, z up; an event data recorder's lateral, +right, is -y): see
+    /// [`delta_v_in_body`]. The report's EDR components and a batch's columns read it.
+    pub delta_v_body: [Vector; 2],
+    /// Each body's principal direction of force (SAE J224, deg in [0, 360)) from
+    /// `delta_v_body`: see [`pdof_deg`].
+    pub pdof_deg: [Option<Real>; 2],
 }
 
 impl Impact {
@@ -104,17 +117,35 @@ impl Impact {
     pub fn delta_v(&self, k: usize) -> Vector {
         self.velocity_after[k] - self.velocity_before[k]
     }
+}
 
-    /// Body `k`'s velocity change in its body frame at the exchange (m/s; ISO 8855: x
-    /// forward, y left, z up; an event data recorder's lateral, +right, is -y). The one
-    /// computation behind the report's EDR components and a batch's columns.
-    pub fn delta_v_body(&self, k: usize) -> Vector {
-        self.orientation[k].inverse_transform_vector(&self.delta_v(k))
+/// A body's velocity change `delta_v` (world, m/s) in its frame of orientation `q` (body ->
+/// world; an impulse does not change it): the one computation of [`Impact::delta_v_body`].
+pub fn delta_v_in_body(q: &Rotation, delta_v: &Vector) -> Vector {
+    q.inverse_transform_vector(delta_v)
+}
+
+/// How [`Impact`] serializes the values that are not plain numbers or vectors.
+#[cfg(feature = "serde")]
+mod serialize {
+    use super::{DepthOfPenetration, Matrix};
+
+    /// The dt_p mode by name: "fixed" or "auto".
+    pub fn mode_name<S: serde::Serializer>(
+        mode: &DepthOfPenetration,
+        s: S,
+    ) -> Result<S::Ok, S::Error> {
+        s.serialize_str(match mode {
+            DepthOfPenetration::Fixed(_) => "fixed",
+            DepthOfPenetration::Auto => "auto",
+        })
     }
 
-    /// Body `k`'s principal direction of force (SAE J224, deg in [0, 360)): see [`pdof_deg`].
-    pub fn pdof_deg(&self, k: usize) -> Option<Real> {
-        pdof_deg(&self.delta_v_body(k))
+    /// A 3x3 matrix as its three rows (nalgebra's own serialization is column-major).
+    pub fn rows<S: serde::Serializer>(m: &Matrix, s: S) -> Result<S::Ok, S::Error> {
+        use serde::Serialize;
+        let row = |i: usize| [m[(i, 0)], m[(i, 1)], m[(i, 2)]];
+        [row(0), row(1), row(2)].serialize(s)
     }
 }
 

@@ -11,7 +11,7 @@ use crate::impulse::{ImpulseProblem, ImpulseSolution};
 use crate::math::{Point, Real, Vector};
 use crate::overlap::{overlap_region, shapes_overlap, shapes_overlap_hinted, QueryWorkspace};
 
-use super::events::{ContactEvent, ContactEventKind, Impact, RunOutput};
+use super::events::{delta_v_in_body, pdof_deg, ContactEvent, ContactEventKind, Impact, RunOutput};
 use super::geometry::ContactGeometry;
 
 /// Separation instants are resolved to this (s).
@@ -334,6 +334,12 @@ impl World {
         let (b1, b2) = (self.bodies[i1].body(), self.bodies[i2].body());
         let after = [b1.state(), b2.state()];
         let u_after = b1.point_velocity(&centroid) - b2.point_velocity(&centroid);
+        let delta_v_body = [0, 1].map(|k| {
+            delta_v_in_body(
+                &after[k].orientation,
+                &(after[k].velocity - before[k].velocity),
+            )
+        });
         Impact {
             body1: i1,
             body2: i2,
@@ -369,7 +375,8 @@ impl World {
             effective_mass: geometry.effective_mass,
             normal_time: geometry.normal_time.unwrap_or(self.time),
             notes: timer.notes,
-            orientation: [after[0].orientation, after[1].orientation],
+            delta_v_body,
+            pdof_deg: delta_v_body.map(|dv| pdof_deg(&dv)),
         }
     }
 

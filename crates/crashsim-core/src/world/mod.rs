@@ -43,7 +43,8 @@ use predictions::{Prediction, PredictionKey, Predictions};
 use world_body::WorldBody;
 
 pub use events::{
-    degrees, heading, magnitude, pdof_deg, ContactEvent, ContactEventKind, Impact, RunOutput,
+    degrees, delta_v_in_body, heading, magnitude, pdof_deg, ContactEvent, ContactEventKind, Impact,
+    RunOutput,
 };
 pub use joints::{JointEvent, ANCHOR_REACH};
 pub use stepper::{
