@@ -85,3 +85,30 @@ def test_an_empty_region_reads_as_zero_points_of_three_coordinates() -> None:
     (raw,) = engine_impacts(side_impact())
     imp = Impact.from_core({**raw, "region_points": []}, ["red", "blue"])
     assert imp.region_points.shape == (0, 3)
+
+
+def graze() -> cs.Scene:
+    """Red slides sideways past blue's rear 1 cm deep (tests/test_report.py's graze): a first
+    overlap, a timer's end without an exchange (with its reason) and a separation."""
+    red = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red")
+    blue = cs.Vehicle.box(4.6, 1.8, 1.45, mass=1500.0, name="blue")
+    scene = cs.Scene(depth_of_penetration=0.060)
+    scene.add(red, position=(-2.3 - 2.25 + 0.01, -3.0, 0.7), velocity=(0.0, 40.0, 0.0))
+    scene.add(blue, position=(0.0, 0.0, 0.725))
+    return scene
+
+
+def test_the_contact_log_is_the_engines_with_the_reason_only_where_one_was_given() -> None:
+    raw = graze().to_spec(0.3, 1e-3).run()["contacts"]
+    assert [c["kind"] for c in raw] == ["first_overlap", "no_exchange", "separation"]
+    assert [set(c) for c in raw] == [
+        {"body1", "body2", "time", "kind"},
+        {"body1", "body2", "time", "kind", "reason"},
+        {"body1", "body2", "time", "kind"},
+    ]
+    events = graze().run(0.3, 1e-3).contacts
+    for event, c in zip(events, raw, strict=True):
+        assert event.vehicles == ("red", "blue") and event.time == c["time"]
+        assert event.kind == c["kind"] and event.reason == c.get("reason")
+    assert events[1].reason.startswith("the vehicles are not approaching")
+    assert events[0].reason is None

@@ -567,9 +567,9 @@ class World:
         field names (crates/crashsim-core/src/world/events.rs ``Impact``; vectors as lists
         [x, y, z], per-body values as [body 1, body 2]; python/crashsim/records.py reads it);
         ``contacts``: a list of dicts ``body1``, ``body2``, ``time``, ``kind``
-        ("first_overlap", "closing_again", "separation" or "no_exchange") and ``reason``
-        (str or None); the wheels of the bodies on the ground (W in all, body after body):
-        ``wheel_counts`` (per body), ``wheel_contact`` (W, k, 3) m, ``wheel_load`` (W, k) N,
-        ``wheel_force`` (W, k, 3) N (the ground's force on the tyre), ``wheel_sliding``
-        (W, k) bool; ``rest`` per body: when it came to rest (s) or None.
+        ("first_overlap", "closing_again", "separation" or "no_exchange") and, for
+        "no_exchange" only, ``reason`` (str); the wheels of the bodies on the ground (W in
+        all, body after body): ``wheel_counts`` (per body), ``wheel_contact`` (W, k, 3) m,
+        ``wheel_load`` (W, k) N, ``wheel_force`` (W, k, 3) N (the ground's force on the
+        tyre), ``wheel_sliding`` (W, k) bool; ``rest`` per body: when it came to rest (s) or None.
         """

@@ -168,6 +168,19 @@ class ContactEvent:
     kind: str
     reason: str | None = None
 
+    @classmethod
+    def from_core(cls, raw: dict[str, Any], names: list[str]) -> ContactEvent:
+        """An entry from the engine's record of it (a dict keyed by the core ContactEvent's
+        field names, world/events.rs; "reason" only for a skipped exchange) and the bodies'
+        names: the one place that reads the engine's contact log."""
+        reason = raw.get("reason")
+        return cls(
+            vehicles=(names[int(raw["body1"])], names[int(raw["body2"])]),
+            time=float(raw["time"]),
+            kind=str(raw["kind"]),
+            reason=None if reason is None else str(reason),
+        )
+
     def to_dict(self) -> dict[str, Any]:
         return {
             "vehicles": list(self.vehicles),

@@ -126,13 +126,7 @@ class Result:
             Impact.from_core(r, self.bodies, self.obstacles) for r in raw["impacts"]
         ]
         self.contacts: list[ContactEvent] = [
-            ContactEvent(
-                vehicles=(self.bodies[int(c["body1"])], self.bodies[int(c["body2"])]),
-                time=float(c["time"]),
-                kind=str(c["kind"]),
-                reason=None if c.get("reason") is None else str(c["reason"]),
-            )
-            for c in raw["contacts"]
+            ContactEvent.from_core(c, self.bodies) for c in raw["contacts"]
         ]
         # Joints: the engine's rows are joint after joint, in the order made.
         self.joints: dict[str, JointRecord] = {}

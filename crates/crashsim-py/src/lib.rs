@@ -369,19 +369,7 @@ fn run_output_to_dict<'py>(
     d.set_item("impacts", impacts)?;
     let contacts = PyList::empty(py);
     for c in &out.contacts {
-        let e = PyDict::new(py);
-        e.set_item("body1", c.body1)?;
-        e.set_item("body2", c.body2)?;
-        e.set_item("time", c.time)?;
-        let (kind, reason) = match &c.kind {
-            core::ContactEventKind::FirstOverlap => ("first_overlap", None),
-            core::ContactEventKind::ClosingAgain => ("closing_again", None),
-            core::ContactEventKind::Separation => ("separation", None),
-            core::ContactEventKind::NoExchange(why) => ("no_exchange", Some(why.clone())),
-        };
-        e.set_item("kind", kind)?;
-        e.set_item("reason", reason)?;
-        contacts.append(e)?;
+        contacts.append(records::contact(py, c)?)?;
     }
     d.set_item("contacts", contacts)?;
     joints_to_dict(py, &d, out)?;

@@ -6,8 +6,14 @@ use crate::math::{Matrix, Point, Real, Rotation, Vector};
 use crate::motion::WheelSample;
 use crate::stiffness::Face;
 
-/// What happened to a pair, besides impulse exchanges.
+/// What happened to a pair, besides impulse exchanges (serialized as its snake-case name
+/// under "kind", a skipped exchange's reason under "reason").
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize),
+    serde(tag = "kind", content = "reason", rename_all = "snake_case")
+)]
 pub enum ContactEventKind {
     /// The meshes first overlap; a timer starts.
     FirstOverlap,
@@ -19,8 +25,10 @@ pub enum ContactEventKind {
     NoExchange(String),
 }
 
-/// One entry of the contact log.
+/// One entry of the contact log (serialized field by field as [`Impact`] is, its kind's
+/// "kind" and "reason" beside the others).
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct ContactEvent {
     /// World index of body 1 of the pair.
     pub body1: usize,
@@ -29,6 +37,7 @@ pub struct ContactEvent {
     /// When (s).
     pub time: Real,
     /// What.
+    #[cfg_attr(feature = "serde", serde(flatten))]
     pub kind: ContactEventKind,
 }
 
