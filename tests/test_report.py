@@ -674,3 +674,69 @@ def test_a_report_without_engagements_still_validates(seed_report: Report) -> No
     data = seed_report.to_dict()
     del data["engagements"]
     jsonschema.validate(data, report_schema(), cls=jsonschema.Draft202012Validator)
+
+
+# -- the impact's figures (ImpactReport.figures) ----------------------------------------------
+
+
+def oblique(friction: float, restitution: float = 0.1) -> cs.Result:
+    """Red at 20 m/s into blue's side while blue moves at 10 m/s along its own axis: sliding
+    at low friction, sticking (a full impact) at high."""
+    red = cs.Vehicle.box(4.5, 1.8, 1.4, mass=1450.0, name="red")
+    blue = cs.Vehicle.box(4.6, 1.8, 1.45, mass=1500.0, name="blue")
+    scene = cs.Scene(depth_of_penetration=0.030, friction=friction, restitution=restitution)
+    scene.add(red, position=(-3.65, 0.3, 0.7), velocity=(20.0, 0.0, 0.0))
+    scene.add(blue, position=(0.0, 0.0, 0.725), heading=math.pi / 2, velocity=(0.0, 10.0, 0.0))
+    return scene.run(0.3, 1e-3)
+
+
+@pytest.mark.parametrize("friction", [0.05, 0.1, 0.2])
+def test_a_sliding_impacts_impulse_ratio_is_the_friction(friction: float) -> None:
+    (imp,) = cs.report(oblique(friction)).impacts
+    assert imp.impact_type == "sliding"
+    assert imp.impulse_ratio == pytest.approx(friction, abs=1e-12)
+    assert imp.restitution_along_normal == pytest.approx(0.1, abs=1e-12)
+
+
+@pytest.mark.parametrize("restitution", [0.0, 0.1, 0.4])
+def test_a_full_impact_ends_at_minus_e_times_its_normal_closing_speed(restitution: float) -> None:
+    (imp,) = cs.report(oblique(0.6, restitution)).impacts
+    assert imp.impact_type == "full"
+    assert imp.restitution_along_normal == pytest.approx(restitution, abs=1e-12)
+    assert 0.0 < imp.impulse_ratio < 0.6
+
+
+def test_the_figures_are_in_the_text_and_the_json_with_their_labels() -> None:
+    report = cs.report(oblique(0.2))
+    (imp,) = report.impacts
+    data = report.to_dict()
+    jsonschema.validate(data, report_schema(), cls=jsonschema.Draft202012Validator)
+    figures = data["impacts"][0]["figures"]
+    assert [f["name"] for f in figures] == ["restitution_along_normal", "impulse_ratio"]
+    assert figures[1]["value"] == imp.impulse_ratio
+    text = str(report)
+    for f in figures:
+        assert f"  {f['label']}: {f['value']:.{f['digits']}f}" in text
+
+
+def test_a_figure_declared_on_the_model_alone_reaches_the_text_and_the_json() -> None:
+    """The contract of ``figure``: one declared field shows in every view without their code
+    knowing it (report_text.py and report.js render ImpactReport.figures)."""
+    from dataclasses import dataclass, fields
+
+    from crashsim.analysis.impact_report import ImpactReport, figure
+
+    @dataclass(frozen=True)
+    class WithOneMore(ImpactReport):
+        common_speed: float | None = figure("a new figure", "m/s", 2)
+
+    report = cs.report(oblique(0.2))
+    (imp,) = report.impacts
+    more = WithOneMore(**{f.name: getattr(imp, f.name) for f in fields(imp)}, common_speed=None)
+    assert more.figures()[-1] == {
+        "name": "common_speed", "label": "a new figure", "unit": "m/s", "digits": 2,
+        "value": None,
+    }  # fmt: skip
+    assert more.to_dict()["figures"][-1]["name"] == "common_speed"
+    object.__setattr__(report, "impacts", (more,))
+    assert "  a new figure: n/a m/s" in str(report)

@@ -202,8 +202,10 @@ def test_the_report_path_and_numbers_are_checked_first(
     report = tmp_path / "report.json"
     report.write_text("[" * 100_000 + "]" * 100_000, encoding="utf-8")
     assert main(["view", str(report)]) == 2
-    assert capsys.readouterr().err == f"crashsim: error: {report}: nested too deeply to be a " \
+    assert (
+        capsys.readouterr().err == f"crashsim: error: {report}: nested too deeply to be a "
         "crashsim report\n"
+    )
     text = json.dumps(cs.report(seed).to_dict())
     mass = f'"mass": {seed.vehicle("red").mass!r}'
     assert mass in text
@@ -482,12 +484,17 @@ def test_the_tables_show_the_reports_numbers(
     for k, imp in enumerate(report["impacts"]):
         for key in ("first_contact_time", "exchange_time", "closing_speed", "energy.dissipated"):
             assert f"impacts.{k}.{key}" in shown
+        # the impact's figures, each in a row of its own label (ImpactReport.figures)
+        assert [f"impacts.{k}.figures.{m}.value" in shown for m in range(len(imp["figures"]))] == [
+            True
+        ] * len(imp["figures"]) and len(imp["figures"]) == 2
         for j in range(len(imp["parties"])):
             missing = [key for key in party_keys if f"impacts.{k}.parties.{j}.{key}" not in shown]
             assert missing == []
     text = browser.find_element("id", "report").text
     for imp in report["impacts"]:
         assert f"Impact {imp['number']}: {imp['vehicles'][0]} (1)" in text
+        assert all(f["label"] in text for f in imp["figures"])
     for v in report["scene"]["vehicles"]:
         assert f"{v['mass']:.1f}" in text
     assert len(browser.find_elements("css selector", "svg.plot")) == len(three.vehicles)

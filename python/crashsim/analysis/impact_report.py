@@ -7,7 +7,7 @@ docstring of crashsim.analysis.report."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -35,6 +35,20 @@ from crashsim.small_linalg import dot, matmul, norm
 if TYPE_CHECKING:
     from crashsim.records import Impact
     from crashsim.result import Result
+
+
+# -- figures ---------------------------------------------------------------------------------
+
+_FIGURE = "figure"  # dataclass field metadata: (label, unit, digits shown)
+
+
+def figure(label: str, unit: str, digits: int) -> Any:
+    """An ImpactReport field that is one figure of the impact: report.json lists it under
+    the impact's ``figures`` (name, label, unit, digits, value), and the text report and the
+    case page show it from that alone (report_text.py and report.js render every figure the
+    same way). ``unit`` "" for a pure number; its value None (JSON null, the default) where
+    undefined."""
+    return field(default=None, metadata={_FIGURE: (label, unit, digits)})
 
 
 # -- PDOF and clock -------------------------------------------------------------------------
@@ -205,7 +219,12 @@ class ImpactReport:
     the centroid before the exchange (m/s, > 0 closing). ``energy_dissipated`` (J) and
     ``energy_split_basis`` ("stiffness", "unknown", or "rigid obstacle": a fixed obstacle
     without stiffness data for both parties takes none of the crush and energy).
-    ``overlap_depth`` (along n) and ``overlap_width`` (along t), m. ``parties``: the
+    ``overlap_depth`` (along n) and ``overlap_width`` (along t), m. Figures (see
+    ``figure``): ``restitution_along_normal`` -(u' . n) / (u . n), the normal relative
+    velocity at the centroid after over before (None when not closing), and
+    ``impulse_ratio`` |J_t| / J_n, the impulse's tangential part over its normal part (None
+    without a compressive normal part; a sliding impact's is the pair's friction).
+    ``parties``: the
     VehicleImpactReports of the moving vehicles, vehicle 1 first (one when the other party
     is a fixed obstacle, described by ``obstacle``: its mass is infinite, so m' is the
     vehicle's effective mass). ``notes``: the engine's remarks and the report's."""
@@ -236,6 +255,8 @@ class ImpactReport:
     parties: tuple[VehicleImpactReport, ...]
     notes: tuple[str, ...] = ()
     obstacle: ObstacleImpactReport | None = None
+    restitution_along_normal: float | None = figure("restitution along n (-u'.n / u.n)", "", 4)
+    impulse_ratio: float | None = figure("impulse ratio (|J_t| / J_n)", "", 4)
 
     def __post_init__(self) -> None:
         _freeze_arrays(self)
@@ -246,6 +267,19 @@ class ImpactReport:
             if p.name == name:
                 return p
         raise SceneError(f"vehicle {name!r} is not in impact {self.number} {self.vehicles}")
+
+    def figures(self) -> list[dict[str, Any]]:
+        """The impact's figures (the fields declared with ``figure``) in declaration order:
+        each its ``name``, ``label``, ``unit``, the ``digits`` shown and its ``value``."""
+        out = []
+        for f in fields(self):
+            if _FIGURE in f.metadata:
+                label, unit, digits = f.metadata[_FIGURE]
+                value = _opt(getattr(self, f.name))
+                out.append(
+                    {"name": f.name, "label": label, "unit": unit, "digits": digits, "value": value}
+                )
+        return out
 
     @property
     def how_depth_of_penetration(self) -> str:
@@ -306,6 +340,7 @@ class ImpactReport:
                 "dissipated": float(self.energy_dissipated),
                 "split_basis": self.energy_split_basis,
             },
+            "figures": self.figures(),
             "parties": [p.to_dict() for p in self.parties],
             "notes": list(self.notes),
             **({} if self.obstacle is None else {"obstacle": self.obstacle.to_dict()}),
@@ -389,10 +424,29 @@ def _impact_report(result: Result, impact: Impact, number: int) -> ImpactReport:
         overlap_width=float(impact.overlap_width),
         region_min=np.asarray(impact.region_min, dtype=np.float64),
         region_max=np.asarray(impact.region_max, dtype=np.float64),
+        restitution_along_normal=_restitution_along_normal(impact),
+        impulse_ratio=_impulse_ratio(impact),
         parties=tuple(parties),
         notes=tuple(notes),
         obstacle=obstacle,
     )
+
+
+def _restitution_along_normal(impact: Impact) -> float | None:
+    """-(u' . n) / (u . n) at the centroid (u, u' the relative velocity of 1 with respect to
+    2 before and after, m/s); None when the bodies were not closing along n."""
+    n = impact.normal
+    before = float(dot(impact.relative_velocity_before, n))
+    return -float(dot(impact.relative_velocity_after, n)) / before if before > 0.0 else None
+
+
+def _impulse_ratio(impact: Impact) -> float | None:
+    """|J_t| / J_n of the impulse J on vehicle 2 (J_n = J . n, J_t = J - J_n n); None when
+    J_n is not positive (no compressive normal part)."""
+    n = np.asarray(impact.normal, dtype=np.float64)
+    j = np.asarray(impact.impulse, dtype=np.float64)
+    j_n = float(dot(j, n))
+    return float(norm(j - j_n * n)) / j_n if j_n > 0.0 else None
 
 
 @dataclass(frozen=True)

@@ -185,6 +185,7 @@ def _impact_head_lines(imp: ImpactReport, primary: int | None) -> list[str]:
         )
         + f"; overlap depth along n {_fmt(imp.overlap_depth, 4)} m, "
         + f"width {_fmt(imp.overlap_width, 4)} m",
+        *_figure_lines(imp),
     ]
     for p in imp.parties:
         cb = p.centroid_body
@@ -200,6 +201,17 @@ def _impact_head_lines(imp: ImpactReport, primary: int | None) -> list[str]:
             f"frame; the {o.struck_face} face for its stiffness)"
         )
     return lines
+
+
+def _figure_lines(imp: ImpactReport) -> list[str]:
+    """One line per figure of the impact (ImpactReport.figures): its label, value ("n/a"
+    where undefined) and unit."""
+    return [
+        f"  {f['label']}: "
+        + ("n/a" if f["value"] is None else _fmt(f["value"], f["digits"]))
+        + (f" {f['unit']}" if f["unit"] else "")
+        for f in imp.figures()
+    ]
 
 
 def _delta_v_table(imp: ImpactReport) -> list[str]:

@@ -37,6 +37,9 @@
         ['energy dissipated', numCell(imp.energy.dissipated, 1, base + '.energy.dissipated'), 'J'],
         ['overlap depth along n', numCell(imp.overlap.depth_along_normal, 4, base + '.overlap.depth_along_normal'), 'm'],
         ['overlap width', numCell(imp.overlap.width, 4, base + '.overlap.width'), 'm'],
+        // every figure of the impact as the report lists it (ImpactReport.figures)
+        ...(imp.figures || []).map((f, k) =>
+          [f.label, numCell(f.value, f.digits, base + '.figures.' + k + '.value'), f.unit]),
       ]));
       const parties = imp.parties;
       const table = el('table', { class: 'data per-vehicle' });
