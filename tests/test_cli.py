@@ -4,6 +4,7 @@ messages, the CSV against the run's own trajectories and a closed form."""
 
 from __future__ import annotations
 
+import csv
 import json
 import math
 import os
@@ -74,6 +75,22 @@ def test_run_writes_every_output_and_each_reopens(tmp_path: Path) -> None:
     # the report
     report = json.loads((out / "report.json").read_text(encoding="utf-8"))
     assert report == json.loads(cs.build_report(want).to_json())
+    # the impacts: one row per exchange, a column per number or word of the report's record
+    with open(out / "impacts.csv", newline="", encoding="utf-8") as f:
+        header, *rows = list(csv.reader(f))
+    (imp,) = report["impacts"]
+    (row,) = rows
+    cell = dict(zip(header, row, strict=True))
+    assert cell["number"] == "1" and (cell["vehicles.1"], cell["vehicles.2"]) == ("red", "blue")
+    assert float(cell["closing_speed"]) == pytest.approx(imp["closing_speed"], rel=1e-14)
+    assert float(cell["normal.y"]) == pytest.approx(imp["normal"][1], rel=1e-14, abs=1e-30)
+    assert float(cell["contact_frame.t.y"]) == pytest.approx(imp["contact_frame"][1][1], rel=1e-14)
+    for f in imp["figures"]:  # every figure by its name
+        assert float(cell[f"figures.{f['name']}"]) == pytest.approx(f["value"], rel=1e-14)
+    for p in imp["parties"]:  # per vehicle by role
+        dv = float(cell[f"vehicle_{p['role']}.delta_v.magnitude"])
+        assert dv == pytest.approx(p["delta_v"]["magnitude"], rel=1e-14)
+    assert cell["depth_of_penetration.series_stiffness"] == ""  # None: no stiffness data
     # the pictures
     for name in ("trajectories.png", "impact-1.png"):
         img = matplotlib.image.imread(out / name)
@@ -92,7 +109,9 @@ def test_run_default_folder_overrides_and_no_pictures(
     argv = ["run", str(SEED), "--duration", "0.1", "--dt", "2 ms", "--no-pictures"]
     assert main(argv) == 0
     out = tmp_path / "seed-90deg-out"  # <scene name>-out in the current folder
-    assert sorted(p.name for p in out.iterdir()) == ["report.json", "time-histories.csv"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        "impacts.csv", "report.json", "time-histories.csv"
+    ]  # fmt: skip
     t = np.loadtxt(out / "time-histories.csv", delimiter=",", skiprows=1)[:, 0]
     assert t[-1] == pytest.approx(0.1, abs=1e-15)  # --duration
     # --dt: the step ends are the multiples of 2 ms; the other samples are the first overlap
@@ -420,11 +439,12 @@ def test_demo_runs_the_intersection_case_to_rest_and_writes_its_folder(tmp_path:
         rest = f"{r['vehicle']:<5} at rest at {r['rest_time']:.2f} s at ({x:.2f}, {y:.2f}) m"
         assert rest in text
     # the files it names
-    names = ["report.json", "time-histories.csv", "trajectories.png", "motion.glb", "case.html"]
+    names = ["report.json", "time-histories.csv", "impacts.csv", "trajectories.png", "motion.glb",
+             "case.html"]  # fmt: skip
     names += [f"impact-{k}.png" for k in range(1, len(pairs) + 1)]
     assert sorted(p.name for p in out.iterdir()) == sorted(names)
     assert "wrote: " + ", ".join(str(Path("crashsim-demo-out") / n) for n in
-                                 [names[0], names[1], names[2], *names[5:], names[3], names[4]]
+                                 [*names[:4], *names[6:], names[4], names[5]]
                                  ) in text  # fmt: skip
     for name in names:
         if name.endswith(".png"):
@@ -441,7 +461,7 @@ def test_demo_out_and_speed(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
     assert main(["demo", "--out", str(out), "--speed", "50 km/h", "--no-pictures"]) == 0
     text = capsys.readouterr().out
     assert "at 50 km/h into the left side of blue" in text
-    assert sorted(p.name for p in out.iterdir()) == ["case.html", "report.json",
+    assert sorted(p.name for p in out.iterdir()) == ["case.html", "impacts.csv", "report.json",
                                                      "time-histories.csv"]  # fmt: skip
     (tmp_path / "file").write_text("x", encoding="utf-8")
     assert main(["demo", "--out", str(tmp_path / "file")]) == 2  # checked before the run

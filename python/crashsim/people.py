@@ -104,7 +104,10 @@ class _People(_Contacts):
         return new, made
 
     def _add_pedestrian(
-        self, pedestrian: Pedestrian, position: ArrayLike, heading: float | None,
+        self,
+        pedestrian: Pedestrian,
+        position: ArrayLike,
+        heading: float | None,
         velocity: ArrayLike,
     ) -> Self:
         """Places a pedestrian's segments and joins them (:meth:`add`)."""
@@ -143,7 +146,10 @@ class _People(_Contacts):
         return self
 
     def _add_bicycle(
-        self, thing: Cyclist | Bicycle, position: ArrayLike, heading: float | None,
+        self,
+        thing: Cyclist | Bicycle,
+        position: ArrayLike,
+        heading: float | None,
         velocity: ArrayLike,
     ) -> Self:
         """Places a cyclist's or a bicycle's bodies, joins them and sets their pairs (the

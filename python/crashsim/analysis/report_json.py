@@ -191,3 +191,56 @@ def report_schema() -> dict[str, Any]:
     """The JSON Schema (draft 2020-12) of the report, version SCHEMA_VERSION."""
     text = resources.files("crashsim.analysis").joinpath(*_SCHEMA_FILE).read_text(encoding="utf-8")
     return dict(json.loads(text))
+
+
+def impact_table(report: dict[str, Any]) -> tuple[list[str], list[list[Any]]]:
+    """The impacts of a JSON report (``Report.to_dict()``) as a table: one row per impact,
+    one column per number or word of its record, named by its JSON path in the record
+    (units: docs/report.md, the same paths). A vector's components are ``.x``, ``.y``,
+    ``.z`` (the contact frame's rows ``.n``, ``.t``, ``.b`` then those), ``parties`` become
+    ``vehicle_1`` and ``vehicle_2`` by role, ``figures`` ``figures.<name>``, ``vehicles``
+    ``vehicles.1`` and ``.2``, ``notes`` one column joined by "; "; None stays None. Every
+    field of the record, a new one too, has its column; the columns are the union over the
+    impacts in the order first met. Returns (header, rows)."""
+    flat = [_flat_impact(imp) for imp in report["impacts"]]
+    header: list[str] = []
+    for row in flat:
+        header += [k for k in row if k not in header]
+    return header, [[row.get(k) for k in header] for row in flat]
+
+
+def _flat_impact(impact: dict[str, Any]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    _flatten(impact, "", out)
+    return out
+
+
+_AXES = ("x", "y", "z")
+_FRAME_ROWS = ("n", "t", "b")  # the contact frame's rows
+
+
+def _flatten(value: Any, path: str, out: dict[str, Any]) -> None:
+    """``value`` under ``path`` into ``out`` as the columns of ``impact_table``."""
+    name = path.rsplit(".", 1)[-1]
+    if isinstance(value, dict):
+        for key, v in value.items():
+            _flatten(v, f"{path}.{key}" if path else key, out)
+    elif isinstance(value, list) and name == "parties":
+        for party in value:
+            _flatten(party, f"vehicle_{party['role']}", out)
+    elif isinstance(value, list) and name == "figures":
+        for f in value:
+            out[f"figures.{f['name']}"] = f["value"]
+    elif isinstance(value, list) and name == "notes":
+        out[path] = "; ".join(value)
+    elif isinstance(value, list) and name == "contact_frame":
+        for row, v in zip(_FRAME_ROWS, value, strict=True):
+            _flatten(v, f"{path}.{row}", out)
+    elif isinstance(value, list) and len(value) == 3:
+        for axis, v in zip(_AXES, value, strict=True):
+            out[f"{path}.{axis}"] = v
+    elif isinstance(value, list):
+        for k, v in enumerate(value, start=1):
+            _flatten(v, f"{path}.{k}", out)
+    else:
+        out[path] = value

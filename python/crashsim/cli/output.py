@@ -1,5 +1,5 @@
-"""The files a run writes: report.json, the time histories (CSV), the pictures (PNG), the
-3-D motion (GLB) and the case page (HTML)."""
+"""The files a run writes: report.json, the time histories and the impacts (CSV), the pictures
+(PNG), the 3-D motion (GLB) and the case page (HTML)."""
 
 from __future__ import annotations
 
@@ -12,6 +12,7 @@ from typing import IO
 import numpy as np
 
 from crashsim.analysis.report import Report
+from crashsim.analysis.report_json import impact_table
 from crashsim.io.export import export_glb
 from crashsim.io.viewer import view
 from crashsim.plots import plot_impact, plot_trajectories
@@ -19,6 +20,7 @@ from crashsim.result import Result
 
 REPORT_FILE = "report.json"
 CSV_FILE = "time-histories.csv"
+IMPACTS_FILE = "impacts.csv"
 GLB_FILE = "motion.glb"
 TRAJECTORIES_FILE = "trajectories.png"
 
@@ -66,6 +68,21 @@ def write_csv(result: Result, path: str | Path) -> list[str]:
     return header
 
 
+def write_impacts_csv(report: Report, path: str | Path) -> list[str]:
+    """Write the impacts: one row per impulse exchange, one column per number or word of the
+    report's record of it, named by its JSON path (analysis.report_json.impact_table; units
+    as docs/report.md gives them); numbers to 15 significant digits, None empty. Returns the
+    header."""
+    header, rows = impact_table(report.to_dict())
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        writer = csv.writer(f)
+        writer.writerow(header)
+        for row in rows:
+            writer.writerow(["" if v is None else f"{v:.15g}" if isinstance(v, float) else v
+                             for v in row])  # fmt: skip
+    return header
+
+
 def _write_run(
     result: Result,
     report: Report,
@@ -105,6 +122,11 @@ def _write_run(
         written += writing(REPORT_FILE, lambda: one(out / REPORT_FILE, report.write_json))
     if csv:
         written += writing(CSV_FILE, lambda: one(out / CSV_FILE, lambda p: write_csv(result, p)))
+        if report.impacts:
+            written += writing(
+                IMPACTS_FILE,
+                lambda: one(out / IMPACTS_FILE, lambda p: write_impacts_csv(report, p)),
+            )
     if pictures:
         written += writing("the pictures", lambda: _pictures(result, out))
     if glb:
