@@ -8,7 +8,7 @@ mod batch;
 mod convert;
 mod errors;
 mod ground;
-mod records;
+mod run_records;
 mod spec;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -364,12 +364,12 @@ fn run_output_to_dict<'py>(
     )?;
     let impacts = PyList::empty(py);
     for imp in &out.impacts {
-        impacts.append(records::impact(py, imp)?)?;
+        impacts.append(run_records::impact(py, imp)?)?;
     }
     d.set_item("impacts", impacts)?;
     let contacts = PyList::empty(py);
     for c in &out.contacts {
-        contacts.append(records::contact(py, c)?)?;
+        contacts.append(run_records::contact(py, c)?)?;
     }
     d.set_item("contacts", contacts)?;
     joints_to_dict(py, &d, out)?;
