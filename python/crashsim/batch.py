@@ -95,9 +95,8 @@ class VariantError:
     def shifted(self, start: int) -> VariantError:
         """The same error as variant ``index + start`` (a chunk's variant in its study),
         its text rebuilt from its places."""
-        loc = tuple(
-            ("variant", i + start, n) if k == "variant" else (k, i, n) for k, i, n in self.loc
-        )
+        loc = tuple(("variant", i + start, n) if k == "variant" else (k, i, n)
+                    for k, i, n in self.loc)
         message = "".join(f"{describe(p)}: " for p in loc) + self.reason
         return VariantError(self.index + start, self.kind, message, loc, self.reason)
 

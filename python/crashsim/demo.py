@@ -166,7 +166,8 @@ def impact_summary(result: Result, scene: Scene, speed: float) -> str:
     red1 = result.state_at("red", imp.time)["position"]
     travel = float(np.linalg.norm(red1 - red0))
     lines = [
-        f"crashsim demo: red ({to_mph(speed):g} mph) square into the driver side of blue (at rest)",
+        f"crashsim demo: red ({to_mph(speed):g} mph) square into the driver side of blue (at "
+        "rest)",
         f"  depth of penetration {p['depth_of_penetration'] * 1e3:g} ms, restitution "
         f"{p['restitution']:g}, friction {p['friction']:g}",
         f"  first overlap            t0 = {imp.first_contact_time * 1e3:8.3f} ms",

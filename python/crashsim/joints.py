@@ -131,7 +131,9 @@ def make_joint(
         (_vector(p, 3, f"joint {name!r}: anchor"), _vector(r, 4, f"joint {name!r}: axes"))
         for p, r in frames
     )
-    return Joint(name=name, vehicles=vehicles, at=anchor, axes=q, frames=in_bodies, core=core)
+    return Joint(
+        name=name, vehicles=vehicles, at=anchor, axes=q, frames=in_bodies, core=core
+    )
 
 
 def checked_frame(name: str, at: ArrayLike, axes: ArrayLike) -> tuple[Array, Array]:

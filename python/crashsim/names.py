@@ -17,8 +17,7 @@ __all__ = ["BIDI_CONTROLS", "check_name"]
 
 # Unicode's Bidi_Control characters: marks, embeddings, overrides and isolates.
 BIDI_CONTROLS = frozenset(
-    "\u061c\u200e\u200f"
-    + "".join(map(chr, range(0x202A, 0x202F)))
+    "\u061c\u200e\u200f" + "".join(map(chr, range(0x202A, 0x202F)))
     + "".join(map(chr, range(0x2066, 0x206A)))
 )
 _REFUSED_CATEGORIES = ("Cc", "Zl", "Zp")

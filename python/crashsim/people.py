@@ -104,10 +104,7 @@ class _People(_Contacts):
         return new, made
 
     def _add_pedestrian(
-        self,
-        pedestrian: Pedestrian,
-        position: ArrayLike,
-        heading: float | None,
+        self, pedestrian: Pedestrian, position: ArrayLike, heading: float | None,
         velocity: ArrayLike,
     ) -> Self:
         """Places a pedestrian's segments and joins them (:meth:`add`)."""
@@ -146,10 +143,7 @@ class _People(_Contacts):
         return self
 
     def _add_bicycle(
-        self,
-        thing: Cyclist | Bicycle,
-        position: ArrayLike,
-        heading: float | None,
+        self, thing: Cyclist | Bicycle, position: ArrayLike, heading: float | None,
         velocity: ArrayLike,
     ) -> Self:
         """Places a cyclist's or a bicycle's bodies, joins them and sets their pairs (the

@@ -31,6 +31,7 @@ from crashsim.vehicles.wheels import Wheels
 Array = NDArray[np.float64]
 
 
+
 def _quaternion_from_matrix(r: Array) -> Array:
     """(w, x, y, z) of a proper rotation matrix (columns: body axes in world)."""
     if not np.all(np.isfinite(r)) or not np.allclose(r @ r.T, np.eye(3), rtol=0.0, atol=1e-9):

@@ -49,13 +49,13 @@ def norm(v: ArrayLike) -> Array:
     return np.sqrt(np.sum(x * x, axis=-1))
 
 
+
 def rotation_about(axis: ArrayLike, sin: float, cos: float) -> Array:
     """The 3 x 3 rotation about the unit ``axis`` by the angle whose sine and cosine are
     given (Rodrigues: I + sin K + (1 - cos) K K, K the cross-product matrix of the axis)."""
     k = np.asarray(axis, dtype=np.float64)
     kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
     return np.eye(3) + sin * kx + (1.0 - cos) * matmul(kx, kx)
-
 
 def transform_points(points: ArrayLike, transform: ArrayLike) -> Array:
     """Points (N, 3) moved by a 4 x 4 homogeneous transform: ``R p + t`` for each."""

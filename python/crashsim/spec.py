@@ -162,7 +162,9 @@ def _run_settings(
     return duration, dt, until == "rest", record_interval, max_history_bytes
 
 
-def _scene_naming(placements: list[Placement], obstacles: list[_ObstaclePlacement]) -> Naming:
+def _scene_naming(
+    placements: list[Placement], obstacles: list[_ObstaclePlacement]
+) -> Naming:
     """Names the engine's places in a scene's run: body i is the i-th vehicle placed, then
     the obstacles; a wheel is named by the vehicle around it."""
     names = [f"vehicle {p.vehicle.name!r}" for p in placements]

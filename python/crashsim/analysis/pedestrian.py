@@ -40,7 +40,6 @@ class PeopleOf(Protocol):
     @property
     def cyclists(self) -> Mapping[str, Any]: ...
 
-
 __all__ = [
     "BicycleReport",
     "PedestrianReport",
@@ -149,9 +148,7 @@ def wrap_around_distance(vehicle: Vehicle, point: ArrayLike) -> float | None:
 
 
 def segment_contacts(
-    result: Result,
-    pedestrian: Pedestrian,
-    vehicle: Vehicle,
+    result: Result, pedestrian: Pedestrian, vehicle: Vehicle,
     segments: Iterable[str] | None = None,
 ) -> dict[str, SegmentContact]:
     """Each of the pedestrian's segments that touched ``vehicle`` in the run: its
@@ -433,11 +430,8 @@ def _first_contact_lines(
     for vehicle, segs in contacts.items():
         head = segs.get("head")
         if head is not None:
-            wad = (
-                "off the front and top"
-                if head.wrap_around is None
-                else (f"wrap-around distance {head.wrap_around:.2f} m")
-            )
+            wad = "off the front and top" if head.wrap_around is None else (
+                f"wrap-around distance {head.wrap_around:.2f} m")
             lines.append(
                 f"  head first touches {vehicle!r} at {head.time:.4f} s, {wad}, "
                 f"{head.relative_speed:.2f} m/s relative to it (peak "
@@ -456,8 +450,9 @@ def _first_contact_lines(
 
 
 def _end_words(x: Array, end_time: float, speed: float) -> str:
-    return f"({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m at {end_time:.2f} s, {speed:.2f} m/s" + (
-        " (at rest)" if speed < 0.1 else " (still moving)"
+    return (
+        f"({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m at {end_time:.2f} s, {speed:.2f} m/s"
+        + (" (at rest)" if speed < 0.1 else " (still moving)")
     )
 
 

@@ -264,7 +264,9 @@ class Report:
             # optional: a scene with pedestrians or cyclists (schema version stays 1; kind,
             # bodies, height, mass, throws and bicycle added later, also without a change)
             **(
-                {"pedestrians": [p.to_dict() for p in self.pedestrians]} if self.pedestrians else {}
+                {"pedestrians": [p.to_dict() for p in self.pedestrians]}
+                if self.pedestrians
+                else {}
             ),
         }
 

@@ -125,8 +125,7 @@ def first_contact_time(result: Result, vehicle: str, pedestrian: Pedestrian) -> 
     times = [
         c.time
         for c in result.contacts
-        if c.kind == "first_overlap"
-        and vehicle in c.vehicles
+        if c.kind == "first_overlap" and vehicle in c.vehicles
         and any(n in names for n in c.vehicles)
     ]
     if not times:

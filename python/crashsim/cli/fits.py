@@ -42,7 +42,8 @@ def _fit_spec(args: argparse.Namespace, case: SceneFile) -> Any:
         bounds = parse_values(key, value, p.dimension)
         if not isinstance(bounds, list) or len(bounds) != 2:
             raise ParameterError(
-                f'--unknown {text!r}: give the two bounds lo,hi, e.g. --unknown "{key}=20,50 mph"'
+                f"--unknown {text!r}: give the two bounds lo,hi, e.g. --unknown "
+                f'"{key}=20,50 mph"'
             )
         lo, hi = bounds
         if not lo < hi:

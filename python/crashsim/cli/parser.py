@@ -36,48 +36,23 @@ from crashsim.studies.backends import backend_names
 
 def _study_arguments(p: argparse.ArgumentParser) -> None:
     _scene_arguments(p)
-    p.add_argument(
-        "--out",
-        metavar="FILE",
-        help="write the variants (inputs, outputs, status) as a .csv or .parquet file",
-    )
-    p.add_argument(
-        "--plots",
-        metavar="DIR",
-        help="write a histogram PNG of every output into DIR (created if needed)",
-    )
-    p.add_argument(
-        "--tornado",
-        action="store_true",
-        help="also run the one-at-a-time design "
-        "(each input at its low and high value: the grid's ends, or the "
-        "distribution's 5th and 95th percentiles) and print (and with --plots draw) "
-        "the tornado of the first impact's delta-V",
-    )
-    p.add_argument(
-        "--backend",
-        choices=backend_names(),
-        default="local",
-        help="where the variants run: this machine (local), a Dask cluster (dask) "
-        "or a registered backend (crashsim.studies.backends)",
-    )
-    p.add_argument(
-        "--scheduler",
-        metavar="ADDR",
-        help="with --backend dask: the address of a "
-        "running scheduler (tcp://host:8786); default a LocalCluster on this machine",
-    )
-    p.add_argument(
-        "--threads",
-        type=_positive_int,
-        help="threads (local) or worker processes of the LocalCluster (dask); default all cores",
-    )
-    p.add_argument(
-        "--max-impacts",
-        type=_positive_int,
-        default=2,
-        help="impacts reported per variant as columns (2)",
-    )
+    p.add_argument("--out", metavar="FILE", help="write the variants (inputs, outputs, status) "
+                   "as a .csv or .parquet file")
+    p.add_argument("--plots", metavar="DIR", help="write a histogram PNG of every output into "
+                   "DIR (created if needed)")
+    p.add_argument("--tornado", action="store_true", help="also run the one-at-a-time design "
+                   "(each input at its low and high value: the grid's ends, or the "
+                   "distribution's 5th and 95th percentiles) and print (and with --plots draw) "
+                   "the tornado of the first impact's delta-V")
+    p.add_argument("--backend", choices=backend_names(), default="local",
+                   help="where the variants run: this machine (local), a Dask cluster (dask) "
+                   "or a registered backend (crashsim.studies.backends)")
+    p.add_argument("--scheduler", metavar="ADDR", help="with --backend dask: the address of a "
+                   "running scheduler (tcp://host:8786); default a LocalCluster on this machine")
+    p.add_argument("--threads", type=_positive_int, help="threads (local) or worker processes "
+                   "of the LocalCluster (dask); default all cores")
+    p.add_argument("--max-impacts", type=_positive_int, default=2,
+                   help="impacts reported per variant as columns (2)")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -297,18 +272,14 @@ def _add_sweep(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None
         help="run a grid of variants of a scene file (docs/studies.md)",
         description="Runs the full factorial of the --vary values (and the file's [study] "
         'table when its kind = "sweep") and prints the percentiles of every output.',
-        epilog='VALUES: start:stop:count ("10:20:5 mph"), a list ("0,0.1,0.2") or one '
+        epilog="VALUES: start:stop:count (\"10:20:5 mph\"), a list (\"0,0.1,0.2\") or one "
         "value; a unit after the last value applies to all; plain numbers are SI. Exit codes: "
         "0 success (some variants may have failed: listed), 1 every variant failed, 2 bad "
         "input, 130 interrupted (what finished is written).",
     )
     _study_arguments(sw)
-    sw.add_argument(
-        "--vary",
-        action="append",
-        metavar="PATH=VALUES",
-        help="a parameter path and its values, e.g. red.speed=10:20:5 (repeat)",
-    )
+    sw.add_argument("--vary", action="append", metavar="PATH=VALUES",
+                    help="a parameter path and its values, e.g. red.speed=10:20:5 (repeat)")
     sw.set_defaults(func=_sweep)
 
 
@@ -324,16 +295,11 @@ def _add_montecarlo(sub: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         "unit after the parenthesis. Exit codes as for sweep.",
     )
     _study_arguments(mcs)
-    mcs.add_argument(
-        "--dist",
-        action="append",
-        metavar="PATH=DIST",
-        help='e.g. "red.speed=normal(15 m/s, 1 m/s)" (repeat)',
-    )
+    mcs.add_argument("--dist", action="append", metavar="PATH=DIST",
+                     help='e.g. "red.speed=normal(15 m/s, 1 m/s)" (repeat)')
     mcs.add_argument("-n", type=_positive_int, help="number of variants")
-    mcs.add_argument(
-        "--seed", type=_seed, help="random seed, >= 0 (default: the file's, else fresh entropy)"
-    )
+    mcs.add_argument("--seed", type=_seed, help="random seed, >= 0 (default: the file's, else "
+                     "fresh entropy)")
     mcs.set_defaults(func=_montecarlo)
 
 
@@ -358,54 +324,29 @@ def _add_fit(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "bad input (the file, --unknown, --start, an unwritable --out), 130 interrupted (the "
         "best so far is printed and written).",
     )
-    fit_cmd.add_argument(
-        "scene", type=Path, help="the scene file (TOML) with [fit] and [[evidence]]"
-    )
-    fit_cmd.add_argument(
-        "--method",
-        choices=("least_squares", "global"),
-        help="the solver, overriding the file's fit.method (least_squares)",
-    )
-    fit_cmd.add_argument(
-        "--unknown",
-        action="append",
-        metavar="PATH=LO,HI",
-        help='an unknown and its bounds, e.g. "red.speed=20,50 mph", adding to '
-        "or replacing the file's (repeat)",
-    )
-    fit_cmd.add_argument(
-        "--start",
-        action="append",
-        metavar="PATH=VALUE",
-        help='where the least-squares solve starts, e.g. "red.speed=40 mph" '
-        "(repeat; default the file's fit.start, else the scene's value)",
-    )
+    fit_cmd.add_argument("scene", type=Path, help="the scene file (TOML) with [fit] and "
+                         "[[evidence]]")
+    fit_cmd.add_argument("--method", choices=("least_squares", "global"),
+                         help="the solver, overriding the file's fit.method (least_squares)")
+    fit_cmd.add_argument("--unknown", action="append", metavar="PATH=LO,HI",
+                         help='an unknown and its bounds, e.g. "red.speed=20,50 mph", adding to '
+                         "or replacing the file's (repeat)")
+    fit_cmd.add_argument("--start", action="append", metavar="PATH=VALUE",
+                         help='where the least-squares solve starts, e.g. "red.speed=40 mph" '
+                         "(repeat; default the file's fit.start, else the scene's value)")
     fit_cmd.add_argument("--seed", type=_seed, help="with --method global: the random seed")
     fit_cmd.add_argument("--threads", type=_positive_int, help="threads (default all cores)")
     fit_cmd.add_argument("--out", metavar="DIR", help="output folder (created if needed)")
-    fit_cmd.add_argument(
-        "--dt",
-        type=_step,
-        help='largest time step ("2 ms" or seconds), overriding the file\'s run.dt',
-    )
-    fit_cmd.add_argument(
-        "--duration",
-        type=_duration,
-        help='simulated time ("0.5 s" or '
-        "seconds), overriding the file's run.duration (or run.max_duration "
-        "until rest)",
-    )
-    fit_cmd.add_argument(
-        "--no-scan",
-        action="store_true",
-        help="skip the scan of the objective along each unknown (faster; no scan ranges)",
-    )
+    fit_cmd.add_argument("--dt", type=_step, help='largest time step ("2 ms" or seconds), '
+                         "overriding the file's run.dt")
+    fit_cmd.add_argument("--duration", type=_duration, help='simulated time ("0.5 s" or '
+                         "seconds), overriding the file's run.duration (or run.max_duration "
+                         "until rest)")
+    fit_cmd.add_argument("--no-scan", action="store_true", help="skip the scan of the "
+                         "objective along each unknown (faster; no scan ranges)")
     fit_cmd.add_argument("--no-pictures", action="store_true", help=f"do not write {FIT_PICTURE}")
-    fit_cmd.add_argument(
-        "--progress",
-        action="store_true",
-        help="show the progress line on stderr even when it is not a terminal",
-    )
+    fit_cmd.add_argument("--progress", action="store_true", help="show the progress line on "
+                         "stderr even when it is not a terminal")
     fit_cmd.set_defaults(func=_fit)
 
 

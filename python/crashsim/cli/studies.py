@@ -42,11 +42,8 @@ def _study_spec(args: argparse.Namespace, case: SceneFile, kind: str) -> Any:
         other = f" (its [study] is a {case.study.kind} study)" if case.study is not None else ""
         raise ParameterError(
             f"{case.path}: nothing to vary{other}: give {option} PATH="
-            + (
-                "VALUES (e.g. --vary red.speed=10:20:5)"
-                if kind == "sweep"
-                else '"DIST" (e.g. --dist "red.speed=normal(15 m/s, 1 m/s)")'
-            )
+            + ("VALUES (e.g. --vary red.speed=10:20:5)" if kind == "sweep"
+               else '"DIST" (e.g. --dist "red.speed=normal(15 m/s, 1 m/s)")')
             + f', or a [study] table with kind = "{kind}" in the file'
         )
     vary = dict(file_spec.vary) if file_spec is not None else {}
@@ -62,11 +59,8 @@ def _study_spec(args: argparse.Namespace, case: SceneFile, kind: str) -> Any:
     n = seed = None
     if kind == "montecarlo":
         n = args.n if args.n is not None else (file_spec.n if file_spec is not None else None)
-        seed = (
-            args.seed
-            if args.seed is not None
-            else (file_spec.seed if file_spec is not None else None)
-        )
+        seed = args.seed if args.seed is not None else (
+            file_spec.seed if file_spec is not None else None)
         if n is None:
             raise ParameterError("give the number of variants: -n N (or n = ... in [study])")
     return StudySpec(kind=kind, vary=vary, distributions=dists, n=n, seed=seed)
@@ -115,7 +109,8 @@ def _study(args: argparse.Namespace, kind: str) -> int:
         histograms = plot_histograms(study, plots)
     lines = [
         f"{study.n} variants: {int(study.ok.sum())} ran, {len(study.errors)} failed"
-        + (f", {int((~study.finished).sum())} not run (interrupted)" if study.interrupted else "")
+        + (f", {int((~study.finished).sum())} not run (interrupted)" if study.interrupted
+           else "")
     ]
     for e in study.errors[:10]:
         lines.append(f"  failed: {' '.join(str(e).split())}")
@@ -126,13 +121,9 @@ def _study(args: argparse.Namespace, kind: str) -> int:
         lines.append(format_summary(study.summary()))
     if args.tornado and not study.interrupted:
         ranges: dict[str, Any] = (
-            dict(spec.distributions)
-            if kind == "montecarlo"
-            else {
-                k: (float(np.min(study[k])), float(np.max(study[k])))
-                for k in spec.vary
-                if np.ptp(study[k]) > 0
-            }
+            dict(spec.distributions) if kind == "montecarlo"
+            else {k: (float(np.min(study[k])), float(np.max(study[k]))) for k in spec.vary
+                  if np.ptp(study[k]) > 0}
         )
         run["progress"] = False
         t = tornado(case.scene, ranges, **run)

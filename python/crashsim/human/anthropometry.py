@@ -191,24 +191,12 @@ _MOTIONS = {
     "neck": ("flexion", "extension", "lateral_flexion", "rotation"),
     "thoracic": ("flexion", "extension", "lateral_flexion", "rotation"),
     "lumbar": ("flexion", "extension", "lateral_flexion", "rotation"),
-    "shoulder": (
-        "flexion",
-        "extension",
-        "abduction",
-        "adduction",
-        "internal_rotation",
-        "external_rotation",
-    ),
+    "shoulder": ("flexion", "extension", "abduction", "adduction", "internal_rotation",
+                 "external_rotation"),
     "elbow": ("flexion", "hyperextension", "pronation", "supination"),
     "wrist": ("flexion", "extension", "ulnar_deviation", "radial_deviation"),
-    "hip": (
-        "flexion",
-        "extension",
-        "abduction",
-        "adduction",
-        "internal_rotation",
-        "external_rotation",
-    ),
+    "hip": ("flexion", "extension", "abduction", "adduction", "internal_rotation",
+            "external_rotation"),
     "knee": ("flexion", "hyperextension"),
     "ankle": ("dorsiflexion", "plantarflexion", "inversion", "eversion"),
 }
@@ -242,42 +230,18 @@ def body_segments(
 
     segments: list[Segment] = []
 
-    def add(
-        name: str,
-        side: str | None,
-        parent: str | None,
-        origin: tuple[float, float, float],
-        direction: tuple[float, float, float],
-        joint: Joint | None,
-    ) -> None:
+    def add(name: str, side: str | None, parent: str | None, origin: tuple[float, float, float],
+            direction: tuple[float, float, float], joint: Joint | None) -> None:
         segments.append(_segment(name, side, parent, origin, direction, joint, L[name], R[name]))
 
     down, fwd = (0.0, 0.0, -1.0), (1.0, 0.0, 0.0)
     add("pelvis", None, None, (0.0, 0.0, z["OMPH"]), down, None)
-    add(
-        "lower_torso",
-        None,
-        "pelvis",
-        (0.0, 0.0, z["XYPH"]),
-        down,
-        _joint("lumbar", sex, (0.0, 0.0, z["OMPH"])),
-    )
-    add(
-        "upper_torso",
-        None,
-        "lower_torso",
-        (0.0, 0.0, z["CERV"]),
-        down,
-        _joint("thoracic", sex, (0.0, 0.0, z["XYPH"])),
-    )
-    add(
-        "head",
-        None,
-        "upper_torso",
-        (0.0, 0.0, z["VERT"]),
-        down,
-        _joint("neck", sex, (0.0, 0.0, z["CERV"])),
-    )
+    add("lower_torso", None, "pelvis", (0.0, 0.0, z["XYPH"]), down,
+        _joint("lumbar", sex, (0.0, 0.0, z["OMPH"])))
+    add("upper_torso", None, "lower_torso", (0.0, 0.0, z["CERV"]), down,
+        _joint("thoracic", sex, (0.0, 0.0, z["XYPH"])))
+    add("head", None, "upper_torso", (0.0, 0.0, z["VERT"]), down,
+        _joint("neck", sex, (0.0, 0.0, z["CERV"])))
     for side, s in (("left", 1.0), ("right", -1.0)):
         sjc = (0.0, s * y_shoulder, z["CERV"])
         add("upper_arm", side, "upper_torso", sjc, down, _joint("shoulder", sex, sjc))
@@ -337,12 +301,8 @@ def _scaled_segments(
     def data(name: str) -> _SegmentData:
         length_mm, mass_pct, cg_pct, r_sag, r_trans, r_long = _row(name, sex)
         length = k * length_mm / ref_stature * h
-        return (
-            length,
-            m * mass_pct / mass_sum,
-            cg_pct / 100.0,
-            (r_sag / 100.0, r_trans / 100.0, r_long / 100.0),
-        )
+        return (length, m * mass_pct / mass_sum, cg_pct / 100.0,
+                (r_sag / 100.0, r_trans / 100.0, r_long / 100.0))
 
     def radius(name: str, mass: float, length: float) -> float:
         # the cylinder of the segment's length, mass and density: m = rho pi r^2 L
@@ -392,17 +352,12 @@ def _segment(
     seg_name = name if side is None else f"{name}_{side}"
     b = tuple(length * d for d in direction)
     return Segment(
-        name=seg_name,
-        side=side,
+        name=seg_name, side=side,
         parent=parent,
         endpoints=tuple(_table()["segments"][name]["endpoints"]),  # type: ignore[arg-type]
-        mass=mass,
-        length=length,
-        origin=origin,
-        end=end,
+        mass=mass, length=length, origin=origin, end=end,
         cg=cg,  # type: ignore[arg-type]
-        cg_fraction=cg_frac,
-        radii=radii,
+        cg_fraction=cg_frac, radii=radii,
         inertia=inertia,  # type: ignore[arg-type]
         joint=joint,
         contact=ContactShape("capsule", radius, (0.0, 0.0, 0.0), b),  # type: ignore[arg-type]

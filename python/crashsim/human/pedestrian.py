@@ -124,14 +124,8 @@ class Pedestrian:
             )
         data = body_segments(None if percentile is not None else height, mass, sex, percentile)
         self._name, self._pose, self._sex = name, pose, sex
-        self._arguments = {
-            "height": height,
-            "mass": mass,
-            "sex": sex,
-            "percentile": percentile,
-            "pose": pose,
-            "name": name,
-        }
+        self._arguments = {"height": height, "mass": mass, "sex": sex,
+                           "percentile": percentile, "pose": pose, "name": name}
         self._data = tuple(data)
         angles = dict(_table()["poses"][pose])
         if pose == "cycling":
@@ -421,22 +415,20 @@ def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
             turn = _axis_angle(matmul(parent.rotation, _Y), -(flexion - extension) / 2.0)
             child_axes, axes = axes, matmul(turn, standing)
             limits["swing"] = (0.0, (flexion + extension) / 2.0)
-        out.append(
-            PedestrianJoint(
-                name=joint if s.side is None else f"{joint}_{s.side}",
-                parent=s.parent,
-                child=name,
-                kind=kind,
-                at=p.joint_at.copy(),
-                axes=axes,
-                limits=MappingProxyType(limits),
-                rom=MappingProxyType(rom),
-                stiffness=float(res["stiffness"]),
-                damping=float(res["damping"]),
-                friction=float(res["friction"]),
-                child_axes=child_axes,
-            )
-        )
+        out.append(PedestrianJoint(
+            name=joint if s.side is None else f"{joint}_{s.side}",
+            parent=s.parent,
+            child=name,
+            kind=kind,
+            at=p.joint_at.copy(),
+            axes=axes,
+            limits=MappingProxyType(limits),
+            rom=MappingProxyType(rom),
+            stiffness=float(res["stiffness"]),
+            damping=float(res["damping"]),
+            friction=float(res["friction"]),
+            child_axes=child_axes,
+        ))
     return out
 
 
@@ -488,19 +480,13 @@ def _ball(
     limb's deviation from the pose); the swing cone is the largest published range (a cone
     stands for every direction), the twist (about the limb) from the rotation ranges."""
     s = child.segment
-    far = (
-        s.origin
-        if norm(np.subtract(s.origin, s.joint.position))
-        > norm(np.subtract(s.end, s.joint.position))
-        else s.end
-    )
+    far = s.origin if norm(np.subtract(s.origin, s.joint.position)) > norm(
+        np.subtract(s.end, s.joint.position)) else s.end
     z = _to_posed(child, np.asarray(far)) - child.joint_at
     axes = _frame(z, matmul(parent_rot, _X))
     limits: dict[str, tuple[float, float]] = {}
-    swing = max(
-        (v for k, v in rom.items() if "rotation" not in k and k not in ("pronation", "supination")),
-        default=None,
-    )
+    swing = max((v for k, v in rom.items() if "rotation" not in k and k not in
+                 ("pronation", "supination")), default=None)
     if swing is not None and swing < math.pi:
         limits["swing"] = (0.0, swing)
     if joint in ("hip", "shoulder"):

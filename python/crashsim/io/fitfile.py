@@ -341,7 +341,9 @@ def _fit_table(data: Any, scene: Scene, file: str) -> FitSpec:
 # -- [[evidence]] -----------------------------------------------------------------------------
 
 
-def _evidence_item(data: Any, k: int, scene: Scene, file: str) -> tuple[Evidence, str, str | None]:
+def _evidence_item(
+    data: Any, k: int, scene: Scene, file: str
+) -> tuple[Evidence, str, str | None]:
     path = f"evidence[{k}]"
     if not isinstance(data, dict):
         raise FitFileError(f"expected a table ([[evidence]] section), got {_show(data)}",

@@ -484,7 +484,9 @@ def _angle_tables(rows: list[_Table]) -> dict[str, list[tuple[float, float]]]:
     out: dict[str, list[tuple[float, float]]] = {}
     for r in rows:
         where = r.string("wheels", "linkage")
-        out.setdefault(where, []).append((r.quantity("time", "time"), r.quantity("angle", "angle")))
+        out.setdefault(where, []).append(
+            (r.quantity("time", "time"), r.quantity("angle", "angle"))
+        )
         r.finish()
     return out
 

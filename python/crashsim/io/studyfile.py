@@ -42,14 +42,8 @@ from crashsim.studies.distributions import (
 if TYPE_CHECKING:
     from crashsim.scene import Scene
 
-__all__ = [
-    "KINDS",
-    "StudySpec",
-    "parse_assignment",
-    "parse_distribution",
-    "parse_values",
-    "read_study",
-]
+__all__ = ["KINDS", "StudySpec", "parse_assignment", "parse_distribution", "parse_values",
+           "read_study"]
 
 KINDS = ("sweep", "montecarlo")
 STUDY_KEYS = ("kind", "n", "seed", "vary", "distributions")
@@ -109,9 +103,8 @@ def parse_values(key: str, value: Any, dimension: str | None) -> list[float] | L
             raise StudyError(f'"{key}": no values to sweep: give at least one', key)
         return [v for item in value for v in _as_list(parse_values(key, item, dimension))]
     if not isinstance(value, str):
-        raise StudyError(
-            f'"{key}": expected values such as "10:20:5 mph" or a list, got {value!r}', key
-        )
+        raise StudyError(f'"{key}": expected values such as "10:20:5 mph" or a list, got '
+                         f"{value!r}", key)
     text = value.strip()
     if text.lower() == "auto":
         if not key.endswith("depth_of_penetration"):
@@ -129,9 +122,8 @@ def parse_values(key: str, value: Any, dimension: str | None) -> list[float] | L
         try:
             count = int(count_text)
         except ValueError:
-            raise StudyError(
-                f'"{key}": the count {count_text!r} must be a whole number', key
-            ) from None
+            raise StudyError(f'"{key}": the count {count_text!r} must be a whole number', key) \
+                from None
         if count < 1:
             raise StudyError(f'"{key}": the count {count} must be >= 1', key)
         start = _si(parts[0], dimension, unit, key)
@@ -151,9 +143,8 @@ def _as_list(v: list[float] | Linspace) -> list[float]:
 def parse_distribution(key: str, text: Any, dimension: str | None) -> Distribution:
     """A distribution of one path from text (see the module docstring), SI."""
     if not isinstance(text, str):
-        raise StudyError(
-            f'"{key}": expected a distribution such as "normal(15 m/s, 1 m/s)", got {text!r}', key
-        )
+        raise StudyError(f'"{key}": expected a distribution such as "normal(15 m/s, 1 m/s)", '
+                         f"got {text!r}", key)
     m = _CALL.match(text)
     if m is None:
         raise StudyError(
@@ -166,9 +157,8 @@ def parse_distribution(key: str, text: Any, dimension: str | None) -> Distributi
     unit = unit or None
     if name in ("class", "class_table"):
         if unit or not 1 <= len(args) <= 2:
-            raise StudyError(
-                f'"{key}": write class(<vehicle class>) or class(<class>, <figure>)', key
-            )
+            raise StudyError(f'"{key}": write class(<vehicle class>) or class(<class>, <figure>)',
+                             key)
         dist = ClassTable(args[0], args[1] if len(args) > 1 else "mass")
         if dimension is not None and dist.dimension != dimension:
             raise StudyError(
@@ -219,7 +209,6 @@ def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
 def read_study(data: Any, scene: Scene, file: str) -> StudySpec:
     """A scene file's ``[study]`` table (already parsed TOML) against its scene; a
     SceneFileError naming the file and the key (``study.vary.red.speed``) for every mistake."""
-
     def fail(key: str, reason: str) -> SceneFileError:
         return SceneFileError(reason, file=file, key=key)
 
@@ -234,16 +223,14 @@ def read_study(data: Any, scene: Scene, file: str) -> StudySpec:
     wrong = "distributions" if kind == "sweep" else "vary"
     if wrong in data:
         right = "vary" if kind == "sweep" else "distributions"
-        raise fail(f"study.{wrong}", f"a {kind} study takes [study.{right}], not [study.{wrong}]")
+        raise fail(f"study.{wrong}", f'a {kind} study takes [study.{right}], not [study.{wrong}]')
     n = data.get("n")
     seed = data.get("seed")
     if kind == "sweep":
         for k in ("n", "seed"):
             if k in data:
-                raise fail(
-                    f"study.{k}",
-                    'a sweep\'s variants are its grid: n and seed are for kind = "montecarlo"',
-                )
+                raise fail(f"study.{k}", "a sweep's variants are its grid: n and seed are for "
+                           'kind = "montecarlo"')
     else:
         for k, v, low in (("n", n, 1), ("seed", seed, 0)):
             if v is not None and (isinstance(v, bool) or not isinstance(v, int) or v < low):

@@ -22,7 +22,6 @@ from crashsim.units import FOOT, MILE_PER_HOUR, POUND
 
 Array = NDArray[np.float64]
 
-
 class SceneFileError(SceneError):
     """A mistake in a scene file. ``str(error)`` is one line,
     ``"<file>: [line L, column C: ]<key path>: <what is wrong>"``; the parts are kept as

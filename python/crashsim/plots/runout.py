@@ -21,7 +21,6 @@ if TYPE_CHECKING:
 
     from crashsim.result import Result
 
-
 def _draw_person(
     ax: Axes,
     result: Result,

@@ -99,12 +99,8 @@ class LocalBackend:
             part = {k: a[start:stop] for k, a in overrides.items()}
             try:
                 b = run_batch(
-                    scene,
-                    part,
-                    n=stop - start,
-                    threads=v.threads,
-                    progress=lambda done, _m, s=start: progress(s + done),
-                    **options,
+                    scene, part, n=stop - start, threads=v.threads,
+                    progress=lambda done, _m, s=start: progress(s + done), **options,
                 )
             except KeyboardInterrupt:
                 interrupted = True
@@ -137,14 +133,8 @@ class DaskBackend:
         from crashsim.studies.dask_backend import run_dask
 
         return run_dask(
-            v.scene,
-            v.overrides,
-            v.n,
-            v.options,
-            client=v.client,
-            chunk_size=v.chunk_size,
-            progress=v.progress,
-            threads=v.threads,
+            v.scene, v.overrides, v.n, v.options, client=v.client, chunk_size=v.chunk_size,
+            progress=v.progress, threads=v.threads,
         )
 
 
@@ -157,9 +147,8 @@ def register_backend(backend: Backend) -> None:
     name = getattr(backend, "name", None)
     if not isinstance(name, str) or not name:
         raise StudyError("a backend needs a name (a non-empty str attribute `name`)")
-    missing = [
-        a for a in ("runs_people", "takes_scheduler", "check", "run") if not hasattr(backend, a)
-    ]
+    missing = [a for a in ("runs_people", "takes_scheduler", "check", "run")
+               if not hasattr(backend, a)]
     if missing:
         raise StudyError(f"backend {name!r} lacks {', '.join(missing)} (see Backend)")
     if _BACKENDS.get(name, backend) is not backend:

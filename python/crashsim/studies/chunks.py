@@ -36,21 +36,18 @@ def shrinking_bounds(n: int, size: int, workers: int) -> list[tuple[int, int]]:
     return bounds
 
 
-def place_chunk(
-    columns: dict[str, np.ndarray], chunk: Mapping[str, np.ndarray], start: int, n: int
-) -> None:
+def place_chunk(columns: dict[str, np.ndarray], chunk: Mapping[str, np.ndarray], start: int,
+           n: int) -> None:
     for k, v in chunk.items():
         if k not in columns:
             fill = -1 if v.dtype.kind in "iu" else np.nan
             columns[k] = np.full(n, fill, dtype=v.dtype)
-        columns[k][start : start + v.size] = v
+        columns[k][start:start + v.size] = v
 
 
 def empty_columns(scene: Scene, n: int, max_impacts: int) -> dict[str, np.ndarray]:
     from crashsim.batch import run_batch
 
     b = run_batch(scene, None, n=0, duration=1.0, dt=1e-3, max_impacts=max_impacts)
-    return {
-        k: np.full(n, -1 if v.dtype.kind in "iu" else np.nan, dtype=v.dtype)
-        for k, v in b.columns.items()
-    }
+    return {k: np.full(n, -1 if v.dtype.kind in "iu" else np.nan, dtype=v.dtype)
+            for k, v in b.columns.items()}

@@ -73,10 +73,8 @@ def _axis(key: str, values: Any) -> Array:
         values = [values]
     out = []
     for v in values:
-        if (
-            isinstance(v, str)
-            and v.strip().lower() == "auto"
-            and key.endswith("depth_of_penetration")
+        if isinstance(v, str) and v.strip().lower() == "auto" and key.endswith(
+            "depth_of_penetration"
         ):
             out.append(math.nan)
             continue
@@ -116,7 +114,7 @@ def grid(spec: Mapping[str, Any]) -> dict[str, Array]:
     sizes = [a.size for a in axes]
     out = {}
     for c, (k, a) in enumerate(zip(spec, axes, strict=True)):
-        slower, faster = math.prod(sizes[:c]), math.prod(sizes[c + 1 :])
+        slower, faster = math.prod(sizes[:c]), math.prod(sizes[c + 1:])
         out[k] = np.tile(np.repeat(a, faster), slower)
     return out
 
@@ -147,9 +145,8 @@ def monte_carlo_sample(
     paths in the same order give the same values)."""
     _check_distributions(distributions)
     n = _count(n)
-    if seed is not None and (
-        isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0
-    ):
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int | np.integer)
+                             or seed < 0):
         raise StudyError(f"seed = {seed!r} is invalid: give an integer >= 0 (or None)")
     rng = np.random.default_rng(seed)
     return {k: np.asarray(d.sample(rng, n), dtype=np.float64) for k, d in distributions.items()}

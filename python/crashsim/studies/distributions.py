@@ -306,9 +306,8 @@ class ClassTable(Distribution):
     def check(self, key: str | None = None) -> None:
         k = _finite(key, "k", self.k, "class table")
         if not k > 0.0:
-            raise StudyError(
-                f"{_at(key)}class table: k = {k:g} standard deviations must be > 0", key
-            )
+            raise StudyError(f"{_at(key)}class table: k = {k:g} standard deviations must be > 0",
+                             key)
         self._normal(key).check(key)
 
     def ppf(self, u: ArrayLike) -> Array:
@@ -339,7 +338,6 @@ def triangular(lo: float, mode: float, hi: float) -> Triangular:
 
 def choice(values: ArrayLike, weights: ArrayLike | None = None) -> Choice:
     """One of ``values`` (numbers), each drawn with its weight (equal by default)."""
-
     def listed(x: ArrayLike) -> tuple[Any, ...]:
         return tuple(np.atleast_1d(np.asarray(x, dtype=object)).tolist())
 

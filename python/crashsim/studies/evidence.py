@@ -140,7 +140,8 @@ class Evidence:
             names = [x.name for x in scene.vehicles]
             if v not in names:
                 raise FitError(
-                    f"{label}: the scene has no vehicle {v!r} (its vehicles: {', '.join(names)})",
+                    f"{label}: the scene has no vehicle {v!r} (its vehicles: "
+                    f"{', '.join(names)})",
                     key=label,
                 )
         imp = getattr(self, "impact", 1)

@@ -49,7 +49,6 @@ class FitPicture(Protocol):
     @property
     def verdict(self) -> Verdict | None: ...
 
-
 EVIDENCE = "#d62728"  # colour of the evidence (red); the fitted run in the vehicles' colours
 
 

@@ -244,12 +244,8 @@ def parse_path(scene: SceneView, name: str) -> ParameterPath:
         return ParameterPath(text, "pairs", None, text, dim, unit)
     head, dot, parameter = text.rpartition(".")
     if not dot or not head:
-        raise _unknown(
-            scene,
-            text,
-            "a path is <vehicle>.<parameter>, <a>/<b>.<parameter>, "
-            "ground.<parameter> or an every-pair parameter",
-        )
+        raise _unknown(scene, text, "a path is <vehicle>.<parameter>, <a>/<b>.<parameter>, "
+                       "ground.<parameter> or an every-pair parameter")
     vehicles, obstacles = _names(scene)
     people = scene.pedestrians
     if head == "ground" and "ground" not in vehicles and "ground" not in people:
@@ -287,14 +283,8 @@ def _pair_path(scene: SceneView, text: str, head: str, parameter: str) -> Parame
     vehicles, obstacles = _names(scene)
     known = set(vehicles) | set(obstacles) | set(scene.pedestrians)
     cuts = [i for i, c in enumerate(head) if c == "/"]
-    split = next(
-        (
-            (head[:i].strip(), head[i + 1 :].strip())
-            for i in cuts
-            if head[:i].strip() in known and head[i + 1 :].strip() in known
-        ),
-        None,
-    )
+    split = next(((head[:i].strip(), head[i + 1:].strip()) for i in cuts
+                  if head[:i].strip() in known and head[i + 1:].strip() in known), None)
     if split is None:
         a, _, b = head.partition("/")
         raise _unknown(scene, text, f"the scene has no pair of {a.strip()!r} and {b.strip()!r}")
@@ -302,28 +292,19 @@ def _pair_path(scene: SceneView, text: str, head: str, parameter: str) -> Parame
     people = scene.pedestrians
     if a in people or b in people:
         if a in people and b in people:
-            raise _unknown(
-                scene,
-                text,
-                "a path names a pedestrian and a vehicle (or obstacle), not two pedestrians",
-            )
+            raise _unknown(scene, text, "a path names a pedestrian and a vehicle (or obstacle), "
+                           "not two pedestrians")
         body, person = (b, a) if a in people else (a, b)
         found = next((ps for x, p, ps in _struck(scene) if x == body and p == person), None)
         if not found:
             raise _unknown(scene, text, f"{body!r} has no pair with {person!r}'s segments")
         allowed = _pedestrian_pair_parameters(scene, body, person)
         if parameter not in allowed:
-            hint = (
-                ""
-                if parameter not in SOFT_PARAMETERS
-                else (
-                    f" (a soft contact's: give the pair one first, scene.soft_contact({body!r}, "
-                    f"{person!r}, stiffness=...))"
-                )
-            )
-            raise _unknown(
-                scene, text, f"a vehicle and a pedestrian have {', '.join(allowed)}" + hint
-            )
+            hint = "" if parameter not in SOFT_PARAMETERS else (
+                f" (a soft contact's: give the pair one first, scene.soft_contact({body!r}, "
+                f"{person!r}, stiffness=...))")
+            raise _unknown(scene, text, f"a vehicle and a pedestrian have {', '.join(allowed)}"
+                           + hint)
         dim, unit = {**PAIR_PARAMETERS, **SOFT_PARAMETERS}[parameter]
         return ParameterPath(text, "pedestrian pair", (body, person), parameter, dim, unit)
     if parameter not in PAIR_PARAMETERS:
@@ -634,7 +615,6 @@ def apply_overrides(scene: SceneLike, arrays: Mapping[str, Array], i: int) -> Sc
                     pair_changes.setdefault((a, b), {})[parameter] = value
     ground = None
     if any(k in arrays for k in ("ground.tyre_friction", "ground.body_friction")):
-
         def value(key: str) -> float | None:
             return float(arrays[key][i]) if key in arrays else None
 
@@ -693,9 +673,8 @@ def base_value(scene: SceneView, name: str) -> float:
     if p.kind == "pedestrian pair" and p.parameter in SOFT_PARAMETERS:
         body, person = p.target  # type: ignore[misc]
         # the same on every segment (the path is offered only then: _soft_with)
-        k, zeta = {
-            scene.soft_contact_of(body, s.name) for s in scene.pedestrians[person].segments
-        }.pop() or (math.nan, math.nan)
+        k, zeta = {scene.soft_contact_of(body, s.name)
+                   for s in scene.pedestrians[person].segments}.pop() or (math.nan, math.nan)
         return k if p.parameter == "stiffness" else zeta
     chosen = set(_pairs_of(scene, p))
     values = [_pair_value(params[p.parameter]) for a, b, params in scene.pairs()

@@ -97,7 +97,7 @@ def _split(arrays: Mapping[str, Array], i: int) -> tuple[_Values, _SoftValues]:
     for key, arr in arrays.items():
         if not key.startswith(KEY):
             continue
-        target, _, parameter = key[len(KEY) :].rpartition(".")
+        target, _, parameter = key[len(KEY):].rpartition(".")
         value = float(np.asarray(arr)[i])
         if parameter in ("stiffness", "damping_ratio"):
             other, _, person = target.rpartition("/")
@@ -229,8 +229,7 @@ def _vehicle_figures(result: Result, cars: list[str], max_impacts: int) -> dict[
         tr = result.trajectory(n)
         rest = result.rest(n)
         out[f"{n}.total_delta_v"] = sum(
-            (imp.speed_change(n) for imp in result.impacts if n in imp.moving), 0.0
-        )
+            (imp.speed_change(n) for imp in result.impacts if n in imp.moving), 0.0)
         out[f"{n}.final_x"], out[f"{n}.final_y"] = tr.position[-1][0], tr.position[-1][1]
         out[f"{n}.final_heading_deg"] = math.degrees(result.heading(n, tr.t[-1]))
         out[f"{n}.final_speed"] = float(np.linalg.norm(tr.velocity[-1]))
@@ -255,14 +254,10 @@ def pedestrian_figures(result: Result, person: Pedestrian, vehicle: Any) -> dict
     out["throw_distance"] = throw_distance(result, vehicle.name, person)
     head = segment_contacts(result, person, vehicle, segments=[HEAD]).get(HEAD)
     if head is not None:
-        out.update(
-            head_time=head.time,
-            head_x=float(head.point[0]),
-            head_y=float(head.point[1]),
-            head_z=float(head.point[2]),
-            head_relative_speed=head.relative_speed,
-            head_wrap_around=math.nan if head.wrap_around is None else head.wrap_around,
-        )
+        out.update(head_time=head.time, head_x=float(head.point[0]),
+                   head_y=float(head.point[1]), head_z=float(head.point[2]),
+                   head_relative_speed=head.relative_speed,
+                   head_wrap_around=math.nan if head.wrap_around is None else head.wrap_around)
     return out
 
 

@@ -39,7 +39,6 @@ class SobolIndices(Protocol):
     def n(self) -> int: ...
     def of(self, output: str) -> pd.DataFrame: ...
 
-
 __all__ = ["histogram_file", "plot_histogram", "plot_histograms", "plot_sobol", "plot_tornado"]
 
 _BLUE, _ORANGE, _GREY = "#3b6ea8", "#d9822b", "#555555"
@@ -83,9 +82,8 @@ def plot_histogram(study: Study, column: str, path: Any = None, bins: Any = "aut
     ax.hist(finite, bins=bins, color=_BLUE, edgecolor="white", linewidth=0.5)
     p5, p50, p95 = np.percentile(finite, [5, 50, 95])
     for value, label, style in ((p5, "P5", ":"), (p50, "P50 (median)", "-"), (p95, "P95", "--")):
-        ax.axvline(
-            value, color=_ORANGE, linestyle=style, linewidth=1.5, label=f"{label} = {value:.4g}"
-        )
+        ax.axvline(value, color=_ORANGE, linestyle=style, linewidth=1.5,
+                   label=f"{label} = {value:.4g}")
     fig.legend(loc="outside lower center", ncols=3, fontsize=8, frameon=False)
     ax.set_xlabel(_label(study, column))
     ax.set_ylabel("variants")
@@ -141,32 +139,18 @@ def plot_tornado(tornado: TornadoTable, output: str, path: Any = None) -> Figure
             if np.isfinite(value) and np.isfinite(base):
                 ax.barh(y, value - base, left=base, height=0.6, color=colour)
         unit = f" {r['unit']}" if r["unit"] and r["unit"] != "1" else ""
-        ax.annotate(
-            f"{r['low']:.4g} .. {r['high']:.4g}{unit}",
-            xy=(1.0, y),
-            xycoords=("axes fraction", "data"),
-            xytext=(4, 0),
-            textcoords="offset points",
-            va="center",
-            fontsize=8,
-            color=_GREY,
-        )
+        ax.annotate(f"{r['low']:.4g} .. {r['high']:.4g}{unit}", xy=(1.0, y),
+                    xycoords=("axes fraction", "data"), xytext=(4, 0),
+                    textcoords="offset points", va="center", fontsize=8, color=_GREY)
     ax.set_yticks(range(k), list(table.index)[::-1])
     if np.isfinite(base):
         ax.axvline(base, color="black", linewidth=1)
     ax.set_xlabel(_label(tornado.study, output))
     from matplotlib.patches import Patch
 
-    fig.legend(
-        handles=[
-            Patch(color=_BLUE, label="input at its low value"),
-            Patch(color=_ORANGE, label="input at its high value"),
-        ],
-        loc="outside lower center",
-        ncols=2,
-        fontsize=8,
-        frameon=False,
-    )
+    fig.legend(handles=[Patch(color=_BLUE, label="input at its low value"),
+                        Patch(color=_ORANGE, label="input at its high value")],
+               loc="outside lower center", ncols=2, fontsize=8, frameon=False)
     ax.set_title(f"Tornado: {output} (base {base:.4g}), one input at a time", fontsize=10)
     ax.grid(axis="x", alpha=0.3)
     _save(fig, path)
@@ -182,36 +166,19 @@ def plot_sobol(result: SobolIndices, output: str, path: Any = None) -> Figure:
     ax = fig.add_subplot()
     y = np.arange(k)[::-1]
     h = 0.38
-    ax.barh(
-        y + h / 2,
-        table["S1"],
-        height=h,
-        xerr=table["S1_conf"],
-        color=_BLUE,
-        label="S1 (first order: the input alone)",
-        capsize=3,
-    )
-    ax.barh(
-        y - h / 2,
-        table["ST"],
-        height=h,
-        xerr=table["ST_conf"],
-        color=_ORANGE,
-        label="ST (total: with its interactions)",
-        capsize=3,
-    )
+    ax.barh(y + h / 2, table["S1"], height=h, xerr=table["S1_conf"], color=_BLUE,
+            label="S1 (first order: the input alone)", capsize=3)
+    ax.barh(y - h / 2, table["ST"], height=h, xerr=table["ST_conf"], color=_ORANGE,
+            label="ST (total: with its interactions)", capsize=3)
     ax.set_yticks(y, list(table.index))
-    ax.set_xlim(
-        min(0.0, float(np.nanmin(table[["S1", "ST"]].to_numpy())) - 0.05),
-        max(1.05, float(np.nanmax(table[["S1", "ST"]].to_numpy())) + 0.05),
-    )
+    ax.set_xlim(min(0.0, float(np.nanmin(table[["S1", "ST"]].to_numpy())) - 0.05),
+                max(1.05, float(np.nanmax(table[["S1", "ST"]].to_numpy())) + 0.05))
     ax.axvline(0.0, color="black", linewidth=0.8)
     ax.set_xlabel("share of the output's variance")
     fig.legend(loc="outside lower center", ncols=2, fontsize=8, frameon=False)
     runs = result.study.n
-    ax.set_title(
-        f"Sobol indices of {output}\n(Saltelli design, n = {result.n}, {runs} runs)", fontsize=10
-    )
+    ax.set_title(f"Sobol indices of {output}\n(Saltelli design, n = {result.n}, {runs} runs)",
+                 fontsize=10)
     ax.grid(axis="x", alpha=0.3)
     _save(fig, path)
     return fig

@@ -302,18 +302,8 @@ def run_study(
         )
     bar = _Progress(progress, n)
     try:
-        result = runner.run(
-            Variants(
-                scene,
-                overrides,
-                n,
-                options,
-                client=client,
-                threads=threads,
-                chunk_size=chunk_size,
-                progress=bar,
-            )
-        )
+        result = runner.run(Variants(scene, overrides, n, options, client=client,
+                                     threads=threads, chunk_size=chunk_size, progress=bar))
     finally:
         bar.close()
     columns, errors, finished, interrupted = result
@@ -328,9 +318,8 @@ def run_study(
             f"{k} = {_fmt(x)}" + ("" if units[k] == "1" else f" {units[k]}")
             for k, x in inputs.items()
         )
-        failed.append(
-            FailedVariant(e.index, e.kind, f"variant {e.index} ({given}): {e.within()}", inputs)
-        )
+        failed.append(FailedVariant(e.index, e.kind,
+                                    f"variant {e.index} ({given}): {e.within()}", inputs))
     return Study(
         kind=kind,
         inputs={k: np.asarray(v, dtype=np.float64) for k, v in values.items()},
@@ -375,19 +364,9 @@ def sweep(
     check_size(scene, list(grid), design.grid_size(grid), max_impacts, max_study_bytes)
     values = design.grid(grid)
     return run_study(
-        scene,
-        values,
-        kind="sweep",
-        duration=duration,
-        dt=dt,
-        until=until,
-        backend=backend,
-        client=client,
-        threads=threads,
-        progress=progress,
-        chunk_size=chunk_size,
-        max_impacts=max_impacts,
-        max_study_bytes=max_study_bytes,
+        scene, values, kind="sweep", duration=duration, dt=dt, until=until, backend=backend,
+        client=client, threads=threads, progress=progress, chunk_size=chunk_size,
+        max_impacts=max_impacts, max_study_bytes=max_study_bytes,
     )
 
 
@@ -416,19 +395,8 @@ def monte_carlo(
     check_size(scene, list(distributions), design._count(n), max_impacts, max_study_bytes)
     values = design.monte_carlo_sample(distributions, n, seed)
     return run_study(
-        scene,
-        values,
-        kind="montecarlo",
-        duration=duration,
-        dt=dt,
-        until=until,
-        backend=backend,
-        client=client,
-        threads=threads,
-        progress=progress,
-        chunk_size=chunk_size,
-        max_impacts=max_impacts,
-        seed=seed,
-        distributions=distributions,
-        max_study_bytes=max_study_bytes,
+        scene, values, kind="montecarlo", duration=duration, dt=dt, until=until,
+        backend=backend, client=client, threads=threads, progress=progress,
+        chunk_size=chunk_size, max_impacts=max_impacts, seed=seed,
+        distributions=distributions, max_study_bytes=max_study_bytes,
     )

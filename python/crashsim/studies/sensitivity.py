@@ -63,18 +63,9 @@ class Tornado:
         for c, k in enumerate(self.ranges):
             lo, hi = self.ranges[k]
             y_lo, y_hi = float(y[1 + 2 * c]), float(y[2 + 2 * c])
-            rows.append(
-                {
-                    "path": k,
-                    "unit": self.study.units.get(k, ""),
-                    "low": lo,
-                    "high": hi,
-                    "base_output": float(y[0]),
-                    "output_low": y_lo,
-                    "output_high": y_hi,
-                    "swing": abs(y_hi - y_lo),
-                }
-            )
+            rows.append({"path": k, "unit": self.study.units.get(k, ""), "low": lo, "high": hi,
+                         "base_output": float(y[0]), "output_low": y_lo, "output_high": y_hi,
+                         "swing": abs(y_hi - y_lo)})
         out = pd.DataFrame(rows).sort_values("swing", ascending=False, na_position="last")
         return out.set_index("path")
 
@@ -112,9 +103,8 @@ def tornado(
                 f'"{k}": a range is (low, high) in SI or a distribution, got {r!r}', k
             ) from None
         if not (math.isfinite(lo) and math.isfinite(hi)) or lo == hi:
-            raise StudyError(
-                f'"{k}": the range ({lo:g}, {hi:g}) needs two different finite ends', k
-            )
+            raise StudyError(f'"{k}": the range ({lo:g}, {hi:g}) needs two different finite ends',
+                             k)
         lohi[k] = (lo, hi)
     base = {k: paths.base_value(scene, k) for k in lohi}
     values = design.one_at_a_time(base, lohi)
@@ -183,19 +173,16 @@ def sobol(
                run.get("max_study_bytes"))  # fmt: skip
     problem = {"num_vars": len(keys), "names": keys, "bounds": [[0.0, 1.0]] * len(keys)}
     u = sample.sample(problem, n, calc_second_order=False, seed=seed)
-    values = {
-        k: np.asarray(distributions[k].ppf(u[:, c]), dtype=np.float64) for c, k in enumerate(keys)
-    }
+    values = {k: np.asarray(distributions[k].ppf(u[:, c]), dtype=np.float64)
+              for c, k in enumerate(keys)}
     study = run_study(scene, values, kind="sobol", seed=seed, distributions=distributions, **run)
     import pandas as pd
 
     rows = []
     skipped: dict[str, str] = {}
-    wanted = (
-        list(outputs)
-        if outputs is not None
-        else [k for k, v in study.outputs.items() if v.dtype.kind == "f"]
-    )
+    wanted = list(outputs) if outputs is not None else [
+        k for k, v in study.outputs.items() if v.dtype.kind == "f"
+    ]
     for out in wanted:
         y = np.asarray(study[out], dtype=np.float64)
         if not np.all(np.isfinite(y)):
@@ -204,26 +191,14 @@ def sobol(
         if np.ptp(y) == 0.0:
             skipped[out] = "the output does not vary"
             continue
-        s = analyze.analyze(problem, y, calc_second_order=False, seed=seed, print_to_console=False)
+        s = analyze.analyze(problem, y, calc_second_order=False, seed=seed,
+                            print_to_console=False)
         for c, k in enumerate(keys):
-            rows.append(
-                {
-                    "output": out,
-                    "path": k,
-                    "S1": float(s["S1"][c]),
-                    "S1_conf": float(s["S1_conf"][c]),
-                    "ST": float(s["ST"][c]),
-                    "ST_conf": float(s["ST_conf"][c]),
-                }
-            )
+            rows.append({"output": out, "path": k, "S1": float(s["S1"][c]),
+                         "S1_conf": float(s["S1_conf"][c]), "ST": float(s["ST"][c]),
+                         "ST_conf": float(s["ST_conf"][c])})
     frame = pd.DataFrame(rows, columns=["output", "path", "S1", "S1_conf", "ST", "ST_conf"])
     frame = frame.set_index(["output", "path"])
     shown = [o for o in (outputs or _default_outputs(scene)) if o not in skipped]
-    return Sobol(
-        study,
-        frame,
-        skipped,
-        n,
-        seed,
-        shown or list(dict.fromkeys(frame.index.get_level_values("output"))),
-    )
+    return Sobol(study, frame, skipped, n, seed, shown or list(dict.fromkeys(
+        frame.index.get_level_values("output"))))

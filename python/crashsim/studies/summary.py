@@ -93,12 +93,10 @@ def percentiles(study: StudyColumns, ps: Sequence[float] | None = None) -> pd.Da
         unit = study.units.get(name, "") if name in study.inputs else output_unit(name)
         row: dict[str, object] = {"unit": unit, "n": int(x.size)}
         if x.size:
-            row.update(
-                mean=float(np.mean(x)),
-                sd=float(np.std(x, ddof=1)) if x.size > 1 else math.nan,
-                min=float(np.min(x)),
-            )
-            row.update({f"P{q:g}": float(v) for q, v in zip(qs, np.percentile(x, qs), strict=True)})
+            row.update(mean=float(np.mean(x)), sd=float(np.std(x, ddof=1)) if x.size > 1
+                       else math.nan, min=float(np.min(x)))
+            row.update({f"P{q:g}": float(v) for q, v in zip(qs, np.percentile(x, qs),
+                                                             strict=True)})
             row["max"] = float(np.max(x))
         else:
             row.update(mean=math.nan, sd=math.nan, min=math.nan)

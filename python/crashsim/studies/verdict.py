@@ -236,19 +236,15 @@ def judge(
         j = list(names).index(n)
         bound = lo[j] if side == "lower" else hi[j]
         unit = f" {units[n]}" if units and n in units else ""
-        poor.append(
-            f"{n} ended at its {side} bound ({bound:.6g}{unit}): the bound, not the "
-            f"evidence, set it; widen the bounds if the evidence asks for more"
-        )
+        poor.append(f"{n} ended at its {side} bound ({bound:.6g}{unit}): the bound, not the "
+                    f"evidence, set it; widen the bounds if the evidence asks for more")
     for n in not_fixed:
         poor.append(f"the evidence does not fix {n} (the residuals do not determine it)")
     for label, why in caveats.items():
         poor.append(f"{label}: {why}")
     if lower_sample is not None:
-        poor.append(
-            f"a sample of the posterior has chi^2 {lower_sample:.4g}, more than 1 below "
-            f"the optimum's: the solve stopped short of the least chi^2"
-        )
+        poor.append(f"a sample of the posterior has chi^2 {lower_sample:.4g}, more than 1 below "
+                    f"the optimum's: the solve stopped short of the least chi^2")
     if interrupted:
         poor.append("interrupted (Ctrl-C): the best candidate so far, not an optimum")
 
@@ -313,10 +309,8 @@ def _chi2_reasons(
                       [:WORST])  # fmt: skip
     test = f"chi^2 {chi2:.4g} with {_count(tested, 'degree')} of freedom: p = {p:.2g}"
     if p < P_REJECT:
-        fail.append(
-            f"{test} < {P_REJECT:.2g} (5 sigma): the model cannot give the evidence "
-            f"within its tolerances (largest residuals, in tolerances: {worst})"
-        )
+        fail.append(f"{test} < {P_REJECT:.2g} (5 sigma): the model cannot give the evidence "
+                    f"within its tolerances (largest residuals, in tolerances: {worst})")
     elif p < P_POOR:
         poor.append(f"{test} < {P_POOR:g}: the residuals are larger than the tolerances "
                     f"allow (largest, in tolerances: {worst})")  # fmt: skip

@@ -19,6 +19,7 @@ from crashsim.vehicles.mass_properties import USER, WEIGHT_LB
 Array = NDArray[np.float64]
 
 
+
 def _as_float(value: Any, name: str, unit: str) -> float:
     """A Python float, or a ParameterError saying what was expected."""
     if isinstance(value, str):

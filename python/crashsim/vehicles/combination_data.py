@@ -70,7 +70,9 @@ def _class(name: str, raw: Mapping[str, Any], quantities: Mapping[str, Any]) -> 
     unknown = [k for k in raw if k not in _CLASS_KEYS and k not in quantities]
     if unknown:
         raise ParameterError(f"{_TABLE}: {name} has unknown quantities {unknown}")
-    figures = {q: figure_from(raw[q], f"{name}.{q}", _TABLE) for q in quantities if q in raw}
+    figures = {
+        q: figure_from(raw[q], f"{name}.{q}", _TABLE) for q in quantities if q in raw
+    }
     axle_group = raw.get("axle_group")
     return CombinationClass(
         name=name,
@@ -110,5 +112,7 @@ def combination_class(name: str) -> CombinationClass:
         raise ParameterError(f"combination class name must be a string, got {name!r}")
     key = name.strip().lower()
     if key not in classes:
-        raise ParameterError(f"unknown combination class {name!r}: use one of {', '.join(classes)}")
+        raise ParameterError(
+            f"unknown combination class {name!r}: use one of {', '.join(classes)}"
+        )
     return classes[key]

@@ -419,3 +419,4 @@ def _rank(key: str | int) -> int:
     if isinstance(key, str) and key.strip().lower() in ("front", "rear"):
         return 1
     return 2
+

@@ -211,7 +211,8 @@ def _ply_header(head: bytes, size: int) -> str | None:
     words = lines[1].split() if len(lines) > 1 else []
     if len(words) != 3 or words[0] != b"format" or words[1] not in PLY_ENCODINGS:
         return (
-            'its second line is not "format ascii 1.0" (or binary_little_endian, binary_big_endian)'
+            'its second line is not "format ascii 1.0" (or binary_little_endian, '
+            "binary_big_endian)"
         )
     if not any(line.strip() == b"end_header" for line in head.split(b"\n")[:-1]):
         return f"its header does not end (end_header) within its first {HEADER_BYTES:,} bytes"

@@ -69,16 +69,8 @@ FLATBED_LOAD_HEIGHT = 1.0
 
 # The keywords the flatbed and tanker presets take besides their class's numbers.
 _SEMI_OVERRIDES = (
-    "mass",
-    "length",
-    "track",
-    "radius",
-    "tyre",
-    "natural_frequency",
-    "damping_ratio",
-    "abs",
-    "load_sharing",
-    "load_height",
+    "mass", "length", "track", "radius", "tyre", "natural_frequency", "damping_ratio", "abs",
+    "load_sharing", "load_height",
 )
 
 
@@ -184,36 +176,18 @@ class Trailer:
 
     @staticmethod
     def _semitrailer(
-        name: str,
-        parts: list[tuple[trimesh.Trimesh, float]],
-        extra: list[trimesh.Trimesh],
-        kingpin: np.ndarray,
-        axles: list[float],
-        track: float,
-        radius: float,
+        name: str, parts: list[tuple[trimesh.Trimesh, float]], extra: list[trimesh.Trimesh],
+        kingpin: np.ndarray, axles: list[float], track: float, radius: float,
         options: dict[str, Any],
     ) -> Vehicle:
         """A semitrailer of uniform solid parts (mesh, mass) and massless drawn ``extra``."""
         cg, inertia = _solid_box_parts(parts)
         mesh = trimesh.util.concatenate([p for p, _ in parts] + extra)
         mass = sum(m for _, m in parts)
-        body = Vehicle(
-            mesh,
-            mass,
-            cg,
-            inertia,
-            name=name,
-            sources={"cg": "uniform solids", "inertia": "uniform solids"},
-        )
-        return Trailer.from_vehicle(
-            body,
-            "semitrailer",
-            coupler_at=kingpin,
-            axles=axles,
-            track=track,
-            radius=radius,
-            **options,
-        )
+        body = Vehicle(mesh, mass, cg, inertia, name=name,
+                       sources={"cg": "uniform solids", "inertia": "uniform solids"})
+        return Trailer.from_vehicle(body, "semitrailer", coupler_at=kingpin, axles=axles,
+                                    track=track, radius=radius, **options)
 
     @staticmethod
     def _flatbed(
@@ -240,14 +214,9 @@ class Trailer:
             scale = _positive(given["mass"], "mass") / sum(m for _, m in parts)
             parts = [(p, m * scale) for p, m in parts]
         return Trailer._semitrailer(
-            name,
-            parts,
-            [],
-            np.array([front - value["kingpin_setback"], 0.0, hz]),
-            [group + half, group - half],
-            given.get("track", value["track"]),
-            given.get("radius", value["tyre_radius"]),
-            _wheel_options(given),
+            name, parts, [], np.array([front - value["kingpin_setback"], 0.0, hz]),
+            [group + half, group - half], given.get("track", value["track"]),
+            given.get("radius", value["tyre_radius"]), _wheel_options(given),
         )
 
     @staticmethod
@@ -283,17 +252,10 @@ class Trailer:
         across = mass * (3 * r**2 + length**2) / 12.0
         inertia = np.diag([mass * r**2 / 2.0, across, across])
         mesh = trimesh.util.concatenate([barrel, frame, plate])
-        body = Vehicle(
-            mesh,
-            mass,
-            [0.0, 0.0, hz + r],
-            inertia,
-            name=name,
-            sources={"cg": "the barrel's axis", "inertia": "solid cylinder"},
-        )
+        body = Vehicle(mesh, mass, [0.0, 0.0, hz + r], inertia, name=name,
+                       sources={"cg": "the barrel's axis", "inertia": "solid cylinder"})
         return Trailer.from_vehicle(
-            body,
-            "semitrailer",
+            body, "semitrailer",
             coupler_at=[length / 2.0 - value["kingpin_setback"], 0.0, hz],
             axles=[group + half, group - half],
             track=given.get("track", value["track"]),

@@ -376,7 +376,9 @@ class Wheels:
         )
         self.wheelbase = self.track = self.cg_to_front_axle = self.cg_height = None
         self.steer = "custom"
-        self.load_groups = tuple(tuple(self.index(w) for w in group) for group in load_groups)
+        self.load_groups = tuple(
+            tuple(self.index(w) for w in group) for group in load_groups
+        )
         if coupling is not None:
             try:
                 point = np.asarray(coupling, dtype=np.float64).reshape(-1)

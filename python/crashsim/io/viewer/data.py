@@ -349,9 +349,8 @@ def page_data(
         "format": FORMAT,
         "version": FORMAT_VERSION,
         "crashsim_version": str(__version__),
-        "title": title
-        or "crashsim case: "
-        + ", ".join(dict.fromkeys(people.get(n, (n, ""))[0] for n in result.vehicles)),  # fmt: skip
+        "title": title or "crashsim case: " + ", ".join(dict.fromkeys(
+            people.get(n, (n, ""))[0] for n in result.vehicles)),  # fmt: skip
         "source": "run",
         "interpolation": "hermite" if getattr(result, "on_ground", False) else "torque-free",
         "samples": {"total": int(t.size), "kept": int(keep.size), "t": pack_array(t[keep], "f8")},

@@ -51,8 +51,7 @@ class _Problem:
         self.m = sum(self.sizes)
         # a pedestrian's own paths rebuild it: never the batch's override arrays
         self.use_result = any(e.uses_result for e in evidence) or any(
-            paths.parse_path(scene, n).kind in paths.PEDESTRIAN_KINDS for n in names
-        )
+            paths.parse_path(scene, n).kind in paths.PEDESTRIAN_KINDS for n in names)
         self.max_impacts = max([1] + [int(getattr(e, "impact", 1)) for e in evidence])
         self.cache: dict[bytes, Array] = {}
         self.gave: dict[bytes, NDArray[np.bool_]] = {}  # per candidate: the items its run gave
@@ -225,9 +224,8 @@ def _check_unknowns(
         units[p.name] = p.unit
     if len(set(names)) != len(names):
         raise FitError("an unknown is given twice")
-    paths.overrides(
-        scene, {n: [0.5 * (a + b)] for n, a, b in zip(names, lo, hi, strict=True)}, n=1
-    )  # fmt: skip  (conflicting paths: StudyError naming them)
+    paths.overrides(scene, {n: [0.5 * (a + b)] for n, a, b in zip(names, lo, hi, strict=True)},
+                    n=1)  # fmt: skip  (conflicting paths: StudyError naming them)
     return names, np.array(lo), np.array(hi), units
 
 

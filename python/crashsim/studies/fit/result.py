@@ -19,7 +19,6 @@ if TYPE_CHECKING:
     from crashsim.result import Result
     from crashsim.scene import Scene
 
-
 @dataclass(frozen=True)
 class ItemResidual:
     """One evidence item at the fit's optimum: ``label``, ``unit``, its ``components``
@@ -97,8 +96,8 @@ class FitResult:
         lines = [
             f"fit ({self.method}): objective chi^2 = {self.objective:.4g} over "
             f"{sum(len(r.normalised) for r in self.residuals)} residuals, {self.n_runs} runs, "
-            f"{self.elapsed:.1f} s"
-            + (" -- INTERRUPTED: the best so far" if self.interrupted else ""),
+            f"{self.elapsed:.1f} s" + (" -- INTERRUPTED: the best so far" if self.interrupted
+                                       else ""),
             "",
             f"{'unknown':<20} {'best':>11} {'95 % (Jacobian)':>21} {'all at once':>21} "
             f"{'95 % (sampling)':>21} {'along it alone':>21}  unit",
