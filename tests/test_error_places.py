@@ -35,6 +35,15 @@ def test_the_core_gives_the_place_and_the_message_apart() -> None:
     assert cs.ParameterError("x").loc == () and cs.ParameterError("x").message is None
 
 
+def test_a_bad_ground_value_names_the_ground_in_its_places() -> None:
+    with pytest.raises(cs.ParameterError) as raised:
+        cs.Ground(friction=-1)
+    e = raised.value
+    assert e.loc == (("part", None, "ground"),)
+    assert e.message.startswith("tyre-road friction = -1 is invalid")
+    assert str(e) == "ground: " + e.message
+
+
 def test_renamed_rebuilds_the_text_from_the_places_and_keeps_them() -> None:
     zones = [
         cs.FrictionZone([(0, 0), (10, 0), (10, 10), (0, 10)], 0.5, name="puddle"),
@@ -43,7 +52,7 @@ def test_renamed_rebuilds_the_text_from_the_places_and_keeps_them() -> None:
     with pytest.raises(cs.ParameterError) as raised:
         cs.Ground(zones=zones)
     e = raised.value
-    assert e.loc == (("zones", (0, 1), None),)
+    assert e.loc == (("part", None, "ground"), ("zones", (0, 1), None))
     assert str(e) == "ground: friction zones 'puddle' and 1: " + e.message
     # a message that happens to read like a place is left alone: only loc is named
     fake = cs.ParameterError("wheel 0 is fine")

@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.environment.surfaces import friction as as_friction
-from crashsim.errors import MeshError, ParameterError, naming, renamed
+from crashsim.errors import MeshError, ParameterError, Place, at, naming, renamed
 from crashsim.names import check_name
 from crashsim.vehicles.meshio import MeshSource, describe, load_mesh
 
@@ -90,6 +90,9 @@ def _zone(value: Any, index: int) -> FrictionZone:
         f"friction zone {index} must be a crashsim.FrictionZone or (polygon, friction), got "
         f"{value!r}"
     )
+
+
+_GROUND: Place = ("part", None, "ground")  # the place of the ground's errors
 
 
 class Ground:
@@ -177,7 +180,8 @@ class Ground:
         self.core = self._checked(self._core_kwargs())
 
     def _named(self, error: ParameterError) -> ParameterError:
-        """The engine's error with its zone places named."""
+        """The engine's error with its zone places named, one place further out: the ground
+        (``loc`` starts with ("part", None, "ground"); the text with "ground: ")."""
 
         def label(k: int) -> str:  # "zone 'wet'" or "zone 2"
             return self.zones[k].label(k)[5:]
@@ -186,7 +190,7 @@ class Ground:
             zone=lambda k: "friction " + self.zones[k].label(k),
             zones=lambda ab: f"friction zones {label(ab[0])} and {label(ab[1])}",
         )
-        return renamed(error, name, "ground: ")
+        return at(renamed(error, name), _GROUND)
 
     def _core_kwargs(self) -> dict[str, Any]:
         """_core.Ground keywords (frictions left None take the engine's defaults there)."""
