@@ -44,6 +44,21 @@ def test_a_bad_ground_value_names_the_ground_in_its_places() -> None:
     assert str(e) == "ground: " + e.message
 
 
+def test_a_vehicles_wheel_error_names_the_vehicle_and_the_wheel_in_its_places() -> None:
+    box = cs.Vehicle.box(4.5, 1.8, 1.25, mass=1450.0, name="car", cg_height=0.55,
+                         ground_clearance=0.15)  # fmt: skip
+    with pytest.raises(cs.ParameterError) as raised:  # the front axle 0.75 m ahead of the box
+        box.with_wheels(wheelbase=6.0, track=1.5, radius=0.3, cg_to_front_axle=3.0)
+    e = raised.value
+    assert e.loc == (("part", None, "vehicle 'car'"), ("wheel", 0, None))
+    assert e.message.startswith("its centre at (3.000, 0.750) m (body frame, from the CG)")
+    assert str(e) == "vehicle 'car': wheel 'front_left': " + e.message
+    with pytest.raises(cs.ParameterError) as raised:  # the engine's own check of a value
+        box.with_wheels(wheelbase=2.7, track=1.5, radius=-0.3, cg_to_front_axle=1.2)
+    assert raised.value.loc == (("part", None, "vehicle 'car'"), ("wheel", 0, None))
+    assert str(raised.value).startswith("vehicle 'car': wheel 'front_left': radius = -0.3")
+
+
 def test_renamed_rebuilds_the_text_from_the_places_and_keeps_them() -> None:
     zones = [
         cs.FrictionZone([(0, 0), (10, 0), (10, 10), (0, 10)], 0.5, name="puddle"),

@@ -32,6 +32,8 @@ def _add(**inputs) -> None:
 
 
 FRONT_LEFT, REAR_LEFT, REAR_RIGHT = ("wheel", 0, None), ("wheel", 2, None), ("wheel", 3, None)
+# the vehicle's place while it is built, and its inputs' in a scene (crashsim.errors.vehicle_place)
+CAR, CAR_INPUTS = ("part", None, "vehicle 'car'"), ("part", None, "vehicle 'car' inputs")
 OUTSIDE = (
     "its centre at ({}) m (body frame, from the CG) lies outside the body, whose outline "
     "spans x -2.300 to 2.300 m and y -0.900 to 0.900 m: wheel positions are measured from the "
@@ -59,22 +61,23 @@ CASES = [
      "wheel 'wheel_3': radius = -1 is invalid: a tyre radius must be > 0 m",
      (("wheel", 3, None),)),
     ("outside", lambda: _body().with_wheels(**{**WHEELS, "track": 2.5}),
-     "vehicle 'car': wheel 'front_left': " + OUTSIDE.format("1.100, 1.250"), (FRONT_LEFT,)),
+     "vehicle 'car': wheel 'front_left': " + OUTSIDE.format("1.100, 1.250"), (CAR, FRONT_LEFT)),
     ("rates", lambda: _body().with_wheels(**WHEELS, damping=(10.0, -1.0)),
      "vehicle 'car': wheel 'rear_left': damping = -1 is invalid: a damping coefficient must be "
-     ">= 0 N s/m", (REAR_LEFT,)),
+     ">= 0 N s/m", (CAR, REAR_LEFT)),
     ("shared bar", lambda: _body().with_wheels(
         Wheels.custom(C4, 0.3, FLAGS, anti_roll=[(0, 1, 1e4), (0, 3, 1e4)])),
-     "vehicle 'car': anti-roll bar 1 shares a wheel with another bar: one bar per wheel", ()),
+     "vehicle 'car': anti-roll bar 1 shares a wheel with another bar: one bar per wheel",
+     (CAR,)),
     ("steer", lambda: _add(steer=1.2),
      "vehicle 'car' inputs: the road-wheel steering angle reaches 68.8 deg: road wheels turn "
-     "at most 60 deg (a steering-wheel angle goes with the steering ratio)", ()),
+     "at most 60 deg (a steering-wheel angle goes with the steering ratio)", (CAR_INPUTS,)),
     ("steer a fixed wheel", lambda: _add(steer={"RL": 0.1}),
      "vehicle 'car' inputs: wheel 'rear_left': it has a steering table but does not steer "
-     "(make it steerable)", (REAR_LEFT,)),
+     "(make it steerable)", (CAR_INPUTS, REAR_LEFT)),
     ("brake", lambda: _add(brake={"RR": 1.5}),
      "vehicle 'car' inputs: wheel 'rear_right': a braking fraction must lie in [0, 1] (got 1.5 "
-     "to 1.5)", (REAR_RIGHT,)),
+     "to 1.5)", (CAR_INPUTS, REAR_RIGHT)),
     ("brake rows", lambda: Wheels(2.7, 1.5, 1.1, 0.55, 0.3).check_inputs(
         brake=[("fraction", np.array([[0.0, 0.5]]), None)] * 3),
      "braking is given for 3 wheels but the vehicle has 4", ()),
@@ -172,12 +175,13 @@ def test_check_vehicle_applies_set_vehicles_rules_with_and_without_the_body() ->
 )
 def test_a_bad_spring_is_placed_at_its_wheel(springs, loc, start) -> None:
     """A natural frequency or damping ratio the engine's ``suspension`` refuses: the wheel's
-    place is data (``.loc``), as the engine's own checks give it, and the vehicle's name stays
-    before it in the text (before: ``.loc`` was empty, the place only in the text)."""
+    place is data (``.loc``), as the engine's own checks give it, inside the vehicle's place,
+    whose name stays before it in the text (before: ``.loc`` was empty, the place only in the
+    text)."""
     with pytest.raises(cs.ParameterError) as caught:
         _body().with_wheels(**WHEELS, **springs)
     e = caught.value
-    assert e.loc == (loc,)
+    assert e.loc == (CAR, loc)
     assert e.message.startswith(start)
     name = wheels_module.STANDARD_NAMES[loc[1]]
     assert str(e) == f"vehicle 'car': wheel '{name}': {e.message}"

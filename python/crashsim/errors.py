@@ -14,7 +14,8 @@ PlausibilityWarning (a UserWarning): input that is possible but unlikely for a r
 
 Every error carries ``loc``, where it happened, outermost first: a tuple of (kind, index,
 name) places the engine sets (kinds: "variant", "body", "bodies", "wheel", "zone", "zones",
-"part"; empty when the error is the whole input's), and ``message``, the text without the
+"part": the ground, a vehicle being built, :func:`vehicle_place`, or its inputs; empty when
+the error is the whole input's), and ``message``, the text without the
 places (None for errors raised with a text alone). A layer that knows the names of what the
 engine numbers (a vehicle's wheels, the ground's zones, the scene's bodies) gives them with
 :func:`renamed`, which rebuilds the text from ``loc`` and ``message``: no text is parsed.
@@ -100,6 +101,12 @@ def at(error: _E, place: Place) -> _E:
     out.loc = (place, *error.loc)
     out.message = str(error) if error.message is None else error.message
     return out
+
+
+def vehicle_place(name: str) -> Place:
+    """The place of a vehicle that is not yet in a scene (its own construction and checks):
+    the part "vehicle 'red'". In a scene the engine's places name it as a body."""
+    return ("part", None, f"vehicle {name!r}")
 
 
 def naming(**names: Callable[[Any], str | None]) -> Naming:

@@ -53,7 +53,8 @@ pub enum Place {
     Zone(usize),
     /// Two friction zones (that overlap).
     Zones(usize, usize),
-    /// A named part or parameter group: "ground", "towing", "inputs".
+    /// A named part or parameter group: "ground", "towing", "inputs"; from Python also a
+    /// vehicle that is not yet in a scene ("vehicle 'red'") and its driver inputs.
     Part(String),
 }
 

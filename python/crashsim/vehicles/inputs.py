@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
-from crashsim.errors import ParameterError, renamed
+from crashsim.errors import ParameterError, at, renamed
 from crashsim.vehicles.wheels import Wheels, wheel_naming
 
 __all__ = ["Brake", "DriverInputs", "TableLike", "WheelStateSwitch"]
@@ -371,7 +371,7 @@ class DriverInputs:
             if self.steering_wheel is not None and "steering angle" in str(e):
                 ratio = self.steering_ratio or wheels.steering_ratio
                 note = f" (steering_wheel / steering_ratio {ratio:g})"
-            raise renamed(e, wheel_naming(wheels.names), f"{what}: ", note) from e
+            raise at(renamed(e, wheel_naming(wheels.names), "", note), ("part", None, what)) from e
         return out
 
     def __repr__(self) -> str:

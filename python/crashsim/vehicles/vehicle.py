@@ -34,7 +34,7 @@ import trimesh
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
-from crashsim.errors import MeshError, ParameterError, renamed
+from crashsim.errors import MeshError, ParameterError, at, vehicle_place
 from crashsim.names import check_name
 from crashsim.vehicles import plausibility
 from crashsim.vehicles.builders import VehicleBuilders
@@ -251,7 +251,7 @@ class Vehicle(VehicleBuilders):
                     **springs,
                 )
             except ParameterError as e:
-                raise renamed(e, None, f"vehicle {self._name!r}: ") from e
+                raise at(e, vehicle_place(self._name)) from e
         else:
             if not isinstance(wheels, Wheels):
                 raise ParameterError(
@@ -269,7 +269,7 @@ class Vehicle(VehicleBuilders):
 
                 wheels = copy.copy(wheels)
                 wheels.tyre = Tyre.coerce(tyre)
-        wheels.check_on(self.shape, self._mass, f"vehicle {self._name!r}")
+        wheels.check_on(self.shape, self._mass, self._name)
         if source is not None:
             import copy
 

@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
-from crashsim.errors import Naming, ParameterError, at, naming, renamed
+from crashsim.errors import Naming, ParameterError, Place, at, naming, renamed, vehicle_place
 from crashsim.names import check_name
 from crashsim.vehicles.numbers import finite as _number
 from crashsim.vehicles.tyre import TYRE_MODELS, Tyre
@@ -96,9 +96,9 @@ def wheel_naming(names: Sequence[str]) -> Naming:
     return naming(wheel=lambda k: f"wheel {names[k]!r}" if 0 <= k < len(names) else None)
 
 
-def _renamed(error: ParameterError, names: Sequence[str], prefix: str = "") -> ParameterError:
+def _renamed(error: ParameterError, names: Sequence[str]) -> ParameterError:
     """The engine's error with its wheel places named."""
-    return renamed(error, wheel_naming(names), prefix)
+    return renamed(error, wheel_naming(names))
 
 
 # -- wheels ---------------------------------------------------------------------------------------
@@ -270,7 +270,7 @@ class Wheels:
         self.cg_to_front_axle: float | None = a
         self.cg_height: float | None = h
         self.steer: str = steer
-        self._check(1.0, "", explicit_rates=False)
+        self._check(1.0, explicit_rates=False)
 
     @classmethod
     def from_class(
@@ -397,7 +397,7 @@ class Wheels:
             left, right = self.index(bar[0]), self.index(bar[1])
             bars.append((left, right, _number(bar[2], f"anti_roll[{k}] roll stiffness", "N m/rad")))
         self._roll = ("bars", tuple(bars))
-        self._check(1.0, "", explicit_rates=False)
+        self._check(1.0, explicit_rates=False)
         return self
 
     def _init(
@@ -667,18 +667,19 @@ class Wheels:
     def _check(
         self,
         mass: float,
-        prefix: str,
+        outer: Place | None = None,
         *,
         explicit_rates: bool = True,
         shape: _core.Shape | None = None,
     ) -> None:
         """The engine's checks of these wheels for a vehicle of ``mass`` kg
         (``_core.check_vehicle``: no scene is made), on its body's ``shape`` when given;
-        errors name the wheels, after ``prefix``."""
+        errors name the wheels, inside the place ``outer`` when given."""
         try:
             _core.check_vehicle(mass, shape=shape, **self.spec(mass, explicit_rates=explicit_rates))
         except ParameterError as e:
-            raise _renamed(e, self._names, prefix) from e
+            named = _renamed(e, self._names)
+            raise (named if outer is None else at(named, outer)) from e
 
     def with_mass_ratio(self, ratio: float) -> Wheels:
         """These wheels under a vehicle ``ratio`` times as heavy, keeping their natural
@@ -694,11 +695,12 @@ class Wheels:
             other._damping = self._damping * ratio
         return other
 
-    def check_on(self, shape: _core.Shape, mass: float, what: str) -> None:
+    def check_on(self, shape: _core.Shape, mass: float, vehicle: str) -> None:
         """The engine's checks of these wheels on a body (its shape, body frame, and mass in
         kg): wheels inside the body's outline, loads carrying the weight, explicit rates and
-        the anti-roll bars. ``what`` names the vehicle in the message."""
-        self._check(mass, f"{what}: ", shape=shape)
+        the anti-roll bars. Errors are placed in the vehicle named ``vehicle``
+        (:func:`crashsim.errors.vehicle_place`)."""
+        self._check(mass, vehicle_place(vehicle), shape=shape)
 
     def contact_points(self) -> Array:
         """(n, 3) body-frame points where the tyres touch level ground at static ride height
