@@ -57,6 +57,11 @@ def test_a_vehicles_wheel_error_names_the_vehicle_and_the_wheel_in_its_places() 
         box.with_wheels(wheelbase=2.7, track=1.5, radius=-0.3, cg_to_front_axle=1.2)
     assert raised.value.loc == (("part", None, "vehicle 'car'"), ("wheel", 0, None))
     assert str(raised.value).startswith("vehicle 'car': wheel 'front_left': radius = -0.3")
+    with pytest.raises(cs.ParameterError) as raised:  # the vehicle's own check in Python
+        box.with_wheels(wheelbase=2.7)
+    assert raised.value.loc == (("part", None, "vehicle 'car'"),)
+    assert raised.value.message.startswith("wheels need track, radius, cg_to_front_axle (m)")
+    assert str(raised.value) == "vehicle 'car': " + raised.value.message
 
 
 def test_renamed_rebuilds_the_text_from_the_places_and_keeps_them() -> None:

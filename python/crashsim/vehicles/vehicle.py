@@ -225,17 +225,23 @@ class Vehicle(VehicleBuilders):
             }
             missing = [k for k, v in given.items() if v is None]
             if missing:
-                raise ParameterError(
-                    f"vehicle {self._name!r}: wheels need {', '.join(missing)} (m): give "
-                    "wheelbase, track, radius and cg_to_front_axle, or a crashsim.Wheels"
+                raise at(
+                    ParameterError(
+                        f"wheels need {', '.join(missing)} (m): give wheelbase, track, radius "
+                        "and cg_to_front_axle, or a crashsim.Wheels"
+                    ),
+                    vehicle_place(self._name),
                 )
             if cg_height is None:
                 cg_height = float(self._cg[2])
                 if cg_height <= 0.0:
-                    raise ParameterError(
-                        f"vehicle {self._name!r}: its CG is {cg_height:.3f} m above the model "
-                        "frame's ground (z = 0): the mesh is not standing on z = 0; load it "
-                        "with ground=True, or give cg_height (m above the ground)"
+                    raise at(
+                        ParameterError(
+                            f"its CG is {cg_height:.3f} m above the model frame's ground "
+                            "(z = 0): the mesh is not standing on z = 0; load it with "
+                            "ground=True, or give cg_height (m above the ground)"
+                        ),
+                        vehicle_place(self._name),
                     )
             lo, hi = self._mesh.bounds
             centerline = float(lo[1] + hi[1]) / 2.0 - float(self._cg[1])
@@ -323,9 +329,12 @@ class Vehicle(VehicleBuilders):
         gap = np.maximum(0.0, np.maximum(lo - hitch.point, hitch.point - hi))
         outside = float(np.linalg.norm(gap))
         if outside > 1.0:
-            raise ParameterError(
-                f"vehicle {self._name!r}: its {what} lies {outside:.2f} m outside the body's "
-                "box (at most 1 m): give it in the model frame (m), where the mesh is"
+            raise at(
+                ParameterError(
+                    f"its {what} lies {outside:.2f} m outside the body's box (at most 1 m): "
+                    "give it in the model frame (m), where the mesh is"
+                ),
+                vehicle_place(self._name),
             )
 
     def _copy(self, name: str) -> Vehicle:
