@@ -78,17 +78,18 @@ Naming = Callable[[Place, tuple[Place, ...]], "str | None"]
 its vehicle); None keeps the engine's text (:func:`describe`), "" drops the place."""
 
 
-def renamed(error: _E, name: Naming | None, prefix: str = "", suffix: str = "") -> _E:
+def renamed(error: _E, name: Naming | None, suffix: str = "") -> _E:
     """``error`` again (the same class, ``loc`` and ``message``) with its text rebuilt from
-    its places, each named by ``name`` (:data:`Naming`), then the message; ``prefix`` and
-    ``suffix`` around it. An error without places, or ``name`` None, keeps its text."""
+    its places, each named by ``name`` (:data:`Naming`), then the message and ``suffix``. An
+    error without places, or ``name`` None, keeps its text. (A place further out is added
+    with :func:`at`, not as text.)"""
     if error.message is None or name is None:
         text = str(error)
     else:
         parts = [name(p, error.loc[:k]) for k, p in enumerate(error.loc)]
         where = [describe(p) if t is None else t for p, t in zip(error.loc, parts, strict=True)]
         text = "".join(f"{w}: " for w in where if w) + error.message
-    out = type(error)(prefix + text + suffix)
+    out = type(error)(text + suffix)
     out.loc = error.loc
     out.message = error.message
     return out

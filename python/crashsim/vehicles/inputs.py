@@ -371,7 +371,7 @@ class DriverInputs:
             if self.steering_wheel is not None and "steering angle" in str(e):
                 ratio = self.steering_ratio or wheels.steering_ratio
                 note = f" (steering_wheel / steering_ratio {ratio:g})"
-            raise at(renamed(e, wheel_naming(wheels.names), "", note), ("part", None, what)) from e
+            raise at(renamed(e, wheel_naming(wheels.names), note), ("part", None, what)) from e
         return out
 
     def __repr__(self) -> str:
