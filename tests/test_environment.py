@@ -53,8 +53,10 @@ def test_surface_names_are_forgiving_and_unknown_ones_listed() -> None:
     assert sf.friction(0.42) == 0.42
     with pytest.raises(cs.ParameterError, match="unknown surface 'lava'.*dry_asphalt.*ice"):
         sf.surface("lava")
-    with pytest.raises(cs.ParameterError, match="friction = nan"):
-        sf.friction(float("nan"))
+    # finiteness is the engine's rule, checked once where the ground is made, in its place
+    with pytest.raises(cs.ParameterError, match="ground: tyre-road friction = NaN") as raised:
+        cs.Ground(friction=float("nan"))
+    assert raised.value.loc[-1] == ("parameter", None, "tyre-road friction")
 
 
 def test_every_surface_row_has_its_keys() -> None:
@@ -188,9 +190,12 @@ def test_a_wheel_over_a_hole_in_the_terrain_is_named_before_the_run() -> None:
 def test_a_wheel_leaving_the_terrain_names_the_vehicle_and_wheel() -> None:
     scene = cs.Scene(ground=cs.Ground(terrain=terrain(size=40.0)))
     scene.add(wheeled(), (10.0, 0.0), heading=0.0, velocity=(10.0, 0.0, 0.0))
-    left = "vehicle 'car': wheel 'front_left': it left the terrain"
-    with pytest.raises(cs.SimulationError, match=left):
+    left = r"vehicle 'car': wheel 'front_left': t = 0\.\d{6} s: it left the terrain"
+    with pytest.raises(cs.SimulationError, match=left) as raised:
         scene.run(2.0)
+    # the time is a place: the simulated time (s) as its index
+    ((kind, t, name),) = [p for p in raised.value.loc if p[0] == "time"]
+    assert name is None and 0.5 < t < 2.0 and f"t = {t:.6f} s" in str(raised.value)
 
 
 def test_a_vehicle_placed_by_x_y_stands_on_the_terrain_at_its_static_height() -> None:

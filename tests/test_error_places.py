@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from crashsim import _core
 from crashsim.batch import run_batch
-from crashsim.errors import describe, naming, renamed
+from crashsim.errors import describe, naming, renamed, text
 
 
 def _two_boxes(x_red: float = -3.65) -> cs.Scene:
@@ -39,7 +39,9 @@ def test_a_bad_ground_value_names_the_ground_in_its_places() -> None:
     with pytest.raises(cs.ParameterError) as raised:
         cs.Ground(friction=-1)
     e = raised.value
-    assert e.loc == (("part", None, "ground"),)
+    # the parameter is the innermost place; the message names it with its value, so the text
+    # does not write it before the message
+    assert e.loc == (("part", None, "ground"), ("parameter", None, "tyre-road friction"))
     assert e.message.startswith("tyre-road friction = -1 is invalid")
     assert str(e) == "ground: " + e.message
 
@@ -55,7 +57,8 @@ def test_a_vehicles_wheel_error_names_the_vehicle_and_the_wheel_in_its_places() 
     assert str(e) == "vehicle 'car': wheel 'front_left': " + e.message
     with pytest.raises(cs.ParameterError) as raised:  # the engine's own check of a value
         box.with_wheels(wheelbase=2.7, track=1.5, radius=-0.3, cg_to_front_axle=1.2)
-    assert raised.value.loc == (("part", None, "vehicle 'car'"), ("wheel", 0, None))
+    assert raised.value.loc == (("part", None, "vehicle 'car'"), ("wheel", 0, None),
+                                ("parameter", None, "radius"))  # fmt: skip
     assert str(raised.value).startswith("vehicle 'car': wheel 'front_left': radius = -0.3")
     with pytest.raises(cs.ParameterError) as raised:  # the vehicle's own check in Python
         box.with_wheels(wheelbase=2.7)
@@ -93,8 +96,9 @@ def test_a_wheel_is_named_by_its_vehicle_in_a_scene_run() -> None:
         scene.run(2.0)
     e = raised.value
     kinds = [p[0] for p in e.loc]
-    assert kinds == ["body", "wheel"] and e.loc[0][1] == 0
-    assert str(e).startswith(f"vehicle 'car': wheel {car.wheels.names[e.loc[1][1]]!r}: it left")
+    assert kinds == ["body", "wheel", "time"] and e.loc[0][1] == 0
+    wheel, t = car.wheels.names[e.loc[1][1]], e.loc[2][1]
+    assert str(e).startswith(f"vehicle 'car': wheel {wheel!r}: t = {t:.6f} s: it left")
     # the place survives pickling (Dask sends errors between processes)
     back = pickle.loads(pickle.dumps(e))
     assert back.loc == e.loc and back.message == e.message and str(back) == str(e)
@@ -145,12 +149,34 @@ def test_single_values_are_checked_by_the_core_without_a_probe_scene() -> None:
         (("zone", 1, None), "friction zone 1"),
         (("zones", (1, 3), None), "friction zones 1 and 3"),
         (("part", None, "ground.zones[2]"), "ground.zones[2]"),
+        (("time", 0.0625, None), "t = 0.062500 s"),
+        (("parameter", None, "friction"), ""),  # the message names it, with its value
     ],
 )
 def test_describe_is_the_engines_rendering_of_each_kind(place, text) -> None:
     """One rendering of a place, the core's (``Place``'s Display through
     ``_core.describe_place``): the same text the engine's messages carry."""
     assert describe(place) == text
+
+
+def test_a_parameter_error_has_its_parameter_in_loc_and_its_text_once() -> None:
+    """The parameter at fault is data (``("parameter", None, name)``, innermost), as the
+    engine's rule names it; the text names it once, in the message with its value, also when
+    the layers above rebuild the text from the places (:func:`renamed`, a batch's
+    variant)."""
+    with pytest.raises(cs.ParameterError) as raised:
+        _core.check_mass(-1.0, np.eye(3))
+    e = raised.value
+    assert e.loc == (("parameter", None, "mass"),)
+    assert str(e) == e.message and e.message.startswith("mass = -1 is invalid")
+    assert str(renamed(e, naming(wheel=lambda k: "x"))) == str(e)
+    scene = _two_boxes(-8.0)
+    b = run_batch(scene, {"contact.restitution": np.array([[0.1], [1.5]])}, duration=0.05,
+                  dt=1e-3)
+    (err,) = b.errors
+    assert err.loc[0] == ("variant", 1, None) and err.loc[-1][0] == "parameter"
+    assert err.message == f"variant 1: {err.within()}" and err.message.count("restitution =") == 1
+    assert err.within() == text(err.loc[1:], err.reason)
 
 
 def test_describe_refuses_what_is_no_place() -> None:

@@ -34,6 +34,12 @@ def _add(**inputs) -> None:
 FRONT_LEFT, REAR_LEFT, REAR_RIGHT = ("wheel", 0, None), ("wheel", 2, None), ("wheel", 3, None)
 # the vehicle's place while it is built, and its inputs' in a scene (crashsim.errors.vehicle_place)
 CAR, CAR_INPUTS = ("part", None, "vehicle 'car'"), ("part", None, "vehicle 'car' inputs")
+
+
+def _parameter(name: str) -> tuple[str, None, str]:
+    """The place of the parameter ``name`` (innermost; its message names it)."""
+    return ("parameter", None, name)
+
 OUTSIDE = (
     "its centre at ({}) m (body frame, from the CG) lies outside the body, whose outline "
     "spans x -2.300 to 2.300 m and y -0.900 to 0.900 m: wheel positions are measured from the "
@@ -43,13 +49,14 @@ OUTSIDE = (
 # (what, call, the message, loc): the wheels alone, on a body, and driver inputs
 CASES = [
     ("radius", lambda: Wheels(2.7, 1.5, 1.1, 0.55, (0.3, -0.3)),
-     "wheel 'rear_left': radius = -0.3 is invalid: a tyre radius must be > 0 m", (REAR_LEFT,)),
+     "wheel 'rear_left': radius = -0.3 is invalid: a tyre radius must be > 0 m",
+     (REAR_LEFT, _parameter("radius"))),
     ("ackermann", lambda: Wheels(2.7, 1.5, 1.1, 0.55, 0.3, ackermann=3.0),
      "ackermann = 3 is invalid: the Ackermann fraction must lie in [0, 1.5] (1 full "
-     "Ackermann, 0 parallel steer)", ()),
+     "Ackermann, 0 parallel steer)", (_parameter("ackermann"),)),
     ("steering ratio", lambda: Wheels(2.7, 1.5, 1.1, 0.55, 0.3, steering_ratio=0.5),
      "steering_ratio = 0.5 is invalid: a steering ratio must lie in [1, 100] (about 16 for a "
-     "car, 20-30 for a truck)", ()),
+     "car, 20-30 for a truck)", (_parameter("steering_ratio"),)),
     ("cg ahead", lambda: Wheels.custom([[1, 0.7, -0.2], [1, -0.7, -0.2], [2, 0, -0.2]], 0.3,
                                        [True] * 3),
      "wheel 'wheel_2': the centre of gravity is not over the wheels: this wheel would carry "
@@ -59,12 +66,12 @@ CASES = [
      (("wheel", 2, None),)),
     ("custom radius", lambda: Wheels.custom(C4, [0.3, 0.3, 0.3, -1.0], FLAGS),
      "wheel 'wheel_3': radius = -1 is invalid: a tyre radius must be > 0 m",
-     (("wheel", 3, None),)),
+     (("wheel", 3, None), _parameter("radius"))),
     ("outside", lambda: _body().with_wheels(**{**WHEELS, "track": 2.5}),
      "vehicle 'car': wheel 'front_left': " + OUTSIDE.format("1.100, 1.250"), (CAR, FRONT_LEFT)),
     ("rates", lambda: _body().with_wheels(**WHEELS, damping=(10.0, -1.0)),
      "vehicle 'car': wheel 'rear_left': damping = -1 is invalid: a damping coefficient must be "
-     ">= 0 N s/m", (CAR, REAR_LEFT)),
+     ">= 0 N s/m", (CAR, REAR_LEFT, _parameter("damping"))),
     ("shared bar", lambda: _body().with_wheels(
         Wheels.custom(C4, 0.3, FLAGS, anti_roll=[(0, 1, 1e4), (0, 3, 1e4)])),
      "vehicle 'car': anti-roll bar 1 shares a wheel with another bar: one bar per wheel",
@@ -123,7 +130,7 @@ def test_a_non_finite_wheel_centre_is_named_by_its_wheel() -> None:
         str(raised.value)
         == "wheel 'wheel_1': centre y = NaN is invalid: it must be a finite number"
     )
-    assert raised.value.loc == (("wheel", 1, None),)
+    assert raised.value.loc == (("wheel", 1, None), _parameter("centre y"))
 
 
 def _scene_error(mass: float, shape: _core.Shape, **kw) -> cs.ParameterError:
@@ -169,8 +176,10 @@ def test_check_vehicle_applies_set_vehicles_rules_with_and_without_the_body() ->
 @pytest.mark.parametrize(
     ("springs", "loc", "start"),
     [
-        ({"natural_frequency": -1.0}, FRONT_LEFT, "natural_frequency = -1 Hz is invalid"),
-        ({"damping_ratio": [0.3, 0.3, 0.3, 9.0]}, REAR_RIGHT, "damping_ratio = 9 is invalid"),
+        ({"natural_frequency": -1.0}, (FRONT_LEFT, _parameter("natural_frequency")),
+         "natural_frequency = -1 Hz is invalid"),
+        ({"damping_ratio": [0.3, 0.3, 0.3, 9.0]}, (REAR_RIGHT, _parameter("damping_ratio")),
+         "damping_ratio = 9 is invalid"),
     ],
 )
 def test_a_bad_spring_is_placed_at_its_wheel(springs, loc, start) -> None:
@@ -181,9 +190,9 @@ def test_a_bad_spring_is_placed_at_its_wheel(springs, loc, start) -> None:
     with pytest.raises(cs.ParameterError) as caught:
         _body().with_wheels(**WHEELS, **springs)
     e = caught.value
-    assert e.loc == (CAR, loc)
+    assert e.loc == (CAR, *loc)
     assert e.message.startswith(start)
-    name = wheels_module.STANDARD_NAMES[loc[1]]
+    name = wheels_module.STANDARD_NAMES[loc[0][1]]
     assert str(e) == f"vehicle 'car': wheel '{name}': {e.message}"
 
 

@@ -157,9 +157,10 @@ def check_pose(position: ArrayLike, orientation: ArrayLike) -> None:
     """The engine's checks of a fixed body's pose: ParameterError otherwise."""
 
 def describe_place(place: tuple[Any, Any, Any]) -> str:
-    """The engine's text of one place of an error's ``loc`` ("wheel 2", 'body 0 ("red")',
-    "friction zones 1 and 3"), the rendering its messages use; ValueError for a tuple that
-    is no place."""
+    """The text one place of an error's ``loc`` puts before its message ("wheel 2",
+    'body 0 ("red")', "friction zones 1 and 3", "t = 0.125000 s"), the rendering the
+    engine's messages use; "" for a parameter (the message names it with its value);
+    ValueError for a tuple that is no place."""
 
 def check_contact_stiffness(
     params: ContactParams,

@@ -54,7 +54,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
-from crashsim.errors import CrashsimError, ParameterError, Place, describe
+from crashsim.errors import CrashsimError, ParameterError, Place, text
 from crashsim.vehicles.checks import _as_float
 
 if TYPE_CHECKING:
@@ -83,22 +83,20 @@ class VariantError:
         outside the engine's batch)."""
         loc = (("variant", index, None), *error.loc)
         reason = str(error) if error.message is None else error.message
-        message = "".join(f"{describe(p)}: " for p in loc) + reason
-        return cls(index, type(error).__name__, message, loc, reason)
+        return cls(index, type(error).__name__, text(loc, reason), loc, reason)
 
     def within(self) -> str:
         """The text without the variant's own place: the places inside it, then the
         reason."""
-        inner = tuple(p for p in self.loc if p[0] != "variant")
-        return "".join(f"{describe(p)}: " for p in inner) + self.reason
+        return text(tuple(p for p in self.loc if p[0] != "variant"), self.reason)
 
     def shifted(self, start: int) -> VariantError:
         """The same error as variant ``index + start`` (a chunk's variant in its study),
         its text rebuilt from its places."""
         loc = tuple(("variant", i + start, n) if k == "variant" else (k, i, n)
                     for k, i, n in self.loc)
-        message = "".join(f"{describe(p)}: " for p in loc) + self.reason
-        return VariantError(self.index + start, self.kind, message, loc, self.reason)
+        return VariantError(self.index + start, self.kind, text(loc, self.reason), loc,
+                            self.reason)
 
 
 @dataclass(frozen=True)

@@ -14,11 +14,14 @@ PlausibilityWarning (a UserWarning): input that is possible but unlikely for a r
 
 Every error carries ``loc``, where it happened, outermost first: a tuple of (kind, index,
 name) places the engine sets (kinds: "variant", "body", "bodies", "wheel", "zone", "zones",
-"part": the ground, a vehicle being built, :func:`vehicle_place`, or its inputs; empty when
-the error is the whole input's), and ``message``, the text without the
-places (None for errors raised with a text alone). A layer that knows the names of what the
-engine numbers (a vehicle's wheels, the ground's zones, the scene's bodies) gives them with
-:func:`renamed`, which rebuilds the text from ``loc`` and ``message``: no text is parsed.
+"part": the ground, a vehicle being built, :func:`vehicle_place`, or its inputs;
+"parameter": the value at fault, by the name its message gives it, innermost; "time": the
+simulated time in s, as the index, at which a run failed; empty when the error is the whole
+input's), and ``message``, the text without the places written before it (a parameter is
+named in it with its value; None for errors raised with a text alone). A layer that knows
+the names of what the engine numbers (a vehicle's wheels, the ground's zones, the scene's
+bodies) gives them with :func:`renamed`, which rebuilds the text from ``loc`` and
+``message`` (:func:`text`): no text is parsed.
 """
 
 from collections.abc import Callable
@@ -69,7 +72,8 @@ _E = TypeVar("_E", bound=CrashsimError)
 
 def describe(place: Place) -> str:
     """The engine's text of one place: "wheel 2", "body 0 ("red")", "friction zones 1 and 3",
-    "variant 7" (the core's own rendering, ``_core.describe_place``)."""
+    "variant 7", "t = 0.125000 s"; "" for a parameter, which the message names (the core's
+    own rendering, ``_core.describe_place``)."""
     return _core.describe_place(place)
 
 
@@ -78,18 +82,25 @@ Naming = Callable[[Place, tuple[Place, ...]], "str | None"]
 its vehicle); None keeps the engine's text (:func:`describe`), "" drops the place."""
 
 
+def text(loc: tuple[Place, ...], message: str, name: Naming | None = None) -> str:
+    """An error's text as the engine writes it: the text of each place of ``loc`` (outermost
+    first; ``name``'s (:data:`Naming`) where it gives one, else :func:`describe`) and ": ",
+    then ``message``; a place whose text is "" is not written."""
+    where = [None if name is None else name(p, loc[:k]) for k, p in enumerate(loc)]
+    where = [describe(p) if t is None else t for p, t in zip(loc, where, strict=True)]
+    return "".join(f"{w}: " for w in where if w) + message
+
+
 def renamed(error: _E, name: Naming | None, suffix: str = "") -> _E:
     """``error`` again (the same class, ``loc`` and ``message``) with its text rebuilt from
     its places, each named by ``name`` (:data:`Naming`), then the message and ``suffix``. An
     error without places, or ``name`` None, keeps its text. (A place further out is added
     with :func:`at`, not as text.)"""
     if error.message is None or name is None:
-        text = str(error)
+        written = str(error)
     else:
-        parts = [name(p, error.loc[:k]) for k, p in enumerate(error.loc)]
-        where = [describe(p) if t is None else t for p, t in zip(error.loc, parts, strict=True)]
-        text = "".join(f"{w}: " for w in where if w) + error.message
-    out = type(error)(text + suffix)
+        written = text(error.loc, error.message, name)
+    out = type(error)(written + suffix)
     out.loc = error.loc
     out.message = error.message
     return out
@@ -98,7 +109,7 @@ def renamed(error: _E, name: Naming | None, suffix: str = "") -> _E:
 def at(error: _E, place: Place) -> _E:
     """``error`` one place further out, as the engine's ``Error::at`` puts it: ``place``
     first in its ``loc`` and its text (:func:`describe`) first in its text."""
-    out = type(error)(f"{describe(place)}: {error}")
+    out = type(error)(text((place,), str(error)))
     out.loc = (place, *error.loc)
     out.message = str(error) if error.message is None else error.message
     return out
@@ -134,6 +145,7 @@ __all__ = [
     "Place",
     "Naming",
     "describe",
+    "text",
     "renamed",
     "at",
     "naming",

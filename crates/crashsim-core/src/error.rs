@@ -56,6 +56,12 @@ pub enum Place {
     /// A named part or parameter group: "ground", "towing", "inputs"; from Python also a
     /// vehicle that is not yet in a scene ("vehicle 'red'") and its driver inputs.
     Part(String),
+    /// The parameter at fault, by the name its message gives it ("friction", "stiffness A",
+    /// "position x"); innermost. Not written before the message: the message names it with
+    /// its value ("friction = -1 is invalid: ...").
+    Parameter(String),
+    /// The simulated time (s) at which a run failed.
+    Time(Real),
 }
 
 impl fmt::Display for Place {
@@ -83,26 +89,29 @@ impl fmt::Display for Place {
             Place::Wheel(k) => write!(f, "wheel {k}"),
             Place::Zone(k) => write!(f, "friction zone {k}"),
             Place::Zones(a, b) => write!(f, "friction zones {a} and {b}"),
-            Place::Part(name) => f.write_str(name),
+            Place::Part(name) | Place::Parameter(name) => f.write_str(name),
+            Place::Time(t) => write!(f, "t = {t:.6} s"),
         }
     }
 }
 
 /// What went wrong ([`ErrorKind`]), where ([`Place`]s, outermost first) and a message that
-/// says how to fix it. Displayed as "place: place: message".
+/// says how to fix it. Displayed as "place: place: message", each place as
+/// [`Place::written`] says.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Error {
     /// The kind of mistake.
     pub kind: ErrorKind,
     /// Where it happened, outermost first (empty: the whole input).
     pub loc: Vec<Place>,
-    /// What is wrong and how to fix it, without the place.
+    /// What is wrong and how to fix it, without the places written before it (a parameter
+    /// is named in it, with its value).
     pub message: String,
 }
 
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for p in &self.loc {
+        for p in self.loc.iter().filter(|p| p.written()) {
             write!(f, "{p}: ")?;
         }
         f.write_str(&self.message)
@@ -149,9 +158,11 @@ impl Error {
         Error::new(ErrorKind::Simulation, message)
     }
 
-    /// A parameter error naming the parameter, its value and the accepted range.
+    /// A parameter error naming the parameter, its value and the accepted range; placed in
+    /// [`Place::Parameter`] `name`.
     pub fn parameter(name: &str, value: impl fmt::Display, expected: &str) -> Self {
         Error::invalid(format!("{name} = {value} is invalid: {expected}"))
+            .at(Place::Parameter(name.to_string()))
     }
 
     /// The same error, happened inside `place` (put before the places it has).
@@ -183,6 +194,12 @@ impl Place {
     /// Bodies `i` and `j` (unnamed).
     pub fn bodies(i: usize, j: usize) -> Place {
         Place::Bodies(vec![i, j], vec![None, None])
+    }
+
+    /// Whether an error's text writes the place before its message: every place but a
+    /// parameter, which the message names with its value.
+    pub fn written(&self) -> bool {
+        !matches!(self, Place::Parameter(_))
     }
 }
 

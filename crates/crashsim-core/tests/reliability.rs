@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use crashsim_core::math::{Matrix, Point, Real, Rotation, Vector};
-use crashsim_core::{error_kind, ErrorKind};
+use crashsim_core::{error_kind, ErrorKind, Place};
 use crashsim_core::{
     BodyState, ContactParams, DepthOfPenetration, MassProperties, MeshShape, RunOptions, World,
 };
@@ -216,6 +216,30 @@ fn the_interrupt_hook_is_asked_inside_the_first_contact_search() {
     );
     assert_eq!(calls, 3);
     assert_eq!(w.time(), 0.0, "stopped inside the first step");
+}
+
+/// The time a run stopped at is a place of its error (data, as `.loc` in Python), written
+/// before the message.
+#[test]
+fn an_interrupted_run_is_placed_at_its_time() {
+    let mut w = passing_boxes();
+    let mut last = Real::NAN;
+    let err = w
+        .run_with_progress(0.1, 1e-3, &mut |t| {
+            last = t;
+            t < 0.0025
+        })
+        .unwrap_err();
+    assert_eq!(
+        (err.kind, err.loc.clone()),
+        (ErrorKind::Simulation, vec![Place::Time(last)])
+    );
+    assert_eq!(err.message, "the run was interrupted");
+    assert_eq!(
+        err.to_string(),
+        format!("t = {last:.6} s: the run was interrupted")
+    );
+    assert!(last >= 0.0025 && last < 0.01, "{last}");
 }
 
 /// A variant of the box seed scene (red at 13.157894938354506 m/s, 0.124 m right of blue's

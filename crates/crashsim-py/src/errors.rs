@@ -47,8 +47,9 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
             "CrashsimError",
             "Root of every error crashsim raises. ``loc`` is where it happened, outermost \
              first: a tuple of (kind, index, name) places (kinds: variant, body, bodies, wheel, \
-             zone, zones, part), empty when the error is the whole input's; ``message`` is the \
-             text without the places (None when the text has none).",
+             zone, zones, part, parameter, time), empty when the error is the whole input's; \
+             ``message`` is the text without the places written before it (a parameter is \
+             named in it with its value; None when the text has no places).",
             vec![py.get_type::<PyException>()],
         )?;
         class.bind(py).setattr("loc", PyTuple::empty(py))?;
@@ -108,7 +109,8 @@ fn raise(cell: &PyOnceLock<Py<PyType>>, message: String) -> PyErr {
 }
 
 /// A place as Python sees it: (kind, index, name), with index and name None where they do
-/// not apply ("part" has a name and no index; a pair of bodies has two of each).
+/// not apply ("part" and "parameter" have a name and no index; a pair of bodies has two of
+/// each; "time" has the time in s as its index).
 fn place_tuple<'py>(py: Python<'py>, place: &Place) -> PyResult<Bound<'py, PyTuple>> {
     let none = py.None().into_bound(py);
     let (kind, index, name): (&str, Bound<'py, PyAny>, Bound<'py, PyAny>) = match place {
@@ -127,6 +129,8 @@ fn place_tuple<'py>(py: Python<'py>, place: &Place) -> PyResult<Bound<'py, PyTup
         Place::Zone(k) => ("zone", k.into_pyobject(py)?.into_any(), none),
         Place::Zones(a, b) => ("zones", PyTuple::new(py, [a, b])?.into_any(), none),
         Place::Part(n) => ("part", none, n.into_pyobject(py)?.into_any()),
+        Place::Parameter(n) => ("parameter", none, n.into_pyobject(py)?.into_any()),
+        Place::Time(t) => ("time", t.into_pyobject(py)?.into_any(), none),
     };
     PyTuple::new(py, [kind.into_pyobject(py)?.into_any(), index, name])
 }
@@ -156,16 +160,26 @@ fn place_of(place: &Bound<'_, PyAny>) -> Option<Place> {
             Place::Zones(a, b)
         }
         "part" => Place::Part(name.extract().ok()?),
+        "parameter" => Place::Parameter(name.extract().ok()?),
+        "time" => Place::Time(index.extract().ok()?),
         _ => return None,
     })
 }
 
-/// The engine's text of one place of an error's `.loc` ("wheel 2", "body 0 (\"red\")",
-/// "friction zones 1 and 3"), the one rendering the core's messages use; a ValueError for
-/// a tuple that is no place.
+/// The text one place of an error's `.loc` puts before its message ("wheel 2",
+/// "body 0 (\"red\")", "friction zones 1 and 3", "t = 0.125000 s"), the one rendering the
+/// core's messages use; "" for a parameter (the message names it with its value); a
+/// ValueError for a tuple that is no place.
 #[pyfunction]
 pub fn describe_place(place: &Bound<'_, PyAny>) -> PyResult<String> {
-    place_of(place).map(|p| p.to_string()).ok_or_else(|| {
+    let written = |p: Place| {
+        if p.written() {
+            p.to_string()
+        } else {
+            String::new()
+        }
+    };
+    place_of(place).map(written).ok_or_else(|| {
         pyo3::exceptions::PyValueError::new_err(format!(
             "{place} is no place: give (kind, index, name) as an error's .loc holds"
         ))

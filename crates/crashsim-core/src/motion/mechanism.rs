@@ -12,7 +12,7 @@
 
 use super::{MotionBound, OnGround, Stage, MAX_SUBSTEPS_PER_SECOND, MAX_SUBSTEP_SUSPENSION};
 use crate::body::RigidBody;
-use crate::error::{Error, Result};
+use crate::error::{Error, Place, Result};
 use crate::ground::Ground;
 use crate::joint::{
     applied_torques, limit_angles, limit_rows, project_positions, project_velocities, reactions,
@@ -207,11 +207,10 @@ fn runge_kutta_step(
 fn check_finite(k: usize, st: &Stage, t: Real) -> Result<()> {
     if !st.is_finite() {
         return Err(Error::simulation(format!(
-            "the motion of jointed body {k} became non-finite at t = {:.6} s: the \
-             joints, wheels or inputs ask for more than the integration can follow; \
-             check them",
-            t
-        )));
+            "the motion of jointed body {k} became non-finite: the joints, wheels or inputs \
+             ask for more than the integration can follow; check them"
+        ))
+        .at(Place::Time(t)));
     }
     Ok(())
 }

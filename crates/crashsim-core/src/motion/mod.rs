@@ -237,11 +237,11 @@ fn wheels_below(
         let c = x + r * wheel.center.coords;
         let g = ground.below(&c).ok_or_else(|| {
             Error::simulation(format!(
-                "it left the terrain at ({:.2}, {:.2}) m, t = {t:.4} s: the terrain \
-                 mesh has no surface there (extend it or add ground under the \
-                 vehicle's path)",
+                "it left the terrain at ({:.2}, {:.2}) m: the terrain mesh has no surface \
+                 there (extend it or add ground under the vehicle's path)",
                 c.x, c.y
             ))
+            .at(Place::Time(t))
             .at(Place::Wheel(k))
         })?;
         let h = (c - g.point).dot(&g.normal);
@@ -556,12 +556,12 @@ impl OnGround {
             self.hold_anchors(&props, ground, &next);
             s = next;
             if !s.is_finite() {
-                return Err(Error::simulation(format!(
-                    "the motion on the ground became non-finite at t = {:.6} s: the wheels, \
-                     tyre or inputs ask for more than the integration can follow (a very short \
-                     relaxation length or very stiff springs); check them",
-                    t + h
-                )));
+                return Err(Error::simulation(
+                    "the motion on the ground became non-finite: the wheels, tyre or inputs \
+                     ask for more than the integration can follow (a very short relaxation \
+                     length or very stiff springs); check them",
+                )
+                .at(Place::Time(t + h)));
             }
             let r = Rotation::new_normalize(s.q).to_rotation_matrix();
             let w = r.matrix() * props.inverse_inertia() * r.matrix().transpose() * s.l;

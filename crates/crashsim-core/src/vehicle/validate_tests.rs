@@ -59,6 +59,11 @@ fn holding() -> Vector {
     Vector::new(2.3, 0.9, 0.7)
 }
 
+/// The place of the parameter `name`.
+fn parameter(name: &str) -> Place {
+    Place::Parameter(name.to_string())
+}
+
 /// One bad value of each kind the rules without a body catch: a part of the message it
 /// gives and the place it is reported at (empty: the whole vehicle).
 fn bad_cases() -> Vec<(&'static str, VehicleSpec, Vec<Place>)> {
@@ -77,18 +82,18 @@ fn bad_cases() -> Vec<(&'static str, VehicleSpec, Vec<Place>)> {
         (
             "radius = -0.3 is invalid",
             edit(&|v| v.wheels[2].radius = -0.3),
-            vec![Place::Wheel(2)],
+            vec![Place::Wheel(2), parameter("radius")],
         ),
         (
             "centre y = NaN is invalid",
             edit(&|v| v.wheels[1].center.y = Real::NAN),
-            vec![Place::Wheel(1)],
+            vec![Place::Wheel(1), parameter("centre y")],
         ),
         // 1e9 N/m on 3.6 kN: about 260 Hz, past 20 Hz
         (
             "natural frequency = ",
             edit(&|v| v.wheels[3].spring_rate = 1e9),
-            vec![Place::Wheel(3)],
+            vec![Place::Wheel(3), parameter("natural frequency")],
         ),
         (
             "it is in two load groups",
@@ -103,12 +108,12 @@ fn bad_cases() -> Vec<(&'static str, VehicleSpec, Vec<Place>)> {
         (
             "relaxation_length = 0 is invalid",
             edit(&|v| v.tyre.relaxation_length = 0.0),
-            vec![],
+            vec![parameter("relaxation_length")],
         ),
         (
             "ackermann = 3 is invalid",
             edit(&|v| v.steering.ackermann = 3.0),
-            vec![],
+            vec![parameter("ackermann")],
         ),
         (
             "anti-roll bar 0 joins wheels 0 and 0",
@@ -181,7 +186,8 @@ fn a_bad_mass_is_refused_as_a_body_s_mass_is() {
             crate::body::check_mass(mass).unwrap_err(),
         );
         assert_eq!(e, by_body);
-        assert!(e.loc.is_empty() && e.message.starts_with("mass = "), "{e}");
+        assert_eq!(e.loc, [parameter("mass")]);
+        assert!(e.message.starts_with("mass = "), "{e}");
     }
     // loads for 1500 kg do not carry 2000 kg
     let e = car.validate(None, 2000.0).unwrap_err();
@@ -218,7 +224,10 @@ fn wheel_loads_name_a_wheel_with_a_non_finite_position() {
     let e = wheel_loads(&xy, &[], MASS * GRAVITY, None, None).unwrap_err();
     assert_eq!(
         (e.kind, e.loc),
-        (ErrorKind::Parameter, vec![Place::Wheel(1)])
+        (
+            ErrorKind::Parameter,
+            vec![Place::Wheel(1), parameter("centre y")]
+        )
     );
     assert_eq!(
         e.message,

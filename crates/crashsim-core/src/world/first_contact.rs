@@ -322,9 +322,9 @@ impl World {
         }
         Err(Error::simulation(format!(
             "the first-contact search did not converge within {MAX_ADVANCE_ITERATIONS} \
-             iterations near t = {} s (please report the scene)",
-            self.time
+             iterations (please report the scene)"
         ))
+        .at(Place::Time(self.time))
         .at(Place::bodies(i1, i2)))
     }
 
@@ -396,9 +396,9 @@ impl World {
         }
         Err(Error::simulation(format!(
             "the first-contact search did not converge within {MAX_ADVANCE_ITERATIONS} \
-             iterations near t = {} s (please report the scene)",
-            self.time
+             iterations (please report the scene)"
         ))
+        .at(Place::Time(self.time))
         .at(Place::bodies(pair.body1, pair.body2)))
     }
 }

@@ -562,10 +562,10 @@ impl World {
         if at_instant.1[pi] > MAX_EVENTS_PER_INSTANT {
             let p = &self.pairs[pi];
             return Err(Error::simulation(format!(
-                "they had more than {MAX_EVENTS_PER_INSTANT} contact events at t = {} s \
-                 without time advancing; the run was stopped (please report the scene)",
-                self.time
+                "they had more than {MAX_EVENTS_PER_INSTANT} contact events without time \
+                 advancing; the run was stopped (please report the scene)"
             ))
+            .at(Place::Time(self.time))
             .at(Place::bodies(p.body1, p.body2)));
         }
         Ok(())
@@ -674,12 +674,13 @@ impl World {
 
 /// The error of an interrupted run.
 pub(super) fn interrupted(t: Real) -> Error {
-    Error::simulation(format!("the run was interrupted at t = {t} s"))
+    Error::simulation("the run was interrupted").at(Place::Time(t))
 }
 
 fn out_of_memory(t: Real) -> Error {
-    Error::simulation(format!(
-        "out of memory while recording the run at t = {t} s: record less often \
-         (record_interval) or shorten the run"
-    ))
+    Error::simulation(
+        "out of memory while recording the run: record less often (record_interval) or \
+         shorten the run",
+    )
+    .at(Place::Time(t))
 }
