@@ -136,8 +136,35 @@ def test_overlapping_zones_are_an_error_naming_them() -> None:
     ],
 )
 def test_bad_zones_are_parameter_errors(zone, match) -> None:
-    with pytest.raises(cs.ParameterError, match=match):
+    with pytest.raises(cs.ParameterError, match=match) as raised:
         cs.Ground(zones=[zone])
+    # a pair given to the ground is placed at its index in the ground, as the engine does
+    assert raised.value.loc[:2] == (("part", None, "ground"), ("zone", 0, None))
+    assert str(raised.value).startswith("ground: friction zone 0: ")
+
+
+@pytest.mark.parametrize(
+    "polygon, friction, loc, message",
+    [
+        ([(0, 0), (1, 0)], 0.5, (), "it has 2 corners: a polygon needs at least 3"),
+        (square(0, 0, 1), 3.0, (("parameter", None, "friction"),),
+         "friction = 3 is invalid: a friction coefficient must lie in (0, 2] (dry asphalt about "
+         "0.8)"),
+        (square(0, 0, 1), float("nan"), (("parameter", None, "friction"),),
+         "friction = NaN is invalid: it must be a finite number"),
+        ([(0, 0), (2, 2), (2, 0), (0, 1)], 0.5, (),
+         "it crosses itself (edges 0 and 2): give its corners in order around it"),
+    ],
+)  # fmt: skip
+def test_a_zone_is_checked_by_the_engines_rules_when_made(polygon, friction, loc, message) -> None:
+    """FrictionZone is a value checked once, when made, by the core's rules of a zone (the
+    ground applies the same function to its zones), in the zone's place."""
+    for name, part in ((None, "friction zone"), ("wet", "friction zone 'wet'")):
+        with pytest.raises(cs.ParameterError) as raised:
+            cs.FrictionZone(polygon, friction, name=name)
+        e = raised.value
+        assert e.loc == (("part", None, part), *loc)
+        assert e.message == message and str(e) == f"{part}: {message}"
 
 
 def test_a_bow_tie_zone_is_said_to_cross_itself() -> None:

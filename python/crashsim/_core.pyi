@@ -39,6 +39,7 @@ __all__ = [
     "suspension",
     "wheel_loads",
     "check_table",
+    "check_friction_zone",
     "point_in_polygon",
     "check_mass",
     "check_state",
@@ -212,6 +213,10 @@ def check_vehicle(
 def point_in_polygon(x: float, y: float, polygon: Any) -> bool:
     """True when (x, y) (m) lies inside the polygon ((k, 2) corners, m) or on its edge: the
     engine's friction-zone test."""
+
+def check_friction_zone(polygon: ArrayLike, friction: float) -> None:
+    """The engine's rules of one friction zone: (k, 2) corners (m, world), at least 3, finite,
+    not crossing itself; friction in (0, 2]. ParameterError otherwise."""
 
 def check_table(table: Any, name: str) -> None:
     """Checks a (k, 2) table of (time s, value) by the core's rules (increasing times,

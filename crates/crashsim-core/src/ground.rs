@@ -45,6 +45,15 @@ pub struct FrictionZone {
     pub friction: Real,
 }
 
+impl FrictionZone {
+    /// The zone's own rules: its friction in (0, 2] and a polygon of at least 3 finite
+    /// corners that does not cross itself (a ground also refuses zones that overlap).
+    pub fn check(&self) -> Result<()> {
+        check_friction("friction", self.friction)?;
+        check_polygon(&self.polygon)
+    }
+}
+
 /// The ground point under (or over) a world point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GroundPoint {
@@ -146,9 +155,7 @@ impl Ground {
     /// Adds friction zones: each a simple polygon; zones may share edges but not overlap.
     pub fn with_zones(mut self, zones: Vec<FrictionZone>) -> Result<Ground> {
         for (k, z) in zones.iter().enumerate() {
-            check_friction("friction", z.friction)
-                .and_then(|()| check_polygon(&z.polygon))
-                .map_err(|e| e.at(Place::Zone(k)))?;
+            z.check().map_err(|e| e.at(Place::Zone(k)))?;
         }
         for i in 0..zones.len() {
             for j in 0..i {
@@ -577,7 +584,7 @@ mod tests {
         };
         assert!(Ground::plane(0.0)
             .unwrap()
-            .with_zones(vec![wet, inner])
+            .with_zones(vec![wet.clone(), inner])
             .is_err());
         let bowtie = FrictionZone {
             polygon: vec![[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]],
@@ -585,16 +592,21 @@ mod tests {
         };
         assert!(Ground::plane(0.0)
             .unwrap()
-            .with_zones(vec![bowtie])
+            .with_zones(vec![bowtie.clone()])
             .is_err());
         let bad_mu = FrictionZone {
             polygon: square(0.0, 0.0, 1.0),
             friction: -0.5,
         };
-        assert!(Ground::plane(0.0)
+        // a ground refuses a zone with the zone's own rules, placed at its index
+        let alone = bad_mu.check().unwrap_err();
+        assert_eq!(alone.loc, [Place::Parameter("friction".into())]);
+        let in_ground = Ground::plane(0.0)
             .unwrap()
-            .with_zones(vec![bad_mu])
-            .is_err());
+            .with_zones(vec![wet.clone(), bad_mu])
+            .unwrap_err();
+        assert_eq!(in_ground, alone.at(Place::Zone(1)));
+        assert!(bowtie.check().is_err() && wet.check().is_ok());
     }
 
     #[test]

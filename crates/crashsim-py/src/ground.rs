@@ -78,15 +78,31 @@ pub fn ground(
     .map_err(errors::to_py)?;
     let mut z = Vec::with_capacity(zones.len());
     for (k, (poly, friction)) in zones.iter().enumerate() {
-        let corners =
-            rows(poly, 2, "its corners").map_err(|e| errors::to_py(e.at(Place::Zone(k))))?;
-        z.push(FrictionZone {
-            polygon: corners.iter().map(|c| [c[0], c[1]]).collect(),
-            friction: *friction,
-        });
+        z.push(zone(poly, *friction).map_err(|e| errors::to_py(e.at(Place::Zone(k))))?);
     }
     base.with_friction(tyre_friction, body_friction)
         .and_then(|g| g.with_zones(z))
+        .map_err(errors::to_py)
+}
+
+/// A friction zone of (k, 2) corners (m, world) and a friction.
+fn zone(polygon: &Bound<'_, PyAny>, friction: Real) -> core::Result<FrictionZone> {
+    Ok(FrictionZone {
+        polygon: rows(polygon, 2, "its corners")?
+            .iter()
+            .map(|c| [c[0], c[1]])
+            .collect(),
+        friction,
+    })
+}
+
+/// The core's rules of one friction zone ((k, 2) corners in m, the friction): a
+/// ParameterError naming what is wrong (crashsim.FrictionZone checks itself with them; a
+/// ground checks its zones with the same rules and that they do not overlap).
+#[pyfunction]
+pub fn check_friction_zone(polygon: &Bound<'_, PyAny>, friction: Real) -> PyResult<()> {
+    zone(polygon, friction)
+        .and_then(|z| z.check())
         .map_err(errors::to_py)
 }
 

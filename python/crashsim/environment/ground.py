@@ -43,7 +43,10 @@ class FrictionZone:
     ``polygon``: (k, 2) corners (x, y) in order around it (m, world; k >= 3, not crossing
     itself). ``friction``: a coefficient, or a surface name of the built-in table
     ("wet_asphalt", "gravel", "grass", ...; docs/ground.md). ``name`` labels it in messages
-    (default: the surface name, else "zone <k>")."""
+    (default: the surface name, else "zone <k>"). Checked when made, by the engine's rules of
+    a zone (``_core.check_friction_zone``): a bad value raises ParameterError placed in the
+    part "friction zone" (or "friction zone 'name'"); a ground checks that its zones do not
+    overlap."""
 
     polygon: Array
     friction: float
@@ -51,22 +54,9 @@ class FrictionZone:
     surface: str | None = None
 
     def __init__(self, polygon: ArrayLike, friction: float | str, name: str | None = None):
-        try:
-            poly = np.array(polygon, dtype=np.float64)
-        except (TypeError, ValueError) as e:
-            raise ParameterError(
-                f"a friction zone's polygon must be (k, 2) corners (x, y) in m: {e}"
-            ) from e
-        if poly.ndim != 2 or poly.shape[1] != 2:
-            raise ParameterError(
-                f"a friction zone's polygon must have shape (k, 2) (corners x, y in m), got "
-                f"{poly.shape}"
-            )
-        poly.setflags(write=False)
-        object.__setattr__(self, "polygon", poly)
-        object.__setattr__(self, "friction", as_friction(friction, "zone friction"))
-        object.__setattr__(self, "surface", friction if isinstance(friction, str) else None)
-        object.__setattr__(self, "name", None if name is None else check_name(name, "a zone"))
+        name = None if name is None else check_name(name, "a zone")
+        part = "friction zone" if name is None else f"friction zone {name!r}"
+        _fill_zone(self, polygon, friction, name, ("part", None, part))
 
     def label(self, index: int) -> str:
         """How messages name the zone."""
@@ -81,11 +71,40 @@ class FrictionZone:
         return _core.point_in_polygon(float(x), float(y), self.polygon)
 
 
+def _fill_zone(zone: FrictionZone, polygon: ArrayLike, friction: float | str,
+               name: str | None, place: Place) -> None:
+    """Sets a new zone's fields, checked by the engine's rules of a zone; an error is put in
+    ``place``."""
+    try:
+        try:
+            poly = np.array(polygon, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise ParameterError(f"its polygon must be (k, 2) corners (x, y) in m: {e}") from e
+        if poly.ndim != 2 or poly.shape[1] != 2:
+            raise ParameterError(
+                f"its polygon must have shape (k, 2) (corners x, y in m), got {poly.shape}"
+            )
+        mu = as_friction(friction, "friction")
+        _core.check_friction_zone(poly, mu)
+    except ParameterError as e:
+        raise at(e, place) from e
+    poly.setflags(write=False)
+    object.__setattr__(zone, "polygon", poly)
+    object.__setattr__(zone, "friction", mu)
+    object.__setattr__(zone, "surface", friction if isinstance(friction, str) else None)
+    object.__setattr__(zone, "name", name)
+
+
 def _zone(value: Any, index: int) -> FrictionZone:
+    """A ground's zone ``index`` from a FrictionZone or a (polygon, friction) pair, whose
+    errors are placed at the zone's index as the engine's are (the ground's place is added by
+    the ground)."""
     if isinstance(value, FrictionZone):
         return value
     if isinstance(value, tuple | list) and len(value) == 2:
-        return FrictionZone(value[0], value[1])
+        zone = object.__new__(FrictionZone)
+        _fill_zone(zone, value[0], value[1], None, ("zone", index, None))
+        return zone
     raise ParameterError(
         f"friction zone {index} must be a crashsim.FrictionZone or (polygon, friction), got "
         f"{value!r}"
@@ -147,7 +166,12 @@ class Ground:
         self.body_friction = (
             None if body_friction is None else as_friction(body_friction, "body_friction")
         )
-        self.zones: tuple[FrictionZone, ...] = tuple(_zone(z, k) for k, z in enumerate(zones))
+        try:
+            self.zones: tuple[FrictionZone, ...] = tuple(
+                _zone(z, k) for k, z in enumerate(zones)
+            )
+        except ParameterError as e:
+            raise at(e, _GROUND) from e
         self.core = self._checked(self._core_kwargs())
 
     def _checked(self, kwargs: dict[str, Any]) -> _core.Ground:

@@ -46,6 +46,7 @@ from crashsim import _core
 from crashsim.contacts import _check_stiffness
 from crashsim.environment.ground import FrictionZone, Ground
 from crashsim.errors import CrashsimError, ParameterError
+from crashsim.errors import text as error_text
 from crashsim.filekind import special_file
 from crashsim.io.fitfile import read_fit
 from crashsim.io.scene_bodies import (
@@ -321,7 +322,7 @@ def _ground(t: _Table | None, base: Path) -> Ground | None:
         if name is not None:
             _wrap(z, "name", lambda n=name: check_name(n, "a zone"))
         z.finish()
-        zones.append(_wrap(z, None, lambda c=corners, mu=mu, n=name: FrictionZone(c, mu, n)))
+        zones.append(_file_zone(z, corners, mu, name))
     kwargs["zones"] = zones
     t.finish()
     try:
@@ -330,6 +331,16 @@ def _ground(t: _Table | None, base: Path) -> Ground | None:
         if not isinstance(e, ValueError):
             raise
         raise _ground_error(t, e) from e
+
+
+def _file_zone(z: _Table, corners: list[Any], friction: float | str,
+               name: str | None) -> FrictionZone:
+    """A zone of the file, at its key: the zone's own place (the part "friction zone") is
+    the key, so its text is what lies inside it."""
+    try:
+        return FrictionZone(corners, friction, name)
+    except ParameterError as e:
+        raise z.error(None, error_text(e.loc[1:], e.message or str(e))) from e
 
 
 def _ground_error(t: _Table, e: CrashsimError) -> SceneFileError:
