@@ -82,9 +82,9 @@ CASES = [
     ("steer a fixed wheel", lambda: _add(steer={"RL": 0.1}),
      "vehicle 'car' inputs: wheel 'rear_left': it has a steering table but does not steer "
      "(make it steerable)", (CAR_INPUTS, REAR_LEFT)),
-    ("brake", lambda: _add(brake={"RR": 1.5}),
-     "vehicle 'car' inputs: wheel 'rear_right': a braking fraction must lie in [0, 1] (got 1.5 "
-     "to 1.5)", (CAR_INPUTS, REAR_RIGHT)),
+    ("brake", lambda: _add(brake={"RR": 1.5}),  # refused when the inputs are made
+     "brake['RR']: a braking fraction must lie in [0, 1] (got 1.5 to 1.5)",
+     (("part", None, "brake['RR']"),)),
     ("brake rows", lambda: Wheels(2.7, 1.5, 1.1, 0.55, 0.3).check_inputs(
         brake=[("fraction", np.array([[0.0, 0.5]]), None)] * 3),
      "braking is given for 3 wheels but the vehicle has 4", ()),

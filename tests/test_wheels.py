@@ -295,9 +295,6 @@ def test_bad_input_tables_are_errors_naming_the_table(kwargs, match) -> None:
         ({"steer": 1.2}, "'car' inputs: the road-wheel steering angle reaches 68.8 deg"),
         ({"steering_wheel": [(0.0, 0.0), (1.0, 3.0)]}, "needs the vehicle's steering ratio"),
         ({"steer": {"RL": 0.1}}, "wheel 'rear_left': it has a steering table but does not steer"),
-        ({"brake": 1.5}, "wheel 'front_left': a braking fraction must lie in"),
-        # issue 24: 100 m/s^2 was accepted and ran as full braking
-        ({"brake": cs.Brake.deceleration(100.0)}, r"a braking deceleration must lie in \[0, 20\]"),
         ({"brake": {"middle": 1.0}}, r"brake\['middle'\]: unknown wheel 'middle'"),
         ({"wheel_states": [("XX", "locked", 0.0)]}, r"wheel_states\[0\]: unknown wheel 'XX'"),
     ],
@@ -307,6 +304,39 @@ def test_inputs_out_of_range_are_refused_when_added_to_a_vehicle(kwargs, match) 
     with pytest.raises(cs.ParameterError, match=match):
         scene.add(car(), (0.0, 0.0), inputs=cs.DriverInputs(**kwargs))
     assert len(scene) == 0
+
+
+@pytest.mark.parametrize(
+    "make, loc, message",
+    [
+        (lambda: cs.DriverInputs(brake=1.5), (("part", None, "brake"),),
+         "brake: a braking fraction must lie in [0, 1] (got 1.5 to 1.5)"),
+        (lambda: cs.DriverInputs(brake={"RR": [(0.0, 0.5), (1.0, -0.1)]}),
+         (("part", None, "brake['RR']"),),
+         "brake['RR']: a braking fraction must lie in [0, 1] (got -0.1 to 0.5)"),
+        # issue 24: 100 m/s^2 was accepted and ran as full braking
+        (lambda: cs.Brake.deceleration(100.0), (),
+         "a braking deceleration must lie in [0, 20] m/s^2 (got 100 to 100): no tyre brakes "
+         "harder than about 1.2 g; to brake at the friction limit give a braking fraction of 1"),
+        (lambda: cs.Brake("distributed", -1.0, 0.7), (),
+         "a braking deceleration must lie in [0, 20] m/s^2 (got -1 to -1): no tyre brakes "
+         "harder than about 1.2 g; to brake at the friction limit give a braking fraction of 1"),
+        (lambda: cs.Brake.distributed(5.0, 1.5), (),
+         "front_share = 1.5 is invalid: the front axle's share of the brake force must lie in "
+         "[0, 1] (passenger cars 0.6-0.8)"),
+        (lambda: cs.Brake("fraction", 0.5, 0.7), (),
+         "front_share is for a distributed brake, not a fraction one"),
+        (lambda: cs.Brake("abs", 1.0), (),
+         "braking is a 'fraction' of the friction, a 'deceleration' or 'distributed', not 'abs'"),
+    ],
+)  # fmt: skip
+def test_a_brake_is_checked_by_the_engines_rules_when_made(make, loc, message) -> None:
+    """Brake is a value checked once, when made, by the core's rules of a braking (the
+    vehicle applies the same function, Braking::check, to each wheel's); a table given to
+    DriverInputs is placed in its key."""
+    with pytest.raises(cs.ParameterError) as raised:
+        make()
+    assert str(raised.value) == message and raised.value.loc == loc
 
 
 def test_inputs_need_wheels() -> None:

@@ -40,6 +40,7 @@ __all__ = [
     "wheel_loads",
     "check_table",
     "check_friction_zone",
+    "check_brake",
     "point_in_polygon",
     "check_mass",
     "check_state",
@@ -217,6 +218,11 @@ def point_in_polygon(x: float, y: float, polygon: Any) -> bool:
 def check_friction_zone(polygon: ArrayLike, friction: float) -> None:
     """The engine's rules of one friction zone: (k, 2) corners (m, world), at least 3, finite,
     not crossing itself; friction in (0, 2]. ParameterError otherwise."""
+
+def check_brake(kind: str, table: Any, share: float | None = None) -> None:
+    """The engine's rules of one braking: kind "fraction" (in [0, 1]), "deceleration" or
+    "distributed" (m/s^2, in [0, 20]; a wheel's ``share`` of the vehicle's brake force in
+    [0, 1]), a (time s, value) table. ParameterError otherwise."""
 
 def check_table(table: Any, name: str) -> None:
     """Checks a (k, 2) table of (time s, value) by the core's rules (increasing times,

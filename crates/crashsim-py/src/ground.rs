@@ -520,26 +520,40 @@ fn brakings(brake: Vec<Option<BrakeRow<'_>>>) -> PyResult<Vec<Option<Braking>>> 
     for (k, b) in brake.into_iter().enumerate() {
         brakes.push(match b {
             None => None,
-            Some((kind, t, share)) => {
-                let t = wheel_table(&t, "braking", k)?;
-                Some(match (kind.as_str(), share) {
-                    ("fraction", None) => Braking::Fraction(t),
-                    ("deceleration", None) => Braking::Deceleration(t),
-                    ("distributed", Some(share)) => Braking::Distributed {
-                        deceleration: t,
-                        share,
-                    },
-                    (other, _) => {
-                        return Err(errors::parameter(format!(
-                            "braking is ('fraction' | 'deceleration', table) or \
-                             ('distributed', table, share), not {other:?}"
-                        )))
-                    }
-                })
-            }
+            Some((kind, t, share)) => Some(braking(&kind, wheel_table(&t, "braking", k)?, share)?),
         });
     }
     Ok(brakes)
+}
+
+/// The core's braking of a kind ("fraction", "deceleration" or "distributed" with a share),
+/// its (time s, value) table and the share.
+fn braking(kind: &str, t: Table, share: Option<Real>) -> PyResult<Braking> {
+    Ok(match (kind, share) {
+        ("fraction", None) => Braking::Fraction(t),
+        ("deceleration", None) => Braking::Deceleration(t),
+        ("distributed", Some(share)) => Braking::Distributed {
+            deceleration: t,
+            share,
+        },
+        (other, _) => {
+            return Err(errors::parameter(format!(
+                "braking is ('fraction' | 'deceleration', table) or ('distributed', table, \
+                 share), not {other:?}"
+            )))
+        }
+    })
+}
+
+/// The core's rules of one braking (kind, (time s, value) table, a wheel's share for
+/// "distributed"): a fraction in [0, 1], a deceleration in [0, 20] m/s^2, a share in [0, 1];
+/// ParameterError otherwise (crashsim.Brake checks itself with them when made; a vehicle
+/// checks each wheel's braking with the same rules).
+#[pyfunction]
+#[pyo3(signature = (kind, table, share = None))]
+pub fn check_brake(kind: &str, table: &Bound<'_, PyAny>, share: Option<Real>) -> PyResult<()> {
+    let b = braking(kind, self::table(table, "braking")?, share)?;
+    b.check().map_err(errors::to_py)
 }
 
 /// The steering input: None, or (kind, value) with kind "road_wheel" or "steering_wheel"

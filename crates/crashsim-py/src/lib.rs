@@ -760,6 +760,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(wheel_loads, m)?)?;
     m.add_function(wrap_pyfunction!(check_table, m)?)?;
     m.add_function(wrap_pyfunction!(ground::check_friction_zone, m)?)?;
+    m.add_function(wrap_pyfunction!(ground::check_brake, m)?)?;
     m.add_function(wrap_pyfunction!(errors::describe_place, m)?)?;
     m.add_function(wrap_pyfunction!(point_in_polygon, m)?)?;
     m.add_function(wrap_pyfunction!(check_mass, m)?)?;

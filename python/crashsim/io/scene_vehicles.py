@@ -24,7 +24,7 @@ from crashsim.io.tomlvalues import (
 )
 from crashsim.scene import Scene
 from crashsim.vehicles.generator.presets import SHAPE_PARAMETERS
-from crashsim.vehicles.inputs import Brake, DriverInputs
+from crashsim.vehicles.inputs import Brake, DriverInputs, named_brake
 from crashsim.vehicles.mass_properties import SOLIDS
 from crashsim.vehicles.meshio import axes_rotation, unit_scale
 from crashsim.vehicles.tyre import COMBINED_SLIP_LAWS, TYRE_MODELS, TYRE_PARAMETERS, Tyre
@@ -584,11 +584,10 @@ def _brake_inputs(i: _Table) -> dict[str, Brake]:
             r.fail(kind, f'the brake rows of "{where}" mix kinds (fraction, deceleration, split)')
         brakes.setdefault(where, (kind, []))[1].append(row)
     return {
-        w: Brake.distributed(np.array(rows), shares[w])
-        if k == "distributed"
-        else Brake(k, np.array(rows))
+        w: _wrap(i, None, lambda k=k, w=w, rows=rows: named_brake(
+            k, np.array(rows), f"brake[{w!r}]", shares.get(w)))
         for w, (k, rows) in brakes.items()
-    }
+    }  # fmt: skip
 
 
 def _wheel_state_inputs(i: _Table) -> list[tuple[str, str, Any, float | None]]:

@@ -71,48 +71,74 @@ class Brake:
     ideal distribution) or "distributed" (m/s^2: the vehicle's brake force m a split between
     the axles at a fixed ``front_share``, each axle's equally between its wheels; a wheel asked
     for more than its friction locks unless the vehicle has ABS), and its ``table`` of
-    (time s, value) rows."""
+    (time s, value) rows (a number is a constant). Checked when made, by the engine's rules
+    of a braking (``_core.check_brake``: a fraction in [0, 1], a deceleration in
+    [0, 20] m/s^2); ``front_share`` in [0, 1], given for "distributed" only."""
 
     kind: str
     table: Array
     front_share: float | None = None
 
+    def __post_init__(self) -> None:
+        if self.kind not in _BRAKE_KINDS:
+            raise ParameterError(
+                f"braking is a 'fraction' of the friction, a 'deceleration' or 'distributed', "
+                f"not {self.kind!r}"
+            )
+        demand = "fraction" if self.kind == "fraction" else "deceleration"
+        table = _table(self.table, f"braking {demand}")
+        share = self.front_share
+        if self.kind == "distributed":
+            if share is None:
+                raise ParameterError("a distributed brake needs its front_share")
+            share = float(share)
+            if not 0.0 <= share <= 1.0:
+                raise ParameterError(
+                    f"front_share = {self.front_share} is invalid: the front axle's share of "
+                    "the brake force must lie in [0, 1] (passenger cars 0.6-0.8)"
+                )
+        elif share is not None:
+            raise ParameterError(f"front_share is for a distributed brake, not a {self.kind} one")
+        _core.check_brake(demand, table)
+        object.__setattr__(self, "table", table)
+        object.__setattr__(self, "front_share", share)
+
     @classmethod
     def fraction(cls, table: TableLike) -> Brake:
         """Braking at a fraction of the available friction (0 = none, 1 = at the limit)."""
-        return cls("fraction", _table(table, "braking fraction"))
+        return cls("fraction", table)
 
     @classmethod
     def deceleration(cls, table: TableLike) -> Brake:
         """Braking at a deceleration demand (m/s^2), each wheel in proportion to its load."""
-        return cls("deceleration", _table(table, "braking deceleration"))
+        return cls("deceleration", table)
 
     @classmethod
     def distributed(cls, table: TableLike, front_share: float) -> Brake:
         """The vehicle braked at a deceleration demand (m/s^2) with a fixed front/rear split of
         its brake force: ``front_share`` (0-1; passenger cars 0.6-0.8) to the front axle."""
-        share = float(front_share)
-        if not 0.0 <= share <= 1.0:
-            raise ParameterError(
-                f"front_share = {front_share} is invalid: the front axle's share of the brake "
-                "force must lie in [0, 1] (passenger cars 0.6-0.8)"
-            )
-        return cls("distributed", _table(table, "braking deceleration"), share)
+        return cls("distributed", table, front_share)
+
+
+_BRAKE_KINDS = ("fraction", "deceleration", "distributed")
 
 
 def _brake(value: Any, name: str) -> Brake:
+    """A Brake (checked when it was made), or a table of fractions named ``name``."""
     if isinstance(value, Brake):
-        if value.kind not in ("fraction", "deceleration", "distributed"):
-            raise ParameterError(
-                f"{name}: braking is a 'fraction' of the friction, a 'deceleration' or "
-                f"'distributed', not {value.kind!r}"
-            )
-        if value.kind == "distributed":
-            if value.front_share is None:
-                raise ParameterError(f"{name}: a distributed brake needs its front_share")
-            return Brake.distributed(value.table, value.front_share)
-        return Brake(value.kind, _table(value.table, name))
-    return Brake("fraction", _table(value, name))
+        return value
+    return named_brake("fraction", value, name)
+
+
+def named_brake(kind: str, table: TableLike, name: str, front_share: float | None = None) -> Brake:
+    """The Brake of ``kind``, its table named ``name`` ("brake['RR']"): the table's own errors
+    name it ("the brake['RR'] table's times must increase"), a value out of range is placed
+    in the part ``name``."""
+    rows = _table(table, name)
+    try:
+        return Brake(kind, rows, front_share)
+    except ParameterError as e:
+        raise at(e, ("part", None, name)) from e
 
 
 @dataclass(frozen=True)

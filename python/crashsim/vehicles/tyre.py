@@ -7,7 +7,7 @@ from dataclasses import dataclass, fields
 from typing import Any
 
 from crashsim import _core
-from crashsim.errors import ParameterError
+from crashsim.errors import ParameterError, at
 from crashsim.vehicles.numbers import finite as _number
 
 __all__ = ["COMBINED_SLIP_LAWS", "TYRE_MODELS", "TYRE_PARAMETERS", "Tyre"]
@@ -82,7 +82,7 @@ class Tyre:
         try:
             core = _core.Tyre(self.model, **self._given())
         except ParameterError as err:
-            raise ParameterError(f"tyre: {err}") from err
+            raise at(err, ("part", None, "tyre")) from err
         object.__setattr__(self, "_core", core)
 
     def _given(self) -> dict[str, Any]:

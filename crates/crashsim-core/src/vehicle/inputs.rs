@@ -39,6 +39,43 @@ pub enum Braking {
     },
 }
 
+impl Braking {
+    /// The braking's own rules: a fraction in [0, 1], a deceleration demand in [0, 20] m/s^2,
+    /// a wheel's share in [0, 1] (the shares adding up to 1 is the vehicle's rule).
+    pub fn check(&self) -> Result<()> {
+        match self {
+            Braking::Fraction(t) => {
+                let (lo, hi) = t.range();
+                if lo < 0.0 || hi > 1.0 {
+                    return Err(Error::invalid(format!(
+                        "a braking fraction must lie in [0, 1] (got {lo} to {hi})"
+                    )));
+                }
+            }
+            Braking::Deceleration(t)
+            | Braking::Distributed {
+                deceleration: t, ..
+            } if t.range().0 < 0.0 || t.range().1 > MAX_BRAKING_DECELERATION => {
+                let (lo, hi) = t.range();
+                return Err(Error::invalid(format!(
+                    "a braking deceleration must lie in [0, 20] m/s^2 (got {lo} to {hi}): \
+                     no tyre brakes harder than about 1.2 g; to brake at the friction \
+                     limit give a braking fraction of 1"
+                )));
+            }
+            Braking::Distributed { share, .. } if !(0.0..=1.0).contains(share) => {
+                return Err(Error::parameter(
+                    "brake share",
+                    share,
+                    "a wheel's share of the vehicle's brake force must lie in [0, 1]",
+                ));
+            }
+            Braking::Deceleration(_) | Braking::Distributed { .. } => {}
+        }
+        Ok(())
+    }
+}
+
 /// A wheel's state: how it turns.
 #[derive(Clone, Debug, PartialEq)]
 pub enum WheelState {
@@ -100,38 +137,8 @@ impl DriverInputs {
             )));
         }
         for (k, b) in self.brake.iter().enumerate() {
-            match b {
-                Some(Braking::Fraction(t)) => {
-                    let (lo, hi) = t.range();
-                    if lo < 0.0 || hi > 1.0 {
-                        return Err(Error::invalid(format!(
-                            "a braking fraction must lie in [0, 1] (got {lo} to {hi})"
-                        ))
-                        .at(Place::Wheel(k)));
-                    }
-                }
-                Some(Braking::Deceleration(t))
-                | Some(Braking::Distributed {
-                    deceleration: t, ..
-                }) if t.range().0 < 0.0 || t.range().1 > MAX_BRAKING_DECELERATION => {
-                    let (lo, hi) = t.range();
-                    return Err(Error::invalid(format!(
-                        "a braking deceleration must lie in [0, 20] m/s^2 (got {lo} to {hi}): \
-                         no tyre brakes harder than about 1.2 g; to brake at the friction \
-                         limit give a braking fraction of 1"
-                    ))
-                    .at(Place::Wheel(k)));
-                }
-                Some(Braking::Distributed { share, .. }) if !(0.0..=1.0).contains(share) => {
-                    return Err(Error::parameter(
-                        "brake share",
-                        share,
-                        "a wheel's share of the vehicle's brake force must lie in [0, 1]",
-                    )
-                    .at(Place::Wheel(k)));
-                }
-                Some(Braking::Deceleration(_)) | Some(Braking::Distributed { .. }) => {}
-                None => {}
+            if let Some(b) = b {
+                b.check().map_err(|e| e.at(Place::Wheel(k)))?;
             }
         }
         let shares: Vec<Real> = self

@@ -234,3 +234,28 @@ fn wheel_loads_name_a_wheel_with_a_non_finite_position() {
         "centre y = NaN is invalid: it must be a finite number"
     );
 }
+
+#[test]
+fn a_braking_is_refused_alone_with_the_rules_a_vehicle_applies() {
+    let bad = Braking::Fraction(Table::constant(1.5));
+    let alone = bad.check().unwrap_err();
+    let mut spec = car();
+    spec.inputs.brake = vec![None, Some(bad), None, None];
+    assert_eq!(
+        spec.validate(None, MASS).unwrap_err(),
+        alone.at(Place::Wheel(1))
+    );
+    let too_hard = Braking::Distributed {
+        deceleration: Table::constant(25.0),
+        share: 0.35,
+    };
+    assert!(too_hard
+        .check()
+        .is_err_and(|e| e.message.contains("[0, 20] m/s^2")));
+    let share = Braking::Distributed {
+        deceleration: Table::constant(5.0),
+        share: 1.5,
+    };
+    assert_eq!(share.check().unwrap_err().loc, [parameter("brake share")]);
+    assert!(Braking::Deceleration(Table::constant(5.0)).check().is_ok());
+}
