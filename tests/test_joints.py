@@ -222,8 +222,11 @@ def test_bad_joints_are_refused_at_the_call_by_name(
     scene = cs.Scene(ground=cs.Ground())
     scene.add(_rod(), (0, 0, HIGH - 0.5))
     args = {"at": (0.0, 0.0, HIGH), **join}
-    with pytest.raises(error, match=match):
+    with pytest.raises(error, match=match) as raised:
         scene.join("rod", **args)  # type: ignore[arg-type]
+    if join.get("stiffness") is not None:  # the engine's rule: the joint and the parameter
+        assert raised.value.loc == (("part", None, "joint 'rod-world'"),
+                                    ("parameter", None, "the joint's stiffness"))  # fmt: skip
 
 
 def test_join_checks_its_axes_at_the_call() -> None:
@@ -234,6 +237,10 @@ def test_join_checks_its_axes_at_the_call() -> None:
     with pytest.raises(ParameterError, match="joint 'bar': axes: orientation must be a "
                        "finite, non-zero quaternion"):  # fmt: skip
         scene.join("car", "towed", at=(-3.1, 0.0, 0.5), axes=(0, 0, 0, 0), name="bar")
+    places = [("part", None, "joint 'bar'"), ("part", None, "axes")]
+    with pytest.raises(ParameterError) as raised:
+        scene.join("car", "towed", at=(-3.1, 0.0, 0.5), axes=(0, 0, 0, 0), name="bar")
+    assert list(raised.value.loc[:2]) == places
     with pytest.raises(ParameterError, match="joint 'car-towed': axes: the orientation matrix "
                        "is a reflection"):  # fmt: skip
         scene.join("car", "towed", at=(-3.1, 0.0, 0.5), axes=np.diag([1.0, 1.0, -1.0]))

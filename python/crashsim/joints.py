@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crashsim import _core
 from crashsim.errors import ParameterError, SceneError
+from crashsim.errors import at as error_at
 
 __all__ = ["JOINT_KINDS", "Joint", "JointEvent", "JointRecord"]
 
@@ -125,7 +126,7 @@ def make_joint(
             collide=collide,
         )
     except ParameterError as err:
-        raise ParameterError(f"joint {name!r}: {err}") from err
+        raise error_at(err, ("part", None, f"joint {name!r}")) from err
     anchor, q = checked_frame(name, at, axes)
     in_bodies = tuple(
         (_vector(p, 3, f"joint {name!r}: anchor"), _vector(r, 4, f"joint {name!r}: axes"))

@@ -37,6 +37,7 @@ from crashsim.errors import (
     SceneError,
     renamed,
 )
+from crashsim.errors import at as error_at
 from crashsim.human.bicycle import Bicycle
 from crashsim.human.cyclist import Cyclist
 from crashsim.human.pedestrian import Pedestrian
@@ -241,7 +242,7 @@ class Scene(_People):
         try:
             _core.check_pose(pos, q)
         except ParameterError as e:
-            raise ParameterError(f"obstacle {obstacle.name!r}: {e}") from e
+            raise error_at(e, ("part", None, f"obstacle {obstacle.name!r}")) from e
         placement = _ObstaclePlacement(obstacle, _read_only(pos), _read_only(q), flat)
         self._obstacles.append(_grounded(self._ground, placement) if flat else placement)
         return self
@@ -461,7 +462,8 @@ class Scene(_People):
                 q = _orientation(None, axes)
                 _check_state(np.zeros(3), q, np.zeros(3), np.zeros(3))
             except ParameterError as e:
-                raise ParameterError(f"joint {label!r}: axes: {e}") from e
+                where = ("part", None, f"joint {label!r}")
+                raise error_at(error_at(e, ("part", None, "axes")), where) from e
         anchor, axes_q = checked_frame(label, at, q)
         world = (anchor, axes_q)
         world2 = world
@@ -475,7 +477,8 @@ class Scene(_People):
                 q2 = _orientation(None, axes2)
                 _check_state(np.zeros(3), q2, np.zeros(3), np.zeros(3))
             except ParameterError as e:
-                raise ParameterError(f"joint {label!r}: axes2: {e}") from e
+                where = ("part", None, f"joint {label!r}")
+                raise error_at(error_at(e, ("part", None, "axes2")), where) from e
             world2 = checked_frame(label, at, q2)
         joint = make_joint(
             label,

@@ -22,6 +22,7 @@ from crashsim.errors import (
     ParameterError,
     Place,
     SceneError,
+    at,
     renamed,
 )
 from crashsim.joints import Joint
@@ -97,7 +98,7 @@ def _build_spec(
                 # the inputs' steering ratio (if given) replaces the wheels'
                 spec.set_vehicle(i, **{**w.spec(p.vehicle.mass), **inputs})
             except ParameterError as e:  # pragma: no cover - checked when put together
-                raise ParameterError(f"{what}: {e}") from e
+                raise at(e, ("part", None, what)) from e
     for joint in joints:
         a, b = joint.vehicles
         spec.add_joint(

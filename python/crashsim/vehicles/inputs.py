@@ -233,7 +233,7 @@ def _targets(wheels: Wheels, key: str | int, what: str) -> tuple[int, ...]:
     try:
         return (wheels.index(key),)
     except ParameterError as e:
-        raise ParameterError(f"{what}: {e}") from e
+        raise at(e, ("part", None, what)) from e
 
 
 class DriverInputs:
