@@ -41,6 +41,8 @@ __all__ = [
     "check_table",
     "check_friction_zone",
     "check_brake",
+    "check_wheel_switch",
+    "check_steering_ratio",
     "point_in_polygon",
     "check_mass",
     "check_state",
@@ -223,6 +225,14 @@ def check_brake(kind: str, table: Any, share: float | None = None) -> None:
     """The engine's rules of one braking: kind "fraction" (in [0, 1]), "deceleration" or
     "distributed" (m/s^2, in [0, 20]; a wheel's ``share`` of the vehicle's brake force in
     [0, 1]), a (time s, value) table. ParameterError otherwise."""
+
+def check_wheel_switch(trigger: str, when: float, state: str, fraction: float) -> None:
+    """The engine's rules of one wheel-state switch: at a finite ``"time"`` (s) or the
+    vehicle's ``"exchange"`` n (a whole number from 1), ``state`` "free", "locked" or
+    "braked" (``fraction`` of the friction in [0, 1]). ParameterError otherwise."""
+
+def check_steering_ratio(ratio: float) -> None:
+    """The engine's rule of a steering ratio: finite, in [1, 100]. ParameterError otherwise."""
 
 def check_table(table: Any, name: str) -> None:
     """Checks a (k, 2) table of (time s, value) by the core's rules (increasing times,

@@ -381,12 +381,41 @@ fn switch(obj: &Bound<'_, PyAny>) -> PyResult<WheelSwitch> {
                     .into(),
             )
         })?;
-    let at = match trigger.as_str() {
+    wheel_switch(wheel, &trigger, when, &state, fraction)
+}
+
+/// The core's rules of one wheel-state switch ('time' | 'exchange', when: s or the
+/// vehicle's n-th exchange, 'free' | 'locked' | 'braked', the braked fraction):
+/// ParameterError otherwise (crashsim.DriverInputs checks its switches with them when made;
+/// a vehicle checks them with the same rules and that their wheels exist).
+#[pyfunction]
+pub fn check_wheel_switch(trigger: &str, when: Real, state: &str, fraction: Real) -> PyResult<()> {
+    let s = wheel_switch(0, trigger, when, state, fraction)?;
+    s.check().map_err(errors::to_py)
+}
+
+/// The core's rule of a steering ratio (steering-wheel angle per road-wheel angle): finite,
+/// in [1, 100]; ParameterError otherwise (DriverInputs' own ratio; a vehicle's is checked
+/// with its steering).
+#[pyfunction]
+pub fn check_steering_ratio(ratio: Real) -> PyResult<()> {
+    core::vehicle::steering::check_steering_ratio(ratio).map_err(errors::to_py)
+}
+
+fn wheel_switch(
+    wheel: usize,
+    trigger: &str,
+    when: Real,
+    state: &str,
+    fraction: Real,
+) -> PyResult<WheelSwitch> {
+    let at = match trigger {
         "time" => Trigger::Time(when),
         "exchange" => {
-            if when < 1.0 || when.fract() != 0.0 {
+            if !(when >= 0.0) || when.fract() != 0.0 {
                 return Err(errors::parameter(format!(
-                    "a wheel-state switch at exchange {when}: give a whole number from 1"
+                    "a wheel-state switch at exchange {when}: give a whole number (exchanges \
+                     count from 1)"
                 )));
             }
             Trigger::Exchange(when as usize)
@@ -397,7 +426,7 @@ fn switch(obj: &Bound<'_, PyAny>) -> PyResult<WheelSwitch> {
             )))
         }
     };
-    let state = match state.as_str() {
+    let state = match state {
         "free" => WheelState::Free,
         "locked" => WheelState::Locked,
         "braked" => WheelState::Braked(fraction),

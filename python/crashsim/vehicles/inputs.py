@@ -19,7 +19,6 @@ checks the tables and ranges (increasing times, road-wheel angles within 60 deg,
 
 from __future__ import annotations
 
-import math
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -171,57 +170,53 @@ def _switch(value: Any, k: int) -> WheelStateSwitch:
             f"wheel_states[{k}]: state {item.state!r} is unknown: use 'free', 'locked' or "
             "'braked' (with a fraction)"
         )
-    at = item.at
-    if isinstance(at, str):
-        m = re.fullmatch(r"\s*exchange\s*(\d*)\s*", at.lower())
+    when = item.at
+    if isinstance(when, str):
+        m = re.fullmatch(r"\s*exchange\s*(\d*)\s*", when.lower())
         if m is None:
             raise ParameterError(
-                f"wheel_states[{k}]: at = {at!r} is unknown: give a time (s), 'exchange' "
+                f"wheel_states[{k}]: at = {when!r} is unknown: give a time (s), 'exchange' "
                 "(the vehicle's first) or 'exchange N'"
             )
-        at = ("exchange", int(m.group(1) or 1))
-        if at[1] < 1:
-            raise ParameterError(
-                f"wheel_states[{k}]: exchange {at[1]}: exchanges count from 1 (the first)"
-            )
-    elif isinstance(at, tuple | list):
-        if len(at) != 2 or at[0] != "exchange" or isinstance(at[1], bool):
-            raise ParameterError(f"wheel_states[{k}]: at = {at!r}: give ('exchange', n)")
-        n = at[1]
-        if not isinstance(n, int | np.integer) or n < 1:
+        when = ("exchange", int(m.group(1) or 1))
+    elif isinstance(when, tuple | list):
+        if len(when) != 2 or when[0] != "exchange" or isinstance(when[1], bool):
+            raise ParameterError(f"wheel_states[{k}]: at = {when!r}: give ('exchange', n)")
+        n = when[1]
+        if not isinstance(n, int | np.integer):
             raise ParameterError(
                 f"wheel_states[{k}]: exchange {n!r}: exchanges count from 1 (a whole number)"
             )
-        at = ("exchange", int(n))
+        when = ("exchange", int(n))
     else:
-        if isinstance(at, bool):
-            raise ParameterError(f"wheel_states[{k}]: at must be a time (s), got {at!r}")
+        if isinstance(when, bool):
+            raise ParameterError(f"wheel_states[{k}]: at must be a time (s), got {when!r}")
         try:
-            at = float(at)
+            when = float(when)
         except (TypeError, ValueError) as e:
             raise ParameterError(
-                f"wheel_states[{k}]: at must be a time (s) or an exchange, got {at!r}"
+                f"wheel_states[{k}]: at must be a time (s) or an exchange, got {when!r}"
             ) from e
-        if not math.isfinite(at):
-            raise ParameterError(f"wheel_states[{k}]: time {at} is not a finite number of s")
+    fraction = None
     if state != "braked":
         if item.fraction is not None:
             raise ParameterError(f"wheel_states[{k}]: a fraction is for the 'braked' state only")
-        return WheelStateSwitch(item.wheel, state, at, None)
-    if item.fraction is None:
+    elif item.fraction is None:
         raise ParameterError(
             f"wheel_states[{k}]: 'braked' needs its fraction of the friction (0-1): "
             "(wheel, 'braked', at, fraction); a wheel that does not turn at all is 'locked'"
         )
-    try:
-        fraction = float(item.fraction)
-    except (TypeError, ValueError) as e:
-        raise ParameterError(f"wheel_states[{k}]: fraction must be a number in [0, 1]") from e
-    if not 0.0 <= fraction <= 1.0:
-        raise ParameterError(
-            f"wheel_states[{k}]: braked fraction = {fraction} is invalid: it must lie in [0, 1]"
-        )
-    return WheelStateSwitch(item.wheel, state, at, fraction)
+    else:
+        try:
+            fraction = float(item.fraction)
+        except (TypeError, ValueError) as e:
+            raise ParameterError(f"wheel_states[{k}]: fraction must be a number in [0, 1]") from e
+    trigger, moment = ("exchange", float(when[1])) if isinstance(when, tuple) else ("time", when)
+    try:  # the engine's rules of a switch: a finite time, exchanges from 1, a fraction in [0, 1]
+        _core.check_wheel_switch(trigger, moment, state, 0.0 if fraction is None else fraction)
+    except ParameterError as e:
+        raise at(e, ("part", None, f"wheel_states[{k}]")) from e
+    return WheelStateSwitch(item.wheel, state, when, fraction)
 
 
 def _targets(wheels: Wheels, key: str | int, what: str) -> tuple[int, ...]:
@@ -302,10 +297,7 @@ class DriverInputs:
         if steering_wheel is not None:
             if steering_ratio is not None:
                 ratio = float(steering_ratio)
-                if not math.isfinite(ratio) or ratio <= 0.0:
-                    raise ParameterError(
-                        f"steering_ratio = {steering_ratio} is invalid: it must be > 0 (about 16)"
-                    )
+                _core.check_steering_ratio(ratio)
                 self.steering_ratio = ratio
             self.steering_wheel = _table(steering_wheel, "steering_wheel")
         elif steering_ratio is not None:

@@ -108,6 +108,32 @@ pub struct WheelSwitch {
     pub state: WheelState,
 }
 
+impl WheelSwitch {
+    /// The switch's own rules: a finite time or an exchange counted from 1, a braked
+    /// fraction in [0, 1] (its wheel is the vehicle's rule).
+    pub fn check(&self) -> Result<()> {
+        match self.at {
+            Trigger::Time(t) => require_finite("wheel-state switch time", t)?,
+            Trigger::Exchange(0) => {
+                return Err(Error::invalid(
+                    "a wheel-state switch at exchange 0: exchanges count from 1",
+                ))
+            }
+            Trigger::Exchange(_) => {}
+        }
+        if let WheelState::Braked(f) = self.state {
+            if !(0.0..=1.0).contains(&f) {
+                return Err(Error::parameter(
+                    "braked wheel fraction",
+                    f,
+                    "it must lie in [0, 1]",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// A vehicle's driver inputs and wheel-state switches.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct DriverInputs {
@@ -164,24 +190,7 @@ impl DriverInputs {
                     s.wheel
                 )));
             }
-            match s.at {
-                Trigger::Time(t) => require_finite("wheel-state switch time", t)?,
-                Trigger::Exchange(0) => {
-                    return Err(Error::invalid(
-                        "a wheel-state switch at exchange 0: exchanges count from 1",
-                    ))
-                }
-                Trigger::Exchange(_) => {}
-            }
-            if let WheelState::Braked(f) = s.state {
-                if !(0.0..=1.0).contains(&f) {
-                    return Err(Error::parameter(
-                        "braked wheel fraction",
-                        f,
-                        "it must lie in [0, 1]",
-                    ));
-                }
-            }
+            s.check()?;
         }
         Ok(())
     }

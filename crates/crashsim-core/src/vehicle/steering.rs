@@ -294,6 +294,19 @@ impl LinkageGeometry {
     }
 }
 
+/// Checks a steering ratio (steering-wheel angle per road-wheel angle): finite, in [1, 100].
+pub fn check_steering_ratio(r: Real) -> Result<()> {
+    require_finite("steering_ratio", r)?;
+    if !(1.0..=100.0).contains(&r) {
+        return Err(Error::parameter(
+            "steering_ratio",
+            r,
+            "a steering ratio must lie in [1, 100] (about 16 for a car, 20-30 for a truck)",
+        ));
+    }
+    Ok(())
+}
+
 impl Steering {
     /// Checks the numbers.
     pub fn validate(&self) -> Result<()> {
@@ -307,15 +320,7 @@ impl Steering {
             ));
         }
         if let Some(r) = self.ratio {
-            require_finite("steering_ratio", r)?;
-            if !(1.0..=100.0).contains(&r) {
-                return Err(Error::parameter(
-                    "steering_ratio",
-                    r,
-                    "a steering ratio must lie in [1, 100] (about 16 for a car, 20-30 for a \
-                     truck)",
-                ));
-            }
+            check_steering_ratio(r)?;
         }
         Ok(())
     }

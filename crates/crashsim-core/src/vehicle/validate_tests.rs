@@ -259,3 +259,26 @@ fn a_braking_is_refused_alone_with_the_rules_a_vehicle_applies() {
     assert_eq!(share.check().unwrap_err().loc, [parameter("brake share")]);
     assert!(Braking::Deceleration(Table::constant(5.0)).check().is_ok());
 }
+
+#[test]
+fn a_wheel_switch_is_refused_alone_with_the_rules_a_vehicle_applies() {
+    let braked = |f: Real| WheelSwitch {
+        wheel: 2,
+        at: Trigger::Time(0.5),
+        state: WheelState::Braked(f),
+    };
+    let alone = braked(1.5).check().unwrap_err();
+    assert_eq!(alone.loc, [parameter("braked wheel fraction")]);
+    let mut spec = car();
+    spec.inputs.switches = vec![braked(0.3), braked(1.5)];
+    assert_eq!(spec.validate(None, MASS).unwrap_err(), alone);
+    let never = WheelSwitch {
+        wheel: 0,
+        at: Trigger::Exchange(0),
+        state: WheelState::Locked,
+    };
+    assert!(never
+        .check()
+        .is_err_and(|e| e.message.contains("count from 1")));
+    assert!(braked(0.3).check().is_ok());
+}
