@@ -179,6 +179,22 @@ def test_a_parameter_error_has_its_parameter_in_loc_and_its_text_once() -> None:
     assert err.within() == text(err.loc[1:], err.reason)
 
 
+def test_a_runs_settings_are_the_engines_rules_checked_when_the_spec_is_made() -> None:
+    """RunSpec::check, at to_spec (set_run): a batch, a scene's run and a spec all refuse
+    the same values with the same error, before any world is built."""
+    scene = _two_boxes(-8.0)
+    for settings, name in (({"dt": 0.0}, "dt"), ({"duration": -1.0}, "duration"),
+                           ({"record_interval": -1.0}, "record_interval")):  # fmt: skip
+        with pytest.raises(cs.ParameterError) as by_spec:
+            scene.to_spec(**{"duration": 0.05, "dt": 1e-3, **settings})
+        assert by_spec.value.loc == (("parameter", None, name),)
+        with pytest.raises(cs.ParameterError) as by_run:
+            scene.run(**{"duration": 0.05, "dt": 1e-3, **settings})
+        assert str(by_run.value) == str(by_spec.value)
+    with pytest.raises(cs.ParameterError, match="dt = 0 is invalid: the time step must be > 0"):
+        run_batch(scene, {"contact.restitution": np.array([[0.1]])}, duration=0.05, dt=0.0)
+
+
 def test_describe_refuses_what_is_no_place() -> None:
     for bad in (("lane", 1, None), ("wheel", "front", None), ("body", 0)):
         with pytest.raises(ValueError, match="is no place"):

@@ -43,6 +43,7 @@ __all__ = [
     "check_brake",
     "check_wheel_switch",
     "check_steering_ratio",
+    "check_face_stiffness",
     "point_in_polygon",
     "check_mass",
     "check_state",
@@ -233,6 +234,10 @@ def check_wheel_switch(trigger: str, when: float, state: str, fraction: float) -
 
 def check_steering_ratio(ratio: float) -> None:
     """The engine's rule of a steering ratio: finite, in [1, 100]. ParameterError otherwise."""
+
+def check_face_stiffness(a: float, b: float) -> None:
+    """The engine's rules of a face's CRASH3 coefficients: A (N/m) finite and >= 0, B
+    (N/m^2) finite and > 0. ParameterError otherwise."""
 
 def check_table(table: Any, name: str) -> None:
     """Checks a (k, 2) table of (time s, value) by the core's rules (increasing times,
@@ -522,7 +527,8 @@ class SceneSpec:
     ) -> None:
         """The run: duration (s; with until_rest the longest it may take), largest step dt
         (s), record_interval and max_history_bytes as World.run takes them. Default 1 s at
-        1 ms. Checked when the scene runs."""
+        1 ms. The duration, step and record_interval are checked here (ParameterError); a
+        run until rest's ground and the history's size when the scene runs."""
     def build(self) -> World:
         """A fresh engine world holding the scene at t = 0 (every value checked)."""
     def run(self, progress: Callable[[float], object] | None = None) -> dict[str, Any]:

@@ -213,6 +213,16 @@ pub fn contact_params(
     })
 }
 
+/// The core's rules of a face's CRASH3 coefficients (FaceStiffness::new): A (N/m) finite
+/// and >= 0, B (N/m^2) finite and > 0; ParameterError otherwise (crashsim's FaceStiffness
+/// checks itself with them when made).
+#[pyfunction]
+pub fn check_face_stiffness(a: f64, b: f64) -> PyResult<()> {
+    core::FaceStiffness::new(a, b)
+        .map(|_| ())
+        .map_err(errors::to_py)
+}
+
 /// A face's (A, B) pair (N/m, N/m^2) or None.
 pub fn face_stiffness(
     value: Option<&Bound<'_, PyAny>>,

@@ -763,6 +763,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ground::check_brake, m)?)?;
     m.add_function(wrap_pyfunction!(ground::check_wheel_switch, m)?)?;
     m.add_function(wrap_pyfunction!(ground::check_steering_ratio, m)?)?;
+    m.add_function(wrap_pyfunction!(convert::check_face_stiffness, m)?)?;
     m.add_function(wrap_pyfunction!(errors::describe_place, m)?)?;
     m.add_function(wrap_pyfunction!(point_in_polygon, m)?)?;
     m.add_function(wrap_pyfunction!(check_mass, m)?)?;

@@ -504,7 +504,8 @@ impl SceneSpec {
 
     /// The run: duration (s; with until_rest the longest), largest step dt (s), the kept
     /// samples' spacing record_interval (s; None: the engine's), the history limit (bytes;
-    /// None: 2**30), until_rest (needs a ground). Checked when the scene runs.
+    /// None: 2**30), until_rest (needs a ground). The duration, step and interval are checked
+    /// here (RunSpec::check); the ground and the history's size when the scene runs.
     #[pyo3(signature = (duration, dt, *, record_interval = None, max_history_bytes = None, until_rest = false))]
     fn set_run(
         &mut self,
@@ -513,8 +514,8 @@ impl SceneSpec {
         record_interval: Option<f64>,
         max_history_bytes: Option<u64>,
         until_rest: bool,
-    ) {
-        self.inner.run = core::RunSpec {
+    ) -> PyResult<()> {
+        let run = core::RunSpec {
             duration,
             dt,
             options: core::RunOptions {
@@ -524,6 +525,9 @@ impl SceneSpec {
                 history: true,
             },
         };
+        run.check().map_err(errors::to_py)?;
+        self.inner.run = run;
+        Ok(())
     }
 
     /// (duration s, dt s, until_rest) of the run.

@@ -12,11 +12,11 @@ Faces are named in the vehicle's body frame (ISO 8855: x forward, y left): "fron
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from crashsim import _core
 from crashsim.errors import ParameterError
 
 __all__ = ["FACES", "FaceStiffness", "Stiffness"]
@@ -32,12 +32,10 @@ class FaceStiffness:
     B: float
 
     def __post_init__(self) -> None:
-        for name, value, low_ok in (("A", self.A, True), ("B", self.B, False)):
+        for name, value in (("A", self.A), ("B", self.B)):
             if isinstance(value, bool) or not isinstance(value, int | float):
                 raise ParameterError(f"stiffness {name} must be a number, got {value!r}")
-            if not math.isfinite(value) or value < 0.0 or (value == 0.0 and not low_ok):
-                rule = ">= 0 N/m" if low_ok else "> 0 N/m^2"
-                raise ParameterError(f"stiffness {name} = {value} is invalid: it must be {rule}")
+        _core.check_face_stiffness(float(self.A), float(self.B))  # A >= 0 N/m, B > 0 N/m^2
         object.__setattr__(self, "A", float(self.A))
         object.__setattr__(self, "B", float(self.B))
 

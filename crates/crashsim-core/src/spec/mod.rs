@@ -93,6 +93,17 @@ pub struct RunSpec {
     pub options: RunOptions,
 }
 
+impl RunSpec {
+    /// The run's own rules, checked before any world is built: the duration and step
+    /// ([`crate::world::check_run_length`]) and the recording interval. A run until rest
+    /// needs a ground, and the history must fit its limit: the world checks those when it
+    /// runs.
+    pub fn check(&self) -> Result<()> {
+        let steps = crate::world::check_run_length(self.duration, self.dt)?;
+        self.options.stride(steps, self.dt).map(|_| ())
+    }
+}
+
 impl Default for RunSpec {
     fn default() -> Self {
         RunSpec {

@@ -48,8 +48,8 @@ pub use events::{
 };
 pub use joints::{JointEvent, ANCHOR_REACH};
 pub use stepper::{
-    RunOptions, DEFAULT_MAX_HISTORY_BYTES, DEFAULT_SAMPLES, REST_SPEED, REST_TIME, REST_TURN_SPEED,
-    REST_YAW_RATE,
+    check_run_length, RunOptions, DEFAULT_MAX_HISTORY_BYTES, DEFAULT_SAMPLES, REST_SPEED,
+    REST_TIME, REST_TURN_SPEED, REST_YAW_RATE,
 };
 
 /// First-overlap instants are resolved to this (s).

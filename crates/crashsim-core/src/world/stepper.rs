@@ -113,7 +113,7 @@ fn show_bytes(b: u64) -> String {
 
 impl RunOptions {
     /// Steps between kept samples for a run of `steps` steps of `dt` s.
-    fn stride(&self, steps: usize, dt: Real) -> Result<usize> {
+    pub(crate) fn stride(&self, steps: usize, dt: Real) -> Result<usize> {
         match self.record_interval {
             None => Ok(steps.div_ceil(DEFAULT_SAMPLES).max(1)),
             Some(interval) => {
@@ -272,27 +272,13 @@ impl World {
 
     /// Checks a run's duration (s), step (s) and options; the number of grid steps.
     fn check_run(&self, duration: Real, dt: Real, options: &RunOptions) -> Result<usize> {
-        require_finite("duration", duration)?;
-        require_finite("dt", dt)?;
-        if duration < 0.0 {
-            return Err(Error::parameter("duration", duration, "it must be >= 0 s"));
-        }
-        if dt <= 0.0 {
-            return Err(Error::parameter("dt", dt, "the time step must be > 0 s"));
-        }
-        if duration / dt > MAX_STEPS {
-            return Err(Error::parameter(
-                "dt",
-                dt,
-                "duration / dt exceeds 1e8 steps: use a larger step",
-            ));
-        }
+        let steps = check_run_length(duration, dt)?;
         if options.until_rest && self.ground.is_none() {
             return Err(Error::invalid(
                 "a run until rest needs a ground (without one nothing slows the vehicles)",
             ));
         }
-        Ok((duration / dt).ceil() as usize)
+        Ok(steps)
     }
 
     /// The first run's set-up (nothing on a resumed run): the pairs' stiffness, the initial
@@ -670,6 +656,27 @@ impl World {
         }
         Ok(())
     }
+}
+
+/// Checks a run's duration (s, finite, >= 0) and step (s, finite, > 0, at most 1e8 steps);
+/// the number of grid steps.
+pub fn check_run_length(duration: Real, dt: Real) -> Result<usize> {
+    require_finite("duration", duration)?;
+    require_finite("dt", dt)?;
+    if duration < 0.0 {
+        return Err(Error::parameter("duration", duration, "it must be >= 0 s"));
+    }
+    if dt <= 0.0 {
+        return Err(Error::parameter("dt", dt, "the time step must be > 0 s"));
+    }
+    if duration / dt > MAX_STEPS {
+        return Err(Error::parameter(
+            "dt",
+            dt,
+            "duration / dt exceeds 1e8 steps: use a larger step",
+        ));
+    }
+    Ok((duration / dt).ceil() as usize)
 }
 
 /// The error of an interrupted run.
