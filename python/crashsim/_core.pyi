@@ -222,10 +222,9 @@ def check_friction_zone(polygon: ArrayLike, friction: float) -> None:
     """The engine's rules of one friction zone: (k, 2) corners (m, world), at least 3, finite,
     not crossing itself; friction in (0, 2]. ParameterError otherwise."""
 
-def check_brake(kind: str, table: Any, share: float | None = None) -> None:
-    """The engine's rules of one braking: kind "fraction" (in [0, 1]), "deceleration" or
-    "distributed" (m/s^2, in [0, 20]; a wheel's ``share`` of the vehicle's brake force in
-    [0, 1]), a (time s, value) table. ParameterError otherwise."""
+def check_brake(kind: str, table: Any) -> None:
+    """The engine's rules of one braking demand: kind "fraction" (in [0, 1]) or
+    "deceleration" (m/s^2, in [0, 20]), a (time s, value) table. ParameterError otherwise."""
 
 def check_wheel_switch(trigger: str, when: float, state: str, fraction: float) -> None:
     """The engine's rules of one wheel-state switch: at a finite ``"time"`` (s) or the

@@ -574,14 +574,13 @@ fn braking(kind: &str, t: Table, share: Option<Real>) -> PyResult<Braking> {
     })
 }
 
-/// The core's rules of one braking (kind, (time s, value) table, a wheel's share for
-/// "distributed"): a fraction in [0, 1], a deceleration in [0, 20] m/s^2, a share in [0, 1];
-/// ParameterError otherwise (crashsim.Brake checks itself with them when made; a vehicle
-/// checks each wheel's braking with the same rules).
+/// The core's rules of one braking demand (kind "fraction" or "deceleration", its (time s,
+/// value) table): a fraction in [0, 1], a deceleration in [0, 20] m/s^2; ParameterError
+/// otherwise (crashsim.Brake checks itself with them when made, a split brake's demand as a
+/// deceleration; a vehicle checks each wheel's braking with the same rules).
 #[pyfunction]
-#[pyo3(signature = (kind, table, share = None))]
-pub fn check_brake(kind: &str, table: &Bound<'_, PyAny>, share: Option<Real>) -> PyResult<()> {
-    let b = braking(kind, self::table(table, "braking")?, share)?;
+pub fn check_brake(kind: &str, table: &Bound<'_, PyAny>) -> PyResult<()> {
+    let b = braking(kind, self::table(table, "braking")?, None)?;
     b.check().map_err(errors::to_py)
 }
 

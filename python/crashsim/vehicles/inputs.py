@@ -211,12 +211,19 @@ def _switch(value: Any, k: int) -> WheelStateSwitch:
             fraction = float(item.fraction)
         except (TypeError, ValueError) as e:
             raise ParameterError(f"wheel_states[{k}]: fraction must be a number in [0, 1]") from e
-    trigger, moment = ("exchange", float(when[1])) if isinstance(when, tuple) else ("time", when)
+    switch = WheelStateSwitch(item.wheel, state, when, fraction)
     try:  # the engine's rules of a switch: a finite time, exchanges from 1, a fraction in [0, 1]
-        _core.check_wheel_switch(trigger, moment, state, 0.0 if fraction is None else fraction)
+        _core.check_wheel_switch(*_engine_terms(switch))
     except ParameterError as e:
         raise at(e, ("part", None, f"wheel_states[{k}]")) from e
-    return WheelStateSwitch(item.wheel, state, when, fraction)
+    return switch
+
+
+def _engine_terms(s: WheelStateSwitch) -> tuple[str, float, str, float]:
+    """(trigger, when, state, fraction) of a switch as the engine takes it: "time" and s, or
+    "exchange" and n; the fraction (1 when not braked: the engine does not read it)."""
+    trigger, when = ("exchange", float(s.at[1])) if isinstance(s.at, tuple) else ("time", s.at)
+    return trigger, float(when), s.state, 1.0 if s.fraction is None else s.fraction
 
 
 def _targets(wheels: Wheels, key: str | int, what: str) -> tuple[int, ...]:
@@ -357,12 +364,9 @@ class DriverInputs:
                 drive[i] = t
         switches = []
         for k, s in enumerate(self.wheel_states):
-            fraction = 1.0 if s.fraction is None else s.fraction  # the engine's unused value
+            terms = _engine_terms(s)
             for i in _targets(wheels, s.wheel, f"{what}: wheel_states[{k}]"):
-                if isinstance(s.at, tuple):
-                    switches.append((i, "exchange", float(s.at[1]), s.state, fraction))
-                else:
-                    switches.append((i, "time", float(s.at), s.state, fraction))
+                switches.append((i, *terms))
         out: dict[str, Any] = {"switches": switches}
         if self.steer is not None:
             out["steer"] = ("road_wheel", self.steer)
