@@ -9,6 +9,7 @@ from __future__ import annotations
 import itertools
 import math
 import os
+import signal
 from pathlib import Path
 
 import crashsim as cs
@@ -35,6 +36,14 @@ settings.register_profile(
     suppress_health_check=[HealthCheck.too_slow],
 )
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+# The Ctrl-C tests (test_batch, test_studies, test_studies_cli, test_fitfile) send SIGINT to
+# this process or to a child. A shell starts a command run in the background (`pytest &`)
+# with SIGINT ignored, which Python and every child it starts then keep, so those tests
+# would fail there only; Python's own handler (KeyboardInterrupt) is put back, which a child
+# then gets as it would from an interactive shell.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 REPO = Path(__file__).resolve().parents[1]
 SHARED_MESHES = REPO.parent / "shared" / "meshes"

@@ -341,6 +341,47 @@ def test_ctrl_c_stops_the_study_and_keeps_what_finished() -> None:
     assert (study["n_impacts"][~ran] == -1).all()
 
 
+def test_ctrl_c_while_a_chunk_is_taken_keeps_that_chunk_whole(monkeypatch) -> None:
+    # Ctrl-C after a chunk returned, while its columns are placed into the study's: the study
+    # ends interrupted with that chunk in it, whole (before, the interrupt left the study's
+    # loop and the whole study was lost).
+    from crashsim.studies import chunks
+
+    place = chunks.place_chunk
+    placed = []
+
+    def place_then_ctrl_c(columns, chunk, start, n) -> None:
+        placed.append(start)
+        if start == 10:
+            os.kill(os.getpid(), signal.SIGINT)  # as Ctrl-C does, between two columns
+        place(columns, chunk, start, n)
+
+    monkeypatch.setattr(chunks, "place_chunk", place_then_ctrl_c)
+    scene = _scene()
+    g = {"red.speed": linspace(10.0, 20.0, 40)}
+    study = cs.sweep(scene, g, duration=DURATION, dt=DT, progress=False, chunk_size=5,
+                     threads=1)
+    assert study.interrupted and placed == [0, 5, 10]
+    ran = study.status == "ok"
+    assert ran[:15].all() and (study.status[15:] == "not run").all()
+    assert np.isfinite(study["impact1.red.delta_v"][:15]).all()
+
+
+def test_an_interrupt_deferred_is_raised_when_the_block_ends() -> None:
+    from crashsim.studies.chunks import interrupt_deferred
+
+    done = []
+    with pytest.raises(KeyboardInterrupt):
+        with interrupt_deferred():
+            os.kill(os.getpid(), signal.SIGINT)
+            done.append("after the signal")
+    assert done == ["after the signal"]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    with interrupt_deferred():  # no signal: nothing raised
+        done.append("quiet")
+    assert done[-1] == "quiet"
+
+
 def test_percentiles_of_every_column() -> None:
     study = cs.monte_carlo(_scene(), {"red.speed": uniform(10.0, 16.0)}, n=40, seed=2,
                            duration=DURATION, dt=DT, progress=False)

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from crashsim.errors import StudyError
-from crashsim.studies.chunks import chunk_bounds, empty_columns, place_chunk
+from crashsim.studies.chunks import chunk_bounds, empty_columns, take_chunk
 
 if TYPE_CHECKING:
     from crashsim.scene import Scene
@@ -102,12 +102,10 @@ class LocalBackend:
                     scene, part, n=stop - start, threads=v.threads,
                     progress=lambda done, _m, s=start: progress(s + done), **options,
                 )
+                take_chunk(columns, finished, errors, b, start, n)
             except KeyboardInterrupt:
                 interrupted = True
                 break
-            place_chunk(columns, b.columns, start, n)
-            finished[start:stop] = b.finished
-            errors += [e.shifted(start) for e in b.errors]
             if b.interrupted:
                 interrupted = True
                 break

@@ -128,8 +128,8 @@ def run_dask(
     from crashsim.studies.chunks import (
         chunk_bounds,
         empty_columns,
-        place_chunk,
         shrinking_bounds,
+        take_chunk,
     )
 
     c, owned = _connect(client, threads)
@@ -159,9 +159,7 @@ def run_dask(
                     continue
                 b = f.result()
                 start, stop = chunks[k]
-                place_chunk(columns, b.columns, start, n)
-                finished[start:stop] = b.finished
-                errors += [e.shifted(start) for e in b.errors]
+                take_chunk(columns, finished, errors, b, start, n)
                 taken.add(k)
                 done += stop - start
                 if progress is not None:

@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 
 from crashsim.batch import VariantError
 from crashsim.errors import CrashsimError
+from crashsim.studies.chunks import interrupt_deferred
 from crashsim.studies.paths import apply_overrides
 from crashsim.studies.pedestrians import columns_of, empty_columns
 
@@ -92,9 +93,10 @@ def run_scenes(
                 if isinstance(out, VariantError):
                     errors.append(out)
                 elif out is not None:
-                    for k, v in out.items():
-                        columns[k][i] = v
-                    finished[i] = True
+                    with interrupt_deferred():  # the row and its flag together
+                        for k, v in out.items():
+                            columns[k][i] = v
+                        finished[i] = True
                 done += 1
                 bar(done)
         except KeyboardInterrupt:
