@@ -16,7 +16,9 @@ if [ ${#missing[@]} -gt 0 ] && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/nu
     DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 python3 -m pip install --quiet ".[test]"
-cargo test --workspace --exclude crashsim-py --quiet
+# Not incremental: the test build starts from an empty target folder here, and writing the
+# incremental caches costs about 10 s of its 95 (benches/README.md, "The test run").
+CARGO_INCREMENTAL=0 cargo test --workspace --exclude crashsim-py --quiet
 # pytest on every core (pytest-xdist: each test runs whole in one worker, so what a test
 # checks is unchanged).
 python3 -m pytest -n auto tests

@@ -95,20 +95,19 @@ class LocalBackend:
         errors: list[Any] = []
         finished = np.zeros(n, dtype=bool)
         interrupted = False
-        for start, stop in chunk_bounds(n, v.chunk_size or DEFAULT_CHUNK):
-            part = {k: a[start:stop] for k, a in overrides.items()}
-            try:
+        try:  # Ctrl-C anywhere in the loop ends it with the chunks taken so far
+            for start, stop in chunk_bounds(n, v.chunk_size or DEFAULT_CHUNK):
+                part = {k: a[start:stop] for k, a in overrides.items()}
                 b = run_batch(
                     scene, part, n=stop - start, threads=v.threads,
                     progress=lambda done, _m, s=start: progress(s + done), **options,
                 )
                 take_chunk(columns, finished, errors, b, start, n)
-            except KeyboardInterrupt:
-                interrupted = True
-                break
-            if b.interrupted:
-                interrupted = True
-                break
+                if b.interrupted:
+                    interrupted = True
+                    break
+        except KeyboardInterrupt:
+            interrupted = True
         if not columns:  # interrupted before the first chunk returned: empty columns
             columns = empty_columns(scene, n, int(options["max_impacts"]))
         return columns, errors, finished, interrupted
