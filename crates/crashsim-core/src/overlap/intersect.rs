@@ -4,9 +4,9 @@
 use super::inside::{nudge_length, shell_inside};
 use super::traverse::{map_tri, mapped_leaf, traverse_pairs};
 use super::QueryWorkspace;
-use crate::math::{Isometry, RigidMap};
+use crate::math::{Isometry, Real, RigidMap};
 use crate::shape::MeshShape;
-use crate::triangle::triangle_triangle_contact;
+use crate::triangle::{triangle_triangle_contact, Tri, PLANE_TOLERANCE};
 use parry3d_f64::bounding_volume::BoundingVolume;
 
 /// True when the two posed surfaces cross: a triangle of one, nudged a hair into its own
@@ -40,8 +40,18 @@ fn first_crossing(
     traverse_pairs(s1, s2, &pose12, &mut ws.pairs, true, |a, b| {
         // b's triangles in 1's frame, mapped once per leaf pair (not once per triangle of a)
         let leaf2 = mapped_leaf(s2, b, &map);
+        let Some((_, first)) = leaf2[0] else {
+            return false;
+        };
+        let mut box2 = TriBox::of(&first);
+        for (_, tri2) in leaf2[1..].iter().flatten() {
+            box2.add(tri2);
+        }
         for &t1 in s1.bvh().leaf_primitives(a) {
             let tri1 = s1.triangle(t1);
+            if TriBox::of(&tri1).apart(&box2) {
+                continue; // no triangle of b's leaf comes near this one
+            }
             for &(t2, tri2) in leaf2.iter().flatten() {
                 if triangle_triangle_contact(&tri1, &tri2).is_some_and(|c| c.is_crossing()) {
                     found = Some((t1, t2));
@@ -52,6 +62,53 @@ fn first_crossing(
         false
     });
     found
+}
+
+/// The box of triangles' vertices (m, one frame), exact: the vertices' own coordinates, not a box
+/// mapped from another frame.
+struct TriBox {
+    lo: [Real; 3],
+    hi: [Real; 3],
+}
+
+impl TriBox {
+    #[inline]
+    fn of(t: &Tri) -> TriBox {
+        let mut b = TriBox {
+            lo: t[0].coords.into(),
+            hi: t[0].coords.into(),
+        };
+        b.add(t);
+        b
+    }
+
+    #[inline]
+    fn add(&mut self, t: &Tri) {
+        for p in t {
+            for k in 0..3 {
+                self.lo[k] = self.lo[k].min(p[k]);
+                self.hi[k] = self.hi[k].max(p[k]);
+            }
+        }
+    }
+
+    /// True when the boxes are apart along an axis by more than the triangle test's snapping
+    /// band could bridge (4 of its [`PLANE_TOLERANCE`] at the coordinates' scale): triangles
+    /// inside them cannot cross, and [`triangle_triangle_contact`] is not asked. (The band
+    /// is only worked out for boxes apart at all: most pairs tested are not.)
+    #[inline]
+    fn apart(&self, other: &TriBox) -> bool {
+        let gap = (0..3)
+            .map(|k| Real::max(self.lo[k] - other.hi[k], other.lo[k] - self.hi[k]))
+            .fold(Real::NEG_INFINITY, Real::max);
+        if gap <= 0.0 {
+            return false;
+        }
+        let scale = (0..3)
+            .flat_map(|k| [self.lo[k], self.hi[k], other.lo[k], other.hi[k]])
+            .fold(0.0, |m: Real, x| m.max(x.abs()));
+        gap > 4.0 * PLANE_TOLERANCE * scale
+    }
 }
 
 /// [`shapes_overlap`] that first tries the pair of triangles `hint` (of s1, of s2): when they
