@@ -109,6 +109,52 @@ def test_walking_pose_shifts_the_hinges_limits() -> None:
     assert left[0] - right[0] > 0.4
 
 
+def test_running_pose_lands_on_the_lead_foot_with_the_trailing_leg_swung_back() -> None:
+    p = cs.Pedestrian(pose="running")
+    a = p.pose_angles
+    # pedestrian.toml's [poses.running]: the lead foot's strike, the trailing leg in early swing
+    assert (a["lead_hip_flexion"], a["lead_knee_flexion"], a["trail_hip_extension"],
+            a["trail_knee_flexion"], a["trail_ankle_plantarflexion"]) == (50, 21, 10, 90, 25)
+    deg = math.radians
+    # hinge limits: the standing ranges less the pose's starting angles
+    assert joint(p, "knee_left").limits["angle"] == pytest.approx((-deg(21), deg(119)))
+    assert joint(p, "knee_right").limits["angle"] == pytest.approx((-deg(90), deg(50)))
+    assert joint(p, "elbow_left").limits["angle"] == pytest.approx((-deg(100), deg(55)))
+    # the lead foot far ahead of the trailing one (a longer stride than walking's), the
+    # trailing foot above it
+    left, _ = p.posed("foot_left")
+    right, _ = p.posed("foot_right")
+    wl, _ = cs.Pedestrian(pose="walking").posed("foot_left")
+    wr, _ = cs.Pedestrian(pose="walking").posed("foot_right")
+    assert left[0] - right[0] > 1.0 > wl[0] - wr[0]
+    assert right[2] > left[2] + 0.1
+    scene = cs.Scene(ground=cs.Ground())
+    scene.add(p, (0.0, 0.0), velocity=(3.0, 0.0, 0.0))
+    result = scene.run(0.2, dt=1e-3)
+
+    def lowest(segments, k: int) -> float:
+        return min(
+            float((result.trajectory(v.name).position[k] + v.body_vertices
+                   @ rotation_matrix(result.trajectory(v.name).orientation[k]).T)[:, 2].min())
+            for v in segments
+        )  # fmt: skip
+
+    # at the start the lead foot is the body's lowest point, 1 mm above the road, and the
+    # trailing foot is in the air
+    assert lowest([p.segment("foot_left")], 0) == pytest.approx(1e-3, abs=1e-9)
+    assert lowest(p.segments, 0) == pytest.approx(1e-3, abs=1e-9)
+    assert lowest([p.segment("foot_right")], 0) > 0.1
+    # it runs on at about its speed for 0.2 s, and the joints hold
+    pelvis = result.trajectory("pedestrian/pelvis")
+    assert 0.4 < pelvis.position[-1, 0] - pelvis.position[0, 0] < 0.65
+    for j in scene.joints:
+        (pa, _), (pb, _) = j.frames
+        ta, tb = result.trajectory(j.vehicles[0]), result.trajectory(j.vehicles[1])
+        wa = ta.position[-1] + rotation_matrix(ta.orientation[-1]) @ pa
+        wb = tb.position[-1] + rotation_matrix(tb.orientation[-1]) @ pb
+        assert np.linalg.norm(wa - wb) < 1e-6, j.name
+
+
 def test_scene_runs_and_names_segments(standing: cs.Pedestrian) -> None:
     scene = cs.Scene(ground=cs.Ground())
     scene.add(standing, (1.0, 2.0), heading=0.3)
@@ -192,8 +238,9 @@ def test_momentum_kept_through_an_exchange_with_a_car(standing: cs.Pedestrian) -
 
 
 def test_bad_input() -> None:
-    with pytest.raises(ParameterError, match="pose 'running'"):
-        cs.Pedestrian(pose="running")
+    with pytest.raises(ParameterError, match="pose 'jogging' is not known: give one of "
+                       "'standing', 'walking', 'cycling', 'running'"):
+        cs.Pedestrian(pose="jogging")
     with pytest.raises(ParameterError, match="height_m"):
         cs.Pedestrian(height=3.0)
     with pytest.raises(ParameterError, match="mass_kg"):

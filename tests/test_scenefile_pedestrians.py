@@ -59,6 +59,20 @@ def test_a_files_pedestrian_is_the_apis_bit_for_bit() -> None:
     assert result.impacts == [] and result.contacts[0].vehicles[0] == "car"
 
 
+def test_a_files_running_pedestrian_is_the_apis_bit_for_bit() -> None:
+    case = loads_scene(HEAD + PERSON.replace('pose = "walking"', 'pose = "running"'))
+    api = cs.Scene(ground=cs.Ground(friction=0.8), normal="volume", friction=0.3)
+    car = cs.Vehicle.generate("sedan", mass=1450.0, name="car")
+    api.add(car, (0, 0), heading=0.0, velocity=(cs.kmh(40), 0.0, 0.0))
+    person = cs.Pedestrian(height=1.70, mass=70.0, sex="female", pose="running", name="ped")
+    api.add(person, (2.645, 0.1), heading=math.pi / 2,
+            velocity=(1.2 * math.cos(math.pi / 2), 1.2, 0.0))  # fmt: skip
+    api.soft_contact(car, person, stiffness=1e5, damping_ratio=0.4)
+    assert case.scene.to_spec(0.05).to_json() == api.to_spec(0.05).to_json()
+    walking = loads_scene(HEAD + PERSON).scene.to_spec(0.05).to_json()
+    assert case.scene.to_spec(0.05).to_json() != walking
+
+
 def test_the_example_file_runs() -> None:
     path = Path(__file__).resolve().parents[1] / "examples" / "pedestrian-sedan-40kmh.toml"
     case = load_scene(path)
@@ -79,6 +93,9 @@ ERRORS = [
      'a vehicle or obstacle named "car" is already in the scene'),
     ("a height out of range (the model's)", PERSON.replace('"1.70 m"', '"3 m"'),
      "pedestrians[0]", "height_m"),
+    ("a pose not known (a cyclist's is [[cyclists]]')",
+     PERSON.replace('"walking"', '"cycling"'), "pedestrians[0].pose",
+     '"cycling" is not one of'),
 ]  # fmt: skip
 
 

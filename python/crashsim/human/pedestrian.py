@@ -42,7 +42,7 @@ from crashsim.vehicles.vehicle import Vehicle
 __all__ = ["POSES", "Pedestrian", "PedestrianJoint"]
 
 Array = NDArray[np.float64]
-POSES = ("standing", "walking", "cycling")
+POSES = ("standing", "walking", "cycling", "running")  # (a study's `p.pose` is the index)
 CLEARANCE = 1e-3  # m, the lowest point of the body above the ground at the start
 _CAPSULE_COUNT = (8, 8)  # trimesh capsule resolution: 128 triangles a segment
 
@@ -100,7 +100,8 @@ class _Posed:
 class Pedestrian:
     """A multibody pedestrian (module docstring). ``height`` m, ``mass`` kg, ``sex``
     ("male" or "female"), or ``percentile`` (0-100, ANSUR II stature; then ``height`` is
-    not used); ``pose`` "standing", "walking" or "cycling"; ``name`` prefixes its segments' names.
+    not used); ``pose`` "standing", "walking", "running" or "cycling"; ``name`` prefixes its
+    segments' names.
 
     Attributes: ``segments`` (the :class:`crashsim.Vehicle` of each segment, pelvis first),
     ``joints`` (:class:`PedestrianJoint`), ``data`` (body_segments' :class:`Segment`\\ s),

@@ -207,8 +207,10 @@ def _pedestrian(t: _Table, scene: Scene, names: list[str]) -> None:
     facing heading, moving at speed along direction (default the heading)), and its soft
     contacts with the vehicles named."""
     kwargs = _person(t, scene, names, "pedestrian")
-    kwargs["pose"] = t.string("pose", "standing", choices=("standing", "walking"))
-    from crashsim.human.pedestrian import Pedestrian
+    from crashsim.human.pedestrian import POSES, Pedestrian
+
+    # (a cyclist's seated pose is [[cyclists]]')
+    kwargs["pose"] = t.string("pose", "standing", choices=tuple(p for p in POSES if p != "cycling"))
 
     person = _wrap(t, None, lambda: Pedestrian(**kwargs))
     position, heading, velocity = _motion(t)

@@ -31,7 +31,7 @@ path                       unit      what it sets
                                      the road)
 ``ped.height``             m         a pedestrian's stature (``ped.percentile`` instead:
                                      ANSUR II's, 0-100); ``ped.mass`` kg; ``ped.pose`` the
-                                     index in POSES (0 standing, 1 walking)
+                                     index in POSES (0 standing, 1 walking, 3 running)
 ``ped.position_x/_y``      m         its body frame's origin, as Scene.add took it
 ``ped.heading``            rad       its facing; its velocity turned with it
 ``ped.speed``              m/s       along its velocity (its facing when at rest)

@@ -67,7 +67,8 @@ _HEAD_FIGURES = ("head_time", "head_x", "head_y", "head_z", "head_wrap_around",
 
 def pose_name(value: float) -> str:
     """The pose of a ``<p>.pose`` value: its index in crashsim.human.pedestrian.POSES (0
-    standing, 1 walking); ParameterError for any other number."""
+    standing, 1 walking, 3 running; 2, cycling, is a cyclist's); ParameterError for any other
+    number."""
     from crashsim.human.pedestrian import POSES
 
     x = float(value)
