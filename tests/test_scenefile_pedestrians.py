@@ -44,16 +44,21 @@ damping_ratio = 0.4
 """
 
 
-def test_a_files_pedestrian_is_the_apis_bit_for_bit() -> None:
-    case = loads_scene(HEAD + PERSON)
+def _api_scene(pose: str) -> cs.Scene:
+    """HEAD + PERSON (with ``pose``) made through the API."""
     api = cs.Scene(ground=cs.Ground(friction=0.8), normal="volume", friction=0.3)
     car = cs.Vehicle.generate("sedan", mass=1450.0, name="car")
     api.add(car, (0, 0), heading=0.0, velocity=(cs.kmh(40), 0.0, 0.0))
-    person = cs.Pedestrian(height=1.70, mass=70.0, sex="female", pose="walking", name="ped")
+    person = cs.Pedestrian(height=1.70, mass=70.0, sex="female", pose=pose, name="ped")
     api.add(person, (2.645, 0.1), heading=math.pi / 2,
             velocity=(1.2 * math.cos(math.pi / 2), 1.2, 0.0))  # fmt: skip
     api.soft_contact(car, person, stiffness=1e5, damping_ratio=0.4)
-    assert case.scene.to_spec(0.05).to_json() == api.to_spec(0.05).to_json()
+    return api
+
+
+def test_a_files_pedestrian_is_the_apis_bit_for_bit() -> None:
+    case = loads_scene(HEAD + PERSON)
+    assert case.scene.to_spec(0.05).to_json() == _api_scene("walking").to_spec(0.05).to_json()
     assert len(case.scene.vehicles) == 17 and len(case.scene.joints) == 15
     result = case.scene.run(case.run.duration, dt=case.run.dt)
     assert result.impacts == [] and result.contacts[0].vehicles[0] == "car"
@@ -61,14 +66,7 @@ def test_a_files_pedestrian_is_the_apis_bit_for_bit() -> None:
 
 def test_a_files_running_pedestrian_is_the_apis_bit_for_bit() -> None:
     case = loads_scene(HEAD + PERSON.replace('pose = "walking"', 'pose = "running"'))
-    api = cs.Scene(ground=cs.Ground(friction=0.8), normal="volume", friction=0.3)
-    car = cs.Vehicle.generate("sedan", mass=1450.0, name="car")
-    api.add(car, (0, 0), heading=0.0, velocity=(cs.kmh(40), 0.0, 0.0))
-    person = cs.Pedestrian(height=1.70, mass=70.0, sex="female", pose="running", name="ped")
-    api.add(person, (2.645, 0.1), heading=math.pi / 2,
-            velocity=(1.2 * math.cos(math.pi / 2), 1.2, 0.0))  # fmt: skip
-    api.soft_contact(car, person, stiffness=1e5, damping_ratio=0.4)
-    assert case.scene.to_spec(0.05).to_json() == api.to_spec(0.05).to_json()
+    assert case.scene.to_spec(0.05).to_json() == _api_scene("running").to_spec(0.05).to_json()
     walking = loads_scene(HEAD + PERSON).scene.to_spec(0.05).to_json()
     assert case.scene.to_spec(0.05).to_json() != walking
 
