@@ -47,7 +47,7 @@ pub(super) fn traverse_pairs(
     let back = RigidMap::new(&pose12.inverse());
     // The last node mapped into the other's frame, by tree: a node's box is tested against
     // both children of the other node one after the other (they are pushed together), so it
-    // is mapped once for both (about a third of the mapped boxes at a near miss).
+    // is mapped once for both (benches/COMPARISON.md, "The near-miss query").
     let mut mapped2: (u32, Aabb) = (u32::MAX, n2[0].aabb);
     let mut mapped1: (u32, Aabb) = (u32::MAX, n1[0].aabb);
     stack.clear();
