@@ -4,7 +4,7 @@
 use super::inside::{nudge_length, shell_inside};
 use super::traverse::{map_tri, mapped_leaf, traverse_pairs};
 use super::QueryWorkspace;
-use crate::math::{Isometry, Real, RigidMap};
+use crate::math::{Aabb, Isometry, Real, RigidMap};
 use crate::shape::MeshShape;
 use crate::triangle::{triangle_triangle_contact, Tri, PLANE_TOLERANCE};
 use parry3d_f64::bounding_volume::BoundingVolume;
@@ -40,16 +40,10 @@ fn first_crossing(
     traverse_pairs(s1, s2, &pose12, &mut ws.pairs, true, |a, b| {
         // b's triangles in 1's frame, mapped once per leaf pair (not once per triangle of a)
         let leaf2 = mapped_leaf(s2, b, &map);
-        let Some((_, first)) = leaf2[0] else {
-            return false;
-        };
-        let mut box2 = TriBox::of(&first);
-        for (_, tri2) in leaf2[1..].iter().flatten() {
-            box2.add(tri2);
-        }
+        let box2 = box_of(leaf2.iter().flatten().map(|(_, t)| t));
         for &t1 in s1.bvh().leaf_primitives(a) {
             let tri1 = s1.triangle(t1);
-            if TriBox::of(&tri1).apart(&box2) {
+            if boxes_apart(&box_of([&tri1]), &box2) {
                 continue; // no triangle of b's leaf comes near this one
             }
             for &(t2, tri2) in leaf2.iter().flatten() {
@@ -64,51 +58,35 @@ fn first_crossing(
     found
 }
 
-/// The box of triangles' vertices (m, one frame), exact: the vertices' own coordinates, not a box
+/// The box of triangles' vertices (m, their frame): from the vertices themselves, not a box
 /// mapped from another frame.
-struct TriBox {
-    lo: [Real; 3],
-    hi: [Real; 3],
+#[inline]
+fn box_of<'a>(tris: impl IntoIterator<Item = &'a Tri>) -> Aabb {
+    let mut b = Aabb::new_invalid();
+    for t in tris {
+        for p in t {
+            b.take_point(*p);
+        }
+    }
+    b
 }
 
-impl TriBox {
-    #[inline]
-    fn of(t: &Tri) -> TriBox {
-        let mut b = TriBox {
-            lo: t[0].coords.into(),
-            hi: t[0].coords.into(),
-        };
-        b.add(t);
-        b
+/// True when two boxes (one frame, m) are apart along an axis by more than the triangle
+/// test's snapping band could bridge (4 of its [`PLANE_TOLERANCE`] at the coordinates'
+/// scale): triangles inside them cannot cross, and [`triangle_triangle_contact`] is not
+/// asked. (The band is only worked out for boxes apart at all: most pairs tested are not.)
+#[inline]
+fn boxes_apart(a: &Aabb, b: &Aabb) -> bool {
+    let gap = (0..3)
+        .map(|k| Real::max(a.mins[k] - b.maxs[k], b.mins[k] - a.maxs[k]))
+        .fold(Real::NEG_INFINITY, Real::max);
+    if gap <= 0.0 {
+        return false;
     }
-
-    #[inline]
-    fn add(&mut self, t: &Tri) {
-        for p in t {
-            for k in 0..3 {
-                self.lo[k] = self.lo[k].min(p[k]);
-                self.hi[k] = self.hi[k].max(p[k]);
-            }
-        }
-    }
-
-    /// True when the boxes are apart along an axis by more than the triangle test's snapping
-    /// band could bridge (4 of its [`PLANE_TOLERANCE`] at the coordinates' scale): triangles
-    /// inside them cannot cross, and [`triangle_triangle_contact`] is not asked. (The band
-    /// is only worked out for boxes apart at all: most pairs tested are not.)
-    #[inline]
-    fn apart(&self, other: &TriBox) -> bool {
-        let gap = (0..3)
-            .map(|k| Real::max(self.lo[k] - other.hi[k], other.lo[k] - self.hi[k]))
-            .fold(Real::NEG_INFINITY, Real::max);
-        if gap <= 0.0 {
-            return false;
-        }
-        let scale = (0..3)
-            .flat_map(|k| [self.lo[k], self.hi[k], other.lo[k], other.hi[k]])
-            .fold(0.0, |m: Real, x| m.max(x.abs()));
-        gap > 4.0 * PLANE_TOLERANCE * scale
-    }
+    let scale = (0..3)
+        .flat_map(|k| [a.mins[k], a.maxs[k], b.mins[k], b.maxs[k]])
+        .fold(0.0, |m: Real, x| m.max(x.abs()));
+    gap > 4.0 * PLANE_TOLERANCE * scale
 }
 
 /// [`shapes_overlap`] that first tries the pair of triangles `hint` (of s1, of s2): when they
