@@ -61,7 +61,7 @@ fn first_crossing(
 /// The box of triangles' vertices (m, their frame): from the vertices themselves, not a box
 /// mapped from another frame.
 #[inline]
-fn box_of<'a>(tris: impl IntoIterator<Item = &'a Tri>) -> Aabb {
+pub(super) fn box_of<'a>(tris: impl IntoIterator<Item = &'a Tri>) -> Aabb {
     let mut b = Aabb::new_invalid();
     for t in tris {
         for p in t {
@@ -76,7 +76,7 @@ fn box_of<'a>(tris: impl IntoIterator<Item = &'a Tri>) -> Aabb {
 /// scale): triangles inside them cannot cross, and [`triangle_triangle_contact`] is not
 /// asked. (The band is only worked out for boxes apart at all: most pairs tested are not.)
 #[inline]
-fn boxes_apart(a: &Aabb, b: &Aabb) -> bool {
+pub(super) fn boxes_apart(a: &Aabb, b: &Aabb) -> bool {
     let gap = (0..3)
         .map(|k| Real::max(a.mins[k] - b.maxs[k], b.mins[k] - a.maxs[k]))
         .fold(Real::NEG_INFINITY, Real::max);
@@ -103,19 +103,20 @@ pub fn shapes_overlap_hinted(
     ws: &mut QueryWorkspace,
     hint: &mut Option<(u32, u32)>,
 ) -> bool {
-    if !s1
-        .aabb()
-        .transform_by(pose1)
-        .intersects(&s2.aabb().transform_by(pose2))
-    {
-        return false;
-    }
+    // The hinted pair first: where two triangles cross, the meshes' boxes meet.
     if let Some((t1, t2)) = *hint {
         let map = RigidMap::new(&pose1.inv_mul(pose2));
         let tri2 = map_tri(&s2.triangle(t2), &map);
         if triangle_triangle_contact(&s1.triangle(t1), &tri2).is_some_and(|c| c.is_crossing()) {
             return true;
         }
+    }
+    if !s1
+        .aabb()
+        .transform_by(pose1)
+        .intersects(&s2.aabb().transform_by(pose2))
+    {
+        return false;
     }
     *hint = first_crossing(s1, pose1, s2, pose2, ws);
     if hint.is_some() {

@@ -23,7 +23,7 @@ mod traverse;
 
 pub use distance::{surface_distance, surface_distance_from};
 pub use intersect::{shapes_overlap, shapes_overlap_hinted, surfaces_intersect};
-pub use region::{overlap_points, overlap_region, OverlapRegion};
+pub use region::{overlap_areas, overlap_points, overlap_region, OverlapRegion};
 
 /// Reusable traversal storage, so per-step queries do not allocate once warmed up.
 #[derive(Default, Debug)]

@@ -3,8 +3,9 @@
 //! normal.
 
 use super::inside::nudge_length;
+use super::intersect::{box_of, boxes_apart};
 use super::surface_inside::{surface_inside, Crossing};
-use super::traverse::{map_tri, traverse_pairs};
+use super::traverse::{map_tri, mapped_leaf, traverse_pairs};
 use crate::math::{Isometry, Point, RigidMap, Vector};
 use crate::shape::MeshShape;
 use crate::triangle::{triangle_triangle_contact, TriangleContact};
@@ -61,7 +62,7 @@ pub fn overlap_region(
     s2: &MeshShape,
     pose2: &Isometry,
 ) -> OverlapRegion {
-    overlap_region_with(s1, pose1, s2, pose2, true, true)
+    overlap_region_with(s1, pose1, s2, pose2, true, RegionParts::All)
 }
 
 /// The overlap region's point set S and its counts alone, the vector areas left at zero:
@@ -74,20 +75,46 @@ pub fn overlap_points(
     s2: &MeshShape,
     pose2: &Isometry,
 ) -> OverlapRegion {
-    overlap_region_with(s1, pose1, s2, pose2, true, false)
+    overlap_region_with(s1, pose1, s2, pose2, true, RegionParts::Points)
+}
+
+/// The overlap region's two inside vector areas alone (and so its volume normal), the point
+/// set and its counts left empty: where only the normal is read (the early normal's
+/// thin-part probes), this skips deciding which vertices are inside. The areas are
+/// [`overlap_region`]'s, bit for bit.
+pub fn overlap_areas(
+    s1: &MeshShape,
+    pose1: &Isometry,
+    s2: &MeshShape,
+    pose2: &Isometry,
+) -> OverlapRegion {
+    overlap_region_with(s1, pose1, s2, pose2, true, RegionParts::Areas)
+}
+
+/// Which parts of the overlap region a query computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum RegionParts {
+    /// The point set, its counts and the vector areas ([`overlap_region`]).
+    All,
+    /// The point set and its counts ([`overlap_points`]).
+    Points,
+    /// The vector areas ([`overlap_areas`]).
+    Areas,
 }
 
 /// [`overlap_region`], deciding inside and outside per patch (`use_patches`, for closed
-/// meshes) or per triangle and vertex (the reference the patches are tested against);
-/// without `areas`, the point set alone ([`overlap_points`]).
+/// meshes) or per triangle and vertex (the reference the patches are tested against),
+/// computing the `parts` asked for.
 pub(super) fn overlap_region_with(
     s1: &MeshShape,
     pose1: &Isometry,
     s2: &MeshShape,
     pose2: &Isometry,
     use_patches: bool,
-    areas: bool,
+    parts: RegionParts,
 ) -> OverlapRegion {
+    let areas = parts != RegionParts::Points;
+    let points = parts != RegionParts::Areas;
     let pose12 = pose1.inv_mul(pose2);
     let pose21 = pose12.inverse();
     // The same map as `surfaces_intersect`, so both see bit-identical triangles.
@@ -98,10 +125,14 @@ pub(super) fn overlap_region_with(
     // triangle 1 and triangle 2 are crossed (not merely touched) by the other.
     let mut segs: Vec<(u32, u32, TriangleContact)> = Vec::new();
     traverse_pairs(s1, s2, &pose12, &mut stack, false, |a, b| {
+        let leaf2 = mapped_leaf(s2, b, &map12);
+        let box2 = box_of(leaf2.iter().flatten().map(|(_, t)| t));
         for &t1 in s1.bvh().leaf_primitives(a) {
             let tri1 = s1.triangle(t1);
-            for &t2 in s2.bvh().leaf_primitives(b) {
-                let tri2 = map_tri(&s2.triangle(t2), &map12);
+            if boxes_apart(&box_of([&tri1]), &box2) {
+                continue; // no triangle of b's leaf comes near this one
+            }
+            for &(t2, tri2) in leaf2.iter().flatten() {
                 if let Some(c) = triangle_triangle_contact(&tri1, &tri2) {
                     segs.push((t1, t2, c));
                 }
@@ -112,7 +143,7 @@ pub(super) fn overlap_region_with(
     let mut region = OverlapRegion::default();
     // Only crossings are in S: where the surfaces merely touch (faces resting on each other)
     // nothing overlaps. Touching triangles still count as met for the patches below.
-    for (_, _, c) in &segs {
+    for (_, _, c) in segs.iter().filter(|_| points) {
         if c.is_crossing() {
             region.segment_count += 1;
             region.points.push(pose1 * c.start);
@@ -133,6 +164,7 @@ pub(super) fn overlap_region_with(
         |o| map_tri(&s2.triangle(o), &map12),
         use_patches,
         areas,
+        points,
         nudge,
     );
     // Mesh 2's side, in frame 2: its triangles' segments run the other way (n2 x n1).
@@ -152,6 +184,7 @@ pub(super) fn overlap_region_with(
         |o| map_tri(&s1.triangle(o), &map21),
         use_patches,
         areas,
+        points,
         nudge,
     );
     region.inside_vertex_count = inside1.len() + inside2.len();

@@ -112,8 +112,8 @@ fn inside_vector_area(
 /// inside or outside, decided by one winding number per patch (none for a patch reaching out
 /// of the other's box), and a vertex takes the status of a patch it belongs to. Otherwise
 /// (an open mesh, whose winding number also changes near its holes) every triangle and vertex
-/// is decided alone. Without `areas` the vector area is not summed (zero) and only the
-/// vertices are decided.
+/// is decided alone. Without `areas` the vector area is not summed (zero); without
+/// `vertices` no vertex is listed (the areas do not depend on it).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn surface_inside(
     own: &MeshShape,
@@ -123,6 +123,7 @@ pub(super) fn surface_inside(
     other_tri_in_own: impl Fn(u32) -> Tri,
     use_patches: bool,
     areas: bool,
+    vertices: bool,
     nudge: Real,
 ) -> (Vector, Vec<Point>) {
     let other_box_in_own = other.aabb().transform_by(&own_to_other.inverse());
@@ -184,6 +185,9 @@ pub(super) fn surface_inside(
             edges = cls.cut_edges(ti, &t);
         }
         total += inside_vector_area(&t, &local, other, own_to_other, edges, nudge);
+    }
+    if !vertices {
+        return (total, Vec::new());
     }
     let inside = cls.inside_vertices(&candidates, &other_box_in_own);
     (total, inside)

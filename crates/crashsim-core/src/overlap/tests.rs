@@ -1,6 +1,6 @@
 //! Tests of the overlap queries.
 
-use super::region::overlap_region_with;
+use super::region::{overlap_region_with, RegionParts};
 use super::*;
 use crate::math::{Isometry, Point, Real, Rotation, Vector};
 use crate::shape::tests::{box_mesh, without_top};
@@ -164,8 +164,8 @@ fn patch_classification_equals_the_per_triangle_one_and_the_points_alone_are_the
             ),
         );
         let id = Isometry::identity();
-        let a = overlap_region_with(&car, &id, &other, &pose2, true, true);
-        let b = overlap_region_with(&car, &id, &other, &pose2, false, true);
+        let a = overlap_region_with(&car, &id, &other, &pose2, true, RegionParts::All);
+        let b = overlap_region_with(&car, &id, &other, &pose2, false, RegionParts::All);
         assert_eq!(a.points.len(), b.points.len());
         for (p, q) in a.points.iter().zip(&b.points) {
             assert_eq!(p, q);
@@ -191,6 +191,13 @@ fn patch_classification_equals_the_per_triangle_one_and_the_points_alone_are_the
                 )
             );
             assert_eq!(points.area_normal_1_in_2, Vector::zeros());
+            // The vector areas alone are the region's, bit for bit, with no points.
+            let areas = overlap_areas(&car, &id, mesh, &pose2);
+            assert_eq!(
+                (areas.area_normal_1_in_2, areas.area_normal_2_in_1),
+                (full.area_normal_1_in_2, full.area_normal_2_in_1)
+            );
+            assert!(areas.points.is_empty() && areas.inside_vertex_count == 0);
         }
         overlapping += usize::from(!a.points.is_empty());
     }

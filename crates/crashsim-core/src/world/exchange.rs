@@ -4,12 +4,13 @@
 
 use super::{Motion, Pair, Phase, World, TIME_TOLERANCE};
 use crate::bisect::bisect;
+use crate::body::RigidBody;
 use crate::contact::{
     DepthOfPenetration, DEEPEST_ITERATIONS, MAX_DEPTH_OF_PENETRATION, OVERLAP_SAMPLES,
 };
 use crate::impulse::{ImpulseProblem, ImpulseSolution};
 use crate::math::{Point, Real, Vector};
-use crate::overlap::{overlap_region, shapes_overlap, shapes_overlap_hinted, QueryWorkspace};
+use crate::overlap::{overlap_region, shapes_overlap_hinted, QueryWorkspace};
 
 use super::events::{delta_v_in_body, pdof_deg, ContactEvent, ContactEventKind, Impact, RunOutput};
 use super::geometry::ContactGeometry;
@@ -137,12 +138,14 @@ impl World {
         );
         let (i1, i2) = (pair.body1, pair.body2);
         let mut ws = QueryWorkspace::default();
+        // Each sample tries the crossing pair the last one found first (the same answers).
+        let mut hint = pair.crossing;
         let mut overlaps = |dt: Real| {
             let (p1, p2) = (
                 self.predicted(i1, base + dt).pose(),
                 self.predicted(i2, base + dt).pose(),
             );
-            shapes_overlap(&s1, &p1, &s2, &p2, &mut ws)
+            shapes_overlap_hinted(&s1, &p1, &s2, &p2, &mut ws, &mut hint)
         };
         let step = dtp / OVERLAP_SAMPLES as Real;
         let apart = (1..=OVERLAP_SAMPLES).find(|k| !overlaps(*k as Real * step))?;
@@ -493,9 +496,10 @@ impl World {
         let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
         let (s1, s2) = (self.bodies[i1].shape.clone(), self.bodies[i2].shape.clone());
         let mut ws = std::mem::take(&mut self.ws);
+        let mut hint = self.pairs[pi].crossing;
         let hi = bisect(t_prev - self.time, 0.0, SEPARATION_TOLERANCE, |dt| {
             let (p1, p2) = (self.predicted(i1, dt).pose(), self.predicted(i2, dt).pose());
-            !shapes_overlap(&s1, &p1, &s2, &p2, &mut ws)
+            !shapes_overlap_hinted(&s1, &p1, &s2, &p2, &mut ws, &mut hint)
         });
         self.ws = ws;
         out.contacts.push(ContactEvent {
@@ -507,33 +511,39 @@ impl World {
         self.pairs[pi].phase = Phase::Apart;
     }
 
-    /// Relative normal velocity (m/s, closing > 0) of an engaged pair `dt` s from now.
+    /// Relative normal velocity (m/s, closing > 0) of an engaged pair of bodies (`i1`, `i2`)
+    /// `dt` s from now.
     pub(super) fn closing_speed(
         &self,
-        pair: &Pair,
+        (i1, i2): (usize, usize),
         centroid_in: &[Point; 2],
         normal_in_1: &Vector,
         dt: Real,
     ) -> Real {
-        let b1 = self.predicted(pair.body1, dt);
-        let b2 = self.predicted(pair.body2, dt);
-        let (p1, p2) = (b1.pose(), b2.pose());
-        let c = nalgebra::center(&(p1 * centroid_in[0]), &(p2 * centroid_in[1]));
-        let n = p1 * normal_in_1;
-        (b1.point_velocity(&c) - b2.point_velocity(&c)).dot(&n)
+        let closing = |b1: &RigidBody, b2: &RigidBody| {
+            let (p1, p2) = (b1.pose(), b2.pose());
+            let c = nalgebra::center(&(p1 * centroid_in[0]), &(p2 * centroid_in[1]));
+            let n = p1 * normal_in_1;
+            (b1.point_velocity(&c) - b2.point_velocity(&c)).dot(&n)
+        };
+        // Now, a torque-free or fixed body is its own prediction (no copy needed).
+        let as_is = |i: usize| matches!(self.bodies[i].motion, Motion::Free | Motion::Fixed);
+        if dt == 0.0 && as_is(i1) && as_is(i2) {
+            return closing(self.bodies[i1].body(), self.bodies[i2].body());
+        }
+        closing(&self.predicted(i1, dt), &self.predicted(i2, dt))
     }
 
     /// After a step, an engaged pair either separates, turns closing again, or stays.
     pub(super) fn follow_engaged(&mut self, pi: usize, t_prev: Real, out: &mut RunOutput) {
-        let pair = self.pairs[pi].clone();
         let Phase::Engaged {
             centroid_in,
             normal_in_1,
-        } = pair.phase
+        } = self.pairs[pi].phase
         else {
             return;
         };
-        let (i1, i2) = (pair.body1, pair.body2);
+        let (i1, i2) = (self.pairs[pi].body1, self.pairs[pi].body2);
         if !self.still_overlapping(pi) {
             self.separate(pi, t_prev, out);
             return;
@@ -546,10 +556,10 @@ impl World {
         } else {
             CLOSING_TOLERANCE
         };
-        if self.closing_speed(&pair, &centroid_in, &normal_in_1, 0.0) > tolerance {
+        if self.closing_speed((i1, i2), &centroid_in, &normal_in_1, 0.0) > tolerance {
             // Find when it turned closing inside the step (s is smooth: bisection).
             let hi = bisect(t_prev - self.time, 0.0, TIME_TOLERANCE, |dt| {
-                self.closing_speed(&pair, &centroid_in, &normal_in_1, dt) > tolerance
+                self.closing_speed((i1, i2), &centroid_in, &normal_in_1, dt) > tolerance
             });
             let started = self.time + hi;
             out.contacts.push(ContactEvent {

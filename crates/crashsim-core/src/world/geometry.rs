@@ -10,7 +10,7 @@ use crate::contact::{
     NORMAL_PROBES, NORMAL_PROBE_RATIO, TYPICAL_DEPTH_OF_PENETRATION,
 };
 use crate::math::{Isometry, Matrix, Point, Real, Vector};
-use crate::overlap::{overlap_points, overlap_region, OverlapRegion};
+use crate::overlap::{overlap_areas, overlap_points, overlap_region, OverlapRegion};
 use crate::shape::MeshShape;
 use crate::stiffness::{crush_share, effective_mass, series_rate, Face};
 
@@ -160,6 +160,7 @@ impl World {
         };
         let region_at = |dt: Real| at(overlap_region, dt);
         let points_at = |dt: Real| at(overlap_points, dt);
+        let areas_at = |dt: Real| at(overlap_areas, dt);
         let reading = |r: &OverlapRegion, b1: &RigidBody, dt: Real| {
             r.volume_normal()
                 .map(|n| (b1.pose().inverse_transform_vector(&n), started + dt))
@@ -170,11 +171,11 @@ impl World {
         // faces cancel (a wall against a car's sides: the magnitude collapses) or reverse (a
         // plate through a plate: it points back against the faces that met, the normal of
         // the shallowest overlap). A contact that only turns (a corner developing into a
-        // scrape along the sides) is neither.
+        // scrape along the sides) is neither. Only a probe's vector area is read.
         let mut probes = Vec::with_capacity(NORMAL_PROBES);
         for k in 1..=NORMAL_PROBES {
             let dt = dt0 / NORMAL_PROBE_RATIO.powi(k as i32);
-            let (r, b1, _) = region_at(dt);
+            let (r, b1, _) = areas_at(dt);
             probes.push((dt, r, b1));
         }
         let vector = |r: &OverlapRegion| r.area_normal_1_in_2 - r.area_normal_2_in_1;
