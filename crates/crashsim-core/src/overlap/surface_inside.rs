@@ -219,6 +219,13 @@ fn triangles_in_box(own: &MeshShape, bx: &Aabb) -> Vec<bool> {
         if !node.aabb.intersects(bx) {
             continue;
         }
+        if bx.contains(&node.aabb) {
+            // every triangle's box lies in the node's, so in `bx`
+            for &ti in bvh.subtree_primitives(i) {
+                out[ti as usize] = true;
+            }
+            continue;
+        }
         if node.is_leaf() {
             for &ti in bvh.leaf_primitives(node) {
                 out[ti as usize] =
