@@ -427,9 +427,20 @@ impl Patches {
             x
         }
         let uncut = |t: u32| !crossed[t as usize];
+        // Each uncut candidate joined to its uncut partners in the box (each pair once: the
+        // partner is a candidate too; a root is its set's smallest triangle whatever the
+        // order), and noted when a partner is out of the box.
+        let mut out_partner = Vec::new();
         for &a in candidates.iter().filter(|&&a| uncut(a)) {
             for &b in own.edge_partners(a) {
-                if !uncut(b) || !in_box[b as usize] {
+                if !uncut(b) {
+                    continue;
+                }
+                if !in_box[b as usize] {
+                    out_partner.push(a);
+                    continue;
+                }
+                if b < a {
                     continue;
                 }
                 let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
@@ -444,14 +455,8 @@ impl Patches {
             parent[a as usize] = r;
         }
         let mut leaves_box = vec![false; n];
-        for &a in candidates.iter().filter(|&&a| uncut(a)) {
-            if own
-                .edge_partners(a)
-                .iter()
-                .any(|&b| uncut(b) && !in_box[b as usize])
-            {
-                leaves_box[parent[a as usize] as usize] = true;
-            }
+        for a in out_partner {
+            leaves_box[parent[a as usize] as usize] = true;
         }
         Patches { parent, leaves_box }
     }
