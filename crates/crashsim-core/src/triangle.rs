@@ -332,6 +332,75 @@ fn segment_segment_closest(p0: &Point, p1: &Point, q0: &Point, q1: &Point) -> (P
     )
 }
 
+/// The 15 candidate features of two triangles' closest points, in a fixed order: each vertex
+/// of `a` against `b`, each vertex of `b` against `a`, each edge of `a` against each edge of
+/// `b`. `measure(k)` is called for candidate k in that order and returns the least squared
+/// distance (m^2) so far; a candidate whose features' boxes are farther apart than that,
+/// by far more than the candidates' round-off, is passed over: its distance could not be the
+/// least, nor tie with it.
+fn closest_candidates(a: &Tri, b: &Tri, mut measure: impl FnMut(usize) -> Real) {
+    let box_of = |pts: &[&Point]| {
+        let (mut lo, mut hi) = (*pts[0], *pts[0]);
+        for p in &pts[1..] {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        (lo, hi)
+    };
+    // Squared gap (m^2) between two boxes, 0 where they meet.
+    let gap_sq = |(lo1, hi1): (Point, Point), (lo2, hi2): (Point, Point)| {
+        let mut g = 0.0;
+        for k in 0..3 {
+            let d = Real::max(lo1[k] - hi2[k], lo2[k] - hi1[k]).max(0.0);
+            g += d * d;
+        }
+        g
+    };
+    let (box_a, box_b) = (
+        box_of(&[&a[0], &a[1], &a[2]]),
+        box_of(&[&b[0], &b[1], &b[2]]),
+    );
+    let edge = |t: &Tri, i: usize| box_of(&[&t[i], &t[(i + 1) % 3]]);
+    let point = |p: &Point| (*p, *p);
+    // A candidate's computed points lie within round-off (a few units in the last place of
+    // the coordinates) of its features: widen the bound's distance by far more than that.
+    let slack = 1e-12 * coordinate_scale(&[a, b]);
+    let mut limit = Real::INFINITY; // squared distance a candidate must be under to matter
+    let mut consider = |k: usize, lower: Real, limit: &mut Real| {
+        if lower > *limit {
+            return;
+        }
+        let best = measure(k);
+        let reach = best.sqrt() + slack;
+        *limit = reach * reach;
+    };
+    for (k, p) in a.iter().enumerate() {
+        consider(k, gap_sq(point(p), box_b), &mut limit);
+    }
+    for (k, p) in b.iter().enumerate() {
+        consider(3 + k, gap_sq(point(p), box_a), &mut limit);
+    }
+    for i in 0..3 {
+        let ea = edge(a, i);
+        for j in 0..3 {
+            consider(6 + 3 * i + j, gap_sq(ea, edge(b, j)), &mut limit);
+        }
+    }
+}
+
+/// The closest points of candidate `k` of [`closest_candidates`].
+#[inline]
+fn candidate_points(a: &Tri, b: &Tri, k: usize) -> (Point, Point) {
+    match k {
+        0..=2 => (a[k], point_triangle_closest(&a[k], b)),
+        3..=5 => (point_triangle_closest(&b[k - 3], a), b[k - 3]),
+        _ => {
+            let (i, j) = ((k - 6) / 3, (k - 6) % 3);
+            segment_segment_closest(&a[i], &a[(i + 1) % 3], &b[j], &b[(j + 1) % 3])
+        }
+    }
+}
+
 /// The closest points (on `a`, on `b`) of two triangles that neither touch nor cross, None
 /// when they do (as [`triangles_intersect`] decides). Between two convex sets the plane
 /// through the closest points' midpoint, normal to the segment joining them, separates the
@@ -340,26 +409,17 @@ pub fn triangle_triangle_closest(a: &Tri, b: &Tri) -> Option<(Point, Point)> {
     if triangles_intersect(a, b) {
         return None;
     }
+    // The first candidate at the least distance (candidates passed over by their bounds
+    // could not have been it).
     let mut best = (Real::INFINITY, a[0], b[0]);
-    let mut keep = |pa: Point, pb: Point| {
+    closest_candidates(a, b, |k| {
+        let (pa, pb) = candidate_points(a, b, k);
         let d = (pa - pb).norm_squared();
         if d < best.0 {
             best = (d, pa, pb);
         }
-    };
-    for p in a {
-        keep(*p, point_triangle_closest(p, b));
-    }
-    for p in b {
-        keep(point_triangle_closest(p, a), *p);
-    }
-    for i in 0..3 {
-        let (p0, p1) = (&a[i], &a[(i + 1) % 3]);
-        for j in 0..3 {
-            let (pa, pb) = segment_segment_closest(p0, p1, &b[j], &b[(j + 1) % 3]);
-            keep(pa, pb);
-        }
-    }
+        best.0
+    });
     Some((best.1, best.2))
 }
 
@@ -369,19 +429,11 @@ pub fn triangle_triangle_distance_sq(a: &Tri, b: &Tri) -> Real {
         return 0.0;
     }
     let mut best = Real::INFINITY;
-    for p in a {
-        best = best.min((point_triangle_closest(p, b) - p).norm_squared());
-    }
-    for p in b {
-        best = best.min((point_triangle_closest(p, a) - p).norm_squared());
-    }
-    for i in 0..3 {
-        let (p0, p1) = (&a[i], &a[(i + 1) % 3]);
-        for j in 0..3 {
-            let (pa, pb) = segment_segment_closest(p0, p1, &b[j], &b[(j + 1) % 3]);
-            best = best.min((pa - pb).norm_squared());
-        }
-    }
+    closest_candidates(a, b, |k| {
+        let (pa, pb) = candidate_points(a, b, k);
+        best = best.min((pa - pb).norm_squared());
+        best
+    });
     best
 }
 
@@ -436,6 +488,76 @@ pub fn solid_angle(t: &Tri, p: &Point) -> Real {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every one of the 15 candidates measured, in the order of `closest_candidates`: what
+    /// the passing-over by the features' boxes must reproduce bit for bit.
+    fn closest_by_every_candidate(a: &Tri, b: &Tri) -> (Real, Point, Point) {
+        let mut best = (Real::INFINITY, a[0], b[0]);
+        for k in 0..15 {
+            let (pa, pb) = candidate_points(a, b, k);
+            let d = (pa - pb).norm_squared();
+            if d < best.0 {
+                best = (d, pa, pb);
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn passing_over_far_candidates_keeps_the_closest_points_bit_for_bit() {
+        use rand::rngs::SmallRng;
+        use rand::{Rng, SeedableRng};
+        let mut rng = SmallRng::seed_from_u64(11);
+        let mut compared = 0;
+        for case in 0..30_000 {
+            let s = [1e-3, 1.0, 40.0][case % 3];
+            let pt = |rng: &mut SmallRng, c: Vector| {
+                Point::from(
+                    c + Vector::new(
+                        rng.random_range(-s..s),
+                        rng.random_range(-s..s),
+                        rng.random_range(-s..s),
+                    ),
+                )
+            };
+            let o = Vector::zeros();
+            let a: Tri = [pt(&mut rng, o), pt(&mut rng, o), pt(&mut rng, o)];
+            let b: Tri = match case % 5 {
+                // a copy of a, moved a hair along its normal: every vertex ties
+                0 => {
+                    let n = scaled_normal(&a).normalize() * (s * 1e-7);
+                    [a[0] + n, a[1] + n, a[2] + n]
+                }
+                // a copy of a, moved along an edge and off its plane: edges tie
+                1 => {
+                    let m = (a[1] - a[0]) * 0.25 + scaled_normal(&a).normalize() * (s * 1e-3);
+                    [a[0] + m, a[1] + m, a[2] + m]
+                }
+                // a sliver: two vertices a hair apart
+                2 => {
+                    let c = Vector::new(2.0 * s, 0.0, 0.0);
+                    let p = pt(&mut rng, c);
+                    [p, p + Vector::new(1e-13, 0.0, 0.0), pt(&mut rng, c)]
+                }
+                _ => {
+                    let c = Vector::new(rng.random_range(0.0..3.0) * s, 0.0, 0.0);
+                    [pt(&mut rng, c), pt(&mut rng, c), pt(&mut rng, c)]
+                }
+            };
+            if triangles_intersect(&a, &b) {
+                continue;
+            }
+            let (d, pa, pb) = closest_by_every_candidate(&a, &b);
+            assert_eq!(
+                triangle_triangle_closest(&a, &b),
+                Some((pa, pb)),
+                "case {case}"
+            );
+            assert_eq!(triangle_triangle_distance_sq(&a, &b).to_bits(), d.to_bits());
+            compared += 1;
+        }
+        assert!(compared > 20_000, "{compared}");
+    }
 
     #[test]
     fn closest_points_give_the_distance_and_a_separating_plane() {
