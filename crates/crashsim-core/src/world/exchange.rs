@@ -4,7 +4,6 @@
 
 use super::{Motion, Pair, Phase, World, TIME_TOLERANCE};
 use crate::bisect::bisect;
-use crate::body::RigidBody;
 use crate::contact::{
     DepthOfPenetration, DEEPEST_ITERATIONS, MAX_DEPTH_OF_PENETRATION, OVERLAP_SAMPLES,
 };
@@ -520,18 +519,11 @@ impl World {
         normal_in_1: &Vector,
         dt: Real,
     ) -> Real {
-        let closing = |b1: &RigidBody, b2: &RigidBody| {
-            let (p1, p2) = (b1.pose(), b2.pose());
-            let c = nalgebra::center(&(p1 * centroid_in[0]), &(p2 * centroid_in[1]));
-            let n = p1 * normal_in_1;
-            (b1.point_velocity(&c) - b2.point_velocity(&c)).dot(&n)
-        };
-        // Now, a torque-free or fixed body is its own prediction (no copy needed).
-        let as_is = |i: usize| matches!(self.bodies[i].motion, Motion::Free | Motion::Fixed);
-        if dt == 0.0 && as_is(i1) && as_is(i2) {
-            return closing(self.bodies[i1].body(), self.bodies[i2].body());
-        }
-        closing(&self.predicted(i1, dt), &self.predicted(i2, dt))
+        let (b1, b2) = (self.predicted(i1, dt), self.predicted(i2, dt));
+        let (p1, p2) = (b1.pose(), b2.pose());
+        let c = nalgebra::center(&(p1 * centroid_in[0]), &(p2 * centroid_in[1]));
+        let n = p1 * normal_in_1;
+        (b1.point_velocity(&c) - b2.point_velocity(&c)).dot(&n)
     }
 
     /// After a step, an engaged pair either separates, turns closing again, or stays.

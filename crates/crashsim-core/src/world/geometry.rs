@@ -154,8 +154,8 @@ impl World {
             let b2 = self.predicted(pair.body2, base + dt);
             (
                 query(&wb1.shape, &b1.pose(), &wb2.shape, &b2.pose()),
-                b1,
-                b2,
+                b1.into_owned(),
+                b2.into_owned(),
             )
         };
         let region_at = |dt: Real| at(overlap_region, dt);

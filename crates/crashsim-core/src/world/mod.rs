@@ -23,6 +23,7 @@ mod soft;
 mod stepper;
 mod world_body;
 
+use std::borrow::Cow;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -388,14 +389,17 @@ impl World {
     /// Body `i` as it will be `dt` s from now (or was, for dt < 0, within the current step),
     /// moving as the run moves it. For a body on the ground an error (a wheel off the
     /// terrain) is kept for the stepper and the torque-free prediction returned meanwhile.
-    fn predicted(&self, i: usize, dt: Real) -> RigidBody {
+    /// A fixed body, and a torque-free one now (dt = 0), is the body itself, not a copy.
+    fn predicted(&self, i: usize, dt: Real) -> Cow<'_, RigidBody> {
         let wb = &self.bodies[i];
         match &wb.motion {
-            Motion::Free => wb.body().advanced(dt),
-            Motion::Fixed => wb.body().clone(),
-            Motion::OnGround(_) => self
-                .predicted_on_ground(i, dt)
-                .map_or_else(|| wb.body().advanced(dt), |p| p.state),
+            Motion::Free if dt == 0.0 => Cow::Borrowed(wb.body()),
+            Motion::Free => Cow::Owned(wb.body().advanced(dt)),
+            Motion::Fixed => Cow::Borrowed(wb.body()),
+            Motion::OnGround(_) => Cow::Owned(
+                self.predicted_on_ground(i, dt)
+                    .map_or_else(|| wb.body().advanced(dt), |p| p.state),
+            ),
         }
     }
 
@@ -586,12 +590,12 @@ mod tests {
     #[test]
     fn a_kept_prediction_is_not_used_after_an_impulse_changed_the_body() {
         let mut w = sliding_box();
-        let before = w.predicted(0, 0.01);
+        let before = w.predicted(0, 0.01).into_owned();
         assert_eq!(w.predicted(0, 0.01).velocity(), before.velocity(), "kept");
         // 1,000 N s along y at the CG: +1 m/s sideways, at the same instant.
         let cg = w.bodies[0].body().position();
         w.bodies[0].apply_impulse(&(Vector::y() * 1000.0), &cg);
-        let after = w.predicted(0, 0.01);
+        let after = w.predicted(0, 0.01).into_owned();
         assert!(after.velocity().y > 0.9, "{:?}", after.velocity());
         // The same as a prediction that was never kept.
         w.predictions = Predictions::default();
