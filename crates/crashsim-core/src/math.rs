@@ -30,6 +30,21 @@ pub fn is_finite_vector(v: &Vector) -> bool {
     v.iter().all(|x| x.is_finite())
 }
 
+/// The signed per-axis gap from box 1 to box 2 (0 on axes where they overlap): every pair
+/// of points, one in each box, is at least |g| apart along g / |g|.
+#[inline]
+pub fn box_gap(box1: &Aabb, box2: &Aabb) -> Vector {
+    let mut g = Vector::zeros();
+    for k in 0..3 {
+        if box2.mins[k] > box1.maxs[k] {
+            g[k] = box2.mins[k] - box1.maxs[k];
+        } else if box1.mins[k] > box2.maxs[k] {
+            g[k] = box2.maxs[k] - box1.mins[k];
+        }
+    }
+    g
+}
+
 /// The world-frame AABB of a body-frame AABB moved by `pose`.
 #[inline]
 pub fn transformed_aabb(aabb: &Aabb, pose: &Isometry) -> Aabb {

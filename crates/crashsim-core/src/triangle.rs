@@ -5,7 +5,7 @@
 //! (which the overlap region needs, with its orientation) is computed here; point-triangle
 //! projection and segment-segment closest points come from parry.
 
-use crate::math::{Point, Real, Vector};
+use crate::math::{box_gap, Aabb, Point, Real, Vector};
 use parry3d_f64::query::closest_points::closest_points_segment_segment_with_locations_nD;
 use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::{Segment, Triangle};
@@ -339,51 +339,32 @@ fn segment_segment_closest(p0: &Point, p1: &Point, q0: &Point, q1: &Point) -> (P
 /// by far more than the candidates' round-off, is passed over: its distance could not be the
 /// least, nor tie with it.
 fn closest_candidates(a: &Tri, b: &Tri, mut measure: impl FnMut(usize) -> Real) {
-    let box_of = |pts: &[&Point]| {
-        let (mut lo, mut hi) = (*pts[0], *pts[0]);
-        for p in &pts[1..] {
-            lo = lo.inf(p);
-            hi = hi.sup(p);
-        }
-        (lo, hi)
-    };
-    // Squared gap (m^2) between two boxes, 0 where they meet.
-    let gap_sq = |(lo1, hi1): (Point, Point), (lo2, hi2): (Point, Point)| {
-        let mut g = 0.0;
-        for k in 0..3 {
-            let d = Real::max(lo1[k] - hi2[k], lo2[k] - hi1[k]).max(0.0);
-            g += d * d;
-        }
-        g
-    };
     let (box_a, box_b) = (
-        box_of(&[&a[0], &a[1], &a[2]]),
-        box_of(&[&b[0], &b[1], &b[2]]),
+        Aabb::from_points(a.iter().copied()),
+        Aabb::from_points(b.iter().copied()),
     );
-    let edge = |t: &Tri, i: usize| box_of(&[&t[i], &t[(i + 1) % 3]]);
-    let point = |p: &Point| (*p, *p);
+    let edge = |t: &Tri, i: usize| Aabb::from_points([t[i], t[(i + 1) % 3]]);
+    let point = |p: &Point| Aabb::new(*p, *p);
     // A candidate's computed points lie within round-off (a few units in the last place of
     // the coordinates) of its features: widen the bound's distance by far more than that.
     let slack = 1e-12 * coordinate_scale(&[a, b]);
     let mut limit = Real::INFINITY; // squared distance a candidate must be under to matter
-    let mut consider = |k: usize, lower: Real, limit: &mut Real| {
-        if lower > *limit {
+    let mut consider = |k: usize, (f1, f2): (Aabb, Aabb)| {
+        if box_gap(&f1, &f2).norm_squared() > limit {
             return;
         }
-        let best = measure(k);
-        let reach = best.sqrt() + slack;
-        *limit = reach * reach;
+        let reach = measure(k).sqrt() + slack;
+        limit = reach * reach;
     };
     for (k, p) in a.iter().enumerate() {
-        consider(k, gap_sq(point(p), box_b), &mut limit);
+        consider(k, (point(p), box_b));
     }
     for (k, p) in b.iter().enumerate() {
-        consider(3 + k, gap_sq(point(p), box_a), &mut limit);
+        consider(3 + k, (box_a, point(p)));
     }
     for i in 0..3 {
-        let ea = edge(a, i);
         for j in 0..3 {
-            consider(6 + 3 * i + j, gap_sq(ea, edge(b, j)), &mut limit);
+            consider(6 + 3 * i + j, (edge(a, i), edge(b, j)));
         }
     }
 }

@@ -142,9 +142,10 @@ pub(super) fn overlap_region_with(
     });
     let mut region = OverlapRegion::default();
     // Only crossings are in S: where the surfaces merely touch (faces resting on each other)
-    // nothing overlaps. Touching triangles still count as met for the patches below.
-    for (_, _, c) in segs.iter().filter(|_| points) {
-        if c.is_crossing() {
+    // nothing overlaps. Touching triangles still count as met for the patches below. (No
+    // points for the vector areas alone.)
+    for (_, _, c) in segs.iter() {
+        if points && c.is_crossing() {
             region.segment_count += 1;
             region.points.push(pose1 * c.start);
             region.points.push(pose1 * c.end);

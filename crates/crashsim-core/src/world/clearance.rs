@@ -28,7 +28,7 @@
 //! far parts of two cars cost nothing while the cars rock next to each other. A triangle
 //! pair that still fails is critical: the step is then searched on the critical pairs alone.
 
-use crate::math::{Aabb, Isometry, Matrix, Real, RigidMap, Rotation, Vector};
+use crate::math::{box_gap, Aabb, Isometry, Matrix, Real, RigidMap, Rotation, Vector};
 use crate::motion::MotionBound;
 use crate::shape::{MeshShape, Obb};
 use crate::triangle::{centroid, triangle_triangle_closest, triangle_triangle_contact, Tri};
@@ -555,21 +555,6 @@ fn nodes_apart(
         consider(m.rot[0] * (g / norm));
     }
     best
-}
-
-/// The signed per-axis gap from box 1 to box 2 (0 on axes where they overlap): every pair
-/// of points, one in each box, is at least |g| apart along g / |g|.
-#[inline]
-fn box_gap(box1: &Aabb, box2: &Aabb) -> Vector {
-    let mut g = Vector::zeros();
-    for k in 0..3 {
-        if box2.mins[k] > box1.maxs[k] {
-            g[k] = box2.mins[k] - box1.maxs[k];
-        } else if box1.mins[k] > box2.maxs[k] {
-            g[k] = box2.maxs[k] - box1.mins[k];
-        }
-    }
-    g
 }
 
 /// A leaf from its gap vector in mesh 1's frame, its parts' centres and radii, at `m`'s
