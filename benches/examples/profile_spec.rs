@@ -2,7 +2,8 @@
 //! windows: the wall time and distance queries of each window and of each event's step, for
 //! finding where a run's time goes (and for `perf record`).
 //! `cargo run --release -p crashsim-benches --example profile_spec -- scene.json [window_s
-//! [repeats]]` (window 0.1 s, one repeat by default).
+//! [repeats]]` (window 0.1 s, one repeat by default). The whole run's record digest says
+//! whether a change kept the results' bits.
 
 use std::time::Instant;
 
@@ -41,6 +42,23 @@ fn main() {
         println!("  exchange at {:.6} s", i.time);
     }
     println!("  rest {:?}", full.rest);
+    // FNV-1a over the record's every number (Debug prints each float's shortest exact
+    // form): equal digests, equal runs bit for bit.
+    let record = format!(
+        "{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+        full.times,
+        full.states,
+        full.wheels,
+        full.rest,
+        full.impacts,
+        full.contacts,
+        full.joint_events,
+        full.joints
+    );
+    let digest = record.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    });
+    println!("  record digest {digest:016x}");
 
     // The same run in windows on the step grid (the same bits: runs resume where they
     // stop), `repeats` times: the least wall time of each window (a shared machine's noise

@@ -515,13 +515,16 @@ pub(crate) fn project_velocities_each(
         .collect()
 }
 
-/// The position change per body (CG shift m, rotation vector rad) that brings every row's
-/// value to zero, to first order with the least mass-weighted motion (one Newton step of
-/// `-W J^T (J W J^T)^-1 C`), over the joints' rows and the extra rows given.
+/// The largest |C| over the rows (m or rad) and the position change per body (CG shift m,
+/// rotation vector rad) that brings every row's value to zero, to first order with the least
+/// mass-weighted motion (one Newton step of `-W J^T (J W J^T)^-1 C`), over the joints' rows
+/// and the extra rows given; no change (zeros, nothing solved) when the largest |C| is below
+/// `settled` (m or rad; 0: always solved).
 pub(crate) fn project_positions(
     joints: &[JointSpec],
     bodies: &[JointBody],
     extra: &[Row],
+    settled: Real,
 ) -> (Vec<(Vector, Vector)>, Real) {
     let mut rows = Vec::new();
     for joint in joints {
@@ -529,7 +532,7 @@ pub(crate) fn project_positions(
     }
     rows.extend_from_slice(extra);
     let worst = rows.iter().fold(0.0, |m: Real, r| m.max(r.c.abs()));
-    if rows.is_empty() || worst == 0.0 {
+    if rows.is_empty() || worst == 0.0 || worst < settled {
         return (
             vec![(Vector::zeros(), Vector::zeros()); bodies.len()],
             worst,

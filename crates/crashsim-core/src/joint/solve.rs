@@ -9,7 +9,7 @@
 use std::cell::RefCell;
 use std::collections::HashMap;
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DMatrixView, DVector};
 
 use super::row::{JointBody, Row};
 use crate::math::{Real, Vector};
@@ -73,41 +73,72 @@ pub(super) fn solve_each(
         };
         let symbolic = &bucket[k];
         if !symbolic.reversed {
-            return sparse_solve(rows, bodies, rhs, symbolic);
+            let ordered: Vec<&Row> = rows.iter().collect();
+            return sparse_solve(&ordered, bodies, rhs, symbolic);
         }
         // The rows from the last to the first (see [`Symbolic::reversed`]), and the
         // reactions back in the rows' order.
-        let reversed: Vec<Row> = rows.iter().rev().cloned().collect();
+        let ordered: Vec<&Row> = rows.iter().rev().collect();
         let rhs = rhs
             .iter()
             .map(|b| DVector::from_iterator(n, b.iter().rev().copied()))
             .collect();
-        sparse_solve(&reversed, bodies, rhs, symbolic)
+        sparse_solve(&ordered, bodies, rhs, symbolic)
             .into_iter()
             .map(|x| DVector::from_iterator(n, x.iter().rev().copied()))
             .collect()
     })
 }
 
+thread_local! {
+    /// The storage of [`sparse_solve`]'s factor (column-major, n x n for n rows), all zeros
+    /// between solves: a solve writes only where its factor can be non-zero and puts zeros
+    /// back there, instead of allocating and clearing the whole square each time.
+    static FACTOR: RefCell<Vec<Real>> = const { RefCell::new(Vec::new()) };
+}
+
 /// The solve of [`solve_each`] from [`SPARSE_FROM_ROWS`] rows on, the rows in the order
 /// `symbolic` was made for.
 fn sparse_solve(
-    rows: &[Row],
+    rows: &[&Row],
     bodies: &[JointBody],
     rhs: Vec<DVector<Real>>,
     symbolic: &Symbolic,
 ) -> Vec<DVector<Real>> {
-    let mut l = matrix(rows, bodies, &symbolic.pairs);
-    if !factor(&mut l, symbolic) {
-        // (the matrix again: the factor wrote over it; this is rare, a set of rows that
-        // holds a body twice)
-        return least_squares(matrix(rows, bodies, &symbolic.pairs), &rhs);
-    }
-    rhs.into_iter()
-        .map(|mut x| {
-            // nalgebra's `Cholesky::solve`: L y = rhs, then L^T x = y. (Dense: over L's
-            // non-zeros only, with nalgebra's order of sums, the two took 7 % longer on a
-            // pedestrian strike: the dense loops run in SIMD.)
+    let n = rows.len();
+    let solved = FACTOR.with(|storage| {
+        let mut storage = storage.borrow_mut();
+        if storage.len() < n * n {
+            storage.resize(n * n, 0.0);
+        }
+        let cells = &mut storage[..n * n];
+        lower_matrix(rows, bodies, &symbolic.pairs, cells);
+        let solved = factor(cells, n, symbolic).then(|| factor_solve(cells, n, &rhs));
+        // Zeros back where the factor was written: its diagonal and its pattern.
+        for (j, below) in symbolic.columns.iter().enumerate() {
+            cells[j + n * j] = 0.0;
+            for &i in below {
+                cells[i + n * j] = 0.0;
+            }
+        }
+        solved
+    });
+    solved.unwrap_or_else(|| {
+        // (a set of rows that holds a body twice: rare)
+        let owned: Vec<Row> = rows.iter().map(|&r| r.clone()).collect();
+        least_squares(matrix(&owned, bodies, &symbolic.pairs), &rhs)
+    })
+}
+
+/// nalgebra's `Cholesky::solve` with the factor L in `cells` (n x n, column-major): L y =
+/// b, then L^T x = y, for each right-hand side b. (Over L's non-zeros only, with nalgebra's
+/// order of sums, the two took 7 % longer on a pedestrian strike: the dense loops run in
+/// SIMD.)
+fn factor_solve(cells: &[Real], n: usize, rhs: &[DVector<Real>]) -> Vec<DVector<Real>> {
+    let l = DMatrixView::from_slice(cells, n, n);
+    rhs.iter()
+        .map(|b| {
+            let mut x = b.clone();
             l.solve_lower_triangular_unchecked_mut(&mut x);
             l.ad_solve_lower_triangular_unchecked_mut(&mut x);
             x
@@ -213,6 +244,18 @@ fn matrix(rows: &[Row], bodies: &[JointBody], pairs: &[(usize, usize)]) -> DMatr
         a[(j, i)] = s;
     }
     a
+}
+
+/// The lower triangle (diagonal included) of [`matrix`] written into `cells` (column-major,
+/// n x n, zeros where no pair of rows shares a body), the rows in the order factored: what
+/// [`factor`] reads.
+fn lower_matrix(rows: &[&Row], bodies: &[JointBody], pairs: &[(usize, usize)], cells: &mut [Real]) {
+    let n = rows.len();
+    let moves: Vec<_> = rows.iter().map(|r| mobility(r, bodies)).collect();
+    for &(i, j) in pairs {
+        // entry (j, i), j >= i: row j's column i
+        cells[j + n * i] = entry(rows[i], rows[j], &moves[j]);
+    }
 }
 
 /// The pairs of rows (i <= j, j ascending) that share a body ([`sharing_pairs`]).
@@ -358,10 +401,11 @@ fn merge(a: &[usize], b: &[usize]) -> Vec<usize> {
     out
 }
 
-/// Factors the symmetric `a` in place into its lower Cholesky factor L (the strict upper
+/// Factors the symmetric n x n matrix in `l` (column-major; only its lower triangle, the
+/// diagonal included, is read) in place into its lower Cholesky factor L (the strict upper
 /// triangle is left as it was); false, as nalgebra's `Cholesky::new` gives None, when a pivot
 /// is zero or negative (redundant rows). `symbolic` says where L can be non-zero (made for
-/// the rows of `a`).
+/// the matrix's rows).
 ///
 /// The same left-looking algorithm and floating-point operations as nalgebra 0.34's
 /// `Cholesky::new`: column j gets `a_ij = -L_jk L_ik + a_ij` for k = 0..j in order, then is
@@ -371,12 +415,11 @@ fn merge(a: &[usize], b: &[usize]) -> Vec<usize> {
 /// value is finite), so the factor is nalgebra's bit for bit (the tests compare them), while
 /// a tree of joints, whose matrix is mostly zeros, costs what its non-zeros do: a walking
 /// pedestrian's 57 rows leave 568 of L's 1,653 entries below the diagonal non-zero.
-fn factor(a: &mut DMatrix<Real>, symbolic: &Symbolic) -> bool {
-    let n = a.nrows();
+fn factor(l: &mut [Real], n: usize, symbolic: &Symbolic) -> bool {
     let (columns, in_row) = (&symbolic.columns, &symbolic.in_row);
     // Per column k, where row j's entry is in `columns[k]` (j passes each row once).
     let mut at = vec![0usize; n];
-    let l = a.as_mut_slice(); // column-major: L_ij at l[i + n j]
+    // (column-major: L_ij at l[i + n j])
     for j in 0..n {
         let (done, rest) = l.split_at_mut(j * n);
         let column = &mut rest[..n];
@@ -537,7 +580,7 @@ mod tests {
                 "case {case}"
             );
             let mut l = a.clone();
-            let ours = factor(&mut l, &symbolic);
+            let ours = factor(l.as_mut_slice(), rows.len(), &symbolic);
             let theirs = a.clone().cholesky();
             assert_eq!(ours, theirs.is_some(), "case {case}");
             let rhs = DVector::from_fn(rows.len(), |_, _| rng.random_range(-1e3..1e3));
@@ -567,6 +610,9 @@ mod tests {
                 assert_eq!(bits(&x), expected, "case {case}, again");
             }
         }
+        // The factor's storage is all zeros again after every solve (and so after these,
+        // of many sizes, some failing).
+        FACTOR.with(|cells| assert!(cells.borrow().iter().all(|&x| x.to_bits() == 0)));
         assert!(
             factored > 250,
             "only {factored} cases were positive definite"

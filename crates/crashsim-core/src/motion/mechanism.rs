@@ -23,6 +23,9 @@ use crate::math::{Point, Real, Rotation, Vector};
 /// Newton steps of the position projection after a sub-step (each solves the joints'
 /// linearised rows; two bring a sub-step's drift, O(h^5), to rounding).
 const POSITION_PROJECTIONS: usize = 3;
+/// The joints' largest drift (m or rad) below which the position projection stops (and
+/// solves nothing more): rounding's worth.
+const SETTLED_DRIFT: Real = 1e-13;
 
 /// How far (rad, about 0.6 deg) a joint must come back inside a limit's range before its next
 /// stop there is a new event: a joint resting on its limit under a load leaves and re-enters
@@ -366,8 +369,8 @@ fn project(
         for joint in joints {
             limit_rows(joint, &jb, 0.0, &mut extra);
         }
-        let (shift, worst) = project_positions(joints, &jb, &extra);
-        if worst < 1e-13 {
+        let (shift, worst) = project_positions(joints, &jb, &extra, SETTLED_DRIFT);
+        if worst < SETTLED_DRIFT {
             break;
         }
         for (st, (dx, dtheta)) in s.iter_mut().zip(shift) {

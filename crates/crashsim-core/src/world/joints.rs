@@ -278,7 +278,9 @@ impl World {
             let m = &self.mechanisms[g];
             for (joint, id) in m.joints.iter().zip(&m.ids) {
                 let label = joint.label(*id);
-                let (_, apart) = project_positions(std::slice::from_ref(joint), &jb, &[]);
+                // (only how far apart: nothing solved)
+                let (_, apart) =
+                    project_positions(std::slice::from_ref(joint), &jb, &[], Real::INFINITY);
                 if apart > START_TOLERANCE {
                     return Err(Error::invalid(format!(
                         "{label}'s frames do not meet at the start ({apart:.4} m or rad \
