@@ -90,11 +90,20 @@ pub(super) fn solve_each(
     })
 }
 
+/// The storage of [`sparse_solve`]'s factor (column-major, n x n for n rows): all zeros
+/// between solves. A solve writes only where its factor can be non-zero and puts zeros back
+/// there, instead of allocating and clearing the whole square each time.
+#[derive(Default)]
+struct FactorCells {
+    cells: Vec<Real>,
+    /// True from a solve's first write until its zeros are back: still true at the next
+    /// solve only if one was cut short (a panic), which then clears everything first, so no
+    /// result ever depends on what the thread solved before.
+    dirty: bool,
+}
+
 thread_local! {
-    /// The storage of [`sparse_solve`]'s factor (column-major, n x n for n rows), all zeros
-    /// between solves: a solve writes only where its factor can be non-zero and puts zeros
-    /// back there, instead of allocating and clearing the whole square each time.
-    static FACTOR: RefCell<Vec<Real>> = const { RefCell::new(Vec::new()) };
+    static FACTOR: RefCell<FactorCells> = RefCell::new(FactorCells::default());
 }
 
 /// The solve of [`solve_each`] from [`SPARSE_FROM_ROWS`] rows on, the rows in the order
@@ -107,11 +116,15 @@ fn sparse_solve(
 ) -> Vec<DVector<Real>> {
     let n = rows.len();
     let solved = FACTOR.with(|storage| {
-        let mut storage = storage.borrow_mut();
-        if storage.len() < n * n {
-            storage.resize(n * n, 0.0);
+        let storage = &mut *storage.borrow_mut();
+        if storage.dirty {
+            storage.cells.fill(0.0);
         }
-        let cells = &mut storage[..n * n];
+        if storage.cells.len() < n * n {
+            storage.cells.resize(n * n, 0.0);
+        }
+        storage.dirty = true;
+        let cells = &mut storage.cells[..n * n];
         lower_matrix(rows, bodies, &symbolic.pairs, cells);
         let solved = factor(cells, n, symbolic).then(|| factor_solve(cells, n, &rhs));
         // Zeros back where the factor was written: its diagonal and its pattern.
@@ -121,6 +134,7 @@ fn sparse_solve(
                 cells[i + n * j] = 0.0;
             }
         }
+        storage.dirty = false;
         solved
     });
     solved.unwrap_or_else(|| {
@@ -612,7 +626,10 @@ mod tests {
         }
         // The factor's storage is all zeros again after every solve (and so after these,
         // of many sizes, some failing).
-        FACTOR.with(|cells| assert!(cells.borrow().iter().all(|&x| x.to_bits() == 0)));
+        FACTOR.with(|f| {
+            let f = f.borrow();
+            assert!(!f.dirty && f.cells.iter().all(|&x| x.to_bits() == 0));
+        });
         assert!(
             factored > 250,
             "only {factored} cases were positive definite"
@@ -621,6 +638,28 @@ mod tests {
             reversed > 20,
             "only {reversed} cases were factored reversed"
         );
+    }
+
+    /// A solve cut short (a panic between the factor's first write and its zeros put back)
+    /// leaves its thread's storage dirty: the next solve clears it and gives nalgebra's bits.
+    #[test]
+    fn a_solve_cut_short_leaves_no_trace() {
+        let mut rng = SmallRng::seed_from_u64(11);
+        let (bodies, rows) = loop {
+            let (bodies, rows) = mechanism(&mut rng, 12, false);
+            if rows.len() >= SPARSE_FROM_ROWS {
+                break (bodies, rows);
+            }
+        };
+        let rhs = DVector::from_fn(rows.len(), |_, _| rng.random_range(-1e3..1e3));
+        let expected = dense_solve(&rows, &bodies, &rhs).expect("positive definite");
+        FACTOR.with(|f| {
+            let mut f = f.borrow_mut();
+            f.cells = vec![1.5; rows.len() * rows.len() + 7];
+            f.dirty = true;
+        });
+        assert_eq!(bits(&solve(&rows, &bodies, rhs)), expected);
+        FACTOR.with(|f| assert!(!f.borrow().dirty));
     }
 
     /// A tree whose joints are listed from its root out (as a pedestrian's are, from the
