@@ -99,7 +99,7 @@ impl World {
         self.pairs[pi].phase = Phase::Pressing { depth };
         // The damper takes the step's mean closing speed, the depth's change over it: the
         // speed at the step's end lags by half a step and held a body resting on the slab
-        // up by zeta sqrt(k/m) dt of its weight (3 % at 1 ms; tests/soft.rs).
+        // up by zeta sqrt(k/m) dt of its weight (3 % at 1 ms; tests/integration/soft.rs).
         let closing = if span > 0.0 {
             (depth - before) / span
         } else {

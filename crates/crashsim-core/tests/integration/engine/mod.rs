@@ -15,10 +15,8 @@ use crashsim_core::{
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
-#[path = "../common/mod.rs"]
-mod common;
 mod stiffness_modes;
-use common::{add_box, box_props, box_shape, every_timer_is_accounted_for, state};
+use crate::common::{add_box, box_props, box_shape, every_timer_is_accounted_for, state};
 use stiffness_modes::stiffness;
 
 const MPH: Real = 0.44704;

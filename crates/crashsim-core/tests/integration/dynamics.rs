@@ -1,6 +1,6 @@
 //! The whole event on the ground (docs/model.md, "Vehicles on the ground") against closed
 //! forms: static wheel loads, a locked-wheel skid, steady cornering, a braked vehicle on a
-//! slope, energy at rest. The car is tests/common's reference car.
+//! slope, energy at rest. The car is tests/integration/common's reference car.
 //! Tolerances are stated at each assertion.
 
 use std::f64::consts::PI;
@@ -14,9 +14,7 @@ use crashsim_core::vehicle::{
 };
 use crashsim_core::{BodyState, ContactEventKind, MeshShape, RunOptions, RunOutput, World};
 
-mod common;
-
-use common::{all_wheels_from_start, props as car_props, wheels, A, B, CG_HEIGHT, MASS};
+use crate::common::{all_wheels_from_start, props as car_props, wheels, A, B, CG_HEIGHT, MASS};
 
 fn car_shape() -> Arc<MeshShape> {
     // The box reaches 0.15 m above the ground; its centre is 0.25 m above the CG.

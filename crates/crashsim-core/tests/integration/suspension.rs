@@ -21,9 +21,7 @@ use crashsim_core::ErrorKind;
 use crashsim_core::{BodyState, MeshShape, RunOptions, World};
 use proptest::prelude::*;
 
-mod common;
-
-use common::{all_wheels_from_start, props, wheels, CG_HEIGHT, MASS, TRACK};
+use crate::common::{all_wheels_from_start, props, wheels, CG_HEIGHT, MASS, TRACK};
 
 /// Energy the treads may hold (J): four treads at the friction limit hold about 4 x 26 J at
 /// the static loads (the default tyre: 0.8 Fz at 1.7 cm), twice that for load transfer.

@@ -17,8 +17,7 @@ use crashsim_core::world::{degrees, heading, magnitude, pdof_deg};
 use crashsim_core::ErrorKind;
 use crashsim_core::{ContactParams, MeshShape, SceneSpec};
 
-mod common;
-use common::{box_props, state};
+use crate::common::{box_props, state};
 
 /// The seed's 90 deg side impact (examples/seed-90deg.toml): red 30 mph into blue's left
 /// side, 1 s at 1 ms.

@@ -11,9 +11,9 @@
 //! Budget: each property runs a bounded number of cases (`CASES_*` below, the whole file in
 //! well under 30 s in release on the project's 2-core machine). For a longer run set
 //! PROPTEST_CASES, which replaces every per-test count (see tests/README.md):
-//!     PROPTEST_CASES=20000 cargo test -p crashsim-core --release --test fuzz
+//!     PROPTEST_CASES=20000 cargo test -p crashsim-core --release --test integration fuzz::
 //! A failure prints the shrunk case; keep it as a named regression test
-//! (tests/fuzz_regressions.rs).
+//! (tests/integration/fuzz_regressions.rs).
 //! Frames and units: one common frame, m.
 
 use std::f64::consts::PI;
@@ -51,7 +51,7 @@ fn config(cases: u32) -> ProptestConfig {
             None => proptest::test_runner::RngSeed::Fixed(0x00c0_ffee),
         },
         max_shrink_iters: 2000,
-        // Found cases become named tests (tests/fuzz_regressions.rs), not files.
+        // Found cases become named tests (tests/integration/fuzz_regressions.rs), not files.
         failure_persistence: None,
         ..ProptestConfig::default()
     }

@@ -10,8 +10,7 @@ use crashsim_core::{
     BodyState, ContactParams, DepthOfPenetration, MassProperties, MeshShape, RunOutput, World,
 };
 
-mod common;
-use common::{box_props, box_shape, every_timer_is_accounted_for};
+use crate::common::{box_props, box_shape, every_timer_is_accounted_for};
 
 const CAR: (Real, Real, Real, Real) = (4.5, 1.8, 1.4, 1450.0);
 const FIXED_MASS: Real = 1e6;
