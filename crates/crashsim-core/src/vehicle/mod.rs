@@ -177,54 +177,59 @@ impl VehicleSpec {
         Ok(&self.load_groups)
     }
 
-    /// The linkage's geometry and the reference's road-wheel angle at time `t` (rad; None
-    /// with per-wheel tables or without steering) for the body at `position` (CG, world, m)
-    /// turned by `rotation` (body to world) moving at `velocity` (world, m/s): what
-    /// [`VehicleSpec::wheel_steer`] needs. A driver's path is steered from the pose.
+    /// The linkage's geometry and the reference's road-wheel angle at time `t` (rad) for the
+    /// body at `position` (CG, world, m) turned by `rotation` (body to world) moving at
+    /// `velocity` (world, m/s): what [`VehicleSpec::wheel_steer`] needs; None without a
+    /// reference angle (no steering, or per-wheel tables), the geometry then not worked out
+    /// (it was 1.5 % of a run-out to rest, called in every evaluation). A driver's path is
+    /// steered from the pose.
     pub fn steering_at(
         &self,
         t: Real,
         position: &Point,
         rotation: &Matrix,
         velocity: &Vector,
-    ) -> (LinkageGeometry, Option<Real>) {
-        let geometry = LinkageGeometry::of(&self.wheels);
-        let delta = match &self.inputs.steer {
+    ) -> Option<(LinkageGeometry, Real)> {
+        match &self.inputs.steer {
             Some(SteerInput::Path(path)) => {
+                let geometry = LinkageGeometry::of(&self.wheels);
                 let x0 = geometry.fixed_axle_x().unwrap_or(0.0);
                 let axle = position + rotation * Vector::new(x0, geometry.centre_y(), 0.0);
                 let ahead = rotation * Vector::x();
                 let flat = ahead.x.hypot(ahead.y).max(1e-12);
                 let heading = [ahead.x / flat, ahead.y / flat];
                 let speed = velocity.x * heading[0] + velocity.y * heading[1];
-                Some(path.steer([axle.x, axle.y], heading, speed, geometry.wheelbase()))
+                let delta = path.steer([axle.x, axle.y], heading, speed, geometry.wheelbase());
+                Some((geometry, delta))
             }
-            Some(input) => self.steering.reference_angle(input, t),
+            Some(input) => self
+                .steering
+                .reference_angle(input, t)
+                .map(|delta| (LinkageGeometry::of(&self.wheels), delta)),
             None => None,
-        };
-        (geometry, delta)
+        }
     }
 
     /// Road-wheel angle (rad, about the body z axis, + left) of wheel `k` at time `t`, with
-    /// [`VehicleSpec::steering_at`]'s `(geometry, delta)`: through the linkage, or from its
-    /// own table; 0 for a wheel that does not steer.
-    pub fn wheel_steer(&self, k: usize, t: Real, at: &(LinkageGeometry, Option<Real>)) -> Real {
+    /// [`VehicleSpec::steering_at`]'s geometry and reference angle: through the linkage, or
+    /// from its own table; 0 for a wheel that does not steer.
+    pub fn wheel_steer(&self, k: usize, t: Real, at: &Option<(LinkageGeometry, Real)>) -> Real {
         let w = &self.wheels[k];
-        match (&self.inputs.steer, at.1) {
+        match (&self.inputs.steer, at) {
             (Some(SteerInput::PerWheel(tables)), _) => {
                 tables[k].as_ref().map_or(0.0, |table| table.at(t))
             }
-            (Some(SteerInput::Path(_)), Some(delta)) => self.steering.wheel_angle_from(
+            (Some(SteerInput::Path(_)), Some((geometry, delta))) => self.steering.wheel_angle_from(
                 SteerReference::Centre,
-                &at.0,
-                delta,
+                geometry,
+                *delta,
                 w.steerable,
                 w.center.x,
                 w.center.y,
             ),
-            (_, Some(delta)) => {
+            (_, Some((geometry, delta))) => {
                 self.steering
-                    .wheel_angle(&at.0, delta, w.steerable, w.center.x, w.center.y)
+                    .wheel_angle(geometry, *delta, w.steerable, w.center.x, w.center.y)
             }
             _ => 0.0,
         }
