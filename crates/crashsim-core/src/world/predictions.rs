@@ -4,6 +4,7 @@
 //! count of velocity jumps when it was made ([`super::world_body`]): after an impulse the
 //! count differs, so every prediction made before it is stale without anyone forgetting it.
 
+use std::collections::VecDeque;
 use std::sync::{Arc, Mutex};
 
 use crate::body::RigidBody;
@@ -56,7 +57,8 @@ pub(super) struct Prediction {
 /// world).
 #[derive(Debug, Default)]
 pub(super) struct Predictions {
-    kept: Mutex<Vec<Prediction>>,
+    /// Oldest first (a queue: dropping the oldest moves none of the others).
+    kept: Mutex<VecDeque<Prediction>>,
 }
 
 impl Predictions {
@@ -72,8 +74,8 @@ impl Predictions {
         let mut kept = self.kept.lock().expect("not poisoned");
         kept.retain(|q| q.key.jumps == p.key.jumps);
         if kept.len() >= capacity {
-            kept.remove(0);
+            kept.pop_front();
         }
-        kept.push(p);
+        kept.push_back(p);
     }
 }
