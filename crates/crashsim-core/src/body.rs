@@ -33,6 +33,17 @@ pub struct MassProperties {
     inverse_inertia: Matrix,
     /// Principal moments, ascending (kg m^2).
     principal: [Real; 3],
+    /// The largest eigenvalue of `inverse_inertia` (1/(kg m^2)): what the integration's
+    /// sub-step bounds read every step (motion/), worked out once here.
+    largest_inverse_moment: Real,
+}
+
+/// The largest eigenvalue of an inverse inertia (1/(kg m^2), 0 for none).
+fn largest_eigenvalue(inverse_inertia: &Matrix) -> Real {
+    inverse_inertia
+        .symmetric_eigenvalues()
+        .iter()
+        .fold(0.0, |a: Real, b| a.max(*b))
 }
 
 impl MassProperties {
@@ -80,6 +91,7 @@ impl MassProperties {
         Ok(MassProperties {
             mass,
             inertia: sym,
+            largest_inverse_moment: largest_eigenvalue(&inverse_inertia),
             inverse_inertia,
             principal,
         })
@@ -93,6 +105,7 @@ impl MassProperties {
             inertia: Matrix::from_diagonal_element(Real::INFINITY),
             inverse_inertia: Matrix::zeros(),
             principal: [Real::INFINITY; 3],
+            largest_inverse_moment: largest_eigenvalue(&Matrix::zeros()),
         }
     }
 
@@ -118,6 +131,13 @@ impl MassProperties {
     #[inline]
     pub fn inverse_inertia(&self) -> &Matrix {
         &self.inverse_inertia
+    }
+
+    /// The largest eigenvalue of [`MassProperties::inverse_inertia`] (1/(kg m^2); 0 for an
+    /// immovable body): one over the least principal moment.
+    #[inline]
+    pub fn largest_inverse_moment(&self) -> Real {
+        self.largest_inverse_moment
     }
 }
 

@@ -72,13 +72,7 @@ fn joint_body(body: &RigidBody, s: &Stage) -> JointBody {
 /// A bound (1/s) on the fastest mode of a joint's rotational spring and damper, as
 /// [`super::suspension_rate`] bounds the wheels'.
 fn joint_rate(joint: &JointSpec, bodies: &[RigidBody]) -> Real {
-    let inverse = |b: &RigidBody| {
-        b.props()
-            .inverse_inertia()
-            .symmetric_eigenvalues()
-            .iter()
-            .fold(0.0, |a: Real, x| a.max(*x))
-    };
+    let inverse = |b: &RigidBody| b.props().largest_inverse_moment();
     let inv = inverse(&bodies[joint.body1]) + joint.body2.map_or(0.0, |b| inverse(&bodies[b]));
     joint.damping * inv + (joint.stiffness * inv).sqrt()
 }

@@ -148,11 +148,7 @@ struct Evaluation {
 /// to the farthest point of the tyre). For a car at 1.3 Hz and 0.3 it is about 45 /s:
 /// 1 ms sub-steps are far inside it.
 pub fn suspension_rate(spec: &VehicleSpec, props: &MassProperties) -> Real {
-    let inverse_inertia_max = props
-        .inverse_inertia()
-        .symmetric_eigenvalues()
-        .iter()
-        .fold(0.0, |a: Real, b| a.max(*b));
+    let inverse_inertia_max = props.largest_inverse_moment();
     let inverse_mass = |w: &crate::vehicle::WheelSpec| {
         let reach = w.center.coords.norm() + w.radius;
         1.0 / props.mass() + reach * reach * inverse_inertia_max
