@@ -46,7 +46,8 @@ OVERLAPS = [
     float(x) for x in np.concatenate([np.geomspace(0.0005, 0.1, 16), np.linspace(0.15, W, 12)])
 ]
 TABLE = [0.001, 0.003, 0.01, 0.02, 0.05, 0.1, 0.3, 0.9]
-# The oncoming case on a fine linear grid (the continuity test's grid, tests/integration/glancing.rs).
+# The oncoming case on a fine linear grid (the continuity test's grid,
+# crates/crashsim-core/tests/integration/glancing.rs).
 FINE = [0.0005 * k for k in range(1, 40)] + [0.002 * k for k in range(10, 226)]
 WALLS = [0.002, 0.005, 0.01, 0.02, 0.03, 0.05, 0.1, 0.2]
 

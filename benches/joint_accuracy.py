@@ -5,8 +5,8 @@ links over 5 s, all at the default 1 ms step, and each run's wall time per simul
     python3 benches/joint_accuracy.py
 
 Bodies hang 30 m above a plane they never reach: gravity and the joints are the only forces.
-The tests (crates/crashsim-core/tests/integration/joints/, tests/test_joints.py) hold the same runs to
-their tolerances; this prints the figures.
+The tests (crates/crashsim-core/tests/integration/joints/, tests/test_joints.py) hold the same
+runs to their tolerances; this prints the figures.
 """
 
 from __future__ import annotations

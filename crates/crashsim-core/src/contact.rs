@@ -55,7 +55,8 @@ pub const NORMAL_COLLAPSE: Real = 0.5;
 /// k = 1 ..= this (5 mm, 1.25 mm ... down to 5 um). Bounded: at most this many overlap
 /// regions per first overlap, each over an overlap no deeper than 2 cm. Each costs about
 /// 2 ms at 20k triangles: 12 probes a factor 2 apart made the step with a first overlap of the
-/// 20k seed scene 28 ms; 6 a factor 4 apart find the same thin parts (tests/integration/thin_parts.rs).
+/// 20k seed scene 28 ms; 6 a factor 4 apart find the same thin parts
+/// (tests/integration/thin_parts.rs).
 pub const NORMAL_PROBES: usize = 6;
 /// The ratio of neighbouring probe depths.
 pub const NORMAL_PROBE_RATIO: Real = 4.0;

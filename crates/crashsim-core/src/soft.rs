@@ -28,8 +28,8 @@ pub const MAX_SOFT_DAMPING_RATIO: Real = 2.0;
 /// Largest `sqrt(k / m) h` (rad) of a step h a soft pair presses over, `m` the lighter body's
 /// mass: the contact's period must span at least 2 pi / 0.2 = 31 steps. The step is first
 /// order: at 0.09 rad a head-on contact's restitution came out 2.0 % above its equation of
-/// motion's (damping ratio 0.3), at 0.023 rad 0.47 % (tests/integration/soft.rs); 0.2 rad allows about
-/// 4 %. A run whose step is longer cuts it into sub-steps while the pair presses
+/// motion's (damping ratio 0.3), at 0.023 rad 0.47 % (tests/integration/soft.rs); 0.2 rad
+/// allows about 4 %. A run whose step is longer cuts it into sub-steps while the pair presses
 /// ([`MAX_SOFT_SUBSTEPS`] at most).
 pub const MAX_SOFT_STEP_ANGLE: Real = 0.2;
 /// Most sub-steps a run's step is cut into while a soft pair presses: a stiffer pair (or a

@@ -25,7 +25,8 @@ const BOUND_MARGIN: Real = 1e-6;
 const GROUND_NEAR_MARGIN: Real = 0.5;
 /// Natural frequency (Hz) of a body resting on its whole footprint on the ground: 20 Hz, so
 /// it sinks g / (2 pi 20)^2 = 0.6 mm under its weight; a box car landing on its side corner
-/// after a roll went 5.1 cm into the road at 10 Hz, 2.7 cm at 20 Hz (tests/integration/dynamics.rs).
+/// after a roll went 5.1 cm into the road at 10 Hz, 2.7 cm at 20 Hz
+/// (tests/integration/dynamics.rs).
 const BODY_CONTACT_FREQUENCY: Real = 20.0;
 /// Damping ratio of the body-ground contact.
 const BODY_CONTACT_DAMPING: Real = 0.5;

@@ -1,6 +1,6 @@
 //! The whole event on the ground (docs/model.md, "Vehicles on the ground") against closed
 //! forms: static wheel loads, a locked-wheel skid, steady cornering, a braked vehicle on a
-//! slope, energy at rest. The car is tests/integration/common's reference car.
+//! slope, energy at rest. The car is the common module's reference car.
 //! Tolerances are stated at each assertion.
 
 use std::f64::consts::PI;

@@ -1,4 +1,4 @@
-//! Cases the property-based fuzzing (tests/integration/fuzz.rs) found, each kept as a named regression
+//! Cases the property-based fuzzing (the fuzz module) found, each kept as a named regression
 //! test with the fix it led to. Frames and units: one common frame, m.
 
 use crashsim_core::mass::solid_properties;

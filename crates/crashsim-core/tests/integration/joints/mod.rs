@@ -310,7 +310,7 @@ fn bad_joints_are_refused_by_name() {
 
 use crate::common;
 
-/// A parked car (tests/integration/common's reference car) with a 750 kg centre-axle trailer on its tow
+/// A parked car (the common module's reference car) with a 750 kg centre-axle trailer on its tow
 /// ball: at rest the ball carries the trailer's weight times the CG's lead over the axle per
 /// the drawbar's lever (moments about the axle's contact line), the car's wheels the car's
 /// weight plus that; within 1 % in the pose the run settles to.
