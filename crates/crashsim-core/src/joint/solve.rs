@@ -139,8 +139,7 @@ fn sparse_solve(
     });
     solved.unwrap_or_else(|| {
         // (a set of rows that holds a body twice: rare)
-        let owned: Vec<Row> = rows.iter().map(|&r| r.clone()).collect();
-        least_squares(matrix(&owned, bodies, &symbolic.pairs), &rhs)
+        least_squares(matrix(rows, bodies, &symbolic.pairs), &rhs)
     })
 }
 
@@ -249,13 +248,12 @@ fn sharing_pairs(rows: &[Row], bodies: usize, mut f: impl FnMut(usize, usize)) {
 /// [`dense_matrix`], bit for bit, visiting only the pairs of rows that share a body (`pairs`,
 /// [`Symbolic::pairs`] for these rows): a mechanism of many bodies costs what its joints'
 /// neighbours do, not the square of its rows.
-fn matrix(rows: &[Row], bodies: &[JointBody], pairs: &[(usize, usize)]) -> DMatrix<Real> {
-    let moves: Vec<_> = rows.iter().map(|r| mobility(r, bodies)).collect();
-    let mut a = DMatrix::<Real>::zeros(rows.len(), rows.len());
+fn matrix(rows: &[&Row], bodies: &[JointBody], pairs: &[(usize, usize)]) -> DMatrix<Real> {
+    let n = rows.len();
+    let mut a = DMatrix::<Real>::zeros(n, n);
+    lower_matrix(rows, bodies, pairs, a.as_mut_slice());
     for &(i, j) in pairs {
-        let s = entry(&rows[i], &rows[j], &moves[j]);
-        a[(i, j)] = s;
-        a[(j, i)] = s;
+        a[(i, j)] = a[(j, i)];
     }
     a
 }
@@ -587,7 +585,8 @@ mod tests {
             let symbolic = Symbolic::new(&rows, bodies.len());
             reversed += usize::from(symbolic.reversed && rows.len() >= SPARSE_FROM_ROWS);
             let ordered = in_order(&rows, &symbolic);
-            let a = matrix(&ordered, &bodies, &symbolic.pairs);
+            let refs: Vec<&Row> = ordered.iter().collect();
+            let a = matrix(&refs, &bodies, &symbolic.pairs);
             assert_eq!(
                 bits(&a),
                 bits(&dense_matrix(&ordered, &bodies)),
