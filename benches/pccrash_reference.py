@@ -7,12 +7,19 @@ figure "Vehicle Motion in Global Reference Frame"; the input at commit
 fc50afe2c6b8f5fd11a439293f91202620a4699c, figure "Driver Inputs for Veh1"). Those data are not
 in this repository: give the folder with the two CSV files read from them,
 ``15mph_steer_cg_path_DxDy.csv`` (t_s, Dx_ft, Dy_ft) and ``15mph_steer_driver_input_steer.csv``
-(t_s, steer_deg), comment lines starting with '#'.
+(t_s, steer_deg), comment lines starting with '#'. Three more files of the same run, read from the
+same notebook (commit fc50afe2c6b8f5fd11a439293f91202620a4699c, the figures of
+``compare_kinematics``), are compared when the folder has them: ``15mph_steer_heading_deg.csv``
+(t_s, heading_deg: PC-Crash's heading, wrapped at +-180 deg), ``15mph_steer_accel_g.csv`` (t_s,
+ax_g, ay_g: forward and rightward acceleration) and ``15mph_steer_tire_fy_lb.csv`` (t_s, lf, rf,
+rr, lr: each tyre's lateral force in its wheel's axes, lb; the left front is the outer wheel).
 
 The car is built from the published data only (examples/reference-sedan-steer-15mph.toml: the
 same numbers) and driven by the exported steering-wheel angle; friction 0.76 as the runs. The
 script prints the CG path's largest distance from PC-Crash's over the 0.1 s samples, its time,
-and the course angle's offset once the ramp has ended.
+and the course angle's offset once the ramp has ended; with the further files, the heading's
+largest offset (issue 19's second goal: 3 deg), the lateral acceleration and the front tyres'
+lateral forces during the ramp.
 
     python3 benches/pccrash_reference.py --data /path/to/pccrash
 """
@@ -29,6 +36,8 @@ from crashsim.io.scenefile import load_scene
 
 REPO = Path(__file__).resolve().parents[1]
 FT = 0.3048
+LB = 4.4482216152605
+G = 9.80665
 
 
 def read(path: Path) -> dict[str, np.ndarray]:
@@ -80,6 +89,71 @@ def main() -> None:
     print(f"speed: largest difference {np.abs(ours - speed)[1:-1].max():.3f} m/s")
     steer = ", ".join(f"{math.degrees(a):.2f}" for a in result.wheel_steer("sedan")[:2, -1])
     print(f"steered wheels at the end: {steer} deg")
+    compare_further(args.data, result, t)
+
+
+def compare_further(folder: Path, result: cs.Result, t: np.ndarray) -> None:
+    """Heading, lateral acceleration and the front tyres' forces against PC-Crash's, where the
+    folder has those files (the module's docstring)."""
+    tr = result.trajectory("sedan")
+    w = tr.orientation
+    yaw = np.unwrap(
+        np.arctan2(
+            2 * (w[:, 0] * w[:, 3] + w[:, 1] * w[:, 2]), 1 - 2 * (w[:, 2] ** 2 + w[:, 3] ** 2)
+        )
+    )
+    ramp = (t > 1.05) & (t < 2.05)
+    shown = [1.1, 1.2, 1.3, 1.4, 1.6, 1.8, 2.0]
+    heading_file = folder / "15mph_steer_heading_deg.csv"
+    if heading_file.exists():
+        theirs = np.unwrap(np.radians(read(heading_file)["heading_deg"]))
+        off = np.degrees(np.interp(t, tr.t, yaw) - theirs)
+        k = int(np.argmax(np.abs(off)))
+        print(
+            f"heading: largest offset from PC-Crash's {off[k]:+.2f} deg at {t[k]:.1f} s "
+            f"(at 2, 4, 6, 8, 10 s: "
+            + ", ".join(f"{off[np.searchsorted(t, s)]:+.2f}" for s in (2, 4, 6, 8, 10))
+            + " deg)"
+        )
+    accel_file = folder / "15mph_steer_accel_g.csv"
+    if accel_file.exists():
+        # PC-Crash's rightward acceleration is negative in this right turn: compare magnitudes
+        theirs = np.abs(read(accel_file)["ay_g"])
+        acc = np.gradient(tr.velocity[:, :2], tr.t, axis=0)
+        lateral = -np.sin(yaw) * acc[:, 0] + np.cos(yaw) * acc[:, 1]
+        ours = np.abs(np.interp(t, tr.t, lateral)) / G
+        print(
+            "lateral acceleration during the ramp, PC-Crash / crashsim (g): "
+            + ", ".join(
+                f"{s:.1f} s {theirs[np.searchsorted(t, s)]:.3f}/{ours[np.searchsorted(t, s)]:.3f}"
+                for s in shown
+            )
+        )
+        print(
+            f"  after the ramp (t >= 2.1 s): largest difference "
+            f"{np.abs(theirs - ours)[t >= 2.1].max():.3f} g; during it "
+            f"{np.abs(theirs - ours)[ramp].max():.3f} g"
+        )
+    force_file = folder / "15mph_steer_tire_fy_lb.csv"
+    if force_file.exists():
+        theirs = read(force_file)
+        rec = result.wheels("sedan")
+        body_yaw = np.interp(rec.t, tr.t, yaw)
+        wheel_fy = {}
+        for i, name in enumerate(rec.names[:2]):
+            f, steer = rec.force[i], rec.steer[i]
+            heading = body_yaw + steer  # the wheel's heading in the world (rad)
+            side = -np.sin(heading) * f[:, 0] + np.cos(heading) * f[:, 1]
+            wheel_fy[name] = np.abs(np.interp(t, rec.t, side)) / LB
+        outer, inner = wheel_fy["front_left"], wheel_fy["front_right"]
+        print("front tyres' lateral force (wheel axes, lb), outer / inner, PC-Crash | crashsim:")
+        for s in shown:
+            j = np.searchsorted(t, s)
+            print(
+                f"  {s:.1f} s: {abs(theirs['lf'][j]):6.0f} / {abs(theirs['rf'][j]):4.0f} "
+                f"(inner/outer {abs(theirs['rf'][j] / theirs['lf'][j]):.2f}) | "
+                f"{outer[j]:6.0f} / {inner[j]:4.0f} (inner/outer {inner[j] / outer[j]:.2f})"
+            )
 
 
 if __name__ == "__main__":
