@@ -11,14 +11,26 @@ missing=()
 for pkg in chromium chromium-driver libjs-three; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")
 done
+# In the background, beside the two builds: unpacking the packages (about 40 s of CPU) fills the
+# core that the compilers leave idle in their serial stretches (benches/README.md, "The test
+# run"). A failed install fails the command, as it would in the foreground.
+apt_pid=""
+apt_log="$(mktemp)"
 if [ ${#missing[@]} -gt 0 ] && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
-    apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}" >/dev/null
+    (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}") \
+        >"$apt_log" 2>&1 &
+    apt_pid=$!
 fi
 python3 -m pip install --quiet ".[test]"
 # Not incremental: the test build starts from an empty target folder here, and writing the
 # incremental caches costs about 10 s of its 95 (benches/README.md, "The test run").
 CARGO_INCREMENTAL=0 cargo test --workspace --exclude crashsim-py --quiet
+if [ -n "$apt_pid" ] && ! wait "$apt_pid"; then
+    echo "installing ${missing[*]} with apt-get failed:" >&2
+    cat "$apt_log" >&2
+    exit 1
+fi
+rm -f "$apt_log"
 # pytest on every core (pytest-xdist: each test runs whole in one worker, so what a test
 # checks is unchanged).
 python3 -m pytest -n auto tests
