@@ -15,11 +15,14 @@ ax_g, ay_g: forward and rightward acceleration) and ``15mph_steer_tire_fy_lb.csv
 rr, lr: each tyre's lateral force in its wheel's axes, lb; the left front is the outer wheel).
 
 The car is built from the published data only (examples/reference-sedan-steer-15mph.toml: the
-same numbers) and driven by the exported steering-wheel angle; friction 0.76 as the runs. The
-script prints the CG path's largest distance from PC-Crash's over the 0.1 s samples, its time,
-and the course angle's offset once the ramp has ended; with the further files, the heading's
-largest offset (issue 19's second goal: 3 deg), the lateral acceleration and the front tyres'
-lateral forces during the ramp.
+same numbers); friction 0.76 as the runs. Three runs: the example as written (its ramp's two
+points, each wheel linear between them: ``steering_interpolation = "wheels"``), the same with
+the linkage at every instant (``"input"``, the default), and the example's car driven by the
+exported steering-wheel angle sample for sample. For each the script prints the CG path's
+largest distance from PC-Crash's over the 0.1 s samples and (with the heading file) the
+heading's largest offset (issue 19's goals: 0.3 m and 3 deg); for the example as written, the
+course angle's offset once the ramp has ended and, with the further files, the heading, the
+lateral acceleration and the front tyres' lateral forces during the ramp.
 
     python3 benches/pccrash_reference.py --data /path/to/pccrash
 """
@@ -32,7 +35,7 @@ from pathlib import Path
 
 import crashsim as cs
 import numpy as np
-from crashsim.io.scenefile import load_scene
+from crashsim.io.scenefile import load_scene, loads_scene
 
 REPO = Path(__file__).resolve().parents[1]
 FT = 0.3048
@@ -53,33 +56,56 @@ def main() -> None:
     args = parser.parse_args()
     path = read(args.data / "15mph_steer_cg_path_DxDy.csv")
     steer = read(args.data / "15mph_steer_driver_input_steer.csv")
-    case = load_scene(REPO / "examples" / "reference-sedan-steer-15mph.toml")
-    scene = case.scene
-    # the exported steering-wheel angle, sample for sample (the example has its ramp)
+    example = REPO / "examples" / "reference-sedan-steer-15mph.toml"
+    text = example.read_text(encoding="utf-8")
+    case = load_scene(example)
+    # three runs of the example's car: as written (its two-point ramp, each wheel linear
+    # between the points); the same with the linkage at every instant; driven by the
+    # exported steering-wheel angle, sample for sample (0.1 s apart)
+    runs = {"the example as written": case.scene.run(case.run.longest, dt=case.run.dt)}
+    linkage = text.replace('steering_interpolation = "wheels"', 'steering_interpolation = "input"')
+    assert linkage != text
+    runs["the example, the linkage at every instant"] = loads_scene(linkage).scene.run(
+        case.run.longest, dt=case.run.dt
+    )
     table = np.c_[steer["t_s"], np.radians(steer["steer_deg"])]
-    inputs = cs.DriverInputs(steering_wheel=table)
-    (vehicle,) = scene.vehicles
-    fresh = cs.Scene(ground=scene.ground)
-    fresh.add(vehicle, (0.0, 0.0), velocity=(cs.mph(15.0), 0.0, 0.0), inputs=inputs)
-    result = fresh.run(case.run.longest, dt=case.run.dt)
-    tr = result.trajectory("sedan")
+    (vehicle,) = case.scene.vehicles
+    fresh = cs.Scene(ground=case.scene.ground)
+    fresh.add(
+        vehicle,
+        (0.0, 0.0),
+        velocity=(cs.mph(15.0), 0.0, 0.0),
+        inputs=cs.DriverInputs(steering_wheel=table),
+    )
+    runs["the exported steering samples"] = fresh.run(case.run.longest, dt=case.run.dt)
     t = path["t_s"]
+    rx, ry = path["Dx_ft"] * FT, path["Dy_ft"] * FT
+    heading_file = args.data / "15mph_steer_heading_deg.csv"
+    for label, result in runs.items():
+        tr = result.trajectory("sedan")
+        x = np.interp(t, result.t, tr.position[:, 0])
+        y = np.interp(t, result.t, tr.position[:, 1])
+        miss = np.hypot(x - rx, y - ry)
+        k = int(np.argmax(miss))
+        at = ", ".join(f"{miss[np.searchsorted(t, s)]:.2f}" for s in (2, 4, 6, 8, 10))
+        line = (
+            f"{label}: CG path {miss.max():.2f} m at {t[k]:.1f} s from PC-Crash's (at 2-10 s: {at})"
+        )
+        if heading_file.exists():
+            off = heading_offset(read(heading_file), result, t)
+            line += f"; heading {np.abs(off).max():.2f} deg"
+        print(line)
+    result = runs["the example as written"]
+    tr = result.trajectory("sedan")
     x = np.interp(t, result.t, tr.position[:, 0])
     y = np.interp(t, result.t, tr.position[:, 1])
-    rx, ry = path["Dx_ft"] * FT, path["Dy_ft"] * FT
-    miss = np.hypot(x - rx, y - ry)
-    k = int(np.argmax(miss))
 
     def course(px: np.ndarray, py: np.ndarray) -> np.ndarray:
         return np.degrees(np.unwrap(np.arctan2(np.gradient(py, t), np.gradient(px, t))))
 
     after = t >= 3.0
     offset = course(x, y)[after] - course(rx, ry)[after]
-    at = ", ".join(f"{miss[np.searchsorted(t, s)]:.2f}" for s in (2, 4, 6, 8, 10))
-    print(
-        f"CG path: largest distance from PC-Crash's {miss.max():.2f} m at {t[k]:.1f} s "
-        f"(at 2, 4, 6, 8, 10 s: {at} m)"
-    )
+    print("the example as written:")
     print(
         f"course after the ramp: {np.median(offset):+.2f} deg from PC-Crash's "
         f"(range {offset.min():+.2f} .. {offset.max():+.2f})"
@@ -92,22 +118,34 @@ def main() -> None:
     compare_further(args.data, result, t)
 
 
-def compare_further(folder: Path, result: cs.Result, t: np.ndarray) -> None:
-    """Heading, lateral acceleration and the front tyres' forces against PC-Crash's, where the
-    folder has those files (the module's docstring)."""
-    tr = result.trajectory("sedan")
-    w = tr.orientation
-    yaw = np.unwrap(
+def yaw_of(result: cs.Result) -> np.ndarray:
+    """The body's yaw (rad, unwrapped) at the trajectory's samples."""
+    w = result.trajectory("sedan").orientation
+    return np.unwrap(
         np.arctan2(
             2 * (w[:, 0] * w[:, 3] + w[:, 1] * w[:, 2]), 1 - 2 * (w[:, 2] ** 2 + w[:, 3] ** 2)
         )
     )
+
+
+def heading_offset(theirs: dict[str, np.ndarray], result: cs.Result, t: np.ndarray) -> np.ndarray:
+    """crashsim's heading less PC-Crash's (deg) at the times ``t``."""
+    tr = result.trajectory("sedan")
+    return np.degrees(
+        np.interp(t, tr.t, yaw_of(result)) - np.unwrap(np.radians(theirs["heading_deg"]))
+    )
+
+
+def compare_further(folder: Path, result: cs.Result, t: np.ndarray) -> None:
+    """Heading, lateral acceleration and the front tyres' forces against PC-Crash's, where the
+    folder has those files (the module's docstring)."""
+    tr = result.trajectory("sedan")
+    yaw = yaw_of(result)
     ramp = (t > 1.05) & (t < 2.05)
     shown = [1.1, 1.2, 1.3, 1.4, 1.6, 1.8, 2.0]
     heading_file = folder / "15mph_steer_heading_deg.csv"
     if heading_file.exists():
-        theirs = np.unwrap(np.radians(read(heading_file)["heading_deg"]))
-        off = np.degrees(np.interp(t, tr.t, yaw) - theirs)
+        off = heading_offset(read(heading_file), result, t)
         k = int(np.argmax(np.abs(off)))
         print(
             f"heading: largest offset from PC-Crash's {off[k]:+.2f} deg at {t[k]:.1f} s "

@@ -188,3 +188,78 @@ def test_rolling_resistance_coasts_to_a_stop_in_v_squared_over_two_f_g() -> None
     v, f = 10.0, 0.015
     distance = _stop(cs.DriverInputs(), v, tyre=cs.Tyre(rolling_resistance=f))
     assert distance == pytest.approx(v**2 / (2.0 * f * G), rel=0.01)
+
+
+# -- what is linear between a steering table's points -------------------------------------------
+
+
+def _ramp_run(interpolation: str | None) -> tuple[np.ndarray, np.ndarray]:
+    """A 1 s steering-wheel ramp to 300 deg (left) at 10 m/s, outer-wheel reference, full
+    Ackermann: the run's times and the two front wheels' recorded angles (rad)."""
+    given = {} if interpolation is None else {"steering_interpolation": interpolation}
+    v = car(steering_reference="outer", ackermann=1.0, steering_ratio=15.0, **given)
+    ramp = [(0.2, 0.0), (1.2, math.radians(300.0))]
+    scene = cs.Scene(ground=cs.Ground(friction=MU))
+    scene.add(v, (0.0, 0.0), velocity=(10.0, 0.0, 0.0), inputs=cs.DriverInputs(steering_wheel=ramp))
+    result = scene.run(1.5, dt=0.002)
+    steer = result.wheel_steer("car")
+    return result.wheels("car").t, steer[:2]
+
+
+def test_wheels_linear_between_points_keep_the_ratio_of_the_ramps_end() -> None:
+    """``steering_interpolation="wheels"`` moves each front wheel linearly between its
+    Ackermann angles at the table's points (a reconstruction program's ramp): during the ramp
+    the inner wheel keeps the end's ratio to the outer one, while the default linkage gives
+    the geometric ratio of each instant (near 1 at small angles); at the points both agree."""
+    t, by_wheel = _ramp_run("wheels")
+    t_default, linkage = _ramp_run(None)
+    assert np.array_equal(t, t_default)
+    outer_end = math.radians(20.0)  # 300 deg over 15
+    inner_end = math.atan(1.0 / (1.0 / math.tan(outer_end) - TRACK / L))  # cot o - cot i = t/L
+    ramp = (t > 0.25) & (t < 1.15)
+    # The left wheel is the inner one in a turn to the left.
+    inner, outer = by_wheel[0], by_wheel[1]
+    np.testing.assert_allclose(outer[ramp], outer_end * (t[ramp] - 0.2), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(inner[ramp] / outer[ramp], inner_end / outer_end, rtol=1e-10)
+    # The default: the outer wheel the same, the inner at each instant's geometric angle.
+    np.testing.assert_allclose(linkage[1][ramp], outer[ramp], rtol=0, atol=1e-12)
+    geometric = np.arctan(1.0 / (1.0 / np.tan(outer[ramp]) - TRACK / L))
+    np.testing.assert_allclose(linkage[0][ramp], geometric, rtol=1e-10)
+    assert np.all(linkage[0][ramp] < inner[ramp])
+    # Before and after the ramp the two are the same.
+    still = (t < 0.2) | (t > 1.2)
+    assert np.array_equal(by_wheel[:, still], linkage[:, still])
+    end = by_wheel[:, t > 1.2]
+    np.testing.assert_allclose(
+        end, np.broadcast_to([[inner_end], [outer_end]], end.shape), atol=1e-12
+    )
+
+
+def test_an_unknown_steering_interpolation_is_refused_with_the_choices() -> None:
+    with pytest.raises(cs.ParameterError, match="steering_interpolation.*'input'.*'wheels'"):
+        car(steering_interpolation="spline")
+    text = """
+format_version = 1
+[run]
+duration = "1 s"
+[ground]
+friction = 0.8
+[[vehicles]]
+name = "car"
+box = { length = "4.6 m", width = "1.8 m", height = "1.4 m" }
+mass = "1500 kg"
+position = [0, 0]
+speed = "10 m/s"
+[vehicles.wheels]
+wheelbase = "2.7 m"
+track = "1.55 m"
+cg_to_front_axle = "1.1 m"
+radius = "0.3 m"
+steering_interpolation = "%s"
+"""
+    from crashsim.io.scenefile import SceneFileError, loads_scene
+
+    case = loads_scene(text % "wheels")
+    assert case.scene.vehicles[0].wheels.steering_interpolation == "wheels"
+    with pytest.raises(SceneFileError, match="steering_interpolation"):
+        loads_scene(text % "spline")

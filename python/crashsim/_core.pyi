@@ -193,6 +193,7 @@ class _VehicleKeywords(TypedDict):
     steering_ratio: NotRequired[float | None]
     ackermann: NotRequired[float | None]
     steering_reference: NotRequired[str | None]
+    steering_interpolation: NotRequired[str | None]
     anti_roll: NotRequired[list[tuple[int, int, float]]]
     abs: NotRequired[bool]
     steer: NotRequired[tuple[str, Any] | None]

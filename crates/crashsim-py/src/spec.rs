@@ -639,6 +639,8 @@ struct VehicleArgs<'py> {
     #[pyo3(default)]
     steering_reference: Option<String>,
     #[pyo3(default)]
+    steering_interpolation: Option<String>,
+    #[pyo3(default)]
     anti_roll: Vec<(usize, usize, f64)>,
     #[pyo3(default = true)]
     abs: bool,
@@ -668,11 +670,12 @@ impl<'py> VehicleArgs<'py> {
         "spring_rates",
         "damping",
     ];
-    const OPTIONAL: [&'static str; 13] = [
+    const OPTIONAL: [&'static str; 14] = [
         "tyre",
         "steering_ratio",
         "ackermann",
         "steering_reference",
+        "steering_interpolation",
         "anti_roll",
         "abs",
         "steer",
@@ -731,10 +734,23 @@ impl<'py> VehicleArgs<'py> {
                 )))
             }
         };
+        let interpolation = match self.steering_interpolation.as_deref() {
+            None | Some("input") => core::vehicle::SteerInterpolation::Input,
+            Some("wheels") => core::vehicle::SteerInterpolation::Wheels,
+            Some(other) => {
+                return Err(errors::parameter(format!(
+                    "steering_interpolation = {other:?} is unknown: between a steering table's \
+                     points either the 'input' is linear and each wheel follows it through the \
+                     linkage (a real linkage), or each of the 'wheels' moves linearly between \
+                     its angles at the points (a reconstruction program's steering ramp)"
+                )))
+            }
+        };
         let linkage = core::vehicle::Steering {
             ratio: self.steering_ratio,
             ackermann: self.ackermann.unwrap_or(core::vehicle::DEFAULT_ACKERMANN),
             reference,
+            interpolation,
         };
         let mut spec = ground::vehicle(
             &self.centers,

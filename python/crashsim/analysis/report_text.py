@@ -306,9 +306,14 @@ def _vehicle_data_lines(result: Result) -> list[str]:
         )
         st = d["steering"]
         ratio = "none" if st["ratio"] is None else f"{st['ratio']:g}"
+        ramp = (
+            "; each wheel linear between the table's points"
+            if st.get("interpolation") == "wheels"
+            else ""
+        )
         lines.append(
             f"  {name}: steering ratio {ratio}, Ackermann {st['ackermann']:g} (input: the "
-            f"{st['reference']} wheel's angle); ABS {'on' if d['abs'] else 'off'}"
+            f"{st['reference']} wheel's angle{ramp}); ABS {'on' if d['abs'] else 'off'}"
         )
         freq = ", ".join(f"{f:.2f}" for f in d["natural_frequencies"])
         zeta = ", ".join(f"{z:.2f}" for z in d["damping_ratios"])

@@ -85,6 +85,7 @@ WHEEL_KEYS = (
     "steering_ratio",
     "ackermann",
     "steering_reference",
+    "steering_interpolation",
     "abs",
 )
 TYRE_KEYS = TYRE_PARAMETERS
@@ -455,6 +456,10 @@ def _wheels(t: _Table, vehicle: Vehicle) -> Vehicle:
             given[k] = w.number(k)
     if w.has("steering_reference"):
         given["steering_reference"] = w.string("steering_reference", choices=("outer", "centre"))
+    if w.has("steering_interpolation"):
+        given["steering_interpolation"] = w.string(
+            "steering_interpolation", choices=("input", "wheels")
+        )
     if w.has("abs"):
         value = w.raw("abs")
         if not isinstance(value, bool):

@@ -193,7 +193,11 @@ class Wheels:
     the sedan class's 6 deg per g (``anti_roll=(0, 0)`` for none). The steering linkage:
     ``steering_ratio`` (steering-wheel angle per road-wheel angle), ``ackermann`` (fraction,
     default 1: full Ackermann), ``steering_reference`` ("outer", default: the input's angle is
-    the outer wheel's; or "centre"). ``abs``: anti-lock brakes (default True). Other
+    the outer wheel's; or "centre"), ``steering_interpolation`` (what is linear between a
+    steering table's points: "input", default, each wheel following it through the linkage
+    at every instant as a real linkage does; or "wheels", each wheel moving linearly between
+    its angles at the points, as a reconstruction program's steering ramp: docs/
+    vehicle-model.md). ``abs``: anti-lock brakes (default True). Other
     layouts: :meth:`custom`. ``source`` says where the numbers came from ("user", or the
     class table for a generated vehicle).
 
@@ -225,6 +229,7 @@ class Wheels:
         steering_ratio: float | None = None,
         ackermann: float | None = None,
         steering_reference: str | None = None,
+        steering_interpolation: str | None = None,
         abs: bool = True,
     ) -> None:
         wb = _number(wheelbase, "wheelbase", "m")
@@ -262,7 +267,7 @@ class Wheels:
             damping,
             tyre,
             axles=(0, 0, 1, 1),
-            linkage=(steering_ratio, ackermann, steering_reference, abs),
+            linkage=(steering_ratio, ackermann, steering_reference, steering_interpolation, abs),
         )
         self._roll = _roll_input(anti_roll, roll_gradient, anti_roll_front_share, axles=True)
         self.wheelbase: float | None = wb
@@ -327,6 +332,7 @@ class Wheels:
         steering_ratio: float | None = None,
         ackermann: float | None = None,
         steering_reference: str | None = None,
+        steering_interpolation: str | None = None,
         abs: bool = True,
         coupling: ArrayLike | None = None,
         load_groups: Sequence[Sequence[str | int]] = (),
@@ -372,7 +378,7 @@ class Wheels:
             damping,
             tyre,
             axles=None,
-            linkage=(steering_ratio, ackermann, steering_reference, abs),
+            linkage=(steering_ratio, ackermann, steering_reference, steering_interpolation, abs),
         )
         self.wheelbase = self.track = self.cg_to_front_axle = self.cg_height = None
         self.steer = "custom"
@@ -412,7 +418,7 @@ class Wheels:
         damping: Any,
         tyre: Any,
         axles: Sequence[int] | None,
-        linkage: tuple[float | None, float | None, str | None, bool],
+        linkage: tuple[float | None, float | None, str | None, str | None, bool],
     ) -> None:
         n = len(names)
         self._names = names
@@ -429,7 +435,7 @@ class Wheels:
         self.coupling: Array | None = None
         # Sets of wheel indices sharing their load equally (load-equalising tandems).
         self.load_groups: tuple[tuple[int, ...], ...] = ()
-        ratio, ackermann, reference, abs_ = linkage
+        ratio, ackermann, reference, interpolation, abs_ = linkage
         self.steering_ratio: float | None = (
             None if ratio is None else _number(ratio, "steering_ratio", "1")
         )
@@ -443,6 +449,8 @@ class Wheels:
                 "axle 'centre''s"
             )
         self.steering_reference: str | None = reference
+        # Checked by the engine's rules with the rest (spec.rs, the constructors' _check).
+        self.steering_interpolation: str | None = interpolation
         if not isinstance(abs_, bool | np.bool_):
             raise ParameterError(f"abs must be True or False, got {abs_!r}")
         self.abs: bool = bool(abs_)
@@ -569,6 +577,7 @@ class Wheels:
             "steering_ratio": self.steering_ratio,
             "ackermann": self.ackermann,
             "steering_reference": self.steering_reference,
+            "steering_interpolation": self.steering_interpolation,
             "anti_roll": self.anti_roll_bars(mass, loads, rates) if explicit_rates else [],
             "abs": self.abs,
             "coupling": self.coupling,
@@ -581,7 +590,8 @@ class Wheels:
         (names, body-frame centres m, radii m, steerable, static loads N, spring rates N/m,
         damping N s/m, natural frequencies Hz and damping ratios), the anti-roll bars (left,
         right, roll stiffness N m/rad) and each axle's roll stiffness (springs and bars), the
-        steering linkage (ratio, Ackermann fraction, reference wheel), ABS, the tyre as run,
+        steering linkage (ratio, Ackermann fraction, reference wheel, what is linear between a
+        table's points), ABS, the tyre as run,
         and where the numbers came from."""
         spec = self.spec(mass)
         g = _defaults()["gravity"]
@@ -609,6 +619,7 @@ class Wheels:
                 "ratio": self.steering_ratio,
                 "ackermann": _defaults()["ackermann"] if self.ackermann is None else self.ackermann,
                 "reference": self.steering_reference or "outer",
+                "interpolation": self.steering_interpolation or "input",
             },
             "abs": self.abs,
             "tyre": self.tyre.resolved(),

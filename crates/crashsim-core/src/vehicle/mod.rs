@@ -12,8 +12,8 @@ pub mod wheel;
 
 pub use inputs::{Braking, DriverInputs, Trigger, WheelState, WheelSwitch};
 pub use steering::{
-    DriverPath, LinkageGeometry, SteerInput, SteerReference, Steering, DEFAULT_ACKERMANN,
-    DEFAULT_PATH_MIN_DISTANCE, DEFAULT_PATH_PREVIEW,
+    DriverPath, LinkageGeometry, ReferenceAngle, SteerInput, SteerInterpolation, SteerReference,
+    Steering, DEFAULT_ACKERMANN, DEFAULT_PATH_MIN_DISTANCE, DEFAULT_PATH_PREVIEW,
 };
 pub use table::Table;
 pub use tyre::{
@@ -189,7 +189,7 @@ impl VehicleSpec {
         position: &Point,
         rotation: &Matrix,
         velocity: &Vector,
-    ) -> Option<(LinkageGeometry, Real)> {
+    ) -> Option<(LinkageGeometry, ReferenceAngle)> {
         match &self.inputs.steer {
             Some(SteerInput::Path(path)) => {
                 let geometry = LinkageGeometry::of(&self.wheels);
@@ -200,7 +200,7 @@ impl VehicleSpec {
                 let heading = [ahead.x / flat, ahead.y / flat];
                 let speed = velocity.x * heading[0] + velocity.y * heading[1];
                 let delta = path.steer([axle.x, axle.y], heading, speed, geometry.wheelbase());
-                Some((geometry, delta))
+                Some((geometry, ReferenceAngle::At(delta)))
             }
             Some(input) => self
                 .steering
@@ -213,23 +213,30 @@ impl VehicleSpec {
     /// Road-wheel angle (rad, about the body z axis, + left) of wheel `k` at time `t`, with
     /// [`VehicleSpec::steering_at`]'s geometry and reference angle: through the linkage, or
     /// from its own table; 0 for a wheel that does not steer.
-    pub fn wheel_steer(&self, k: usize, t: Real, at: &Option<(LinkageGeometry, Real)>) -> Real {
+    pub fn wheel_steer(
+        &self,
+        k: usize,
+        t: Real,
+        at: &Option<(LinkageGeometry, ReferenceAngle)>,
+    ) -> Real {
         let w = &self.wheels[k];
         match (&self.inputs.steer, at) {
             (Some(SteerInput::PerWheel(tables)), _) => {
                 tables[k].as_ref().map_or(0.0, |table| table.at(t))
             }
-            (Some(SteerInput::Path(_)), Some((geometry, delta))) => self.steering.wheel_angle_from(
-                SteerReference::Centre,
-                geometry,
-                *delta,
-                w.steerable,
-                w.center.x,
-                w.center.y,
-            ),
-            (_, Some((geometry, delta))) => {
+            (Some(SteerInput::Path(_)), Some((geometry, ReferenceAngle::At(delta)))) => {
+                self.steering.wheel_angle_from(
+                    SteerReference::Centre,
+                    geometry,
+                    *delta,
+                    w.steerable,
+                    w.center.x,
+                    w.center.y,
+                )
+            }
+            (_, Some((geometry, angle))) => {
                 self.steering
-                    .wheel_angle(geometry, *delta, w.steerable, w.center.x, w.center.y)
+                    .wheel_angle_at(geometry, *angle, w.steerable, w.center.x, w.center.y)
             }
             _ => 0.0,
         }

@@ -21,6 +21,13 @@
 //! wheel that does not steer (every wheel steers) there is no turn centre's line: every
 //! steered wheel turns by `delta` (crab steering), whatever `a`.
 //!
+//! Between the points of a steering table the input itself is linear by default, and each
+//! wheel follows it through the linkage at every instant, as a real linkage does. A
+//! reconstruction program's steering ramp moves each wheel linearly from its angle at one
+//! point to its angle at the next instead (PC-Crash's 15 mph run: docs/vehicle-model.md), so
+//! during a ramp the inner wheel keeps the ratio it has at the ramp's end;
+//! [`SteerInterpolation::Wheels`] does that.
+//!
 //! Per-wheel tables (the angles a program or a test measured at each wheel) replace the
 //! linkage.
 
@@ -53,6 +60,45 @@ pub struct Steering {
     /// Which wheel the input's road-wheel angle is: the outer one (default) or the axle's
     /// centre.
     pub reference: SteerReference,
+    /// What is linear between a steering table's points: the input (default) or each wheel.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub interpolation: SteerInterpolation,
+}
+
+/// What is linear in time between the points of a road-wheel or steering-wheel table.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case")
+)]
+pub enum SteerInterpolation {
+    /// The input: each wheel follows it through the linkage at every instant (a real
+    /// linkage's wheels; the default).
+    #[default]
+    Input,
+    /// Each wheel: its angle moves linearly from the linkage's angle at one point to the
+    /// linkage's angle at the next (a reconstruction program's steering ramp: during a ramp
+    /// from straight ahead, the inner wheel keeps the ratio to the outer it has at the end).
+    Wheels,
+}
+
+/// The linkage's reference angle (rad, + left) at an instant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ReferenceAngle {
+    /// The reference is at this angle.
+    At(Real),
+    /// Between two points of the input's table ([`SteerInterpolation::Wheels`]): the
+    /// reference's angles at the points before and after, and how far between them the
+    /// instant lies (0 at `from`, 1 at `to`).
+    Between {
+        /// The reference's angle at the point before (rad).
+        from: Real,
+        /// The reference's angle at the point after (rad).
+        to: Real,
+        /// The instant's place between the two points, in [0, 1).
+        fraction: Real,
+    },
 }
 
 /// Which wheel the steering input's road-wheel angle belongs to.
@@ -75,6 +121,7 @@ impl Default for Steering {
             ratio: None,
             ackermann: DEFAULT_ACKERMANN,
             reference: SteerReference::Outer,
+            interpolation: SteerInterpolation::Input,
         }
     }
 }
@@ -326,12 +373,44 @@ impl Steering {
     }
 
     /// The reference's road-wheel angle (rad) for the input `input` at time `t`; None for
-    /// per-wheel tables.
-    pub fn reference_angle(&self, input: &SteerInput, t: Real) -> Option<Real> {
-        match input {
-            SteerInput::RoadWheel(table) => Some(table.at(t)),
-            SteerInput::SteeringWheel(table) => Some(table.at(t) / self.ratio.unwrap_or(1.0)),
-            SteerInput::PerWheel(_) | SteerInput::Path(_) => None,
+    /// per-wheel tables and a driver's path.
+    pub fn reference_angle(&self, input: &SteerInput, t: Real) -> Option<ReferenceAngle> {
+        let (table, per) = match input {
+            SteerInput::RoadWheel(table) => (table, 1.0),
+            SteerInput::SteeringWheel(table) => (table, self.ratio.unwrap_or(1.0)),
+            SteerInput::PerWheel(_) | SteerInput::Path(_) => return None,
+        };
+        Some(match self.interpolation {
+            SteerInterpolation::Input => ReferenceAngle::At(table.at(t) / per),
+            SteerInterpolation::Wheels => {
+                let (from, to, fraction) = table.segment(t);
+                ReferenceAngle::Between {
+                    from: from / per,
+                    to: to / per,
+                    fraction,
+                }
+            }
+        })
+    }
+
+    /// Road-wheel angle (rad) of wheel `wheel` (at body-frame `x`, `y`) at the reference
+    /// angle `angle`: [`Steering::wheel_angle`], or between two points of the input's table
+    /// the wheel's angles at both, linear between them.
+    pub fn wheel_angle_at(
+        &self,
+        geometry: &LinkageGeometry,
+        angle: ReferenceAngle,
+        steerable: bool,
+        x: Real,
+        y: Real,
+    ) -> Real {
+        match angle {
+            ReferenceAngle::At(delta) => self.wheel_angle(geometry, delta, steerable, x, y),
+            ReferenceAngle::Between { from, to, fraction } => {
+                let a = self.wheel_angle(geometry, from, steerable, x, y);
+                let b = self.wheel_angle(geometry, to, steerable, x, y);
+                a + (b - a) * fraction
+            }
         }
     }
 
@@ -579,6 +658,48 @@ mod tests {
     }
 
     #[test]
+    fn wheels_interpolated_between_points_keep_the_ratio_of_the_ramps_end() {
+        // A ramp of the outer (right) wheel from 0 to 0.4 rad over 1 s, turning left.
+        let wheels = car();
+        let g = LinkageGeometry::of(&wheels);
+        let ramp = SteerInput::RoadWheel(Table::new("steer", &[(0.0, 0.0), (1.0, 0.4)]).unwrap());
+        let by_wheel = Steering {
+            interpolation: SteerInterpolation::Wheels,
+            ..Steering::default()
+        };
+        let linkage = Steering::default();
+        let end = angles(&linkage, &wheels, 0.4);
+        let ratio = end[0] / end[1];
+        assert!(ratio > 1.2, "{ratio}"); // the inner (left) wheel turns more at the end
+        for t in [0.1, 0.25, 0.5, 0.9] {
+            let at = by_wheel.reference_angle(&ramp, t).unwrap();
+            let a: Vec<Real> = wheels
+                .iter()
+                .map(|w| by_wheel.wheel_angle_at(&g, at, w.steerable, w.center.x, w.center.y))
+                .collect();
+            // Each wheel linear in time: the outer at the input, the inner at the end's ratio.
+            assert!((a[1] - 0.4 * t).abs() < 1e-14, "{t}: {}", a[1]);
+            assert!((a[0] / a[1] - ratio).abs() < 1e-12, "{t}: {}", a[0] / a[1]);
+            // The linkage at every instant gives the geometric ratio, near 1 early on.
+            let geometric = angles(&linkage, &wheels, 0.4 * t);
+            assert!(geometric[0] / geometric[1] < ratio);
+            assert!((geometric[1] - a[1]).abs() < 1e-14);
+        }
+        // At and beyond the points both give the linkage's angles.
+        for t in [-1.0, 0.0, 1.0, 2.0] {
+            let at = by_wheel.reference_angle(&ramp, t).unwrap();
+            let delta = linkage.reference_angle(&ramp, t).unwrap();
+            for w in &wheels {
+                let (x, y, s) = (w.center.x, w.center.y, w.steerable);
+                assert_eq!(
+                    by_wheel.wheel_angle_at(&g, at, s, x, y),
+                    linkage.wheel_angle_at(&g, delta, s, x, y)
+                );
+            }
+        }
+    }
+
+    #[test]
     fn inputs_are_checked_against_the_wheels() {
         let wheels = car();
         let table = |v: Real| Table::new("steer", &[(0.0, 0.0), (1.0, v)]).unwrap();
@@ -597,7 +718,10 @@ mod tests {
             ..Steering::default()
         };
         assert!(with_ratio.validate_input(&sw, &wheels).is_ok());
-        assert_eq!(with_ratio.reference_angle(&sw, 0.5), Some(3.0 / 16.0));
+        assert_eq!(
+            with_ratio.reference_angle(&sw, 0.5),
+            Some(ReferenceAngle::At(3.0 / 16.0))
+        );
         // Per-wheel tables: one per wheel, only on steerable wheels.
         let per = |k: usize| {
             let mut v: Vec<Option<Table>> = vec![None; 4];

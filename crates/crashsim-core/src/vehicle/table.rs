@@ -66,6 +66,22 @@ impl Table {
         v0 + (v1 - v0) * ((t - t0) / (t1 - t0))
     }
 
+    /// The values at the points before and after time `t` (s) and how far between them `t`
+    /// lies, in [0, 1): `at(t)` is the first plus the fraction of the difference. Beyond
+    /// the ends: the end's value twice and 0.
+    pub fn segment(&self, t: Real) -> (Real, Real, Real) {
+        let n = self.times.len();
+        if t <= self.times[0] {
+            return (self.values[0], self.values[0], 0.0);
+        }
+        if t >= self.times[n - 1] {
+            return (self.values[n - 1], self.values[n - 1], 0.0);
+        }
+        let k = self.times.partition_point(|&x| x <= t) - 1;
+        let (t0, t1) = (self.times[k], self.times[k + 1]);
+        (self.values[k], self.values[k + 1], (t - t0) / (t1 - t0))
+    }
+
     /// Smallest and largest value.
     pub fn range(&self) -> (Real, Real) {
         let lo = self.values.iter().copied().fold(Real::INFINITY, Real::min);
