@@ -11,9 +11,9 @@ missing=()
 for pkg in chromium chromium-driver libjs-three; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")
 done
-# In the background, beside the two builds: unpacking the packages (about 40 s of CPU) fills the
-# core that the compilers leave idle in their serial stretches (benches/README.md, "The test
-# run"). A failed install fails the command, as it would in the foreground.
+# In the background, beside the two builds (the install is about 40 s of CPU). Two alternated
+# pairs on clean clones at load 3 (2026-11-28): 605 and 686 s against 698 and 677 s in the
+# foreground, within the noise. A failed install fails the command, as in the foreground.
 apt_pid=""
 apt_log="$(mktemp)"
 if [ ${#missing[@]} -gt 0 ] && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
