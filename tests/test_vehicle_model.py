@@ -18,6 +18,7 @@ Tolerances are stated at each assertion (the issue's 1 % unless said).
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import crashsim as cs
 import numpy as np
@@ -25,6 +26,7 @@ import pytest
 from crashsim.result import rotation_matrix
 from scipy.optimize import brentq
 
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 G = 9.80665
 MU = 0.8  # the engine's default tyre friction (dry asphalt)
 MASS = 1500.0
@@ -238,28 +240,13 @@ def test_wheels_linear_between_points_keep_the_ratio_of_the_ramps_end() -> None:
 def test_an_unknown_steering_interpolation_is_refused_with_the_choices() -> None:
     with pytest.raises(cs.ParameterError, match="steering_interpolation.*'input'.*'wheels'"):
         car(steering_interpolation="spline")
-    text = """
-format_version = 1
-[run]
-duration = "1 s"
-[ground]
-friction = 0.8
-[[vehicles]]
-name = "car"
-box = { length = "4.6 m", width = "1.8 m", height = "1.4 m" }
-mass = "1500 kg"
-position = [0, 0]
-speed = "10 m/s"
-[vehicles.wheels]
-wheelbase = "2.7 m"
-track = "1.55 m"
-cg_to_front_axle = "1.1 m"
-radius = "0.3 m"
-steering_interpolation = "%s"
-"""
+    # The 15 mph reference example sets "wheels" (the reference program's steering ramp).
     from crashsim.io.scenefile import SceneFileError, loads_scene
 
-    case = loads_scene(text % "wheels")
+    text = (EXAMPLES / "reference-sedan-steer-15mph.toml").read_text(encoding="utf-8")
+    case = loads_scene(text)
     assert case.scene.vehicles[0].wheels.steering_interpolation == "wheels"
     with pytest.raises(SceneFileError, match="steering_interpolation"):
-        loads_scene(text % "spline")
+        loads_scene(
+            text.replace('steering_interpolation = "wheels"', 'steering_interpolation = "spline"')
+        )

@@ -52,18 +52,9 @@ impl Table {
 
     /// The value at time `t` (s): linear between points, held beyond the ends.
     pub fn at(&self, t: Real) -> Real {
-        let n = self.times.len();
-        if t <= self.times[0] {
-            return self.values[0];
-        }
-        if t >= self.times[n - 1] {
-            return self.values[n - 1];
-        }
-        // The last point at or before t (times increase, so the search is exact).
-        let k = self.times.partition_point(|&x| x <= t) - 1;
-        let (t0, t1) = (self.times[k], self.times[k + 1]);
-        let (v0, v1) = (self.values[k], self.values[k + 1]);
-        v0 + (v1 - v0) * ((t - t0) / (t1 - t0))
+        // Beyond the ends v1 = v0 and the fraction 0: v0 itself.
+        let (v0, v1, fraction) = self.segment(t);
+        v0 + (v1 - v0) * fraction
     }
 
     /// The values at the points before and after time `t` (s) and how far between them `t`
@@ -77,6 +68,7 @@ impl Table {
         if t >= self.times[n - 1] {
             return (self.values[n - 1], self.values[n - 1], 0.0);
         }
+        // The last point at or before t (times increase, so the search is exact).
         let k = self.times.partition_point(|&x| x <= t) - 1;
         let (t0, t1) = (self.times[k], self.times[k + 1]);
         (self.values[k], self.values[k + 1], (t - t0) / (t1 - t0))
