@@ -220,9 +220,15 @@ def test_run_options_and_their_errors() -> None:
         scene.run(2.0, until="rest", max_duration=3.0)
     moving = cs.Scene(ground=cs.Ground())
     moving.add(wheeled(), (0.0, 0.0), velocity=(20.0, 0.0, 0.0))
-    with pytest.warns(cs.RestNotReachedWarning, match=r"\['car'\] still moving"):
+    with pytest.warns(cs.RestNotReachedWarning, match=r"\['car'\] still moving") as caught:
         result = moving.run(until="rest", max_duration=0.2)
     assert result.rest("car") is None
+    end = result.trajectory("car")
+    speed = float(np.sqrt(np.sum(end.velocity[-1] ** 2)))
+    assert speed > 10.0  # m/s: braking-free, it rolls on
+    # the message gives each moving body's speeds at the end, as the result has them
+    turn = float(np.degrees(np.sqrt(np.sum(end.angular_velocity[-1] ** 2))))
+    assert f"(car: {speed:.3g} m/s, {turn:.3g} deg/s at the end)" in str(caught[0].message)
     assert result.to_dict()["rest"] == {"car": None}
 
 

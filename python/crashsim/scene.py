@@ -12,6 +12,7 @@ ranges and their messages live in one place (crates/crashsim-core).
 from __future__ import annotations
 
 import copy
+import math
 import warnings
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import Any, Literal
@@ -57,7 +58,7 @@ from crashsim.placement import (
 )
 from crashsim.records import rotation_matrix
 from crashsim.result import Result
-from crashsim.small_linalg import matmul
+from crashsim.small_linalg import matmul, norm
 from crashsim.spec import (
     DEFAULT_MAX_DURATION,
     _build_spec,
@@ -82,7 +83,21 @@ MAX_TRAILER_RATIO = 10.0
 
 class RestNotReachedWarning(UserWarning):
     """A run until rest ended at its max_duration with a vehicle still moving (its
-    ``Result.rest`` is None): raise max_duration."""
+    ``Result.rest`` is None): raise max_duration. The message gives each such body's CG
+    speed and angular speed at the end (a person's limb toppling slowly about its joint
+    against a car still sliding)."""
+
+
+def _end_speeds(result: Result, names: list[str]) -> str:
+    """Each body's CG speed (m/s) and angular speed (deg/s) at the run's end, as a
+    RestNotReachedWarning shows them (a crawling limb of a person against a sliding car)."""
+    parts = []
+    for name in names:
+        trajectory = result.trajectory(name)
+        speed = float(norm(trajectory.velocity[-1]))
+        turn = math.degrees(float(norm(trajectory.angular_velocity[-1])))
+        parts.append(f"{name}: {speed:.3g} m/s, {turn:.3g} deg/s")
+    return "; ".join(parts) + " at the end"
 
 
 class DepthOfPenetrationWarning(UserWarning):
@@ -659,7 +674,8 @@ class Scene(_People):
             if moving:
                 warnings.warn(
                     f"the run reached max_duration = {duration:g} s with {moving} still "
-                    "moving: their rest is None; raise max_duration",
+                    f"moving ({_end_speeds(result, moving)}): their rest is None; raise "
+                    "max_duration",
                     RestNotReachedWarning,
                     stacklevel=2,
                 )
