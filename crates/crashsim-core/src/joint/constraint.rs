@@ -245,12 +245,63 @@ pub(crate) fn limit_axis_rates(joint: &JointSpec, bodies: &[JointBody]) -> [Vect
     }
 }
 
-/// The torque (N m, world) the joint's stiffness, damping and friction put on body b (body a
-/// gets its negative): about the free angles, towards the angles at the start.
+/// The torque (N m, world) the joint's stiffness, damping, friction and passive moments put
+/// on body b (body a gets its negative): the first three about the free angles, towards the
+/// angles at the start; each passive moment about its angle's axis (see [`passive_torque`]).
 pub(crate) fn applied_torques(joint: &JointSpec, bodies: &[JointBody]) -> Vector {
-    if (joint.stiffness, joint.damping, joint.friction) == (0.0, 0.0, 0.0) {
+    let linear = (joint.stiffness, joint.damping, joint.friction) != (0.0, 0.0, 0.0);
+    match (linear, joint.passive.is_empty()) {
+        (false, true) => Vector::zeros(),
+        (true, true) => linear_torques(joint, bodies),
+        (false, false) => passive_torque(joint, bodies),
+        (true, false) => linear_torques(joint, bodies) + passive_torque(joint, bodies),
+    }
+}
+
+/// The passive moments' torque (N m, world) on body b: each [`super::PassiveMoment`]'s M at
+/// its angle, about that angle's axis (a hinge's z; a fifth wheel's kingpin or pivot; F1's
+/// axis of a ball joint's rotation-vector component), so that a positive M turns body b
+/// towards a larger angle. Zero without passive moments.
+pub(crate) fn passive_torque(joint: &JointSpec, bodies: &[JointBody]) -> Vector {
+    if joint.passive.is_empty() {
         return Vector::zeros();
     }
+    let (theta, axes) = angles(joint, bodies);
+    joint
+        .passive
+        .iter()
+        .map(|law| axes[law.angle] * law.moment(theta[law.angle]))
+        .sum()
+}
+
+/// The largest |dM/dphi| (N m/rad) of the joint's passive moments over their angles now
+/// give or take `reach` (rad): each term is monotonic in its angle, so the largest is at one
+/// end of that range (for the integration's sub-steps: the stiffest the span may meet).
+pub(crate) fn passive_slope(joint: &JointSpec, bodies: &[JointBody], reach: Real) -> Real {
+    if joint.passive.is_empty() {
+        return 0.0;
+    }
+    let (theta, _) = angles(joint, bodies);
+    joint
+        .passive
+        .iter()
+        .map(|law| {
+            let at = theta[law.angle];
+            [at - reach, at, at + reach]
+                .into_iter()
+                .map(|a| {
+                    law.terms
+                        .iter()
+                        .map(|t| (t.scale * t.rate).abs() * t.exp_at(law.offset + a))
+                        .sum::<Real>()
+                })
+                .fold(0.0, Real::max)
+        })
+        .fold(0.0, Real::max)
+}
+
+/// The stiffness, damping and friction torque of [`applied_torques`] (N m, world, on body b).
+fn linear_torques(joint: &JointSpec, bodies: &[JointBody]) -> Vector {
     let (_, wa) = velocity(bodies, Some(joint.body1));
     let (_, wb) = velocity(bodies, joint.body2);
     let relative = wb - wa;

@@ -23,14 +23,18 @@
 //! shoulder's or a hip's): the swing, the angle between F1's z and F2's z (a cone of half-angle
 //! `upper` about F1's z), and the twist, F2's turn about its own z once the swing is taken out
 //! (the swing-twist split of the relative rotation, the swing about an axis across F1's z).
+//!
+//! Besides a linear stiffness, damping and dry friction, a joint may carry passive moments:
+//! nonlinear moments about its free angles, sums of exponentials, the form the published
+//! passive (relaxed) moments of human joints take ([`PassiveMoment`]).
 
 mod constraint;
 mod row;
 mod solve;
 
 pub(crate) use constraint::{
-    applied_torques, drift_rate, limit_angles, limit_rows, project_positions, project_velocities,
-    project_velocities_each, reactions, RESTING_ANGLE,
+    applied_torques, drift_rate, limit_angles, limit_rows, passive_slope, project_positions,
+    project_velocities, project_velocities_each, reactions, RESTING_ANGLE,
 };
 pub(crate) use row::JointBody;
 
@@ -50,6 +54,80 @@ pub const MAX_JOINT_FRICTION: Real = 1e6;
 /// deg/s): the torque is `friction w / (|w| + FRICTION_SMOOTHING)`, so a joint at rest creeps
 /// at most this fast under a torque below its friction, and no sign switch chatters.
 pub const FRICTION_SMOOTHING: Real = 0.01;
+/// Largest accepted rate of a passive moment's exponential (1/rad): the published passive
+/// moments of human joints reach 38 /rad (the ankle's dorsiflexion end in Anderson's
+/// double exponential, 1999) and about 11 /rad in Riener and Edrich's (1999, 0.195 /deg).
+pub const MAX_PASSIVE_RATE: Real = 200.0;
+/// Largest accepted size of a passive moment's term or constant (N m), as for dry friction.
+pub const MAX_PASSIVE_MOMENT: Real = 1e6;
+/// A passive moment's exponent is evaluated at most at this (so a moment stays finite: e^50
+/// times its term's scale, far past any joint's range, where the integration's sub-steps
+/// would have refused the run first).
+const PASSIVE_EXPONENT_CAP: Real = 50.0;
+
+/// One term of a [`PassiveMoment`]: `scale exp(rate (phi - centre))` (N m), phi in rad.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PassiveTerm {
+    /// N m (either sign).
+    pub scale: Real,
+    /// 1/rad (either sign): positive grows towards large angles, negative towards small.
+    pub rate: Real,
+    /// rad: where the term is `scale`.
+    pub centre: Real,
+}
+
+impl PassiveTerm {
+    /// `exp(rate (phi - centre))`, its exponent capped at [`PASSIVE_EXPONENT_CAP`].
+    pub(crate) fn exp_at(&self, phi: Real) -> Real {
+        (self.rate * (phi - self.centre))
+            .min(PASSIVE_EXPONENT_CAP)
+            .exp()
+    }
+}
+
+/// A nonlinear moment about one of a joint's free angles (docs/joints.md, "Passive moments"):
+///
+/// `M(phi) = sum of scale_k exp(rate_k (phi - centre_k)) + constant` (N m),
+///
+/// with `phi = offset + the angle` (rad): `offset` is phi when the joint is made (the angle
+/// is 0 then), so published laws, written in anatomical angles, are used as published. A
+/// positive M turns body 2 against body 1 towards a larger angle (body 1 gets the opposite).
+/// The angles ([`JointKind::passive_names`]): a hinge's angle; a fifth wheel's articulation
+/// and pitch; a ball joint's relative rotation as a rotation vector in F1's axes, its x, y
+/// and z components (each an anatomical angle to first order: flexion about one axis,
+/// abduction about another; the components of a large combined turn are not Cardan angles).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PassiveMoment {
+    /// Which angle: an index into [`JointKind::passive_names`].
+    pub angle: usize,
+    /// phi at the joint's making (rad).
+    pub offset: Real,
+    /// The exponential terms.
+    pub terms: Vec<PassiveTerm>,
+    /// N m.
+    pub constant: Real,
+}
+
+impl PassiveMoment {
+    /// M (N m) at the joint's angle `angle` (rad; phi = offset + angle).
+    pub fn moment(&self, angle: Real) -> Real {
+        let phi = self.offset + angle;
+        self.terms
+            .iter()
+            .map(|t| t.scale * t.exp_at(phi))
+            .sum::<Real>()
+            + self.constant
+    }
+
+    /// dM/dphi (N m/rad) at the joint's angle `angle` (rad).
+    pub fn slope(&self, angle: Real) -> Real {
+        let phi = self.offset + angle;
+        self.terms
+            .iter()
+            .map(|t| t.scale * t.rate * t.exp_at(phi))
+            .sum()
+    }
+}
 
 /// What a joint holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -88,6 +166,16 @@ impl JointKind {
                 "joint kind {other:?} is unknown: give spherical (ball), revolute (hinge), \
                  fixed or fifth_wheel"
             ))),
+        }
+    }
+
+    /// The angles a passive moment may act about, by name ([`PassiveMoment`]).
+    pub fn passive_names(self) -> &'static [&'static str] {
+        match self {
+            JointKind::Revolute => &["angle"],
+            JointKind::FifthWheel => &["articulation", "pitch"],
+            JointKind::Spherical => &["x", "y", "z"],
+            JointKind::Fixed => &[],
         }
     }
 
@@ -141,6 +229,8 @@ pub struct JointSpec {
     /// Dry friction (N m): a resistance torque against the relative rotation (smoothed below
     /// [`FRICTION_SMOOTHING`]); default 0.
     pub friction: Real,
+    /// Passive moments about the free angles (default none), at most one per angle.
+    pub passive: Vec<PassiveMoment>,
     /// True when the two bodies' meshes may still collide with each other (default false:
     /// jointed bodies pass through each other).
     pub collide: bool,
@@ -167,6 +257,7 @@ impl JointSpec {
             stiffness: 0.0,
             damping: 0.0,
             friction: 0.0,
+            passive: Vec::new(),
             collide: false,
         }
     }
@@ -219,6 +310,7 @@ impl JointSpec {
                 "{name} is fixed: it has no free rotation for a stiffness, damping or friction"
             )));
         }
+        self.validate_passive(name)?;
         let names = self.kind.limit_names();
         for (k, limit) in self.limits.iter().enumerate() {
             let Some(angle) = names.get(limit.angle) else {
@@ -257,6 +349,54 @@ impl JointSpec {
                 return Err(Error::invalid(format!(
                     "{name} has two limits on its {angle}: give one"
                 )));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl JointSpec {
+    /// Checks the passive moments: an angle the kind has, once each; finite numbers within
+    /// [`MAX_PASSIVE_RATE`] and [`MAX_PASSIVE_MOMENT`]; offsets and centres within +-2 pi.
+    fn validate_passive(&self, name: &str) -> Result<()> {
+        let names = self.kind.passive_names();
+        let two_pi = 2.0 * std::f64::consts::PI;
+        for (k, law) in self.passive.iter().enumerate() {
+            let Some(angle) = names.get(law.angle) else {
+                return Err(Error::invalid(format!(
+                    "{name} is {}: it has {}",
+                    self.kind.name(),
+                    if names.is_empty() {
+                        "no free angle for a passive moment".to_string()
+                    } else {
+                        format!("the angles {} for a passive moment", names.join(", "))
+                    }
+                )));
+            };
+            if self.passive[..k].iter().any(|l| l.angle == law.angle) {
+                return Err(Error::invalid(format!(
+                    "{name} has two passive moments about its {angle}: give one (with all \
+                     its terms)"
+                )));
+            }
+            let what = format!("{name}'s passive moment about its {angle}");
+            let within = |field: &str, value: Real, max: Real, unit: &str| -> Result<()> {
+                require_finite(&format!("{what}: {field}"), value)?;
+                if value.abs() > max {
+                    return Err(Error::parameter(
+                        &format!("{what}: {field}"),
+                        format!("{value} {unit}"),
+                        &format!("it must lie in [-{max:e}, {max:e}] {unit}"),
+                    ));
+                }
+                Ok(())
+            };
+            within("offset", law.offset, two_pi, "rad")?;
+            within("constant", law.constant, MAX_PASSIVE_MOMENT, "N m")?;
+            for term in &law.terms {
+                within("scale", term.scale, MAX_PASSIVE_MOMENT, "N m")?;
+                within("rate", term.rate, MAX_PASSIVE_RATE, "1/rad")?;
+                within("centre", term.centre, two_pi, "rad")?;
             }
         }
         Ok(())

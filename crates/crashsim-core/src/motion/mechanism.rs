@@ -15,8 +15,8 @@ use crate::body::RigidBody;
 use crate::error::{Error, Place, Result};
 use crate::ground::Ground;
 use crate::joint::{
-    applied_torques, limit_angles, limit_rows, project_positions, project_velocities, reactions,
-    JointBody, JointSample, JointSpec, RESTING_ANGLE,
+    applied_torques, limit_angles, limit_rows, passive_slope, project_positions,
+    project_velocities, reactions, JointBody, JointSample, JointSpec, RESTING_ANGLE,
 };
 use crate::math::{Point, Real, Rotation, Vector};
 
@@ -69,12 +69,44 @@ fn joint_body(body: &RigidBody, s: &Stage) -> JointBody {
     }
 }
 
+/// Beyond the angle a joint can turn in a span at its present rate, the passive moments'
+/// stiffness is looked for this much further (rad, about 3 deg): the rate may grow within the
+/// span.
+const PASSIVE_REACH: Real = 0.05;
+
 /// A bound (1/s) on the fastest mode of a joint's rotational spring and damper, as
-/// [`super::suspension_rate`] bounds the wheels'.
-fn joint_rate(joint: &JointSpec, bodies: &[RigidBody]) -> Real {
+/// [`super::suspension_rate`] bounds the wheels'; `passive` (N m/rad) is its passive moments'
+/// stiffest slope over the span ([`passive_slope`]), added to its linear stiffness.
+fn joint_rate(joint: &JointSpec, bodies: &[RigidBody], passive: Real) -> Real {
     let inverse = |b: &RigidBody| b.props().largest_inverse_moment();
     let inv = inverse(&bodies[joint.body1]) + joint.body2.map_or(0.0, |b| inverse(&bodies[b]));
-    joint.damping * inv + (joint.stiffness * inv).sqrt()
+    joint.damping * inv + ((joint.stiffness + passive) * inv).sqrt()
+}
+
+/// Per joint, its passive moments' stiffest slope (N m/rad) over the angles it can reach in
+/// `dt` s from the members' states now (zeros, nothing computed, without passive moments).
+fn passive_slopes(
+    bodies: &[RigidBody],
+    motions: &[OnGround],
+    joints: &[JointSpec],
+    dt: Real,
+) -> Vec<Real> {
+    if joints.iter().all(|j| j.passive.is_empty()) {
+        return vec![0.0; joints.len()];
+    }
+    let jb: Vec<JointBody> = bodies
+        .iter()
+        .zip(motions)
+        .map(|(b, m)| joint_body(b, &m.stage_of(b)))
+        .collect();
+    joints
+        .iter()
+        .map(|j| {
+            let wb = j.body2.map_or(Vector::zeros(), |b| jb[b].w);
+            let reach = (wb - jb[j.body1].w).norm() * dt + PASSIVE_REACH;
+            passive_slope(j, &jb, reach)
+        })
+        .collect()
 }
 
 /// Advances the members (`bodies[k]` moving as `motions[k]`) joined by `joints` (their
@@ -154,9 +186,11 @@ fn mechanism_substeps(
     for (body, motion) in bodies.iter().zip(motions.iter()) {
         n = n.max(motion.substeps(body, dt)?);
     }
+    let passive = passive_slopes(bodies, motions, joints, dt);
     let fastest = joints
         .iter()
-        .map(|j| joint_rate(j, bodies))
+        .zip(passive)
+        .map(|(j, slope)| joint_rate(j, bodies, slope))
         .fold(0.0, Real::max);
     let by_joints = (dt * fastest / MAX_SUBSTEP_SUSPENSION).ceil();
     if by_joints > (dt * MAX_SUBSTEPS_PER_SECOND).max(1.0) {

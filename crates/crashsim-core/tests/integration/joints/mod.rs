@@ -13,6 +13,7 @@ use crashsim_core::vehicle::GRAVITY;
 use crashsim_core::{BodyState, MassProperties, MeshShape, RunOutput, World};
 
 mod limits;
+mod passive;
 
 const HEIGHT: Real = 50.0;
 const DT: Real = 1e-3;
