@@ -278,3 +278,89 @@ def test_a_jointed_spec_round_trips_through_json_and_pickle() -> None:
     for other in runs[1:]:
         for key in ("position", "joint_force", "joint_angles"):
             assert np.array_equal(other[key], runs[0][key])
+
+
+# -- passive moments (docs/joints.md, "Passive moments") -----------------------------------
+
+
+def _held(law: cs.PassiveMoment, damping: float = 5.0) -> cs.Scene:
+    """The 1 m rod hanging straight down from its hinge, a passive moment about the hinge's
+    angle (positive: the rod swings towards +x) and ``damping`` N m s/rad."""
+    return _pendulum(0.0, passive={"angle": law}, damping=damping)
+
+
+def _balance(law: cs.PassiveMoment) -> float:
+    """The angle (rad) where the law carries the rod's weight: M(offset + a) = m g (l/2) sin a,
+    by bisection over (0, pi/2)."""
+    lo, hi = 0.0, math.pi / 2
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        if float(law.moment(law.offset + mid)) > 5.0 * G * 0.5 * math.sin(mid):
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def test_a_passive_moment_holds_the_rod_where_statics_says() -> None:
+    # An exponential law written in its own angle (offset 0.2 where the joint is made) and a
+    # constant one: the rod swings out and rests where the moment carries its weight.
+    for law in (
+        cs.PassiveMoment(terms=((5.0, -3.0, 0.2),), offset=0.2),
+        cs.PassiveMoment(constant=10.0),
+    ):
+        expected = _balance(law)
+        assert 0.1 < expected < 0.5  # rad: 0.136 and 0.420
+        result = _held(law).run(8.0)
+        record = result.joints["rod-world"]
+        assert record.angle("angle")[-1] == pytest.approx(expected, abs=1e-6)
+    # as made, and in the joint's own description
+    scene = _held(cs.PassiveMoment(terms=((5.0, -3.0, 0.2),), constant=-1.0, offset=0.2))
+    (joint,) = scene.joints
+    assert joint.passive == {
+        "angle": cs.PassiveMoment(terms=((5.0, -3.0, 0.2),), constant=-1.0, offset=0.2)
+    }
+    assert joint.to_dict()["passive"] == {
+        "angle": {"terms": [[5.0, -3.0, 0.2]], "constant": -1.0, "offset": 0.2}
+    }
+    assert "passive" not in _pendulum(0.0).joints[0].to_dict()
+
+
+def test_passive_moments_round_trip_and_are_reported() -> None:
+    import jsonschema
+    from crashsim.analysis.report import report_schema
+
+    scene = _held(cs.PassiveMoment(terms=((5.0, -3.0, 0.2), (-0.5, 2.0, 0.1)), offset=0.2))
+    spec = scene.to_spec(0.5)
+    runs = [
+        spec.run(),
+        _core.SceneSpec.from_json(spec.to_json()).run(),
+        pickle.loads(pickle.dumps(spec)).run(),
+        pickle.loads(pickle.dumps(scene)).to_spec(0.5).run(),
+    ]
+    for other in runs[1:]:
+        for key in ("position", "joint_force", "joint_angles"):
+            assert np.array_equal(other[key], runs[0][key])
+    core = scene.joints[0].core
+    assert pickle.loads(pickle.dumps(core)) == core
+    assert "passive=[(\"angle\", 0.2, [(5.0, -3.0, 0.2), (-0.5, 2.0, 0.1)], 0.0)]" in repr(core)
+    report = cs.report(scene.run(0.2))
+    (made,) = report.to_dict()["scene"]["joints"]
+    assert made["passive"]["angle"]["terms"] == [[5.0, -3.0, 0.2], [-0.5, 2.0, 0.1]]
+    jsonschema.validate(report.to_dict(), report_schema(), cls=jsonschema.Draft202012Validator)
+
+
+@pytest.mark.parametrize(
+    ("passive", "match"),
+    [
+        ({"pitch": cs.PassiveMoment(constant=1.0)}, 'no angle "pitch" for a passive moment'),
+        ({"angle": "stiff"}, "must be a crashsim.PassiveMoment"),
+        ({"angle": cs.PassiveMoment(terms=((1.0, 2.0),))}, "terms of \\(scale N m, rate"),
+        ({"angle": cs.PassiveMoment(terms=((1.0, 500.0, 0.0),))}, "rate = 500 1/rad"),
+        ({"angle": cs.PassiveMoment(constant=math.nan)}, "constant"),
+    ],
+)
+def test_bad_passive_moments_are_refused_at_the_call(passive: dict, match: str) -> None:
+    with pytest.raises(ParameterError, match=match) as raised:
+        _pendulum(0.0, passive=passive)
+    assert raised.value.loc[0] == ("part", None, "joint 'rod-world'")

@@ -186,6 +186,62 @@ def test_a_pendulum_on_the_world_with_axes_as_a_matrix_and_its_limit_in_the_repo
     assert f"    limit of angle hit at {first.time:.3f} s (" in text
 
 
+def test_a_files_passive_moment_is_scene_joins_and_runs_the_same_bits() -> None:
+    # [joints.passive.<angle>]: terms of [torque, per angle, angle], constant, offset
+    text = ROD.replace('limits = {{ angle = "(-10, 10) deg" }}'.replace("{{", "{").replace(
+        "}}", "}"), "") + """
+[joints.passive.angle]
+terms = [["5 N m", "-3 1/rad", "0.2 rad"], [-0.5, 2, "5.729577951308232 deg"]]
+constant = "-1 N m"
+offset = "0.2 rad"
+"""
+    case = loads_scene(text)
+    api = cs.Scene(ground=cs.Ground())
+    api.add(
+        cs.Vehicle.box(1.0, 0.05, 0.05, mass=5.0, name="rod"),
+        (0.5 * math.sin(ANGLE), 0.0, HIGH - 0.5 * math.cos(ANGLE)),
+        orientation=TILT,
+    )
+    matrix = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
+    law = cs.PassiveMoment(terms=((5.0, -3.0, 0.2), (-0.5, 2.0, 0.1)), constant=-1.0, offset=0.2)
+    api.join("rod", at=(0.0, 0.0, HIGH), kind="revolute", axes=matrix, passive={"angle": law})
+    (joint,) = case.scene.joints
+    assert joint.passive["angle"].terms[0] == (5.0, -3.0, 0.2)
+    assert joint.passive["angle"].terms[1] == pytest.approx((-0.5, 2.0, 0.1), rel=1e-15)
+    api._joints = []  # the file's centre in degrees: the API's built from the file's numbers
+    api.join("rod", at=(0.0, 0.0, HIGH), kind="revolute", axes=matrix,
+             passive={"angle": joint.passive["angle"]})  # fmt: skip
+    _same_joints(case.scene, api)
+    _same_runs(case.scene.run(0.3), api.run(0.3))
+
+
+PASSIVE_ERRORS = [
+    ("an unknown key", 'rate = 3\n', "joints[0].passive.angle.rate", "unknown key"),
+    ("terms not a list", 'terms = 5\n', "joints[0].passive.angle.terms", "expected a list"),
+    ("a term of two", 'terms = [[1, 2]]\n', "joints[0].passive.angle.terms[0]",
+     "expected [scale, rate, centre]"),
+    ("a scale in metres", 'terms = [["1 m", 2, 0]]\n', "joints[0].passive.angle.terms[0].scale",
+     '"1 m" is a length, not a torque'),
+    ("a rate too steep (the engine's)", 'terms = [[1, "1000 1/rad", 0]]\n',
+     "joints[0].passive.angle", "rate = 1000 1/rad is invalid"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("what, line, key, words", PASSIVE_ERRORS,
+                         ids=[e[0] for e in PASSIVE_ERRORS])  # fmt: skip
+def test_bad_passive_moments_are_refused_naming_the_key(
+    what: str, line: str, key: str, words: str, tmp_path: Path
+) -> None:
+    path = tmp_path / "case.toml"
+    path.write_text(ROD + "\n[joints.passive.angle]\n" + line, encoding="utf-8")
+    with pytest.raises(SceneFileError) as info:
+        load_scene(path)
+    assert info.value.key == key and words in str(info.value), str(info.value)
+    path.write_text(ROD + "\n[joints.passive.pitch]\nconstant = 1\n", encoding="utf-8")
+    with pytest.raises(SceneFileError, match='no angle "pitch" for a passive moment'):
+        load_scene(path)
+
+
 def test_joint_units_and_their_spellings() -> None:
     cases = {
         ("600 N m/deg", "rotational stiffness"): 600.0 / DEG,

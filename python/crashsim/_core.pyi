@@ -257,8 +257,9 @@ def wheel_loads(
 @final
 class Joint:
     """A joint's kind ("spherical", "revolute", "fixed", "fifth_wheel"), limits (angle name,
-    lower rad, upper rad), stiffness N m/rad, damping N m s/rad, friction N m and whether the
-    two bodies still collide; checked by the engine when made."""
+    lower rad, upper rad), stiffness N m/rad, damping N m s/rad, friction N m, whether the
+    two bodies still collide and its passive moments (angle name, offset rad, [(scale N m,
+    rate 1/rad, centre rad), ...], constant N m); checked by the engine when made."""
     def __new__(
         cls,
         kind: str,
@@ -268,6 +269,7 @@ class Joint:
         damping: float = 0.0,
         friction: float = 0.0,
         collide: bool = False,
+        passive: list[tuple[str, float, list[tuple[float, float, float]], float]] = ...,
     ) -> Joint: ...
     @property
     def kind(self) -> str: ...
@@ -281,6 +283,13 @@ class Joint:
         """The kind's angles, in the order of the records' angle columns."""
     @property
     def limits(self) -> list[tuple[str, float, float]]: ...
+    @property
+    def passive(self) -> list[tuple[str, float, list[tuple[float, float, float]], float]]:
+        """Per passive moment: (angle name, offset rad, [(scale N m, rate 1/rad, centre rad),
+        ...], constant N m)."""
+    @property
+    def passive_names(self) -> list[str]:
+        """The names of the angles a passive moment may act about."""
     def __eq__(self, other: object, /) -> bool: ...
 
 def suspension(

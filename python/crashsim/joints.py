@@ -13,8 +13,10 @@ body frame then: x forward, y left, z up). The kinds (the engine's):
 Limits (rad) stop an angle with an inelastic impulse and are reported
 (:attr:`crashsim.Result.joint_events`); ``stiffness`` (N m/rad), ``damping`` (N m s/rad)
 and ``friction`` (N m) resist the free rotation (the fifth wheel's and the hinge's about
-their axis). The two vehicles' meshes do not collide with each other unless ``collide``.
-The kind, limits and resistance are checked by the engine when the joint is made.
+their axis); a :class:`PassiveMoment` per angle adds a nonlinear moment, the form published
+passive (relaxed) human joints take. The two vehicles' meshes do not collide with each
+other unless ``collide``. The kind, limits and resistance are checked by the engine when the
+joint is made.
 """
 
 from __future__ import annotations
@@ -30,12 +32,46 @@ from crashsim import _core
 from crashsim.errors import ParameterError, SceneError
 from crashsim.errors import at as error_at
 
-__all__ = ["JOINT_KINDS", "Joint", "JointEvent", "JointRecord"]
+__all__ = ["JOINT_KINDS", "Joint", "JointEvent", "JointRecord", "PassiveMoment"]
 
 JOINT_KINDS = ("spherical", "revolute", "fixed", "fifth_wheel")
 """The kinds of joint, as :meth:`crashsim.Scene.join` names them."""
 
 Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class PassiveMoment:
+    """A nonlinear passive moment about one of a joint's angles (docs/joints.md, "Passive
+    moments"), the engine's law:
+
+        M(phi) = sum(scale * exp(rate * (phi - centre)) for each term) + constant   (N m)
+
+    with ``phi = offset + the joint's angle`` (rad; the angle is 0 where the joint is made,
+    so ``offset`` is phi there and a law published in anatomical angles is used as
+    published). ``terms``: ((scale N m, rate 1/rad, centre rad), ...). A positive M turns the
+    second vehicle against the first towards a larger angle. The engine checks the numbers
+    when the joint is made (rates within 200 /rad, sizes within 1e6 N m, offset and centres
+    within 2 pi)."""
+
+    terms: tuple[tuple[float, float, float], ...] = ()
+    constant: float = 0.0
+    offset: float = 0.0
+
+    def moment(self, phi: ArrayLike) -> Array:
+        """M (N m) at ``phi`` (rad, the law's own angle: offset included)."""
+        x = np.asarray(phi, dtype=np.float64)
+        total = np.full_like(x, float(self.constant))
+        for scale, rate, centre in self.terms:
+            total = total + scale * np.exp(rate * (x - centre))
+        return total
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "terms": [[float(v) for v in term] for term in self.terms],
+            "constant": float(self.constant),
+            "offset": float(self.offset),
+        }
 
 
 @dataclass(frozen=True, eq=False)
@@ -64,8 +100,20 @@ class Joint:
         """The kind's angles (the columns of :attr:`JointRecord.angles` they fill)."""
         return tuple(self.core.angle_names)
 
-    def to_dict(self) -> dict[str, Any]:
+    @property
+    def passive(self) -> dict[str, PassiveMoment]:
+        """{angle name: its passive moment}, as made."""
         return {
+            angle: PassiveMoment(
+                terms=tuple((float(a), float(b), float(c)) for a, b, c in terms),
+                constant=float(constant),
+                offset=float(offset),
+            )
+            for angle, offset, terms, constant in self.core.passive
+        }
+
+    def to_dict(self) -> dict[str, Any]:
+        d: dict[str, Any] = {
             "name": self.name,
             "kind": self.kind,
             "vehicles": list(self.vehicles),
@@ -73,6 +121,9 @@ class Joint:
             "axes": [float(x) for x in self.axes],
             "limits": {n: [lo, hi] for n, lo, hi in self.core.limits},
         }
+        if self.core.passive:
+            d["passive"] = {angle: law.to_dict() for angle, law in self.passive.items()}
+        return d
 
 
 def _vector(value: ArrayLike, size: int, what: str) -> Array:
@@ -99,6 +150,7 @@ def make_joint(
     damping: float,
     friction: float,
     collide: bool,
+    passive: Mapping[str, PassiveMoment] | None = None,
 ) -> Joint:
     """A Joint, its kind, limits and resistance checked by the engine (errors name it)."""
     if kind not in JOINT_KINDS:
@@ -116,6 +168,22 @@ def make_joint(
         rows.append((str(angle), lo, hi))
     if not isinstance(collide, bool):
         raise ParameterError(f"joint {name!r}: collide must be True or False, got {collide!r}")
+    where = ("part", None, f"joint {name!r}")
+    laws = []
+    for angle, law in (passive or {}).items():
+        if not isinstance(law, PassiveMoment):
+            raise error_at(ParameterError(
+                f"joint {name!r}: the passive moment about {angle!r} must be a "
+                f"crashsim.PassiveMoment, got {law!r}"
+            ), where)  # fmt: skip
+        try:
+            terms = [(float(a), float(b), float(c)) for a, b, c in law.terms]
+        except (TypeError, ValueError) as err:
+            raise error_at(ParameterError(
+                f"joint {name!r}: the passive moment about {angle!r} needs terms of (scale N m, "
+                f"rate 1/rad, centre rad), got {law.terms!r}"
+            ), where) from err  # fmt: skip
+        laws.append((str(angle), float(law.offset), terms, float(law.constant)))
     try:
         core = _core.Joint(
             kind,
@@ -124,6 +192,7 @@ def make_joint(
             damping=float(damping),
             friction=float(friction),
             collide=collide,
+            passive=laws,
         )
     except ParameterError as err:
         raise error_at(err, ("part", None, f"joint {name!r}")) from err

@@ -42,7 +42,7 @@ from crashsim.errors import at as error_at
 from crashsim.human.bicycle import Bicycle
 from crashsim.human.cyclist import Cyclist
 from crashsim.human.pedestrian import Pedestrian
-from crashsim.joints import Joint, check_new, checked_frame, make_joint
+from crashsim.joints import Joint, PassiveMoment, check_new, checked_frame, make_joint
 from crashsim.people import _People
 from crashsim.placement import (
     Placement,
@@ -447,6 +447,7 @@ class Scene(_People):
         collide: bool = False,
         name: str | None = None,
         axes2: ArrayLike | None = None,
+        passive: Mapping[str, PassiveMoment] | None = None,
     ) -> Scene:
         """Join two vehicles (``vehicle2`` None: ``vehicle1`` to the world) by a joint made
         where they stand at t = 0 (add them first); returns the scene (calls chain).
@@ -462,7 +463,10 @@ class Scene(_People):
         (default no). ``axes2``: a spherical joint's frame on ``vehicle2`` (world, at t = 0;
         default ``axes``): its swing is the angle between the two frames' z axes, so a cone
         (``limits={"swing": (0, half-angle)}``) about ``axes``'s z need not hold the start
-        at its middle (a hip: flexion 125 deg, extension 30 deg). Needs a ground when the
+        at its middle (a hip: flexion 125 deg, extension 30 deg). ``passive``: {angle name:
+        crashsim.PassiveMoment}, a nonlinear moment about that angle (a hinge's "angle", a
+        fifth wheel's "articulation" or "pitch", a ball joint's rotation-vector components
+        "x", "y", "z" in its frame; docs/joints.md, "Passive moments"). Needs a ground when the
         scene runs; the joined vehicles must start with velocities that agree (a trailer
         moving with its tractor)."""
         first = self._placement(vehicle1)
@@ -510,6 +514,7 @@ class Scene(_People):
             damping=damping,
             friction=friction,
             collide=collide,
+            passive=passive,
         )
         check_new(self._joints, joint)
         self._joints = [*self._joints, joint]

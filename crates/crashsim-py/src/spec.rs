@@ -17,13 +17,18 @@ pub struct Joint {
     pub inner: core::joint::JointSpec,
 }
 
+/// A passive moment as Python gives it: (angle name, offset rad, [(scale N m, rate 1/rad,
+/// centre rad), ...], constant N m).
+type PassiveParts = (String, f64, Vec<(f64, f64, f64)>, f64);
+
 #[pymethods]
 impl Joint {
     /// kind "spherical", "revolute", "fixed" or "fifth_wheel"; limits (angle name, lower
     /// rad, upper rad); stiffness N m/rad, damping N m s/rad, friction N m; collide: the two
-    /// bodies' meshes still collide.
+    /// bodies' meshes still collide; passive: (angle name, offset rad, [(scale N m, rate
+    /// 1/rad, centre rad), ...], constant N m) per passive moment (core `PassiveMoment`).
     #[new]
-    #[pyo3(signature = (kind, *, limits = Vec::new(), stiffness = 0.0, damping = 0.0, friction = 0.0, collide = false))]
+    #[pyo3(signature = (kind, *, limits = Vec::new(), stiffness = 0.0, damping = 0.0, friction = 0.0, collide = false, passive = Vec::new()))]
     fn new(
         kind: &str,
         limits: Vec<(String, f64, f64)>,
@@ -31,6 +36,7 @@ impl Joint {
         damping: f64,
         friction: f64,
         collide: bool,
+        passive: Vec<PassiveParts>,
     ) -> PyResult<Joint> {
         let kind = core::joint::JointKind::from_name(kind).map_err(errors::to_py)?;
         let names = kind.limit_names();
@@ -62,8 +68,66 @@ impl Joint {
         joint.damping = damping;
         joint.friction = friction;
         joint.collide = collide;
+        let passive_names = kind.passive_names();
+        for (name, offset, terms, constant) in passive {
+            let angle = passive_names
+                .iter()
+                .position(|n| *n == name)
+                .ok_or_else(|| {
+                    errors::parameter(format!(
+                        "a {} joint has no angle {name:?} for a passive moment{}",
+                        kind.name(),
+                        if passive_names.is_empty() {
+                            String::new()
+                        } else {
+                            format!(": its angles are {}", passive_names.join(", "))
+                        }
+                    ))
+                })?;
+            joint.passive.push(core::joint::PassiveMoment {
+                angle,
+                offset,
+                terms: terms
+                    .into_iter()
+                    .map(|(scale, rate, centre)| core::joint::PassiveTerm {
+                        scale,
+                        rate,
+                        centre,
+                    })
+                    .collect(),
+                constant,
+            });
+        }
         joint.validate("the joint").map_err(errors::to_py)?;
         Ok(Joint { inner: joint })
+    }
+
+    /// Per passive moment: (angle name, offset rad, [(scale N m, rate 1/rad, centre rad),
+    /// ...], constant N m), as given.
+    #[getter]
+    fn passive(&self) -> Vec<(&'static str, f64, Vec<(f64, f64, f64)>, f64)> {
+        let names = self.inner.kind.passive_names();
+        self.inner
+            .passive
+            .iter()
+            .map(|m| {
+                (
+                    names[m.angle],
+                    m.offset,
+                    m.terms
+                        .iter()
+                        .map(|t| (t.scale, t.rate, t.centre))
+                        .collect(),
+                    m.constant,
+                )
+            })
+            .collect()
+    }
+
+    /// The names of the angles a passive moment may act about.
+    #[getter]
+    fn passive_names(&self) -> Vec<&'static str> {
+        self.inner.kind.passive_names().to_vec()
     }
 
     /// The kind's name.
@@ -119,6 +183,7 @@ impl Joint {
             f64,
             f64,
             bool,
+            Vec<(&'static str, f64, Vec<(f64, f64, f64)>, f64)>,
         ),
     )> {
         let j = slf.get();
@@ -132,11 +197,13 @@ impl Joint {
                 j.inner.damping,
                 j.inner.friction,
                 j.inner.collide,
+                j.passive(),
             ),
         ))
     }
 
     #[staticmethod]
+    #[pyo3(signature = (kind, limits, stiffness, damping, friction, collide, passive = Vec::new()))]
     fn _from_parts(
         kind: &str,
         limits: Vec<(String, f64, f64)>,
@@ -144,14 +211,20 @@ impl Joint {
         damping: f64,
         friction: f64,
         collide: bool,
+        passive: Vec<PassiveParts>,
     ) -> PyResult<Joint> {
-        Joint::new(kind, limits, stiffness, damping, friction, collide)
+        Joint::new(kind, limits, stiffness, damping, friction, collide, passive)
     }
 
     fn __repr__(&self) -> String {
         let j = &self.inner;
+        let passive = if j.passive.is_empty() {
+            String::new()
+        } else {
+            format!(", passive={:?}", self.passive())
+        };
         format!(
-            "Joint({:?}, limits={:?}, stiffness={}, damping={}, friction={}, collide={})",
+            "Joint({:?}, limits={:?}, stiffness={}, damping={}, friction={}, collide={}{passive})",
             j.kind.name(),
             self.limits(),
             j.stiffness,

@@ -63,8 +63,9 @@ class JointReport:
         return self.joint.name
 
     def definition(self) -> dict[str, Any]:
-        """The joint as the scene made it (JSON ``scene.joints[]``): Joint.to_dict with its
-        stiffness (N m/rad), damping (N m s/rad), friction (N m) and ``collide``."""
+        """The joint as the scene made it (JSON ``scene.joints[]``): Joint.to_dict (with its
+        passive moments when it has some) with its stiffness (N m/rad), damping (N m s/rad),
+        friction (N m) and ``collide``."""
         stiffness, damping, friction = self.joint.core.resistance
         return {
             **self.joint.to_dict(),

@@ -66,7 +66,10 @@ JOINT_KEYS = (
     "friction",
     "collide",
     "name",
+    "passive",
 )
+# a passive moment's keys ([joints.passive.<angle>]): crashsim.PassiveMoment's
+PASSIVE_KEYS = ("terms", "constant", "offset")
 # a joint's resistance to its free rotation: key, quantity
 _JOINT_RESISTANCE = (
     ("stiffness", "rotational stiffness"),
@@ -159,12 +162,18 @@ def _joint(t: _Table, scene: Scene, obstacles: list[str]) -> None:
             axes = t.vector("axes", None, sizes=(4,))
     t.taken.add("axes")
     options = _joint_options(t)
+    passive = _passive(t)
+    if passive:
+        options["passive"] = passive
     name = t.string("name", None)
     if name is not None:
         _wrap(t, "name", lambda: check_name(name, "a joint"))
     t.finish()
     _wrap(t, "kind", lambda: _core.Joint(kind))
     _check_joint_options(t, kind, options)
+    for a, law in passive.items():  # the engine's checks, each naming its angle's table
+        row = (a, law.offset, [tuple(x) for x in law.terms], law.constant)
+        _wrap(t, f"passive.{a}", lambda row=row: _core.Joint(kind, passive=[row]))
     _wrap(
         t,
         None,
@@ -190,6 +199,42 @@ def _joint_options(t: _Table) -> dict[str, Any]:
         **{k: t.quantity(k, dim, 0.0) for k, dim in _JOINT_RESISTANCE},
         "collide": t.boolean("collide", False),
     }
+
+
+def _passive(t: _Table) -> dict[str, Any]:
+    """A [[joints]] entry's passive moments ([joints.passive.<angle>]: ``terms`` a list of
+    [scale torque, rate per angle, centre angle], ``constant`` torque, ``offset`` angle) as
+    {angle name: crashsim.PassiveMoment} (SI)."""
+    from crashsim.joints import PassiveMoment
+
+    table = t.table("passive", None)
+    if table is None:
+        return {}
+    laws = {}
+    for angle in table.data:
+        law = table.table(angle, PASSIVE_KEYS)
+        if law is None:
+            continue
+        rows = law.raw("terms", [])
+        if not isinstance(rows, list):
+            law.fail("terms", f"expected a list of [scale, rate, centre] terms, got {_show(rows)}")
+        terms = []
+        for i, row in enumerate(rows):
+            key = f"terms[{i}]"
+            if not isinstance(row, list) or len(row) != 3:
+                law.fail(key, f"expected [scale, rate, centre] (torque, per angle, angle), got "
+                              f"{_show(row)}")  # fmt: skip
+            one = _Table({"scale": row[0], "rate": row[1], "centre": row[2]}, law.key(key),
+                         law.file)  # fmt: skip
+            terms.append((one.quantity("scale", "torque"), one.quantity("rate", "per angle"),
+                          one.quantity("centre", "angle")))  # fmt: skip
+        laws[angle] = PassiveMoment(
+            terms=tuple(terms),
+            constant=law.quantity("constant", "torque", 0.0),
+            offset=law.quantity("offset", "angle", 0.0),
+        )
+        law.finish()
+    return laws
 
 
 def _check_joint_options(t: _Table, kind: str, options: dict[str, Any]) -> None:

@@ -18,7 +18,7 @@ use crate::contact::{CentroidMode, ContactParams, DepthOfPenetration, NormalMode
 use crate::error::{Error, Place, Result};
 use crate::ground::{FrictionZone, Ground, Surface};
 use crate::impulse::RestitutionMode;
-use crate::joint::{AngleLimit, JointKind, JointSpec};
+use crate::joint::{AngleLimit, JointKind, JointSpec, PassiveMoment, PassiveTerm};
 use crate::math::{Isometry, Matrix, Point, Real, Rotation, Vector};
 use crate::shape::MeshShape;
 use crate::soft::SoftContact;
@@ -34,9 +34,9 @@ const FORMAT: &str = "crashsim-scene-spec";
 /// 2 (2026-11): tyres with the cornering coefficient and the combined-slip law, the steering
 /// linkage, per-wheel steering. 3: joints, a vehicle's coupling point, hitch load and load
 /// groups. 4: pairs of bodies that never collide (`no_contact`), soft contacts
-/// (`soft_contacts`). Versions 2 and 3, which lack
-/// the later fields, are read too.
-const VERSION: u32 = 4;
+/// (`soft_contacts`). 5: a joint's passive moments (`passive`, written only when it has
+/// some). Versions 2 to 4, which lack the later fields, are read too.
+const VERSION: u32 = 5;
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -76,6 +76,19 @@ struct JointDoc {
     damping: Real,
     friction: Real,
     collide: bool,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    passive: Vec<PassiveDoc>,
+}
+
+/// A joint's passive moment: the angle's index, offset rad, terms (scale N m, rate 1/rad,
+/// centre rad) and constant N m.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PassiveDoc {
+    angle: usize,
+    offset: Real,
+    terms: Vec<(Real, Real, Real)>,
+    constant: Real,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -429,6 +442,20 @@ fn joint_doc(j: &JointSpec) -> JointDoc {
         damping: j.damping,
         friction: j.friction,
         collide: j.collide,
+        passive: j
+            .passive
+            .iter()
+            .map(|m| PassiveDoc {
+                angle: m.angle,
+                offset: m.offset,
+                terms: m
+                    .terms
+                    .iter()
+                    .map(|t| (t.scale, t.rate, t.centre))
+                    .collect(),
+                constant: m.constant,
+            })
+            .collect(),
     }
 }
 
@@ -682,6 +709,24 @@ fn joint(j: JointDoc) -> Result<JointSpec> {
     joint.damping = j.damping;
     joint.friction = j.friction;
     joint.collide = j.collide;
+    joint.passive = j
+        .passive
+        .into_iter()
+        .map(|m| PassiveMoment {
+            angle: m.angle,
+            offset: m.offset,
+            terms: m
+                .terms
+                .into_iter()
+                .map(|(scale, rate, centre)| PassiveTerm {
+                    scale,
+                    rate,
+                    centre,
+                })
+                .collect(),
+            constant: m.constant,
+        })
+        .collect();
     joint.name = j.name;
     Ok(joint)
 }

@@ -52,3 +52,39 @@ fn a_bad_document_is_a_typed_error() {
     assert!(from_json(&text)
         .is_err_and(|e| e.kind == ErrorKind::Parameter && e.message.contains("restitution")));
 }
+
+#[test]
+fn a_joints_passive_moments_round_trip_and_none_are_not_written() {
+    let frame = (Point::new(0.1, -0.2, 0.3), Rotation::identity());
+    let mut j = JointSpec::new(JointKind::Spherical, 0, Some(1), frame, frame);
+    let plain = serde_json::to_string(&joint_doc(&j)).unwrap();
+    assert!(!plain.contains("passive"), "{plain}");
+    j.passive = vec![
+        PassiveMoment {
+            angle: 2,
+            offset: -0.7418,
+            terms: vec![
+                PassiveTerm {
+                    scale: -2.03,
+                    rate: 38.11,
+                    centre: 0.52,
+                },
+                PassiveTerm {
+                    scale: 0.18,
+                    rate: -12.12,
+                    centre: -0.74,
+                },
+            ],
+            constant: 0.1 + 0.2,
+        },
+        PassiveMoment {
+            angle: 0,
+            offset: 0.0,
+            terms: Vec::new(),
+            constant: 1.5,
+        },
+    ];
+    let text = serde_json::to_string(&joint_doc(&j)).unwrap();
+    let back = joint(serde_json::from_str(&text).unwrap()).unwrap();
+    assert_eq!(back, j);
+}
