@@ -274,9 +274,10 @@ pub(crate) fn passive_torque(joint: &JointSpec, bodies: &[JointBody]) -> Vector 
         .sum()
 }
 
-/// The largest |dM/dphi| (N m/rad) of the joint's passive moments over their angles now
-/// give or take `reach` (rad): each term is monotonic in its angle, so the largest is at one
-/// end of that range (for the integration's sub-steps: the stiffest the span may meet).
+/// A bound on |dM/dphi| (N m/rad) of the joint's passive moments over their angles now give
+/// or take `reach` (rad): the sum of the terms' |scale rate| exp(rate (phi - centre)), a sum
+/// of exponentials, convex, so its largest over the range is at one of its ends (for the
+/// integration's sub-steps: the stiffest the span may meet).
 pub(crate) fn passive_slope(joint: &JointSpec, bodies: &[JointBody], reach: Real) -> Real {
     if joint.passive.is_empty() {
         return 0.0;
@@ -287,7 +288,7 @@ pub(crate) fn passive_slope(joint: &JointSpec, bodies: &[JointBody], reach: Real
         .iter()
         .map(|law| {
             let at = theta[law.angle];
-            [at - reach, at, at + reach]
+            [at - reach, at + reach]
                 .into_iter()
                 .map(|a| {
                     law.terms
