@@ -194,10 +194,19 @@ fn mechanism_substeps(
         .fold(0.0, Real::max);
     let by_joints = (dt * fastest / MAX_SUBSTEP_SUSPENSION).ceil();
     if by_joints > (dt * MAX_SUBSTEPS_PER_SECOND).max(1.0) {
+        let (what, fix) = if joints.iter().any(|j| !j.passive.is_empty()) {
+            (
+                "stiffness, damping and passive moments",
+                "less stiffness or damping, or passive moments less steep at the angles they \
+                 reach,",
+            )
+        } else {
+            ("stiffness and damping", "less stiffness or damping")
+        };
         return Err(Error::simulation(format!(
-            "the joints' stiffness and damping need {by_joints:.0} integration sub-steps for \
-             {dt} s, more than {MAX_SUBSTEPS_PER_SECOND:.0} per simulated second: give them \
-             less stiffness or damping for the bodies' inertia"
+            "the joints' {what} need {by_joints:.0} integration sub-steps for {dt} s, more \
+             than {MAX_SUBSTEPS_PER_SECOND:.0} per simulated second: give them {fix} for the \
+             bodies' inertia"
         )));
     }
     n = n.max(by_joints as usize);

@@ -175,3 +175,39 @@ fn bad_passive_moments_are_refused_by_name() {
         .to_vec();
     w.add_joint(ball).unwrap();
 }
+
+#[test]
+fn a_law_too_steep_for_the_run_is_refused_naming_the_passive_moments() {
+    // 1e6 N m at the start, growing 200-fold per rad: its slope (2e8 N m/rad) on a 1.7 kg m^2
+    // rod needs more sub-steps than the engine takes.
+    let mut w = held_rod(0.0);
+    let mut joint = JointSpec::new(
+        JointKind::Revolute,
+        0,
+        None,
+        (Point::new(-0.5, 0.0, 0.0), hinge_axes()),
+        (Point::new(0.0, 0.0, HEIGHT), hinge_axes()),
+    );
+    joint.passive = vec![PassiveMoment {
+        angle: 0,
+        offset: 0.0,
+        terms: vec![PassiveTerm {
+            scale: 1e6,
+            rate: 200.0,
+            centre: 0.0,
+        }],
+        constant: -1e6,
+    }];
+    let mut steep = World::new();
+    steep.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+    let (shape, props) = rod(1.0, 0.05, 5.0);
+    steep.add_body(shape, props, &at(0.5, HEIGHT, 0.0)).unwrap();
+    steep.add_joint(joint).unwrap();
+    let e = steep.run(0.1, DT).unwrap_err().to_string();
+    assert!(
+        e.contains("passive moments need") && e.contains("passive moments less steep"),
+        "{e}"
+    );
+    // the law of the other tests is within reach
+    assert!(w.run(0.1, DT).is_ok());
+}
