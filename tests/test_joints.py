@@ -347,6 +347,8 @@ def test_passive_moments_round_trip_and_are_reported() -> None:
     report = cs.report(scene.run(0.2))
     (made,) = report.to_dict()["scene"]["joints"]
     assert made["passive"]["angle"]["terms"] == [[5.0, -3.0, 0.2], [-0.5, 2.0, 0.1]]
+    assert ("    passive moment about angle: M = 5 exp(-3 (phi - 0.2)) - 0.5 exp(2 (phi - 0.1)) "
+            "N m, phi = 0.2 rad + the angle") in report.summary_table().splitlines()  # fmt: skip
     jsonschema.validate(report.to_dict(), report_schema(), cls=jsonschema.Draft202012Validator)
 
 

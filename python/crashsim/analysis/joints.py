@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 if TYPE_CHECKING:
-    from crashsim.joints import Joint, JointEvent, JointRecord
+    from crashsim.joints import Joint, JointEvent, JointRecord, PassiveMoment
     from crashsim.result import Result
 
 __all__ = [
@@ -206,11 +206,25 @@ def joint_lines(reports: list[JointReport]) -> list[str]:
                 for k, n in enumerate(r.angle_names)
             )
             lines.append(f"    {ranges}")
+        for angle, law in r.joint.passive.items():
+            lines.append(f"    passive moment about {angle}: {_law_text(law)}")
         for e in r.events:
             lines.append(
                 f"    limit of {e.angle} hit at {e.time:.3f} s ({_deg(e.rate)} deg/s taken out)"
             )
     return lines
+
+
+def _law_text(law: PassiveMoment) -> str:
+    """A passive moment as the text report writes it: 'M = 5 exp(-3 (phi - 0.2)) - 1 N m, phi =
+    0.2 rad + the angle'."""
+    parts = [
+        f"{scale:.4g} exp({rate:.4g} (phi - {centre:.4g}))" for scale, rate, centre in law.terms
+    ]
+    if law.constant or not parts:
+        parts.append(f"{law.constant:.4g}")
+    text = " + ".join(parts).replace("+ -", "- ").replace("- -", "+ ")
+    return f"M = {text} N m, phi = {law.offset:.4g} rad + the angle"
 
 
 def articulation_lines(events: list[ArticulationEvent]) -> list[str]:
