@@ -366,3 +366,50 @@ def test_bad_passive_moments_are_refused_at_the_call(passive: dict, match: str) 
     with pytest.raises(ParameterError, match=match) as raised:
         _pendulum(0.0, passive=passive)
     assert raised.value.loc[0] == ("part", None, "joint 'rod-world'")
+
+
+def test_a_coupled_term_reads_the_other_joints_angle() -> None:
+    # Two rods hanging in a chain; the top hinge's law reads the bottom hinge's angle (a
+    # two-joint muscle's form). Along the hinge's axis the top joint's recorded torque is the
+    # law alone (the hinge's reactions are across it): at every sample it is the law at the
+    # two recorded angles.
+    couple = cs.CoupledAngle("bottom", "angle", rate=-2.0, offset=0.3)
+    law = cs.PassiveMoment(terms=((1.0, 0.5, 0.0, (couple,)),), constant=3.0)
+    scene = _pendulum(0.0, passive={"angle": law})
+    q = (math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4), 0.0)  # body x down, as the first
+    scene.add(_rod("rod2"), (0.0, 0.0, HIGH - 1.5), orientation=q)
+    axes = (math.cos(-math.pi / 4), math.sin(-math.pi / 4), 0.0, 0.0)
+    scene.join("rod", "rod2", at=(0.0, 0.0, HIGH - 1.0), kind="revolute", axes=axes,
+               name="bottom")  # fmt: skip
+    result = scene.run(1.0)
+    top, bottom = result.joints["rod-world"], result.joints["bottom"]
+    assert np.ptp(bottom.angle("angle")) > 0.05  # the bottom hinge did turn
+    expected = law.moment(top.angle("angle"), {("bottom", "angle"): bottom.angle("angle")})
+    along = top.torque @ np.array([0.0, 1.0, 0.0])  # the hinge's axis: world y
+    assert np.allclose(along, expected, rtol=1e-9, atol=1e-9)  # the sign too: M on the world
+    assert not np.allclose(along, law.moment(top.angle("angle")), rtol=1e-3)
+    # as made, through pickle and the report, and in the text
+    (made,) = [j for j in scene.joints if j.name == "rod-world"]
+    assert made.passive == {"angle": law}
+    assert pickle.loads(pickle.dumps(made.core)) == made.core
+    report = cs.report(result)
+    joint = next(j for j in report.to_dict()["scene"]["joints"] if j["name"] == "rod-world")
+    assert joint["passive"]["angle"]["coupled"] == [
+        {"term": 0, "joint": "bottom", "angle": "angle", "rate": -2.0, "offset": 0.3}
+    ]
+    import jsonschema
+    from crashsim.analysis.report import report_schema
+
+    jsonschema.validate(report.to_dict(), report_schema(), cls=jsonschema.Draft202012Validator)
+    assert ("    passive moment about angle: M = 1 exp(0.5 (phi - 0) - 2 (bottom angle + 0.3)) "
+            "+ 3 N m, phi = 0 rad + the angle") in report.summary_table().splitlines()  # fmt: skip
+
+
+def test_a_coupled_angle_must_be_a_joint_of_the_same_set() -> None:
+    couple = cs.CoupledAngle("knee", "angle", rate=1.0)
+    scene = _pendulum(0.0, passive={"angle": cs.PassiveMoment(terms=((1.0, 0.0, 0.0, (couple,)),))})
+    with pytest.raises(ParameterError, match="reads joint \"knee\": no joint of that name"):
+        scene.run(0.01)
+    bad = cs.PassiveMoment(terms=((1.0, 0.0, 0.0, ("knee", "angle", 1.0)),))
+    with pytest.raises(ParameterError, match="CoupledAngle"):
+        _pendulum(0.0, passive={"angle": bad})

@@ -215,6 +215,20 @@ offset = "0.2 rad"
     _same_runs(case.scene.run(0.3), api.run(0.3))
 
 
+def test_a_files_coupled_angle_is_the_apis() -> None:
+    # a term's fourth item: [[joint, angle, rate, offset]], with units
+    text = ROD + """
+[joints.passive.angle]
+terms = [["5 N m", "-3 1/rad", "0.2 rad", [["rod-world", "angle", "0.01 1/deg", "10 deg"]]]]
+"""
+    (joint,) = loads_scene(text).scene.joints
+    ((_, _, _, (c,)),) = joint.passive["angle"].terms
+    assert (c.joint, c.angle) == ("rod-world", "angle")
+    assert c.rate == pytest.approx(0.01 / DEG, rel=1e-15)
+    assert c.offset == pytest.approx(10 * DEG, rel=1e-15)
+    assert joint.core.coupled == [("angle", 0, "rod-world", "angle", c.offset, c.rate)]
+
+
 PASSIVE_ERRORS = [
     ("an unknown key", 'rate = 3\n', "joints[0].passive.angle.rate", "unknown key"),
     ("terms not a list", 'terms = 5\n', "joints[0].passive.angle.terms", "expected a list"),
@@ -224,6 +238,12 @@ PASSIVE_ERRORS = [
      '"1 m" is a length, not a torque'),
     ("a rate too steep (the engine's)", 'terms = [[1, "1000 1/rad", 0]]\n',
      "joints[0].passive.angle", "rate = 1000 1/rad is invalid"),
+    ("a coupled angle not a list", 'terms = [[1, 2, 0, 5]]\n',
+     "joints[0].passive.angle.terms[0][3]", "expected a list of [joint, angle, rate, offset]"),
+    ("a coupled angle without names", 'terms = [[1, 2, 0, [[1, 2, 3]]]]\n',
+     "joints[0].passive.angle.terms[0][3][0]", "expected [joint name, angle name"),
+    ("a coupled rate in metres", 'terms = [[1, 2, 0, [["a", "b", "1 m"]]]]\n',
+     "joints[0].passive.angle.terms[0][3][0].rate", '"1 m" is a length'),
 ]  # fmt: skip
 
 

@@ -36,7 +36,7 @@ from crashsim.human.pedestrian import Pedestrian
 from crashsim.io import export, scenefile
 from crashsim.io.export import export_frames, export_glb
 from crashsim.io.viewer import view
-from crashsim.joints import JointEvent, JointRecord, PassiveMoment
+from crashsim.joints import CoupledAngle, JointEvent, JointRecord, PassiveMoment
 from crashsim.placement import Placement
 from crashsim.plots import plot_impact, plot_trajectories
 from crashsim.records import (
@@ -97,6 +97,7 @@ __all__ = [
     "JointRecord",
     "JointEvent",
     "PassiveMoment",
+    "CoupledAngle",
     "RestNotReachedWarning",
     "Study",
     "sweep",

@@ -270,6 +270,7 @@ class Joint:
         friction: float = 0.0,
         collide: bool = False,
         passive: list[tuple[str, float, list[tuple[float, float, float]], float]] = ...,
+        coupled: list[tuple[str, int, str, str, float, float]] = ...,
     ) -> Joint: ...
     @property
     def kind(self) -> str: ...
@@ -287,6 +288,10 @@ class Joint:
     def passive(self) -> list[tuple[str, float, list[tuple[float, float, float]], float]]:
         """Per passive moment: (angle name, offset rad, [(scale N m, rate 1/rad, centre rad),
         ...], constant N m)."""
+    @property
+    def coupled(self) -> list[tuple[str, int, str, str, float, float]]:
+        """Per coupled angle: (the law's angle name, the term's index, the other joint's name,
+        its angle's name, offset rad, rate 1/rad)."""
     @property
     def passive_names(self) -> list[str]:
         """The names of the angles a passive moment may act about."""

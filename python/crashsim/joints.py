@@ -32,7 +32,7 @@ from crashsim import _core
 from crashsim.errors import ParameterError, SceneError
 from crashsim.errors import at as error_at
 
-__all__ = ["JOINT_KINDS", "Joint", "JointEvent", "JointRecord", "PassiveMoment"]
+__all__ = ["JOINT_KINDS", "CoupledAngle", "Joint", "JointEvent", "JointRecord", "PassiveMoment"]
 
 JOINT_KINDS = ("spherical", "revolute", "fixed", "fifth_wheel")
 """The kinds of joint, as :meth:`crashsim.Scene.join` names them."""
@@ -41,37 +41,70 @@ Array = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
+class CoupledAngle:
+    """Another joint's angle a passive moment's term reads (a two-joint muscle: Riener and
+    Edrich's knee moment reads the hip's and the ankle's angles): the exponent gains
+    ``rate * (offset + that angle)``; ``joint`` is its name in the scene (a joint of the same
+    jointed set, checked when the scene runs), ``angle`` its angle's name, ``rate`` 1/rad,
+    ``offset`` rad (that angle's value where the joints are made)."""
+
+    joint: str
+    angle: str
+    rate: float
+    offset: float = 0.0
+
+
+@dataclass(frozen=True)
 class PassiveMoment:
     """A nonlinear passive moment about one of a joint's angles (docs/joints.md, "Passive
     moments"), the engine's law:
 
-        M(phi) = sum(scale * exp(rate * (phi - centre)) for each term) + constant   (N m)
+        M(phi) = sum(scale * exp(rate * (phi - centre) + coupled) for each term) + constant
 
-    with ``phi = offset + the joint's angle`` (rad; the angle is 0 where the joint is made,
-    so ``offset`` is phi there and a law published in anatomical angles is used as
-    published). ``terms``: ((scale N m, rate 1/rad, centre rad), ...). A positive M turns the
-    second vehicle against the first towards a larger angle. The engine checks the numbers
-    when the joint is made (rates within 200 /rad, sizes within 1e6 N m, offset and centres
-    within 2 pi)."""
+    (N m) with ``phi = offset + the joint's angle`` (rad; the angle is 0 where the joint is
+    made, so ``offset`` is phi there and a law published in anatomical angles is used as
+    published). ``terms``: ((scale N m, rate 1/rad, centre rad), ...), a term optionally with
+    a fourth item, its :class:`CoupledAngle` s (``coupled`` is the sum of their ``rate *
+    (offset + angle)``). A positive M turns the second vehicle against the first towards a
+    larger angle. The engine checks the numbers when the joint is made (rates within 200
+    /rad, sizes within 1e6 N m, offsets and centres within 2 pi)."""
 
-    terms: tuple[tuple[float, float, float], ...] = ()
+    terms: tuple[tuple[Any, ...], ...] = ()
     constant: float = 0.0
     offset: float = 0.0
 
-    def moment(self, phi: ArrayLike) -> Array:
-        """M (N m) at ``phi`` (rad, the law's own angle: offset included)."""
+    def moment(
+        self, phi: ArrayLike, coupled: Mapping[tuple[str, str], float] | None = None
+    ) -> Array:
+        """M (N m) at ``phi`` (rad, the law's own angle: offset included), each coupled angle
+        at ``coupled[(joint, angle)]`` (rad, the joint's own angle: 0 where it was made, the
+        default)."""
         x = np.asarray(phi, dtype=np.float64)
         total = np.full_like(x, float(self.constant))
-        for scale, rate, centre in self.terms:
-            total = total + scale * np.exp(rate * (x - centre))
+        for term in self.terms:
+            scale, rate, centre = term[:3]
+            extra = sum(
+                c.rate * (c.offset + (coupled or {}).get((c.joint, c.angle), 0.0))
+                for c in (term[3] if len(term) > 3 else ())
+            )
+            total = total + scale * np.exp(rate * (x - centre) + extra)
         return total
 
     def to_dict(self) -> dict[str, Any]:
-        return {
-            "terms": [[float(v) for v in term] for term in self.terms],
+        d: dict[str, Any] = {
+            "terms": [[float(v) for v in term[:3]] for term in self.terms],
             "constant": float(self.constant),
             "offset": float(self.offset),
         }
+        coupled = [
+            {"term": k, "joint": c.joint, "angle": c.angle, "rate": float(c.rate),
+             "offset": float(c.offset)}
+            for k, term in enumerate(self.terms)
+            for c in (term[3] if len(term) > 3 else ())
+        ]  # fmt: skip
+        if coupled:
+            d["coupled"] = coupled
+        return d
 
 
 @dataclass(frozen=True, eq=False)
@@ -103,14 +136,23 @@ class Joint:
     @property
     def passive(self) -> dict[str, PassiveMoment]:
         """{angle name: its passive moment}, as made."""
-        return {
-            angle: PassiveMoment(
-                terms=tuple((float(a), float(b), float(c)) for a, b, c in terms),
-                constant=float(constant),
-                offset=float(offset),
+        couplings: dict[tuple[str, int], list[CoupledAngle]] = {}
+        for law_angle, k, joint, angle, offset, rate in self.core.coupled:
+            couplings.setdefault((law_angle, k), []).append(
+                CoupledAngle(joint, angle, float(rate), float(offset))
             )
-            for angle, offset, terms, constant in self.core.passive
-        }
+        out = {}
+        for angle, offset, terms, constant in self.core.passive:
+            rows: list[tuple[Any, ...]] = []
+            for k, (a, b, c) in enumerate(terms):
+                row: tuple[Any, ...] = (float(a), float(b), float(c))
+                if (angle, k) in couplings:
+                    row = (*row, tuple(couplings[(angle, k)]))
+                rows.append(row)
+            out[angle] = PassiveMoment(
+                terms=tuple(rows), constant=float(constant), offset=float(offset)
+            )
+        return out
 
     def to_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {
@@ -169,20 +211,29 @@ def make_joint(
     if not isinstance(collide, bool):
         raise ParameterError(f"joint {name!r}: collide must be True or False, got {collide!r}")
     where = ("part", None, f"joint {name!r}")
-    laws = []
+    laws, coupled = [], []
     for angle, law in (passive or {}).items():
         if not isinstance(law, PassiveMoment):
             raise error_at(ParameterError(
                 f"joint {name!r}: the passive moment about {angle!r} must be a "
                 f"crashsim.PassiveMoment, got {law!r}"
             ), where)  # fmt: skip
-        try:
-            terms = [(float(a), float(b), float(c)) for a, b, c in law.terms]
-        except (TypeError, ValueError) as err:
-            raise error_at(ParameterError(
-                f"joint {name!r}: the passive moment about {angle!r} needs terms of (scale N m, "
-                f"rate 1/rad, centre rad), got {law.terms!r}"
-            ), where) from err  # fmt: skip
+        terms = []
+        for k, term in enumerate(law.terms):
+            try:
+                if len(term) not in (3, 4):
+                    raise ValueError
+                terms.append((float(term[0]), float(term[1]), float(term[2])))
+                for c in term[3] if len(term) == 4 else ():
+                    if not isinstance(c, CoupledAngle):
+                        raise ValueError
+                    coupled.append((str(angle), k, str(c.joint), str(c.angle), float(c.offset),
+                                    float(c.rate)))  # fmt: skip
+            except (TypeError, ValueError) as err:
+                raise error_at(ParameterError(
+                    f"joint {name!r}: the passive moment about {angle!r} needs terms of (scale "
+                    f"N m, rate 1/rad, centre rad[, (crashsim.CoupledAngle, ...)]), got {term!r}"
+                ), where) from err  # fmt: skip
         laws.append((str(angle), float(law.offset), terms, float(law.constant)))
     try:
         core = _core.Joint(
@@ -193,6 +244,7 @@ def make_joint(
             friction=float(friction),
             collide=collide,
             passive=laws,
+            coupled=coupled,
         )
     except ParameterError as err:
         raise error_at(err, ("part", None, f"joint {name!r}")) from err

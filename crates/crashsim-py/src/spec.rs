@@ -20,15 +20,24 @@ pub struct Joint {
 /// A passive moment as Python gives it: (angle name, offset rad, [(scale N m, rate 1/rad,
 /// centre rad), ...], constant N m).
 type PassiveParts = (String, f64, Vec<(f64, f64, f64)>, f64);
+/// A coupled angle as Python gives it: (the law's angle name, the term's index, the other
+/// joint's name, its angle's name, that angle's offset rad, rate 1/rad).
+type CoupledParts = (String, usize, String, String, f64, f64);
+/// The same as Python reads them back (the kind's static angle names).
+type PassiveOut = (&'static str, f64, Vec<(f64, f64, f64)>, f64);
+type CoupledOut = (&'static str, usize, String, String, f64, f64);
 
 #[pymethods]
 impl Joint {
     /// kind "spherical", "revolute", "fixed" or "fifth_wheel"; limits (angle name, lower
     /// rad, upper rad); stiffness N m/rad, damping N m s/rad, friction N m; collide: the two
     /// bodies' meshes still collide; passive: (angle name, offset rad, [(scale N m, rate
-    /// 1/rad, centre rad), ...], constant N m) per passive moment (core `PassiveMoment`).
+    /// 1/rad, centre rad), ...], constant N m) per passive moment (core `PassiveMoment`);
+    /// coupled: (the law's angle, term index, other joint's name, its angle, offset rad, rate
+    /// 1/rad) per angle of another joint a term reads (core `CoupledAngle`).
     #[new]
-    #[pyo3(signature = (kind, *, limits = Vec::new(), stiffness = 0.0, damping = 0.0, friction = 0.0, collide = false, passive = Vec::new()))]
+    #[pyo3(signature = (kind, *, limits = Vec::new(), stiffness = 0.0, damping = 0.0, friction = 0.0, collide = false, passive = Vec::new(), coupled = Vec::new()))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         kind: &str,
         limits: Vec<(String, f64, f64)>,
@@ -37,6 +46,7 @@ impl Joint {
         friction: f64,
         collide: bool,
         passive: Vec<PassiveParts>,
+        coupled: Vec<CoupledParts>,
     ) -> PyResult<Joint> {
         let kind = core::joint::JointKind::from_name(kind).map_err(errors::to_py)?;
         let names = kind.limit_names();
@@ -89,23 +99,57 @@ impl Joint {
                 offset,
                 terms: terms
                     .into_iter()
-                    .map(|(scale, rate, centre)| core::joint::PassiveTerm {
-                        scale,
-                        rate,
-                        centre,
-                    })
+                    .map(|(scale, rate, centre)| core::joint::PassiveTerm::new(scale, rate, centre))
                     .collect(),
                 constant,
             });
+        }
+        for (law_angle, k, other, angle, offset, rate) in coupled {
+            let term = passive_names
+                .iter()
+                .position(|n| *n == law_angle)
+                .and_then(|a| joint.passive.iter_mut().find(|m| m.angle == a))
+                .and_then(|m| m.terms.get_mut(k))
+                .ok_or_else(|| {
+                    errors::parameter(format!(
+                        "a coupled angle names term {k} of a passive moment about {law_angle:?}, \
+                         which the joint does not have"
+                    ))
+                })?;
+            term.coupled
+                .push(core::joint::CoupledAngle::new(&other, &angle, offset, rate));
         }
         joint.validate("the joint").map_err(errors::to_py)?;
         Ok(Joint { inner: joint })
     }
 
+    /// Per coupled angle: (the law's angle name, the term's index, the other joint's name,
+    /// its angle's name, offset rad, rate 1/rad), as given.
+    #[getter]
+    fn coupled(&self) -> Vec<CoupledOut> {
+        let names = self.inner.kind.passive_names();
+        let mut out = Vec::new();
+        for m in &self.inner.passive {
+            for (k, t) in m.terms.iter().enumerate() {
+                for c in &t.coupled {
+                    out.push((
+                        names[m.angle],
+                        k,
+                        c.joint.clone(),
+                        c.angle.clone(),
+                        c.offset,
+                        c.rate,
+                    ));
+                }
+            }
+        }
+        out
+    }
+
     /// Per passive moment: (angle name, offset rad, [(scale N m, rate 1/rad, centre rad),
     /// ...], constant N m), as given.
     #[getter]
-    fn passive(&self) -> Vec<(&'static str, f64, Vec<(f64, f64, f64)>, f64)> {
+    fn passive(&self) -> Vec<PassiveOut> {
         let names = self.inner.kind.passive_names();
         self.inner
             .passive
@@ -183,7 +227,8 @@ impl Joint {
             f64,
             f64,
             bool,
-            Vec<(&'static str, f64, Vec<(f64, f64, f64)>, f64)>,
+            Vec<PassiveOut>,
+            Vec<CoupledOut>,
         ),
     )> {
         let j = slf.get();
@@ -198,12 +243,14 @@ impl Joint {
                 j.inner.friction,
                 j.inner.collide,
                 j.passive(),
+                j.coupled(),
             ),
         ))
     }
 
     #[staticmethod]
-    #[pyo3(signature = (kind, limits, stiffness, damping, friction, collide, passive = Vec::new()))]
+    #[pyo3(signature = (kind, limits, stiffness, damping, friction, collide, passive = Vec::new(), coupled = Vec::new()))]
+    #[allow(clippy::too_many_arguments)]
     fn _from_parts(
         kind: &str,
         limits: Vec<(String, f64, f64)>,
@@ -212,8 +259,11 @@ impl Joint {
         friction: f64,
         collide: bool,
         passive: Vec<PassiveParts>,
+        coupled: Vec<CoupledParts>,
     ) -> PyResult<Joint> {
-        Joint::new(kind, limits, stiffness, damping, friction, collide, passive)
+        Joint::new(
+            kind, limits, stiffness, damping, friction, collide, passive, coupled,
+        )
     }
 
     fn __repr__(&self) -> String {
@@ -222,6 +272,12 @@ impl Joint {
             String::new()
         } else {
             format!(", passive={:?}", self.passive())
+        };
+        let coupled = self.coupled();
+        let passive = if coupled.is_empty() {
+            passive
+        } else {
+            format!("{passive}, coupled={coupled:?}")
         };
         format!(
             "Joint({:?}, limits={:?}, stiffness={}, damping={}, friction={}, collide={}{passive})",

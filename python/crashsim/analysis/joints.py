@@ -218,9 +218,14 @@ def joint_lines(reports: list[JointReport]) -> list[str]:
 def _law_text(law: PassiveMoment) -> str:
     """A passive moment as the text report writes it: 'M = 5 exp(-3 (phi - 0.2)) - 1 N m, phi =
     0.2 rad + the angle'."""
-    parts = [
-        f"{scale:.4g} exp({rate:.4g} (phi - {centre:.4g}))" for scale, rate, centre in law.terms
-    ]
+    parts = []
+    for term in law.terms:
+        scale, rate, centre = term[:3]
+        reads = "".join(
+            f" + {c.rate:.4g} ({c.joint} {c.angle} + {c.offset:.4g})"
+            for c in (term[3] if len(term) > 3 else ())
+        )
+        parts.append(f"{scale:.4g} exp({rate:.4g} (phi - {centre:.4g}){reads})")
     if law.constant or not parts:
         parts.append(f"{law.constant:.4g}")
     text = " + ".join(parts).replace("+ -", "- ").replace("- -", "+ ")

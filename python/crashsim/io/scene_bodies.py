@@ -172,8 +172,17 @@ def _joint(t: _Table, scene: Scene, obstacles: list[str]) -> None:
     _wrap(t, "kind", lambda: _core.Joint(kind))
     _check_joint_options(t, kind, options)
     for a, law in passive.items():  # the engine's checks, each naming its angle's table
-        row = (a, law.offset, [tuple(x) for x in law.terms], law.constant)
-        _wrap(t, f"passive.{a}", lambda row=row: _core.Joint(kind, passive=[row]))
+        row = (a, law.offset, [tuple(x[:3]) for x in law.terms], law.constant)
+        coupled = [
+            (a, k, c.joint, c.angle, c.offset, c.rate)
+            for k, x in enumerate(law.terms)
+            for c in (x[3] if len(x) > 3 else ())
+        ]
+        _wrap(
+            t,
+            f"passive.{a}",
+            lambda row=row, coupled=coupled: _core.Joint(kind, passive=[row], coupled=coupled),
+        )
     _wrap(
         t,
         None,
@@ -205,7 +214,7 @@ def _passive(t: _Table) -> dict[str, Any]:
     """A [[joints]] entry's passive moments ([joints.passive.<angle>]: ``terms`` a list of
     [scale torque, rate per angle, centre angle], ``constant`` torque, ``offset`` angle) as
     {angle name: crashsim.PassiveMoment} (SI)."""
-    from crashsim.joints import PassiveMoment
+    from crashsim.joints import CoupledAngle, PassiveMoment
 
     table = t.table("passive", None)
     if table is None:
@@ -221,13 +230,31 @@ def _passive(t: _Table) -> dict[str, Any]:
         terms = []
         for i, row in enumerate(rows):
             key = f"terms[{i}]"
-            if not isinstance(row, list) or len(row) != 3:
-                law.fail(key, f"expected [scale, rate, centre] (torque, per angle, angle), got "
-                              f"{_show(row)}")  # fmt: skip
+            if not isinstance(row, list) or len(row) not in (3, 4):
+                law.fail(key, f"expected [scale, rate, centre] (torque, per angle, angle), and "
+                              f"optionally the coupled angles, got {_show(row)}")  # fmt: skip
             one = _Table({"scale": row[0], "rate": row[1], "centre": row[2]}, law.key(key),
                          law.file)  # fmt: skip
-            terms.append((one.quantity("scale", "torque"), one.quantity("rate", "per angle"),
-                          one.quantity("centre", "angle")))  # fmt: skip
+            term: tuple[Any, ...] = (one.quantity("scale", "torque"),
+                                     one.quantity("rate", "per angle"),
+                                     one.quantity("centre", "angle"))  # fmt: skip
+            if len(row) == 4:
+                couplings = []
+                if not isinstance(row[3], list):
+                    law.fail(f"{key}[3]", f"expected a list of [joint, angle, rate, offset], got "
+                                          f"{_show(row[3])}")  # fmt: skip
+                for j, c in enumerate(row[3]):
+                    ckey = f"{key}[3][{j}]"
+                    if (not isinstance(c, list) or len(c) not in (3, 4)
+                            or not all(isinstance(x, str) for x in c[:2])):  # fmt: skip
+                        law.fail(ckey, "expected [joint name, angle name, rate (per angle), "
+                                       f"offset (angle, default 0)], got {_show(c)}")  # fmt: skip
+                    values = {"rate": c[2], "offset": c[3] if len(c) == 4 else 0.0}
+                    two = _Table(values, law.key(ckey), law.file)
+                    couplings.append(CoupledAngle(c[0], c[1], two.quantity("rate", "per angle"),
+                                                  two.quantity("offset", "angle")))  # fmt: skip
+                term = (*term, tuple(couplings))
+            terms.append(term)
         laws[angle] = PassiveMoment(
             terms=tuple(terms),
             constant=law.quantity("constant", "torque", 0.0),

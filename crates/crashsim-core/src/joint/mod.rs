@@ -33,8 +33,8 @@ mod row;
 mod solve;
 
 pub(crate) use constraint::{
-    applied_torques, drift_rate, limit_angles, limit_rows, passive_slope, project_positions,
-    project_velocities, project_velocities_each, reactions, RESTING_ANGLE,
+    applied_torques, drift_rate, find_coupled_angles, limit_angles, limit_rows, passive_slope,
+    project_positions, project_velocities, project_velocities_each, reactions, RESTING_ANGLE,
 };
 pub(crate) use row::JointBody;
 
@@ -65,23 +65,72 @@ pub const MAX_PASSIVE_MOMENT: Real = 1e6;
 /// would have refused the run first).
 const PASSIVE_EXPONENT_CAP: Real = 50.0;
 
-/// One term of a [`PassiveMoment`]: `scale exp(rate (phi - centre))` (N m), phi in rad.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// One term of a [`PassiveMoment`]: `scale exp(rate (phi - centre) + sum of the coupled
+/// angles' rate_j phi_j)` (N m), phi in rad: without coupled angles a term of the joint's own
+/// angle; with them, of a two-joint muscle's (Riener and Edrich's knee moment reads the hip's
+/// and the ankle's angles).
+#[derive(Clone, Debug, PartialEq)]
 pub struct PassiveTerm {
     /// N m (either sign).
     pub scale: Real,
     /// 1/rad (either sign): positive grows towards large angles, negative towards small.
     pub rate: Real,
-    /// rad: where the term is `scale`.
+    /// rad: where the term is `scale` (the coupled angles' part aside).
     pub centre: Real,
+    /// Other joints' angles the exponent reads (default none).
+    pub coupled: Vec<CoupledAngle>,
 }
 
 impl PassiveTerm {
-    /// `exp(rate (phi - centre))`, its exponent capped at [`PASSIVE_EXPONENT_CAP`].
-    pub(crate) fn exp_at(&self, phi: Real) -> Real {
-        (self.rate * (phi - self.centre))
-            .min(PASSIVE_EXPONENT_CAP)
-            .exp()
+    /// A term of the joint's own angle alone.
+    pub fn new(scale: Real, rate: Real, centre: Real) -> PassiveTerm {
+        PassiveTerm {
+            scale,
+            rate,
+            centre,
+            coupled: Vec::new(),
+        }
+    }
+
+    /// The exponent at `phi` (rad) with the coupled angles at `other(c)` (rad, each the
+    /// angle of its joint, the offset added here), capped at [`PASSIVE_EXPONENT_CAP`].
+    pub(crate) fn exponent(&self, phi: Real, other: &dyn Fn(&CoupledAngle) -> Real) -> Real {
+        let coupled: Real = self
+            .coupled
+            .iter()
+            .map(|c| c.rate * (c.offset + other(c)))
+            .sum();
+        (self.rate * (phi - self.centre) + coupled).min(PASSIVE_EXPONENT_CAP)
+    }
+}
+
+/// Another joint's angle a [`PassiveTerm`]'s exponent reads: `rate (offset + that angle)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CoupledAngle {
+    /// The other joint's name (a joint of the same mechanism: the world checks it when it
+    /// builds its mechanisms).
+    pub joint: String,
+    /// Its angle's name ([`JointKind::passive_names`] of its kind).
+    pub angle: String,
+    /// That angle's phi when the joints are made (rad).
+    pub offset: Real,
+    /// 1/rad (either sign).
+    pub rate: Real,
+    /// Where the world found it: the joint's index among its mechanism's joints and the
+    /// angle's index (set when the mechanisms are built).
+    pub(crate) found: Option<(usize, usize)>,
+}
+
+impl CoupledAngle {
+    /// Joint `joint`'s angle `angle` at `offset` rad when made, read at `rate` 1/rad.
+    pub fn new(joint: &str, angle: &str, offset: Real, rate: Real) -> CoupledAngle {
+        CoupledAngle {
+            joint: joint.to_string(),
+            angle: angle.to_string(),
+            offset,
+            rate,
+            found: None,
+        }
     }
 }
 
@@ -109,22 +158,29 @@ pub struct PassiveMoment {
 }
 
 impl PassiveMoment {
-    /// M (N m) at the joint's angle `angle` (rad; phi = offset + angle).
+    /// M (N m) at the joint's angle `angle` (rad; phi = offset + angle), any coupled angles
+    /// where they were made (0).
     pub fn moment(&self, angle: Real) -> Real {
+        self.moment_reading(angle, &|_| 0.0)
+    }
+
+    /// M (N m) at the joint's angle `angle` (rad) with each coupled angle at `other(c)` (rad).
+    pub fn moment_reading(&self, angle: Real, other: &dyn Fn(&CoupledAngle) -> Real) -> Real {
         let phi = self.offset + angle;
         self.terms
             .iter()
-            .map(|t| t.scale * t.exp_at(phi))
+            .map(|t| t.scale * t.exponent(phi, other).exp())
             .sum::<Real>()
             + self.constant
     }
 
-    /// dM/dphi (N m/rad) at the joint's angle `angle` (rad).
+    /// dM/dphi (N m/rad) at the joint's angle `angle` (rad), any coupled angles where they
+    /// were made.
     pub fn slope(&self, angle: Real) -> Real {
         let phi = self.offset + angle;
         self.terms
             .iter()
-            .map(|t| t.scale * t.rate * t.exp_at(phi))
+            .map(|t| t.scale * t.rate * t.exponent(phi, &|_| 0.0).exp())
             .sum()
     }
 }
@@ -397,6 +453,16 @@ impl JointSpec {
                 within("scale", term.scale, MAX_PASSIVE_MOMENT, "N m")?;
                 within("rate", term.rate, MAX_PASSIVE_RATE, "1/rad")?;
                 within("centre", term.centre, two_pi, "rad")?;
+                for c in &term.coupled {
+                    if c.joint.is_empty() || c.angle.is_empty() {
+                        return Err(Error::invalid(format!(
+                            "{what} reads another joint's angle without naming both the \
+                             joint and the angle"
+                        )));
+                    }
+                    within("coupled offset", c.offset, two_pi, "rad")?;
+                    within("coupled rate", c.rate, MAX_PASSIVE_RATE, "1/rad")?;
+                }
             }
         }
         Ok(())

@@ -104,7 +104,7 @@ fn passive_slopes(
         .map(|j| {
             let wb = j.body2.map_or(Vector::zeros(), |b| jb[b].w);
             let reach = (wb - jb[j.body1].w).norm() * dt + PASSIVE_REACH;
-            passive_slope(j, &jb, reach)
+            passive_slope(j, &jb, reach, joints)
         })
         .collect()
 }
@@ -340,7 +340,7 @@ fn mechanism_rates(
     let jb: Vec<JointBody> = (0..m).map(|k| joint_body(&bodies[k], &s[k])).collect();
     let mut out_samples = Vec::with_capacity(if samples { joints.len() } else { 0 });
     for joint in joints {
-        let tau = applied_torques(joint, &jb);
+        let tau = applied_torques(joint, &jb, joints);
         out[joint.body1].l -= tau;
         if let Some(b) = joint.body2 {
             out[b].l += tau;

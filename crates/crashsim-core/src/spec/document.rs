@@ -18,7 +18,7 @@ use crate::contact::{CentroidMode, ContactParams, DepthOfPenetration, NormalMode
 use crate::error::{Error, Place, Result};
 use crate::ground::{FrictionZone, Ground, Surface};
 use crate::impulse::RestitutionMode;
-use crate::joint::{AngleLimit, JointKind, JointSpec, PassiveMoment, PassiveTerm};
+use crate::joint::{AngleLimit, CoupledAngle, JointKind, JointSpec, PassiveMoment, PassiveTerm};
 use crate::math::{Isometry, Matrix, Point, Real, Rotation, Vector};
 use crate::shape::MeshShape;
 use crate::soft::SoftContact;
@@ -89,6 +89,10 @@ struct PassiveDoc {
     offset: Real,
     terms: Vec<(Real, Real, Real)>,
     constant: Real,
+    /// The terms' coupled angles: (term index, joint name, angle name, offset rad, rate
+    /// 1/rad); written only when there are some.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    coupled: Vec<(usize, String, String, Real, Real)>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -454,6 +458,16 @@ fn joint_doc(j: &JointSpec) -> JointDoc {
                     .map(|t| (t.scale, t.rate, t.centre))
                     .collect(),
                 constant: m.constant,
+                coupled: m
+                    .terms
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(k, t)| {
+                        t.coupled
+                            .iter()
+                            .map(move |c| (k, c.joint.clone(), c.angle.clone(), c.offset, c.rate))
+                    })
+                    .collect(),
             })
             .collect(),
     }
@@ -712,21 +726,30 @@ fn joint(j: JointDoc) -> Result<JointSpec> {
     joint.passive = j
         .passive
         .into_iter()
-        .map(|m| PassiveMoment {
-            angle: m.angle,
-            offset: m.offset,
-            terms: m
+        .map(|m| {
+            let mut terms: Vec<PassiveTerm> = m
                 .terms
                 .into_iter()
-                .map(|(scale, rate, centre)| PassiveTerm {
-                    scale,
-                    rate,
-                    centre,
-                })
-                .collect(),
-            constant: m.constant,
+                .map(|(scale, rate, centre)| PassiveTerm::new(scale, rate, centre))
+                .collect();
+            for (k, joint, angle, offset, rate) in m.coupled {
+                let Some(term) = terms.get_mut(k) else {
+                    return Err(Error::invalid(format!(
+                        "a passive moment's coupled angle names term {k} of {}",
+                        terms.len()
+                    )));
+                };
+                term.coupled
+                    .push(CoupledAngle::new(&joint, &angle, offset, rate));
+            }
+            Ok(PassiveMoment {
+                angle: m.angle,
+                offset: m.offset,
+                terms,
+                constant: m.constant,
+            })
         })
-        .collect();
+        .collect::<Result<_>>()?;
     joint.name = j.name;
     Ok(joint)
 }

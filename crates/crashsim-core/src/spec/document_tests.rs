@@ -64,16 +64,8 @@ fn a_joints_passive_moments_round_trip_and_none_are_not_written() {
             angle: 2,
             offset: -0.7418,
             terms: vec![
-                PassiveTerm {
-                    scale: -2.03,
-                    rate: 38.11,
-                    centre: 0.52,
-                },
-                PassiveTerm {
-                    scale: 0.18,
-                    rate: -12.12,
-                    centre: -0.74,
-                },
+                PassiveTerm::new(-2.03, 38.11, 0.52),
+                PassiveTerm::new(0.18, -12.12, -0.74),
             ],
             constant: 0.1 + 0.2,
         },
@@ -84,6 +76,14 @@ fn a_joints_passive_moments_round_trip_and_none_are_not_written() {
             constant: 1.5,
         },
     ];
+    let text = serde_json::to_string(&joint_doc(&j)).unwrap();
+    assert!(!text.contains("coupled"), "{text}");
+    let back = joint(serde_json::from_str(&text).unwrap()).unwrap();
+    assert_eq!(back, j);
+    // a term reading another joint's angle (a two-joint muscle's)
+    j.passive[0].terms[1]
+        .coupled
+        .push(CoupledAngle::new("knee_left", "angle", 0.1, -0.5));
     let text = serde_json::to_string(&joint_doc(&j)).unwrap();
     let back = joint(serde_json::from_str(&text).unwrap()).unwrap();
     assert_eq!(back, j);

@@ -8,8 +8,8 @@ use std::sync::Arc;
 use super::{Motion, Prediction, PredictionKey, World};
 use crate::error::{Error, Place, Result};
 use crate::joint::{
-    drift_rate, project_positions, project_velocities, project_velocities_each, JointBody,
-    JointSpec,
+    drift_rate, find_coupled_angles, project_positions, project_velocities,
+    project_velocities_each, JointBody, JointSpec,
 };
 use crate::math::{Matrix, Point, Real, Vector};
 use crate::motion::{advance_mechanism, BodyContact, LimitHit, OnGround};
@@ -265,10 +265,11 @@ impl World {
             m.joints.push(j);
             m.ids.push(id);
         }
-        for (g, m) in self.mechanisms.iter().enumerate() {
+        for (g, m) in self.mechanisms.iter_mut().enumerate() {
             for &i in &m.members {
                 self.mechanism_of[i] = Some(g);
             }
+            find_coupled_angles(&mut m.joints, &m.ids)?;
         }
         self.size_ground_contacts_to_mechanisms()?;
         // Each joint's frames meet at the start and do not move apart (within START_TOLERANCE);

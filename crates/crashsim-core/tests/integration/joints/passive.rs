@@ -18,11 +18,7 @@ fn law() -> PassiveMoment {
     PassiveMoment {
         angle: 0,
         offset: 0.3,
-        terms: vec![PassiveTerm {
-            scale: 2.0,
-            rate: -4.0,
-            centre: 0.3,
-        }],
+        terms: vec![PassiveTerm::new(2.0, -4.0, 0.3)],
         constant: -2.0,
     }
 }
@@ -191,11 +187,7 @@ fn a_law_too_steep_for_the_run_is_refused_naming_the_passive_moments() {
     joint.passive = vec![PassiveMoment {
         angle: 0,
         offset: 0.0,
-        terms: vec![PassiveTerm {
-            scale: 1e6,
-            rate: 200.0,
-            centre: 0.0,
-        }],
+        terms: vec![PassiveTerm::new(1e6, 200.0, 0.0)],
         constant: -1e6,
     }];
     let mut steep = World::new();
