@@ -144,15 +144,20 @@ limits = {{ angle = "(-10, 10) deg" }}
 """
 
 
-def test_a_pendulum_on_the_world_with_axes_as_a_matrix_and_its_limit_in_the_report() -> None:
-    case = loads_scene(ROD)
+def _rod_api() -> tuple[cs.Scene, np.ndarray]:
+    """ROD's scene through the API, without its joint, and the joint's axes as a matrix."""
     api = cs.Scene(ground=cs.Ground())
     api.add(
         cs.Vehicle.box(1.0, 0.05, 0.05, mass=5.0, name="rod"),
         (0.5 * math.sin(ANGLE), 0.0, HIGH - 0.5 * math.cos(ANGLE)),
         orientation=TILT,
     )
-    matrix = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
+    return api, np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
+
+
+def test_a_pendulum_on_the_world_with_axes_as_a_matrix_and_its_limit_in_the_report() -> None:
+    case = loads_scene(ROD)
+    api, matrix = _rod_api()
     api.join("rod", at=(0.0, 0.0, HIGH), kind="revolute", axes=matrix,
              limits={"angle": (-10.0 * DEG, 10.0 * DEG)})  # fmt: skip
     _same_joints(case.scene, api)
@@ -196,13 +201,7 @@ constant = "-1 N m"
 offset = "0.2 rad"
 """
     case = loads_scene(text)
-    api = cs.Scene(ground=cs.Ground())
-    api.add(
-        cs.Vehicle.box(1.0, 0.05, 0.05, mass=5.0, name="rod"),
-        (0.5 * math.sin(ANGLE), 0.0, HIGH - 0.5 * math.cos(ANGLE)),
-        orientation=TILT,
-    )
-    matrix = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
+    api, matrix = _rod_api()
     law = cs.PassiveMoment(terms=((5.0, -3.0, 0.2), (-0.5, 2.0, 0.1)), constant=-1.0, offset=0.2)
     api.join("rod", at=(0.0, 0.0, HIGH), kind="revolute", axes=matrix, passive={"angle": law})
     (joint,) = case.scene.joints

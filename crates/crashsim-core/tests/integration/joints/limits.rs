@@ -61,24 +61,13 @@ fn a_joint_resting_on_its_limit_is_one_event() {
     // A horizontal rod on a hinge at its end falls 17 deg onto its limit and rests there under
     // gravity, stopped again every sub-step: one event, not one per re-entry (mechanism.rs
     // LIMIT_RELEASE), and the rod held at the limit.
-    let mut w = World::new();
-    w.set_ground(Ground::plane(0.0).unwrap()).unwrap();
-    let (shape, props) = rod(1.0, 0.05, 5.0);
-    w.add_body(shape, props, &at(0.5, HEIGHT, 0.0)).unwrap();
-    let axes = hinge_axes();
-    let mut joint = JointSpec::new(
-        JointKind::Revolute,
-        0,
-        None,
-        (Point::new(-0.5, 0.0, 0.0), axes),
-        (Point::new(0.0, 0.0, HEIGHT), axes),
-    );
-    joint.limits = vec![AngleLimit {
-        angle: 0,
-        lower: -0.3,
-        upper: 0.3,
-    }];
-    w.add_joint(joint).unwrap();
+    let mut w = horizontal_rod(JointKind::Revolute, |joint| {
+        joint.limits = vec![AngleLimit {
+            angle: 0,
+            lower: -0.3,
+            upper: 0.3,
+        }];
+    });
     let out = w.run(2.0, DT).unwrap();
     let events = &out.joint_events;
     assert_eq!(events.len(), 1, "{:?}", &events[..3.min(events.len())]);

@@ -136,6 +136,26 @@ fn drift(out: &RunOutput, n: usize, length: Real, hinges: bool) -> (Real, Real) 
     (gap, turn)
 }
 
+/// A 1 m, 5 kg rod horizontal along +x, 50 m up, on a joint of `kind` at its end to the
+/// world (the joint frame's z along world y: a hinge's axis), the joint as `shape` makes it.
+fn horizontal_rod(kind: JointKind, shape: impl FnOnce(&mut JointSpec)) -> World {
+    let mut w = World::new();
+    w.set_ground(Ground::plane(0.0).unwrap()).unwrap();
+    let (mesh, props) = rod(1.0, 0.05, 5.0);
+    w.add_body(mesh, props, &at(0.5, HEIGHT, 0.0)).unwrap();
+    let axes = hinge_axes();
+    let mut joint = JointSpec::new(
+        kind,
+        0,
+        None,
+        (Point::new(-0.5, 0.0, 0.0), axes),
+        (Point::new(0.0, 0.0, HEIGHT), axes),
+    );
+    shape(&mut joint);
+    w.add_joint(joint).unwrap();
+    w
+}
+
 fn props_of(n: usize, length: Real) -> Vec<MassProperties> {
     (0..n).map(|_| rod(length, 0.05, 5.0).1).collect()
 }

@@ -10,7 +10,7 @@ use crashsim_core::math::{Point, Real, Rotation, Vector};
 use crashsim_core::vehicle::GRAVITY;
 use crashsim_core::{RunOutput, World};
 
-use super::{at, energy, hinge_axes, props_of, rod, DT, HEIGHT};
+use super::{at, energy, horizontal_rod, props_of, rod, DT, HEIGHT};
 
 /// `2 exp(-4 (phi - 0.3)) - 2` N m with phi = 0.3 + the hinge's angle: 0 where the rod starts
 /// (horizontal), growing as the rod falls (the angle negative, below).
@@ -46,22 +46,10 @@ fn held_rod(damping: Real) -> World {
 /// The rod of [`held_rod`] on a joint of `kind`, the law about its angle `angle` (a ball
 /// joint's component 2 is about F1's z, the hinge's axis: world y).
 fn held_rod_on(kind: JointKind, angle: usize, damping: Real) -> World {
-    let mut w = World::new();
-    w.set_ground(Ground::plane(0.0).unwrap()).unwrap();
-    let (shape, props) = rod(1.0, 0.05, 5.0);
-    w.add_body(shape, props, &at(0.5, HEIGHT, 0.0)).unwrap();
-    let axes = hinge_axes();
-    let mut joint = JointSpec::new(
-        kind,
-        0,
-        None,
-        (Point::new(-0.5, 0.0, 0.0), axes),
-        (Point::new(0.0, 0.0, HEIGHT), axes),
-    );
-    joint.passive = vec![PassiveMoment { angle, ..law() }];
-    joint.damping = damping;
-    w.add_joint(joint).unwrap();
-    w
+    horizontal_rod(kind, |joint| {
+        joint.passive = vec![PassiveMoment { angle, ..law() }];
+        joint.damping = damping;
+    })
 }
 
 #[test]
@@ -177,24 +165,14 @@ fn a_law_too_steep_for_the_run_is_refused_naming_the_passive_moments() {
     // 1e6 N m at the start, growing 200-fold per rad: its slope (2e8 N m/rad) on a 1.7 kg m^2
     // rod needs more sub-steps than the engine takes.
     let mut w = held_rod(0.0);
-    let mut joint = JointSpec::new(
-        JointKind::Revolute,
-        0,
-        None,
-        (Point::new(-0.5, 0.0, 0.0), hinge_axes()),
-        (Point::new(0.0, 0.0, HEIGHT), hinge_axes()),
-    );
-    joint.passive = vec![PassiveMoment {
-        angle: 0,
-        offset: 0.0,
-        terms: vec![PassiveTerm::new(1e6, 200.0, 0.0)],
-        constant: -1e6,
-    }];
-    let mut steep = World::new();
-    steep.set_ground(Ground::plane(0.0).unwrap()).unwrap();
-    let (shape, props) = rod(1.0, 0.05, 5.0);
-    steep.add_body(shape, props, &at(0.5, HEIGHT, 0.0)).unwrap();
-    steep.add_joint(joint).unwrap();
+    let mut steep = horizontal_rod(JointKind::Revolute, |joint| {
+        joint.passive = vec![PassiveMoment {
+            angle: 0,
+            offset: 0.0,
+            terms: vec![PassiveTerm::new(1e6, 200.0, 0.0)],
+            constant: -1e6,
+        }];
+    });
     let e = steep.run(0.1, DT).unwrap_err().to_string();
     assert!(
         e.contains("passive moments need") && e.contains("passive moments less steep"),
