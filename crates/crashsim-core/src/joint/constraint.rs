@@ -22,8 +22,7 @@ use nalgebra::DVector;
 
 use super::row::{JointBody, Row};
 use super::solve::{mobility, solve, solve_each};
-use super::{CoupledAngle, JointKind, JointSpec, FRICTION_SMOOTHING};
-use crate::error::{Error, Result};
+use super::{passive, JointKind, JointSpec, FRICTION_SMOOTHING};
 use crate::math::{Matrix, Point, Real, Rotation, Vector};
 
 /// Per body (or per joint): a (force, torque) or (linear, angular) pair, world frame.
@@ -104,7 +103,7 @@ pub(crate) fn rows(joint: &JointSpec, bodies: &[JointBody], out: &mut Vec<Row>) 
 
 /// The kind's angles (rad; see [`super::JointSample::angles`]) and the world axis each
 /// turns about.
-fn angles(joint: &JointSpec, bodies: &[JointBody]) -> (Vector, [Vector; 3]) {
+pub(super) fn angles(joint: &JointSpec, bodies: &[JointBody]) -> (Vector, [Vector; 3]) {
     let ((_, a1), (_, a2)) = frames(joint, bodies);
     let col = |m: &Matrix, k: usize| m.column(k).into_owned();
     let (x1, y1, z1) = (col(&a1, 0), col(&a1, 1), col(&a1, 2));
@@ -248,7 +247,7 @@ pub(crate) fn limit_axis_rates(joint: &JointSpec, bodies: &[JointBody]) -> [Vect
 
 /// The torque (N m, world) the joint's stiffness, damping, friction and passive moments put
 /// on body b (body a gets its negative): the first three about the free angles, towards the
-/// angles at the start; each passive moment about its angle's axis (see [`passive_torque`]).
+/// angles at the start; each passive moment about its angle's axis (see [`passive::passive_torque`]).
 /// `joints` are the mechanism's (the coupled angles' joints among them).
 pub(crate) fn applied_torques(
     joint: &JointSpec,
@@ -259,114 +258,11 @@ pub(crate) fn applied_torques(
     match (linear, joint.passive.is_empty()) {
         (false, true) => Vector::zeros(),
         (true, true) => linear_torques(joint, bodies),
-        (false, false) => passive_torque(joint, bodies, joints),
-        (true, false) => linear_torques(joint, bodies) + passive_torque(joint, bodies, joints),
-    }
-}
-
-/// A coupled angle's value now (rad): its joint's angle, found among the mechanism's `joints`
-/// when the world built it (0, where it was made, if it was not: a joint outside a world).
-fn coupled_angle(c: &CoupledAngle, bodies: &[JointBody], joints: &[JointSpec]) -> Real {
-    match c.found {
-        Some((j, a)) => angles(&joints[j], bodies).0[a],
-        None => 0.0,
-    }
-}
-
-/// The passive moments' torque (N m, world) on body b: each [`super::PassiveMoment`]'s M at
-/// its angle (and its terms' coupled angles), about that angle's axis (a hinge's z; a fifth
-/// wheel's kingpin or pivot; F1's axis of a ball joint's rotation-vector component), so that
-/// a positive M turns body b towards a larger angle. Zero without passive moments.
-pub(crate) fn passive_torque(
-    joint: &JointSpec,
-    bodies: &[JointBody],
-    joints: &[JointSpec],
-) -> Vector {
-    if joint.passive.is_empty() {
-        return Vector::zeros();
-    }
-    let (theta, axes) = angles(joint, bodies);
-    let other = |c: &CoupledAngle| coupled_angle(c, bodies, joints);
-    joint
-        .passive
-        .iter()
-        .map(|law| axes[law.angle] * law.moment_reading(theta[law.angle], &other))
-        .sum()
-}
-
-/// A bound on the passive moments' stiffness (N m/rad) over their angles now give or take
-/// `reach` (rad), the coupled angles as they are: each term's |scale| (|rate| + the sum of
-/// its coupled |rate|s) exp(its exponent), a sum of exponentials, convex in the angle, so its
-/// largest over the range is at one of its ends (for the integration's sub-steps: the
-/// stiffest the span may meet; the coupled rates bound what the other joints' turning adds).
-pub(crate) fn passive_slope(
-    joint: &JointSpec,
-    bodies: &[JointBody],
-    reach: Real,
-    joints: &[JointSpec],
-) -> Real {
-    if joint.passive.is_empty() {
-        return 0.0;
-    }
-    let (theta, _) = angles(joint, bodies);
-    let other = |c: &CoupledAngle| coupled_angle(c, bodies, joints);
-    joint
-        .passive
-        .iter()
-        .map(|law| {
-            let at = theta[law.angle];
-            [at - reach, at + reach]
-                .into_iter()
-                .map(|a| {
-                    law.terms
-                        .iter()
-                        .map(|t| {
-                            let rates =
-                                t.rate.abs() + t.coupled.iter().map(|c| c.rate.abs()).sum::<Real>();
-                            t.scale.abs() * rates * t.exponent(law.offset + a, &other).exp()
-                        })
-                        .sum::<Real>()
-                })
-                .fold(0.0, Real::max)
-        })
-        .fold(0.0, Real::max)
-}
-
-/// Finds every coupled angle of `joints` (a mechanism's) among them, by the joint's name and
-/// the angle's; an error naming the joint and the law when one is not there.
-pub(crate) fn find_coupled_angles(joints: &mut [JointSpec], ids: &[usize]) -> Result<()> {
-    let names: Vec<(String, JointKind)> = joints.iter().map(|j| (j.name.clone(), j.kind)).collect();
-    for (joint, id) in joints.iter_mut().zip(ids) {
-        let label = joint.label(*id);
-        let own = joint.kind.passive_names();
-        for law in &mut joint.passive {
-            for term in &mut law.terms {
-                for c in &mut term.coupled {
-                    let Some(j) = names.iter().position(|(n, _)| *n == c.joint) else {
-                        return Err(Error::invalid(format!(
-                            "{label}'s passive moment about its {} reads joint {:?}: no joint of \
-                             that name joins the bodies it moves with (a coupled angle is \
-                             another joint's of the same jointed set)",
-                            own[law.angle], c.joint
-                        )));
-                    };
-                    let kind = names[j].1;
-                    let Some(a) = kind.passive_names().iter().position(|n| *n == c.angle) else {
-                        return Err(Error::invalid(format!(
-                            "{label}'s passive moment reads joint {:?}'s angle {:?}: a {} joint's \
-                             angles are {}",
-                            c.joint,
-                            c.angle,
-                            kind.name(),
-                            kind.passive_names().join(", ")
-                        )));
-                    };
-                    c.found = Some((j, a));
-                }
-            }
+        (false, false) => passive::passive_torque(joint, bodies, joints),
+        (true, false) => {
+            linear_torques(joint, bodies) + passive::passive_torque(joint, bodies, joints)
         }
     }
-    Ok(())
 }
 
 /// The stiffness, damping and friction torque of [`applied_torques`] (N m, world, on body b).
@@ -838,83 +734,5 @@ mod tests {
                 "{kind:?}: only {checked} orientations checked"
             );
         }
-    }
-}
-
-#[cfg(test)]
-mod passive_tests {
-    use super::*;
-    use crate::joint::{PassiveMoment, PassiveTerm};
-
-    fn body(r: Matrix) -> JointBody {
-        JointBody {
-            x: Point::origin(),
-            r,
-            v: Vector::zeros(),
-            w: Vector::zeros(),
-            inv_mass: 1.0,
-            inv_inertia: Matrix::identity(),
-        }
-    }
-
-    /// Two hinges about z: "hip" (bodies 0-1, at 0) and "knee" (bodies 1-2, body 2 turned
-    /// `knee` rad); the hip's law reads the knee's angle.
-    fn hip_and_knee(knee: Real, coupled: CoupledAngle) -> (Vec<JointSpec>, Vec<JointBody>) {
-        let frame = (Point::origin(), Rotation::identity());
-        let mut hip = JointSpec::new(JointKind::Revolute, 0, Some(1), frame, frame);
-        hip.name = "hip".into();
-        let mut term = PassiveTerm::new(2.0, 0.5, 0.0);
-        term.coupled.push(coupled);
-        hip.passive = vec![PassiveMoment {
-            angle: 0,
-            offset: 0.0,
-            terms: vec![term],
-            constant: -1.0,
-        }];
-        let mut knee_joint = JointSpec::new(JointKind::Revolute, 1, Some(2), frame, frame);
-        knee_joint.name = "knee".into();
-        let turned = *Rotation::from_axis_angle(&Vector::z_axis(), knee)
-            .to_rotation_matrix()
-            .matrix();
-        let bodies = vec![
-            body(Matrix::identity()),
-            body(Matrix::identity()),
-            body(turned),
-        ];
-        (vec![hip, knee_joint], bodies)
-    }
-
-    #[test]
-    fn a_coupled_term_reads_the_other_joints_angle() {
-        for knee in [-0.7, 0.0, 0.4] {
-            let (mut joints, bodies) =
-                hip_and_knee(knee, CoupledAngle::new("knee", "angle", 0.1, -3.0));
-            find_coupled_angles(&mut joints, &[0, 1]).unwrap();
-            let torque = passive_torque(&joints[0], &bodies, &joints);
-            // M = 2 exp(0.5 * 0 - 3 (0.1 + knee)) - 1 about the hip's z
-            let expected = 2.0 * (-3.0 * (0.1 + knee)).exp() - 1.0;
-            assert!((torque - Vector::z() * expected).norm() <= 1e-12 * expected.abs().max(1.0));
-            // its stiffness bound takes the coupled rate too: 2 (0.5 + 3) exp(...)
-            let slope = passive_slope(&joints[0], &bodies, 0.0, &joints);
-            let bound = 2.0 * 3.5 * (-3.0 * (0.1 + knee)).exp();
-            assert!((slope - bound).abs() <= 1e-12 * bound);
-        }
-    }
-
-    #[test]
-    fn a_coupled_angle_that_is_not_there_is_refused_by_name() {
-        let (mut joints, _) = hip_and_knee(0.0, CoupledAngle::new("ankle", "angle", 0.0, 1.0));
-        let e = find_coupled_angles(&mut joints, &[0, 1])
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.contains("reads joint \"ankle\": no joint of that name"),
-            "{e}"
-        );
-        let (mut joints, _) = hip_and_knee(0.0, CoupledAngle::new("knee", "pitch", 0.0, 1.0));
-        let e = find_coupled_angles(&mut joints, &[0, 1])
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("a revolute joint's angles are angle"), "{e}");
     }
 }

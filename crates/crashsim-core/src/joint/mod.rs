@@ -29,13 +29,16 @@
 //! passive (relaxed) moments of human joints take ([`PassiveMoment`]).
 
 mod constraint;
+mod passive;
 mod row;
 mod solve;
 
 pub(crate) use constraint::{
-    applied_torques, drift_rate, find_coupled_angles, limit_angles, limit_rows, passive_slope,
-    project_positions, project_velocities, project_velocities_each, reactions, RESTING_ANGLE,
+    applied_torques, drift_rate, limit_angles, limit_rows, project_positions, project_velocities,
+    project_velocities_each, reactions, RESTING_ANGLE,
 };
+pub(crate) use passive::{find_coupled_angles, passive_slope};
+pub use passive::{CoupledAngle, PassiveMoment, PassiveTerm, MAX_PASSIVE_MOMENT, MAX_PASSIVE_RATE};
 pub(crate) use row::JointBody;
 
 use crate::error::{require_finite, require_finite_vector, Error, Result};
@@ -54,137 +57,6 @@ pub const MAX_JOINT_FRICTION: Real = 1e6;
 /// deg/s): the torque is `friction w / (|w| + FRICTION_SMOOTHING)`, so a joint at rest creeps
 /// at most this fast under a torque below its friction, and no sign switch chatters.
 pub const FRICTION_SMOOTHING: Real = 0.01;
-/// Largest accepted rate of a passive moment's exponential (1/rad): the published passive
-/// moments of human joints reach 38 /rad (the ankle's dorsiflexion end in Anderson's
-/// double exponential, 1999) and about 11 /rad in Riener and Edrich's (1999, 0.195 /deg).
-pub const MAX_PASSIVE_RATE: Real = 200.0;
-/// Largest accepted size of a passive moment's term or constant (N m), as for dry friction.
-pub const MAX_PASSIVE_MOMENT: Real = 1e6;
-/// A passive moment's exponent is evaluated at most at this (so a moment stays finite: e^50
-/// times its term's scale, far past any joint's range, where the integration's sub-steps
-/// would have refused the run first).
-const PASSIVE_EXPONENT_CAP: Real = 50.0;
-
-/// One term of a [`PassiveMoment`]: `scale exp(rate (phi - centre) + sum of the coupled
-/// angles' rate_j phi_j)` (N m), phi in rad: without coupled angles a term of the joint's own
-/// angle; with them, of a two-joint muscle's (Riener and Edrich's knee moment reads the hip's
-/// and the ankle's angles).
-#[derive(Clone, Debug, PartialEq)]
-pub struct PassiveTerm {
-    /// N m (either sign).
-    pub scale: Real,
-    /// 1/rad (either sign): positive grows towards large angles, negative towards small.
-    pub rate: Real,
-    /// rad: where the term is `scale` (the coupled angles' part aside).
-    pub centre: Real,
-    /// Other joints' angles the exponent reads (default none).
-    pub coupled: Vec<CoupledAngle>,
-}
-
-impl PassiveTerm {
-    /// A term of the joint's own angle alone.
-    pub fn new(scale: Real, rate: Real, centre: Real) -> PassiveTerm {
-        PassiveTerm {
-            scale,
-            rate,
-            centre,
-            coupled: Vec::new(),
-        }
-    }
-
-    /// The exponent at `phi` (rad) with the coupled angles at `other(c)` (rad, each the
-    /// angle of its joint, the offset added here), capped at [`PASSIVE_EXPONENT_CAP`].
-    pub(crate) fn exponent(&self, phi: Real, other: &dyn Fn(&CoupledAngle) -> Real) -> Real {
-        let coupled: Real = self
-            .coupled
-            .iter()
-            .map(|c| c.rate * (c.offset + other(c)))
-            .sum();
-        (self.rate * (phi - self.centre) + coupled).min(PASSIVE_EXPONENT_CAP)
-    }
-}
-
-/// Another joint's angle a [`PassiveTerm`]'s exponent reads: `rate (offset + that angle)`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct CoupledAngle {
-    /// The other joint's name (a joint of the same mechanism: the world checks it when it
-    /// builds its mechanisms).
-    pub joint: String,
-    /// Its angle's name ([`JointKind::passive_names`] of its kind).
-    pub angle: String,
-    /// That angle's phi when the joints are made (rad).
-    pub offset: Real,
-    /// 1/rad (either sign).
-    pub rate: Real,
-    /// Where the world found it: the joint's index among its mechanism's joints and the
-    /// angle's index (set when the mechanisms are built).
-    pub(crate) found: Option<(usize, usize)>,
-}
-
-impl CoupledAngle {
-    /// Joint `joint`'s angle `angle` at `offset` rad when made, read at `rate` 1/rad.
-    pub fn new(joint: &str, angle: &str, offset: Real, rate: Real) -> CoupledAngle {
-        CoupledAngle {
-            joint: joint.to_string(),
-            angle: angle.to_string(),
-            offset,
-            rate,
-            found: None,
-        }
-    }
-}
-
-/// A nonlinear moment about one of a joint's free angles (docs/joints.md, "Passive moments"):
-///
-/// `M(phi) = sum of scale_k exp(rate_k (phi - centre_k)) + constant` (N m),
-///
-/// with `phi = offset + the angle` (rad): `offset` is phi when the joint is made (the angle
-/// is 0 then), so published laws, written in anatomical angles, are used as published. A
-/// positive M turns body 2 against body 1 towards a larger angle (body 1 gets the opposite).
-/// The angles ([`JointKind::passive_names`]): a hinge's angle; a fifth wheel's articulation
-/// and pitch; a ball joint's relative rotation as a rotation vector in F1's axes, its x, y
-/// and z components (each an anatomical angle to first order: flexion about one axis,
-/// abduction about another; the components of a large combined turn are not Cardan angles).
-#[derive(Clone, Debug, PartialEq)]
-pub struct PassiveMoment {
-    /// Which angle: an index into [`JointKind::passive_names`].
-    pub angle: usize,
-    /// phi at the joint's making (rad).
-    pub offset: Real,
-    /// The exponential terms.
-    pub terms: Vec<PassiveTerm>,
-    /// N m.
-    pub constant: Real,
-}
-
-impl PassiveMoment {
-    /// M (N m) at the joint's angle `angle` (rad; phi = offset + angle), any coupled angles
-    /// where they were made (0).
-    pub fn moment(&self, angle: Real) -> Real {
-        self.moment_reading(angle, &|_| 0.0)
-    }
-
-    /// M (N m) at the joint's angle `angle` (rad) with each coupled angle at `other(c)` (rad).
-    pub fn moment_reading(&self, angle: Real, other: &dyn Fn(&CoupledAngle) -> Real) -> Real {
-        let phi = self.offset + angle;
-        self.terms
-            .iter()
-            .map(|t| t.scale * t.exponent(phi, other).exp())
-            .sum::<Real>()
-            + self.constant
-    }
-
-    /// dM/dphi (N m/rad) at the joint's angle `angle` (rad), any coupled angles where they
-    /// were made.
-    pub fn slope(&self, angle: Real) -> Real {
-        let phi = self.offset + angle;
-        self.terms
-            .iter()
-            .map(|t| t.scale * t.rate * t.exponent(phi, &|_| 0.0).exp())
-            .sum()
-    }
-}
-
 /// What a joint holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum JointKind {
@@ -405,64 +277,6 @@ impl JointSpec {
                 return Err(Error::invalid(format!(
                     "{name} has two limits on its {angle}: give one"
                 )));
-            }
-        }
-        Ok(())
-    }
-}
-
-impl JointSpec {
-    /// Checks the passive moments: an angle the kind has, once each; finite numbers within
-    /// [`MAX_PASSIVE_RATE`] and [`MAX_PASSIVE_MOMENT`]; offsets and centres within +-2 pi.
-    fn validate_passive(&self, name: &str) -> Result<()> {
-        let names = self.kind.passive_names();
-        let two_pi = 2.0 * std::f64::consts::PI;
-        for (k, law) in self.passive.iter().enumerate() {
-            let Some(angle) = names.get(law.angle) else {
-                return Err(Error::invalid(format!(
-                    "{name} is {}: it has {}",
-                    self.kind.name(),
-                    if names.is_empty() {
-                        "no free angle for a passive moment".to_string()
-                    } else {
-                        format!("the angles {} for a passive moment", names.join(", "))
-                    }
-                )));
-            };
-            if self.passive[..k].iter().any(|l| l.angle == law.angle) {
-                return Err(Error::invalid(format!(
-                    "{name} has two passive moments about its {angle}: give one (with all \
-                     its terms)"
-                )));
-            }
-            let what = format!("{name}'s passive moment about its {angle}");
-            let within = |field: &str, value: Real, max: Real, unit: &str| -> Result<()> {
-                require_finite(&format!("{what}: {field}"), value)?;
-                if value.abs() > max {
-                    return Err(Error::parameter(
-                        &format!("{what}: {field}"),
-                        format!("{value} {unit}"),
-                        &format!("it must lie in [-{max:e}, {max:e}] {unit}"),
-                    ));
-                }
-                Ok(())
-            };
-            within("offset", law.offset, two_pi, "rad")?;
-            within("constant", law.constant, MAX_PASSIVE_MOMENT, "N m")?;
-            for term in &law.terms {
-                within("scale", term.scale, MAX_PASSIVE_MOMENT, "N m")?;
-                within("rate", term.rate, MAX_PASSIVE_RATE, "1/rad")?;
-                within("centre", term.centre, two_pi, "rad")?;
-                for c in &term.coupled {
-                    if c.joint.is_empty() || c.angle.is_empty() {
-                        return Err(Error::invalid(format!(
-                            "{what} reads another joint's angle without naming both the \
-                             joint and the angle"
-                        )));
-                    }
-                    within("coupled offset", c.offset, two_pi, "rad")?;
-                    within("coupled rate", c.rate, MAX_PASSIVE_RATE, "1/rad")?;
-                }
             }
         }
         Ok(())
