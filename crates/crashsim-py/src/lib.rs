@@ -8,6 +8,7 @@ mod batch;
 mod convert;
 mod errors;
 mod ground;
+mod joint;
 mod run_records;
 mod spec;
 
@@ -747,7 +748,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<World>()?;
     m.add_class::<spec::SceneSpec>()?;
     m.add_class::<spec::ContactParams>()?;
-    m.add_class::<spec::Joint>()?;
+    m.add_class::<joint::Joint>()?;
     m.add_class::<ground::Tyre>()?;
     m.add_class::<ground::GroundValue>()?;
     m.add_function(wrap_pyfunction!(batch::run_batch, m)?)?;
