@@ -18,7 +18,6 @@ use crate::contact::{CentroidMode, ContactParams, DepthOfPenetration, NormalMode
 use crate::error::{Error, Place, Result};
 use crate::ground::{FrictionZone, Ground, Surface};
 use crate::impulse::RestitutionMode;
-use crate::joint::{AngleLimit, CoupledAngle, JointKind, JointSpec, PassiveMoment, PassiveTerm};
 use crate::math::{Isometry, Matrix, Point, Real, Rotation, Vector};
 use crate::shape::MeshShape;
 use crate::soft::SoftContact;
@@ -28,6 +27,10 @@ use crate::vehicle::{
     WheelSpec, WheelState, WheelSwitch,
 };
 use crate::world::RunOptions;
+
+#[path = "document_joints.rs"]
+mod joints;
+use joints::{joint, joint_doc, JointDoc};
 
 /// The document's format name and version (a reader refuses others).
 const FORMAT: &str = "crashsim-scene-spec";
@@ -56,43 +59,6 @@ struct Document {
     /// Pairs with a compliant contact: (body 1, body 2, stiffness N/m, damping ratio).
     #[serde(default)]
     soft_contacts: Vec<(usize, usize, Real, Real)>,
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct JointDoc {
-    #[serde(default)]
-    name: String,
-    kind: String,
-    body1: usize,
-    body2: Option<usize>,
-    /// Anchor (m) and axes (w, x, y, z) in body 1's frame; the same in body 2's (or the
-    /// world's).
-    frame1: ([Real; 3], [Real; 4]),
-    frame2: ([Real; 3], [Real; 4]),
-    /// (angle index, lower rad, upper rad).
-    limits: Vec<(usize, Real, Real)>,
-    stiffness: Real,
-    damping: Real,
-    friction: Real,
-    collide: bool,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    passive: Vec<PassiveDoc>,
-}
-
-/// A joint's passive moment: the angle's index, offset rad, terms (scale N m, rate 1/rad,
-/// centre rad) and constant N m.
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct PassiveDoc {
-    angle: usize,
-    offset: Real,
-    terms: Vec<(Real, Real, Real)>,
-    constant: Real,
-    /// The terms' coupled angles: (term index, joint name, angle name, offset rad, rate
-    /// 1/rad); written only when there are some.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    coupled: Vec<(usize, String, String, Real, Real)>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -429,50 +395,6 @@ fn ground_doc(g: &Ground, meshes: &mut Meshes) -> GroundDoc {
     }
 }
 
-fn joint_doc(j: &JointSpec) -> JointDoc {
-    JointDoc {
-        name: j.name.clone(),
-        kind: j.kind.name().into(),
-        body1: j.body1,
-        body2: j.body2,
-        frame1: (v3(&j.frame1.0.coords), quat(&j.frame1.1)),
-        frame2: (v3(&j.frame2.0.coords), quat(&j.frame2.1)),
-        limits: j
-            .limits
-            .iter()
-            .map(|l| (l.angle, l.lower, l.upper))
-            .collect(),
-        stiffness: j.stiffness,
-        damping: j.damping,
-        friction: j.friction,
-        collide: j.collide,
-        passive: j
-            .passive
-            .iter()
-            .map(|m| PassiveDoc {
-                angle: m.angle,
-                offset: m.offset,
-                terms: m
-                    .terms
-                    .iter()
-                    .map(|t| (t.scale, t.rate, t.centre))
-                    .collect(),
-                constant: m.constant,
-                coupled: m
-                    .terms
-                    .iter()
-                    .enumerate()
-                    .flat_map(|(k, t)| {
-                        t.coupled
-                            .iter()
-                            .map(move |c| (k, c.joint.clone(), c.angle.clone(), c.offset, c.rate))
-                    })
-                    .collect(),
-            })
-            .collect(),
-    }
-}
-
 fn document(spec: &SceneSpec) -> Document {
     let mut meshes = Meshes::default();
     let bodies = spec
@@ -700,58 +622,6 @@ fn add_body(out: &mut SceneSpec, b: BodyDoc, shape: Arc<MeshShape>) -> Result<()
         }
     }
     out.set_stiffness(i, s)
-}
-
-fn joint(j: JointDoc) -> Result<JointSpec> {
-    let mut joint = JointSpec::new(
-        JointKind::from_name(&j.kind)?,
-        j.body1,
-        j.body2,
-        (point(j.frame1.0), rotation(j.frame1.1)?),
-        (point(j.frame2.0), rotation(j.frame2.1)?),
-    );
-    joint.limits = j
-        .limits
-        .iter()
-        .map(|&(angle, lower, upper)| AngleLimit {
-            angle,
-            lower,
-            upper,
-        })
-        .collect();
-    joint.stiffness = j.stiffness;
-    joint.damping = j.damping;
-    joint.friction = j.friction;
-    joint.collide = j.collide;
-    joint.passive = j
-        .passive
-        .into_iter()
-        .map(|m| {
-            let mut terms: Vec<PassiveTerm> = m
-                .terms
-                .into_iter()
-                .map(|(scale, rate, centre)| PassiveTerm::new(scale, rate, centre))
-                .collect();
-            for (k, joint, angle, offset, rate) in m.coupled {
-                let Some(term) = terms.get_mut(k) else {
-                    return Err(Error::invalid(format!(
-                        "a passive moment's coupled angle names term {k} of {}",
-                        terms.len()
-                    )));
-                };
-                term.coupled
-                    .push(CoupledAngle::new(&joint, &angle, offset, rate));
-            }
-            Ok(PassiveMoment {
-                angle: m.angle,
-                offset: m.offset,
-                terms,
-                constant: m.constant,
-            })
-        })
-        .collect::<Result<_>>()?;
-    joint.name = j.name;
-    Ok(joint)
 }
 
 /// The ground of `g` (a terrain's mesh from the document's `shapes`).

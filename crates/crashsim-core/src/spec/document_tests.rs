@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::error::{error_kind, ErrorKind};
+use crate::joint::{CoupledAngle, JointKind, JointSpec, PassiveMoment, PassiveTerm};
 
 #[test]
 fn json_round_trip_runs_the_same_bits() {
