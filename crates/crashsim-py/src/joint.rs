@@ -24,6 +24,27 @@ type CoupledParts = (String, usize, String, String, f64, f64);
 type PassiveOut = (&'static str, f64, Vec<(f64, f64, f64)>, f64);
 type CoupledOut = (&'static str, usize, String, String, f64, f64);
 
+/// The index of angle `name` among a joint of `kind`'s `names`; else a ParameterError that
+/// lists them ("a revolute joint has no angle "pitch" to limit: its angles are angle").
+fn angle_index(
+    kind: core::joint::JointKind,
+    names: &[&str],
+    name: &str,
+    purpose: &str,
+) -> PyResult<usize> {
+    names.iter().position(|n| *n == name).ok_or_else(|| {
+        errors::parameter(format!(
+            "a {} joint has no angle {name:?} {purpose}{}",
+            kind.name(),
+            if names.is_empty() {
+                String::new()
+            } else {
+                format!(": its angles are {}", names.join(", "))
+            }
+        ))
+    })
+}
+
 #[pymethods]
 impl Joint {
     /// kind "spherical", "revolute", "fixed" or "fifth_wheel"; limits (angle name, lower
@@ -54,17 +75,7 @@ impl Joint {
         // Bodies 0 and 1 stand in until the joint is added to a scene.
         let mut joint = core::joint::JointSpec::new(kind, 0, Some(1), frame, frame);
         for (name, lower, upper) in limits {
-            let angle = names.iter().position(|n| *n == name).ok_or_else(|| {
-                errors::parameter(format!(
-                    "a {} joint has no angle {name:?} to limit{}",
-                    kind.name(),
-                    if names.is_empty() {
-                        String::new()
-                    } else {
-                        format!(": its angles are {}", names.join(", "))
-                    }
-                ))
-            })?;
+            let angle = angle_index(kind, names, &name, "to limit")?;
             joint.limits.push(core::joint::AngleLimit {
                 angle,
                 lower,
@@ -77,20 +88,7 @@ impl Joint {
         joint.collide = collide;
         let passive_names = kind.passive_names();
         for (name, offset, terms, constant) in passive {
-            let angle = passive_names
-                .iter()
-                .position(|n| *n == name)
-                .ok_or_else(|| {
-                    errors::parameter(format!(
-                        "a {} joint has no angle {name:?} for a passive moment{}",
-                        kind.name(),
-                        if passive_names.is_empty() {
-                            String::new()
-                        } else {
-                            format!(": its angles are {}", passive_names.join(", "))
-                        }
-                    ))
-                })?;
+            let angle = angle_index(kind, passive_names, &name, "for a passive moment")?;
             joint.passive.push(core::joint::PassiveMoment {
                 angle,
                 offset,
