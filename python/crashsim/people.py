@@ -130,6 +130,7 @@ class _People(_Contacts):
                 friction=j.friction,
                 name=f"{pedestrian.name}/{j.name}",
                 axes2=child_axes,
+                passive=j.passive_in(f"{pedestrian.name}/"),
             )
         # A passive body's segments never strike each other (the joints hold the neighbours).
         names = [body.name for body, *_ in bodies]

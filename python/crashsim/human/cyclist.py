@@ -154,6 +154,7 @@ class Cyclist:
             vehicle1=prefix + j.parent, vehicle2=prefix + j.child, at=at, kind=j.kind,
             axes=axes, limits=j.limits, stiffness=j.stiffness, damping=j.damping,
             friction=j.friction, name=prefix + j.name, axes2=child_axes,
+            passive=j.passive_in(prefix),
         ) for j, at, axes, child_axes in joints] + parts.joints  # fmt: skip
         segments = [s.name for s in self._rider.segments]
         joined = {frozenset((prefix + j.parent, prefix + j.child)) for j, *_ in joints}

@@ -9,7 +9,9 @@ frame in the standing posture). The joints follow the anatomy: hinges ("revolute
 knees, elbows and ankles, balls ("spherical") with a swing cone and twist limits at the hips,
 shoulders, wrists, lumbar, thoracic and neck joints. Ranges of motion come from
 data/segments.toml (Castori 2012) and data/pedestrian.toml (the motions segments.toml lacks);
-the joints' resistance is an assumed small damping (no published value was read).
+the relaxed leg's joints (hips, knees, ankles) carry Riener and Edrich's (1999) passive elastic
+moments, coupled through the two-joint muscles (data/pedestrian.toml, [passive]); every joint
+an assumed small damping (no published value was read).
 
 Body frame as body_segments': x forward, y left, z up, origin on the ground midway between
 the feet. ``Scene.add(pedestrian, (x, y), heading=, velocity=)`` puts that origin at (x, y)
@@ -22,7 +24,7 @@ from __future__ import annotations
 import math
 import tomllib
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from functools import cache
 from importlib import resources
 from types import MappingProxyType
@@ -35,6 +37,7 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim.errors import ParameterError
 from crashsim.human.anthropometry import Segment, body_segments
 from crashsim.human.cycling_pose import cycling_angles
+from crashsim.joints import CoupledAngle, PassiveMoment
 from crashsim.names import check_name
 from crashsim.small_linalg import dot, matmul, norm, rotation_about, transform_points
 from crashsim.vehicles.vehicle import Vehicle
@@ -69,7 +72,9 @@ class PedestrianJoint:
     swing is measured from it (its cone's axis) to ``child_axes``'s z (the limb; None: the
     same frame, the cone centred on the pose). ``limits`` {angle: (lower, upper)} rad from
     the pose; ``rom`` the published ranges used (motion -> rad from the standing posture);
-    resistance."""
+    resistance; ``passive`` {angle: law} the published passive moments (the leg's), their
+    coupled angles naming the person's joints as here (:meth:`passive_in` names them as a
+    scene does)."""
 
     name: str
     parent: str
@@ -83,6 +88,19 @@ class PedestrianJoint:
     damping: float  # N m s/rad
     friction: float  # N m
     child_axes: Array | None = None
+    passive: Mapping[str, PassiveMoment] = field(default_factory=lambda: MappingProxyType({}))
+
+    def passive_in(self, prefix: str) -> dict[str, PassiveMoment]:
+        """The passive moments with each coupled joint named as the scene names it
+        (``prefix`` + this person's joint name, e.g. "pedestrian/hip_left")."""
+        return {
+            angle: replace(law, terms=tuple(
+                (*term[:3], tuple(replace(c, joint=prefix + c.joint) for c in term[3]))
+                if len(term) > 3 else term
+                for term in law.terms
+            ))
+            for angle, law in self.passive.items()
+        }  # fmt: skip
 
 
 _Body = tuple[Vehicle, Array, Array, Array]  # body, CG m, rotation, velocity m/s (world)
@@ -389,8 +407,11 @@ def _rom(segment: Segment, sex: str) -> dict[str, float]:
 
 def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
     res = _table()["resistance"]
-    out = []
-    for name, p in posed.items():
+    made = []
+    # phi of each leg joint where it is made (rad, the anatomical angle of Riener and Edrich's
+    # law): (joint name, the engine's angle, phi = offset + that angle)
+    leg: dict[str, tuple[str, float]] = {}
+    for p in posed.values():
         s = p.segment
         if s.parent is None:
             continue
@@ -399,9 +420,11 @@ def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
         rom = _rom(s, sex)
         side = 1.0 if s.side != "right" else -1.0
         joint = s.joint.name
+        full = joint if s.side is None else f"{joint}_{s.side}"
         if joint in _HINGES:
-            axes, limits = _hinge(joint, parent.rotation, rom, p, parent)
+            axes, limits, start = _hinge(joint, parent.rotation, rom, p, parent)
             kind = "revolute"
+            leg[full] = ("angle", start)
         else:
             axes, limits = _ball(joint, parent.rotation, rom, p, side)
             kind = "spherical"
@@ -416,10 +439,15 @@ def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
             turn = _axis_angle(matmul(parent.rotation, _Y), -(flexion - extension) / 2.0)
             child_axes, axes = axes, matmul(turn, standing)
             limits["swing"] = (0.0, (flexion + extension) / 2.0)
-        out.append(PedestrianJoint(
-            name=joint if s.side is None else f"{joint}_{s.side}",
+            # The ball's rotation-vector "y" (about the frame's y, the pelvis's right: the
+            # thigh forward is positive) is the flexion less the cone's forward turn.
+            leg[full] = ("y", (flexion - extension) / 2.0)
+        made.append((s, full, kind, p, axes, limits, rom, child_axes))
+    return [
+        PedestrianJoint(
+            name=full,
             parent=s.parent,
-            child=name,
+            child=s.name,
             kind=kind,
             at=p.joint_at.copy(),
             axes=axes,
@@ -429,8 +457,39 @@ def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
             damping=float(res["damping"]),
             friction=float(res["friction"]),
             child_axes=child_axes,
-        ))
-    return out
+            passive=MappingProxyType(_passive(s, leg)),
+        )
+        for s, full, kind, p, axes, limits, rom, child_axes in made
+    ]
+
+
+def _passive(segment: Segment, leg: Mapping[str, tuple[str, float]]) -> dict[str, PassiveMoment]:
+    """Riener and Edrich's passive moment of a hip, knee or ankle (pedestrian.toml's
+    [passive], angles in degrees) as the engine's law about the joint's angle: each term
+    sign exp(exponent + sum of coefficient x angle), the joint's own angle's coefficient
+    its rate, the same side's other joints' its coupled angles; {} for the other joints."""
+    assert segment.joint is not None
+    laws = _table()["passive"]
+    joint = segment.joint.name
+    if joint not in ("hip", "knee", "ankle") or segment.side is None:
+        return {}
+    law = laws[joint]
+    per_rad = 180.0 / math.pi  # the law's coefficients are per degree
+    own, offset = leg[f"{joint}_{segment.side}"]
+    terms = []
+    for term in law["terms"]:
+        coupled = tuple(
+            CoupledAngle(f"{other}_{segment.side}", leg[f"{other}_{segment.side}"][0],
+                         float(term[other]) * per_rad, leg[f"{other}_{segment.side}"][1])
+            for other in ("hip", "knee", "ankle") if other != joint and other in term
+        )  # fmt: skip
+        row = (
+            float(term["sign"]) * math.exp(float(term["exponent"])),
+            float(term.get(joint, 0.0)) * per_rad,
+            0.0,
+        )
+        terms.append((*row, coupled) if coupled else row)
+    return {own: PassiveMoment(terms=tuple(terms), constant=float(law["constant"]), offset=offset)}
 
 
 def _axis_angle(axis: Array, angle: float) -> Array:
@@ -459,10 +518,10 @@ def _relative_angle(parent: _Posed, child: _Posed, axis: Array) -> float:
 
 def _hinge(
     joint: str, parent_rot: Array, rom: dict[str, float], child: _Posed, parent: _Posed
-) -> tuple[Array, dict[str, tuple[float, float]]]:
+) -> tuple[Array, dict[str, tuple[float, float]], float]:
     """A hinge about the parent's lateral axis, its angle positive in flexion (knee, elbow)
     or plantarflexion (ankle); limits from the standing posture's ranges minus the pose's
-    starting angle."""
+    starting angle; that starting angle (rad from the standing posture)."""
     if joint == "ankle":
         axis, lo, hi = _Y, -rom["dorsiflexion"], rom["plantarflexion"]
     elif joint == "knee":
@@ -471,7 +530,7 @@ def _hinge(
         axis, lo, hi = -_Y, -rom["hyperextension"], rom["flexion"]
     start = _relative_angle(parent, child, axis)
     axes = matmul(parent_rot, _frame(axis, _X))
-    return axes, {"angle": (lo - start, hi - start)}
+    return axes, {"angle": (lo - start, hi - start)}, start
 
 
 def _ball(
