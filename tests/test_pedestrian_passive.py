@@ -11,6 +11,7 @@ import math
 import crashsim as cs
 import numpy as np
 import pytest
+from crashsim.errors import ParameterError
 from crashsim.human.pedestrian import PedestrianJoint
 from crashsim.result import rotation_matrix
 
@@ -130,3 +131,24 @@ def test_the_engine_turns_the_knee_by_the_law() -> None:
         assert checked > 50
         # the knee turned enough for the law's own angle to matter
         assert np.ptp(knee.angle("angle")[:checked]) > math.radians(5.0)
+
+
+def test_the_factor_scales_every_law_and_zero_removes_them() -> None:
+    base, half = cs.Pedestrian(pose="walking"), cs.Pedestrian(pose="walking", passive_moments=0.5)
+    assert half.passive_moments == 0.5 and half.arguments["passive_moments"] == 0.5
+    for j, k in zip(base.joints, half.joints, strict=True):
+        assert set(j.passive) == set(k.passive)
+        for angle, law in j.passive.items():
+            coupled = {(c.joint, c.angle): 0.1 for term in law.terms if len(term) > 3
+                       for c in term[3]}  # fmt: skip
+            for phi in (-0.3, 0.0, 0.4, 1.2):
+                assert float(k.passive[angle].moment(phi, coupled)) == pytest.approx(
+                    0.5 * float(law.moment(phi, coupled)), rel=1e-12, abs=1e-12)
+    assert not any(j.passive for j in cs.Pedestrian(passive_moments=0.0).joints)
+    assert sum(1 for j in base.joints if j.passive) == 6
+
+
+@pytest.mark.parametrize("bad", [-0.1, 10.5, math.nan, math.inf, True, "1"])
+def test_a_bad_factor_is_refused(bad: object) -> None:
+    with pytest.raises(ParameterError, match="passive_moments = .*: give a factor from 0"):
+        cs.Pedestrian(passive_moments=bad)  # type: ignore[arg-type]

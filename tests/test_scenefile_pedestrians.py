@@ -44,12 +44,13 @@ damping_ratio = 0.4
 """
 
 
-def _api_scene(pose: str) -> cs.Scene:
+def _api_scene(pose: str, passive_moments: float = 1.0) -> cs.Scene:
     """HEAD + PERSON (with ``pose``) made through the API."""
     api = cs.Scene(ground=cs.Ground(friction=0.8), normal="volume", friction=0.3)
     car = cs.Vehicle.generate("sedan", mass=1450.0, name="car")
     api.add(car, (0, 0), heading=0.0, velocity=(cs.kmh(40), 0.0, 0.0))
-    person = cs.Pedestrian(height=1.70, mass=70.0, sex="female", pose=pose, name="ped")
+    person = cs.Pedestrian(height=1.70, mass=70.0, sex="female", pose=pose, name="ped",
+                           passive_moments=passive_moments)
     api.add(person, (2.645, 0.1), heading=math.pi / 2,
             velocity=(1.2 * math.cos(math.pi / 2), 1.2, 0.0))  # fmt: skip
     api.soft_contact(car, person, stiffness=1e5, damping_ratio=0.4)
@@ -69,6 +70,15 @@ def test_a_files_running_pedestrian_is_the_apis_bit_for_bit() -> None:
     assert case.scene.to_spec(0.05).to_json() == _api_scene("running").to_spec(0.05).to_json()
     walking = loads_scene(HEAD + PERSON).scene.to_spec(0.05).to_json()
     assert case.scene.to_spec(0.05).to_json() != walking
+
+
+def test_a_files_passive_moments_factor_is_the_apis() -> None:
+    text = HEAD + PERSON.replace('pose = "walking"', 'pose = "walking"\npassive_moments = 0.5')
+    case = loads_scene(text)
+    assert case.scene.pedestrians["ped"].passive_moments == 0.5
+    api = _api_scene("walking", passive_moments=0.5)
+    assert case.scene.to_spec(0.05).to_json() == api.to_spec(0.05).to_json()
+    assert case.scene.to_spec(0.05).to_json() != _api_scene("walking").to_spec(0.05).to_json()
 
 
 def test_the_example_file_runs() -> None:
@@ -91,6 +101,12 @@ ERRORS = [
      'a vehicle or obstacle named "car" is already in the scene'),
     ("a height out of range (the model's)", PERSON.replace('"1.70 m"', '"3 m"'),
      "pedestrians[0]", "height_m"),
+    ("a passive moments factor out of range (the model's)",
+     PERSON.replace('pose = "walking"', 'pose = "walking"\npassive_moments = 12'),
+     "pedestrians[0]", "passive_moments = 12.0: give a factor from 0"),
+    ("a passive moments factor with a unit",
+     PERSON.replace('pose = "walking"', 'pose = "walking"\npassive_moments = "1 N m"'),
+     "pedestrians[0].passive_moments", "expected a plain number"),
     ("a pose not known (a cyclist's is [[cyclists]]')",
      PERSON.replace('"walking"', '"cycling"'), "pedestrians[0].pose",
      '"cycling" is not one of'),

@@ -47,6 +47,9 @@ __all__ = ["POSES", "Pedestrian", "PedestrianJoint"]
 Array = NDArray[np.float64]
 POSES = ("standing", "walking", "cycling", "running")  # (a study's `p.pose` is the index)
 CLEARANCE = 1e-3  # m, the lowest point of the body above the ground at the start
+# The published passive moments may be scaled by at most this (a sensitivity's bound: a
+# relaxed subject's moments times ten; the engine's sub-steps follow the laws' slopes).
+PASSIVE_MOMENTS_MAX = 10.0
 _CAPSULE_COUNT = (8, 8)  # trimesh capsule resolution: 128 triangles a segment
 
 _X, _Y, _Z = np.eye(3)
@@ -119,7 +122,9 @@ class Pedestrian:
     """A multibody pedestrian (module docstring). ``height`` m, ``mass`` kg, ``sex``
     ("male" or "female"), or ``percentile`` (0-100, ANSUR II stature; then ``height`` is
     not used); ``pose`` "standing", "walking", "running" or "cycling"; ``name`` prefixes its
-    segments' names.
+    segments' names; ``passive_moments`` scales the leg's published passive joint moments
+    (1: Riener and Edrich's relaxed subjects, the default; 0: none, the joints' damping
+    alone; at most PASSIVE_MOMENTS_MAX; docs/human.md, "Resistance").
 
     Attributes: ``segments`` (the :class:`crashsim.Vehicle` of each segment, pelvis first),
     ``joints`` (:class:`PedestrianJoint`), ``data`` (body_segments' :class:`Segment`\\ s),
@@ -135,8 +140,15 @@ class Pedestrian:
         percentile: float | None = None,
         pose: str = "standing",
         name: str = "pedestrian",
+        passive_moments: float = 1.0,
     ) -> None:
         check_name(name, "a pedestrian")
+        if not (isinstance(passive_moments, int | float) and not isinstance(passive_moments, bool)
+                and 0.0 <= passive_moments <= PASSIVE_MOMENTS_MAX):  # fmt: skip
+            raise ParameterError(
+                f"passive_moments = {passive_moments!r}: give a factor from 0 (no passive joint "
+                f"moments) to {PASSIVE_MOMENTS_MAX:g} (1: the published relaxed subjects')"
+            )
         if pose not in POSES:
             raise ParameterError(
                 f"pose {pose!r} is not known: give one of {', '.join(map(repr, POSES))}"
@@ -144,7 +156,8 @@ class Pedestrian:
         data = body_segments(None if percentile is not None else height, mass, sex, percentile)
         self._name, self._pose, self._sex = name, pose, sex
         self._arguments = {"height": height, "mass": mass, "sex": sex,
-                           "percentile": percentile, "pose": pose, "name": name}
+                           "percentile": percentile, "pose": pose, "name": name,
+                           "passive_moments": float(passive_moments)}  # fmt: skip
         self._data = tuple(data)
         angles = dict(_table()["poses"][pose])
         if pose == "cycling":
@@ -154,7 +167,8 @@ class Pedestrian:
         )
         self._posed = _pose(data, angles, sex)
         self._segments = tuple(_segment_vehicle(p, name) for p in self._posed.values())
-        self._joints = tuple(_joints(self._posed, sex))
+        self._passive_moments = float(passive_moments)
+        self._joints = tuple(_joints(self._posed, sex, self._passive_moments))
         self._height = max(s.origin[2] for s in data)
         self._mass = sum(s.mass for s in data)
 
@@ -183,6 +197,11 @@ class Pedestrian:
         return self._mass
 
     @property
+    def passive_moments(self) -> float:
+        """The factor on the leg's published passive joint moments (0: none)."""
+        return self._passive_moments
+
+    @property
     def pose_angles(self) -> Mapping[str, float]:
         """The pose's angles and targets as made (degrees; lengths in m): pedestrian.toml's
         ``[poses.<pose>]``, and for "cycling" the joint angles solved from its targets
@@ -192,9 +211,10 @@ class Pedestrian:
     @property
     def arguments(self) -> dict[str, Any]:
         """The arguments it was made with (``height``, ``mass``, ``sex``, ``percentile``,
-        ``pose``, ``name``): ``Pedestrian(**p.arguments)`` makes the same body, bit for bit
-        (a study's variant of another height is ``Pedestrian(**{**p.arguments, "height":
-        h})``; the ``height`` property is the stature computed from the segments)."""
+        ``pose``, ``name``, ``passive_moments``): ``Pedestrian(**p.arguments)`` makes the
+        same body, bit for bit (a study's variant of another height is
+        ``Pedestrian(**{**p.arguments, "height": h})``; the ``height`` property is the
+        stature computed from the segments)."""
         return dict(self._arguments)
 
     @property
@@ -280,7 +300,7 @@ class Pedestrian:
     def __repr__(self) -> str:
         return (
             f"Pedestrian(height={self._height:.3f}, mass={self._mass:.1f}, sex={self._sex!r}, "
-            f"pose={self._pose!r}, name={self._name!r})"
+            f"pose={self._pose!r}, name={self._name!r}, passive_moments={self._passive_moments:g})"
         )
 
 
@@ -405,7 +425,7 @@ def _rom(segment: Segment, sex: str) -> dict[str, float]:
     return rom
 
 
-def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
+def _joints(posed: dict[str, _Posed], sex: str, passive_moments: float) -> list[PedestrianJoint]:
     res = _table()["resistance"]
     made = []
     # phi of each leg joint where it is made (rad, the anatomical angle of Riener and Edrich's
@@ -457,21 +477,24 @@ def _joints(posed: dict[str, _Posed], sex: str) -> list[PedestrianJoint]:
             damping=float(res["damping"]),
             friction=float(res["friction"]),
             child_axes=child_axes,
-            passive=MappingProxyType(_passive(s, leg)),
+            passive=MappingProxyType(_passive(s, leg, passive_moments)),
         )
         for s, full, kind, p, axes, limits, rom, child_axes in made
     ]
 
 
-def _passive(segment: Segment, leg: Mapping[str, tuple[str, float]]) -> dict[str, PassiveMoment]:
+def _passive(
+    segment: Segment, leg: Mapping[str, tuple[str, float]], factor: float
+) -> dict[str, PassiveMoment]:
     """Riener and Edrich's passive moment of a hip, knee or ankle (pedestrian.toml's
-    [passive], angles in degrees) as the engine's law about the joint's angle: each term
-    sign exp(exponent + sum of coefficient x angle), the joint's own angle's coefficient
-    its rate, the same side's other joints' its coupled angles; {} for the other joints."""
+    [passive], angles in degrees) times ``factor`` as the engine's law about the joint's
+    angle: each term sign exp(exponent + sum of coefficient x angle), the joint's own angle's
+    coefficient its rate, the same side's other joints' its coupled angles; {} for the other
+    joints, and for every joint when ``factor`` is 0."""
     assert segment.joint is not None
     laws = _table()["passive"]
     joint = segment.joint.name
-    if joint not in ("hip", "knee", "ankle") or segment.side is None:
+    if joint not in ("hip", "knee", "ankle") or segment.side is None or factor == 0.0:
         return {}
     law = laws[joint]
     per_rad = 180.0 / math.pi  # the law's coefficients are per degree
@@ -484,12 +507,13 @@ def _passive(segment: Segment, leg: Mapping[str, tuple[str, float]]) -> dict[str
             for other in ("hip", "knee", "ankle") if other != joint and other in term
         )  # fmt: skip
         row = (
-            float(term["sign"]) * math.exp(float(term["exponent"])),
+            factor * float(term["sign"]) * math.exp(float(term["exponent"])),
             float(term.get(joint, 0.0)) * per_rad,
             0.0,
         )
         terms.append((*row, coupled) if coupled else row)
-    return {own: PassiveMoment(terms=tuple(terms), constant=float(law["constant"]), offset=offset)}
+    constant = factor * float(law["constant"])
+    return {own: PassiveMoment(terms=tuple(terms), constant=constant, offset=offset)}
 
 
 def _axis_angle(axis: Array, angle: float) -> Array:

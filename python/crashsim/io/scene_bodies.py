@@ -26,6 +26,7 @@ PEDESTRIAN_KEYS = (
     "sex",
     "percentile",
     "pose",
+    "passive_moments",
     "position",
     "heading",
     "speed",
@@ -283,6 +284,7 @@ def _pedestrian(t: _Table, scene: Scene, names: list[str]) -> None:
 
     # (a cyclist's seated pose is [[cyclists]]')
     kwargs["pose"] = t.string("pose", "standing", choices=tuple(p for p in POSES if p != "cycling"))
+    kwargs["passive_moments"] = t.number("passive_moments", 1.0)
 
     person = _wrap(t, None, lambda: Pedestrian(**kwargs))
     position, heading, velocity = _motion(t)

@@ -31,7 +31,9 @@ path                       unit      what it sets
                                      the road)
 ``ped.height``             m         a pedestrian's stature (``ped.percentile`` instead:
                                      ANSUR II's, 0-100); ``ped.mass`` kg; ``ped.pose`` the
-                                     index in POSES (0 standing, 1 walking, 3 running)
+                                     index in POSES (0 standing, 1 walking, 3 running);
+                                     ``ped.passive_moments`` 1 the factor on its leg's
+                                     passive joint moments (0-10)
 ``ped.position_x/_y``      m         its body frame's origin, as Scene.add took it
 ``ped.heading``            rad       its facing; its velocity turned with it
 ``ped.speed``              m/s       along its velocity (its facing when at rest)
@@ -128,6 +130,7 @@ PEDESTRIAN_PARAMETERS: dict[str, tuple[str | None, str]] = {
     "mass": ("mass", "kg"),
     "percentile": (None, "1"),
     "pose": (None, "1"),
+    "passive_moments": (None, "1"),
     "position_x": ("length", "m"),
     "position_y": ("length", "m"),
     "heading": ("angle", "rad"),
@@ -701,6 +704,7 @@ def _pedestrian_value(scene: SceneView, person: str, parameter: str) -> float:
         "mass": lambda: args["mass"],
         "percentile": lambda: math.nan if args["percentile"] is None else args["percentile"],
         "pose": lambda: POSES.index(args["pose"]),
+        "passive_moments": lambda: args["passive_moments"],
         "position_x": lambda: position[0],
         "position_y": lambda: position[1],
         "heading": lambda: heading,

@@ -1,15 +1,16 @@
 """Pedestrians in studies and fits (docs/studies.md, "Pedestrians"): each variant's scene with
 its pedestrians rebuilt, and the figures a study records per variant.
 
-A pedestrian's own paths (crashsim.studies.paths: ``<p>.height``, ``.mass``, ``.percentile``,
-``.pose``, ``.position_x``, ``.position_y``, ``.heading``, ``.speed``) change its segments'
-shapes, masses, joints and places, which the batch engine's override arrays cannot carry: a
-variant **rebuilds the Pedestrian** (``Pedestrian(**arguments)`` with the variant's values)
-and places it as ``Scene.add(pedestrian, position, heading=, velocity=)`` did in the base
-scene, in a scene of the same ground; its segments and joints take the places of the base's
-under the same names, so every pair's contact parameters, the no-contact pairs and the soft
-contacts carry over. ``<v>/<p>.stiffness`` and ``.damping_ratio`` set the soft contact of
-vehicle v with every segment of p.
+A pedestrian's own paths (crashsim.studies.paths: ``<p>.height``, ``.mass``,
+``.percentile``, ``.pose``, ``.passive_moments``, ``.position_x``, ``.position_y``,
+``.heading``, ``.speed``) change its segments' shapes, masses, joints and places, which the
+batch engine's override arrays cannot carry: a variant **rebuilds the Pedestrian**
+(``Pedestrian(**arguments)`` with the variant's values) and places it as
+``Scene.add(pedestrian, position, heading=, velocity=)`` did in the base scene, in a scene
+of the same ground; its segments and joints take the places of the base's under the same
+names, so every pair's contact parameters, the no-contact pairs and the soft contacts carry
+over. ``<v>/<p>.stiffness`` and ``.damping_ratio`` set the soft contact of vehicle v with
+every segment of p.
 
 A scene with pedestrians runs each variant as a Scene (crashsim.studies.scene_runs: threads
 of this machine), not through the batch: the figures of the person (throw distance, the head's first
@@ -127,6 +128,8 @@ def _new_person(old: Pedestrian, place: tuple[Array, float, Array], values: Mapp
         args["mass"] = values["mass"]
     if "pose" in values:
         args["pose"] = pose_name(values["pose"])
+    if "passive_moments" in values:
+        args["passive_moments"] = values["passive_moments"]
     position = np.array(place[0], dtype=np.float64)
     heading, velocity = place[1], np.array(place[2], dtype=np.float64)
     if "position_x" in values:
