@@ -15,7 +15,8 @@ the slide from v at 0.45 g takes v / (0.45 g)); the table says when it ended, wh
 engine's rest test passed, and the pelvis speed at the end.
 
 Prints a row per run (speed, front, throw distance of the whole-body CG, the head's first
-contact time and speed relative to the vehicle, the pelvis speed at the end, wall time) and
+contact time and speed relative to the vehicle, the pelvis speed at the end, the trajectory
+type of crashsim.analysis.throw.trajectory_type, wall time) and
 draws docs/img/pedestrian-throw.png (crashsim's points over the corridors).
 """
 
@@ -37,6 +38,7 @@ from crashsim.analysis.throw import (
     first_contact_time,
     searle_distance,
     throw_distance,
+    trajectory_type,
     vku_throw_distance,
 )
 
@@ -73,6 +75,7 @@ class Strike:
     pelvis_end_speed: float  # m/s at the end of the run
     duration: float  # s simulated: the end of the run
     at_rest: bool  # every body passed the engine's rest test before the longest run
+    trajectory: str  # crashsim.analysis.throw.trajectory_type
     wall: float  # s
 
 
@@ -106,21 +109,23 @@ def strike(speed_kmh: float, front: str, duration: float | None = None, dt: floa
     return Strike(
         speed_kmh, front, throw_distance(result, "car", ped),
         first_contact_time(result, "car", ped), head_time, head_speed, head_wad,
-        float(np.linalg.norm(pelvis.velocity[-1])), float(pelvis.t[-1]), at_rest, wall,
+        float(np.linalg.norm(pelvis.velocity[-1])), float(pelvis.t[-1]), at_rest,
+        trajectory_type(result, car, ped), wall,
     )
 
 
 def table(rows: list[Strike]) -> str:
     lines = ["| km/h | front | throw (m) | first contact (s) | head contact (s) | head rel. speed "
-             "(m/s) | head WAD (m) | pelvis at end (m/s) | ended (s) | at rest | wall (s) |",
-             "| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: |"]
+             "(m/s) | head WAD (m) | pelvis at end (m/s) | ended (s) | at rest | trajectory "
+             "| wall (s) |",
+             "| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- | ---: |"]
     for r in rows:
         head_t = "none" if r.head_time is None else f"{r.head_time:.3f}"
         head_v = "-" if r.head_speed is None else f"{r.head_speed:.2f}"
         wad = "-" if r.head_wad is None else f"{r.head_wad:.2f}"
         lines.append(f"| {r.speed_kmh:.0f} | {r.front} | {r.throw:.2f} | {r.first_contact:.4f} | "
                      f"{head_t} | {head_v} | {wad} | {r.pelvis_end_speed:.3f} | {r.duration:.2f} | "
-                     f"{'yes' if r.at_rest else 'no'} | {r.wall:.1f} |")
+                     f"{'yes' if r.at_rest else 'no'} | {r.trajectory} | {r.wall:.1f} |")
     return "\n".join(lines)
 
 

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from crashsim.analysis.pedestrian import person_bodies, segment_contacts
 from crashsim.analysis.report import report_schema
-from crashsim.analysis.throw import first_contact_time, throw_distance
+from crashsim.analysis.throw import first_contact_time, throw_distance, trajectory_type
 from crashsim.io.viewer.data import page_data
 from crashsim.plots.common import shade, vehicle_colour
 
@@ -65,6 +65,9 @@ def test_the_cyclist_has_the_pedestrian_section(strike: tuple[cs.Result, cs.Cycl
     expect = _travel(result, seg, [s.mass for s in rider.segments], struck["first_contact_time"])
     assert struck["throw_distance"] == pytest.approx(expect, abs=1e-12)
     assert struck["segments"][0]["segment"] in ("shank_left", "thigh_left", "foot_left")
+    # the rider's trajectory type: crashsim.analysis.throw's (0.1 s: on the bonnet still)
+    assert struck["trajectory"] == trajectory_type(result, result.vehicle("car"), rider)
+    assert struck["trajectory"] == "carried"
     # the bicycle: its own contacts, the frame's throw from its first contact, the frame's end
     b = entry["bicycle"]
     assert b["bodies"] == ["cyclist/frame", "cyclist/rear_wheel", "cyclist/front_wheel"]
@@ -88,6 +91,8 @@ def test_the_cyclist_has_the_pedestrian_section(strike: tuple[cs.Result, cs.Cycl
     assert "Cyclist 'cyclist' (the rider):" in text
     assert f"the bicycle 'cyclist' ({BICYCLE_MASS:.2f} kg):" in text
     assert f"throw distance from 'car': {struck['throw_distance']:.2f} m" in text
+    assert "to the end of the run; trajectory: carried)" in text
+    assert "trajectory" not in bs  # a bicycle's throw has none
     assert f"throw distance from 'car': {bs['throw_distance']:.2f} m (frame" in text
 
 
@@ -103,11 +108,14 @@ def test_the_added_fields_are_optional(strike: tuple[cs.Result, cs.Cyclist]) -> 
         for s in entry["struck_by"]:
             s.pop("first_contact_time")
             s.pop("throw_distance")
+            s.pop("trajectory")
     jsonschema.Draft202012Validator(schema).validate(old)
-    for change in ("kind", "bicycle"):
+    for change in ("kind", "bicycle", "trajectory"):
         bad = copy.deepcopy(data)
         if change == "kind":
             bad["pedestrians"][0]["kind"] = "rider"
+        elif change == "trajectory":
+            bad["pedestrians"][0]["struck_by"][0]["trajectory"] = "somersault"
         else:
             bad["pedestrians"][0]["bicycle"].pop("bodies")
         with pytest.raises(jsonschema.ValidationError):

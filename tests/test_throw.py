@@ -15,9 +15,11 @@ from crashsim.analysis.throw import (
     VKU_THROW_FACTORS,
     G,
     first_contact_time,
+    plan_path_type,
     searle_distance,
     searle_speed,
     throw_distance,
+    trajectory_type,
     vku_throw_distance,
 )
 from crashsim.errors import ParameterError
@@ -80,9 +82,12 @@ def test_bad_input() -> None:
         vku_throw_distance(10.0, "bus")
 
 
-def strike(speed_kmh: float, duration: float, gap: float = 0.05):
-    """benches/pedestrian_throw.py's scene: a braking sedan into a walking man's left side."""
-    car = cs.Vehicle.generate("sedan", name="car")
+def strike(
+    speed_kmh: float, duration: float, gap: float = 0.05, vehicle: cs.Vehicle | None = None
+):
+    """benches/pedestrian_throw.py's scene: a braking sedan (or ``vehicle``, named "car")
+    into a walking man's left side."""
+    car = cs.Vehicle.generate("sedan", name="car") if vehicle is None else vehicle
     ped = cs.Pedestrian(height=1.75, mass=75.0, pose="walking")
     scene = cs.Scene(ground=cs.Ground(friction=0.8))
     ahead = float(car.mesh.bounds[1, 0] - car.cg[0])
@@ -113,6 +118,39 @@ def test_a_30_kmh_strike_lands_inside_the_corridors() -> None:
     weighted = sum(seg.mass * result.trajectory(seg.name).position[-1] for seg in ped.segments)
     np.testing.assert_allclose(cg[-1], weighted / 75.0, rtol=0, atol=1e-12)
     assert 0.0 < first_contact_time(result, "car", ped) < 0.02
+    # over the bonnet and off the front of the stopped car: Ravani et al.'s wrap
+    assert trajectory_type(result, cs.Vehicle.generate("sedan", name="car"), ped) == "wrap"
+
+
+def test_a_flat_truck_front_projects_the_person_forward() -> None:
+    # the laden rigid truck's cab front at 30 km/h: the whole-body CG never gets over its plan
+    truck = cs.rigid_truck("rigid_truck", name="car")
+    ped, result = strike(30.0, 1.0, vehicle=truck)
+    assert trajectory_type(result, truck, ped) == "forward projection"
+    assert throw_distance(result, "car", ped) > 1.0  # pushed ahead, not run over
+
+
+# (rear, front), (right, left) of a 4 m x 1.8 m plan
+PLAN = ((-2.0, 2.0), (-0.9, 0.9))
+
+
+@pytest.mark.parametrize(
+    ("path", "kind"),
+    [
+        ([(2.5, 0.0), (2.2, 0.1), (2.1, 0.0)], "forward projection"),  # pushed ahead
+        ([(2.5, 0.0), (1.0, 0.0), (-1.0, 0.0), (1.5, 0.0), (2.5, 0.0)], "wrap"),
+        ([(2.5, 0.0), (1.0, 0.0), (-1.9, 0.0), (-2.5, 0.0)], "roof vault"),
+        ([(2.5, 0.0), (1.0, 0.5), (0.5, 1.2), (0.0, 2.0)], "fender vault"),
+        ([(2.5, 0.0), (1.0, -0.5), (0.5, -1.2)], "fender vault"),  # over the right side
+        ([(2.5, 0.0), (1.0, 0.0), (0.0, 0.0)], "carried"),
+        # the last way off counts: over a side in the air, back on, then off the front
+        ([(2.5, 0.0), (1.0, 0.5), (0.5, 1.2), (0.5, 0.5), (2.5, 0.0)], "wrap"),
+        ([(2.5, 0.0), (1.0, 0.0), (2.5, 0.0), (1.0, 0.0), (-2.5, 0.0)], "roof vault"),
+        ([(2.5, 0.0), (1.0, 0.0), (2.5, 0.0), (1.0, 0.0)], "carried"),
+    ],
+)
+def test_the_path_over_the_plan_names_the_type(path: list, kind: str) -> None:
+    assert plan_path_type(np.array(path, dtype=float), *PLAN) == kind
 
 
 def test_no_contact_no_throw_distance() -> None:

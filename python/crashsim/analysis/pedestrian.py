@@ -228,26 +228,76 @@ def travel(t: Array, x: Array, t0: float) -> float:
     return float(norm(x[-1, :2] - x[k0, :2]))
 
 
+# The post-impact trajectory types path_type reads (Ravani et al.'s names, SAE 811024, 1981;
+# "carried": still over the vehicle's plan at the run's end).
+TRAJECTORY_TYPES = ("forward projection", "wrap", "roof vault", "fender vault", "carried")
+
+
+def path_type(result: Result, vehicle: Vehicle, x: Array, t0: float) -> str:
+    """The trajectory type (TRAJECTORY_TYPES) of the centre-of-mass path ``x`` (k, 3; world,
+    m, at the run's samples) from ``t0`` (s) on, over the plan of ``vehicle`` (its mesh's
+    extent in x and y, its model frame): :func:`plan_path_type` of the path in that frame
+    (crashsim.analysis.throw.trajectory_type says what each type means)."""
+    t = np.asarray(result.t, dtype=np.float64)
+    car = result.trajectory(vehicle.name)
+    turn = rotation_matrix(car.orientation)  # (k, 3, 3) body -> world
+    local = np.einsum("kji,kj->ki", turn, x - car.position) + vehicle.cg  # model frame, m
+    lo, hi = np.asarray(vehicle.mesh.bounds, dtype=np.float64)
+    k0 = min(int(np.searchsorted(t, t0)), len(t) - 1)
+    return plan_path_type(local[k0:, :2], (lo[0], hi[0]), (lo[1], hi[1]))
+
+
+def plan_path_type(
+    xy: Array, x_range: tuple[float, float], y_range: tuple[float, float]
+) -> str:
+    """The trajectory type (TRAJECTORY_TYPES) of a path ``xy`` (k, 2) m in the vehicle's
+    model frame against its plan, ``x_range`` (rear, front) and ``y_range`` (right, left) m:
+    never inside the plan, "forward projection"; inside it at the end, "carried"; else by
+    where it left the plan for the last time: over the front "wrap", behind the rear "roof
+    vault", over a side "fender vault" (a body that leaves the plan in the air and lands on
+    the vehicle again is still carried by it: its last way off names the type)."""
+    (rear, front), (right, left) = x_range, y_range
+    x, y = xy[:, 0], xy[:, 1]
+    over = (x > rear) & (x < front) & (y > right) & (y < left)
+    if not over.any():
+        return "forward projection"
+    if over[-1]:
+        return "carried"
+    k = int(np.flatnonzero(over)[-1]) + 1  # the first sample off the plan for good
+    if x[k] >= front:
+        return "wrap"
+    if x[k] <= rear:
+        return "roof vault"
+    return "fender vault"
+
+
 @dataclass(frozen=True)
 class Throw:
     """How far a vehicle threw a person (or a bicycle): ``first_contact_time`` (s) the
     vehicle's first overlap with any of its bodies, ``distance`` (m) the horizontal travel of
-    its centre of mass from that instant to the run's end (:func:`travel`)."""
+    its centre of mass from that instant to the run's end (:func:`travel`); a person's
+    ``trajectory`` (:func:`path_type`; None for a bicycle)."""
 
     first_contact_time: float
     distance: float
+    trajectory: str | None = None
 
 
 def _throws(
-    result: Result, contacts: dict[str, dict[str, SegmentContact]], x: Array
+    result: Result,
+    contacts: dict[str, dict[str, SegmentContact]],
+    x: Array,
+    vehicles: Mapping[str, Vehicle] | None = None,
 ) -> dict[str, Throw]:
     """Per vehicle in ``contacts`` ({vehicle: {segment: SegmentContact}}), the throw of the
-    centre of mass whose path (k, 3) is ``x``."""
+    centre of mass whose path (k, 3) is ``x``; with ``vehicles`` (by name), its trajectory
+    type too (a person's)."""
     t = np.asarray(result.t, dtype=np.float64)
     out = {}
     for vehicle, segs in contacts.items():
         t0 = min(c.time for c in segs.values())
-        out[vehicle] = Throw(float(t0), travel(t, x, t0))
+        kind = None if vehicles is None else path_type(result, vehicles[vehicle], x, t0)
+        out[vehicle] = Throw(float(t0), travel(t, x, t0), kind)
     return out
 
 
@@ -272,6 +322,8 @@ def _contacts_record(
             ],
             "first_contact_time": throws[vehicle].first_contact_time,
             "throw_distance": throws[vehicle].distance,
+            **({} if throws[vehicle].trajectory is None
+               else {"trajectory": throws[vehicle].trajectory}),
         }
         for vehicle, segs in contacts.items()
     ]
@@ -415,7 +467,7 @@ def pedestrian_reports(result: Result) -> list[PedestrianReport]:
                 bodies=tuple(s.name for s in person.segments),
                 height=float(person.height),
                 mass=float(person.mass),
-                throws=_throws(result, contacts, x),
+                throws=_throws(result, contacts, x, {v.name: v for v in others}),
                 bicycle=None if bicycle is None else _bicycle_report(result, bicycle, others),
             )
         )
@@ -442,9 +494,10 @@ def _first_contact_lines(
         lines.append(f"  first contacts with {vehicle!r}: {first}"
                      + (", ..." if len(segs) > 6 else ""))  # fmt: skip
         throw = throws[vehicle]
+        kind = "" if throw.trajectory is None else f"; trajectory: {throw.trajectory}"
         lines.append(
             f"  throw distance from {vehicle!r}: {throw.distance:.2f} m ({what}, from the first "
-            f"contact at {throw.first_contact_time:.4f} s to the end of the run)"
+            f"contact at {throw.first_contact_time:.4f} s to the end of the run{kind})"
         )
     return lines
 

@@ -5,6 +5,11 @@ Throw distance: the horizontal travel of the pedestrian's whole-body centre of m
 segments' CGs weighted by their masses) from its position at the first contact with the
 vehicle to its position at rest (or at the end of the run).
 
+Trajectory type (:func:`trajectory_type`): which of Ravani et al.'s post-impact kinematics
+(SAE 811024, 1981: wrap, forward projection, fender vault, roof vault, somersault) a run
+shows, read off the whole-body centre of mass's path over the vehicle's plan (its mesh's
+extent in x and y, its model frame).
+
 The corridors give the throw distance s (m) for a speed v (m/s), with g = 9.80665 m/s^2 and mu
 the pedestrian's sliding friction on the road. Each function names the source it was read in;
 the primary papers were not read (their first pages and abstracts only), see the docstrings.
@@ -18,21 +23,31 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from crashsim.analysis.pedestrian import travel, whole_body
+from crashsim.analysis.pedestrian import (
+    TRAJECTORY_TYPES,
+    path_type,
+    plan_path_type,
+    travel,
+    whole_body,
+)
 from crashsim.errors import ParameterError
 
 if TYPE_CHECKING:
     from crashsim.human.pedestrian import Pedestrian
     from crashsim.result import Result
+    from crashsim.vehicles.vehicle import Vehicle
 
 __all__ = [
     "G",
+    "TRAJECTORY_TYPES",
     "VKU_THROW_FACTORS",
     "VKU_FRICTION",
     "first_contact_time",
+    "plan_path_type",
     "searle_distance",
     "searle_speed",
     "throw_distance",
+    "trajectory_type",
     "vku_throw_distance",
 ]
 
@@ -143,3 +158,19 @@ def throw_distance(result: Result, vehicle: str, pedestrian: Pedestrian) -> floa
     t0 = first_contact_time(result, vehicle, pedestrian)
     t, cg, _ = whole_body(result, pedestrian)
     return travel(t, cg, t0)
+
+
+
+def trajectory_type(result: Result, vehicle: Vehicle, pedestrian: Pedestrian) -> str:
+    """The pedestrian's post-impact trajectory type (one of TRAJECTORY_TYPES) after its first
+    contact with ``vehicle``: :func:`crashsim.analysis.pedestrian.path_type` of its whole-body
+    centre of mass from that instant. Never over the vehicle's plan (x between its mesh's
+    rearmost and foremost points, y between its sides, its model frame): "forward projection"
+    (pushed ahead of the front); still over it at the end, "carried"; else by where it left
+    it for the last time: over the front, "wrap"; behind the rear, "roof vault"; over a side,
+    "fender vault". Ravani et al. name the types; these geometric rules are crashsim's
+    reading of them (their paper's criteria were not read), and a somersault (a turn in the
+    air) is not told apart from the path it takes."""
+    t0 = first_contact_time(result, vehicle.name, pedestrian)
+    _, cg, _ = whole_body(result, pedestrian)
+    return path_type(result, vehicle, cg, t0)
