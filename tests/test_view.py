@@ -630,6 +630,9 @@ def test_a_cyclist_is_one_person_on_the_page(
             shown = panel.find_element("css selector", f"[data-path='{path}']").text
             assert shown == f"{value:.2f}" and value > 0.1
         assert "whole-body CG at 0.08 s" in panel.text
+        # the rider's trajectory type, as the report gives it (the bicycle's throw has none)
+        assert f"trajectory {entry['struck_by'][0]['trajectory']}" in panel.text
+        assert panel.text.count("trajectory") == 1
         paths = {p for p, _ in check_cells(browser, report)}
         assert "pedestrians.0.rest.0" in paths and "pedestrians.0.bicycle.rest_speed" in paths
         # each body still posed as the run, and moving

@@ -88,6 +88,8 @@
         ['first contact with ' + s.vehicle, numCell(s.first_contact_time, 4, base + '.first_contact_time'), 's'],
         ['throw distance (' + what + ')', numCell(s.throw_distance, 2, base + '.throw_distance'), 'm'],
       ];
+      // a person's post-impact trajectory type (crashsim.analysis.throw.trajectory_type)
+      if (s.trajectory) rows.push(['trajectory', s.trajectory, '']);
       const first = s.segments[0];
       if (first) rows.push(['first to touch', first.segment + ' at ' + fmt(first.time, 4) + ' s', '']);
       const k = s.segments.findIndex((c) => c.segment === 'head');
