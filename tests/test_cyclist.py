@@ -313,3 +313,15 @@ def test_scene_file_cyclists() -> None:
     assert len(soft) == 5 + len(cyclist.bodies)  # its own five and every body with the car
     with pytest.raises(SceneFileError, match="bicycle"):
         loads_scene(SCENE.format(bicycle="racing"))
+    # the rider's passive joint moments: a factor, as Pedestrian(passive_moments=) takes it
+    assert cyclist.rider.passive_moments == 1.0
+    assert sum(1 for j in cyclist.rider.joints if j.passive) == 6
+    relaxed = loads_scene(SCENE.format(bicycle="city").replace(
+        'bicycle = "city"', 'bicycle = "city"\npassive_moments = 0.0')).scene.cyclists["rider"]
+    assert relaxed.rider.passive_moments == 0.0
+    assert not any(j.passive for j in relaxed.rider.joints)
+    api = cs.Cyclist(height=1.8, mass=80.0, name="rider", passive_moments=0.0)
+    assert [j.passive for j in api.rider.joints] == [j.passive for j in relaxed.rider.joints]
+    with pytest.raises(SceneFileError, match="cyclists\\[0\\].*passive_moments = -1.0"):
+        loads_scene(SCENE.format(bicycle="city").replace(
+            'bicycle = "city"', 'bicycle = "city"\npassive_moments = -1'))

@@ -49,7 +49,8 @@ CONTACTS = (SADDLE, HANDS, FEET)
 class Cyclist:
     """A rider on a bicycle (module docstring). ``rider``: a :class:`Pedestrian` in the
     "cycling" pose, or None to make one from ``height`` (m), ``mass`` (kg), ``sex``,
-    ``percentile``; ``bicycle``: a :class:`Bicycle` (its kind is used; the cyclist fits a
+    ``percentile``, ``passive_moments`` (the factor on its leg's passive joint moments,
+    :class:`Pedestrian`'s); ``bicycle``: a :class:`Bicycle` (its kind is used; the cyclist fits a
     copy to the rider), default the city bicycle; ``name`` (default the rider's name, else
     "cyclist") names the rider's segments "<name>/head", ... and the bicycle's bodies
     "<name>/frame", "<name>/rear_wheel", "<name>/front_wheel".
@@ -69,6 +70,7 @@ class Cyclist:
         sex: str = "male",
         percentile: float | None = None,
         name: str | None = None,
+        passive_moments: float = 1.0,
     ) -> None:
         if rider is not None and not isinstance(rider, Pedestrian):
             raise ParameterError(f"rider must be a crashsim.Pedestrian, got {type(rider).__name__}")
@@ -80,7 +82,8 @@ class Cyclist:
             name = rider.name if rider is not None else "cyclist"
         check_name(name, "a cyclist")
         if rider is None:
-            rider = Pedestrian(height, mass, sex, percentile, pose="cycling", name=name)
+            rider = Pedestrian(height, mass, sex, percentile, pose="cycling", name=name,
+                               passive_moments=passive_moments)
         elif rider.pose != "cycling":
             raise ParameterError(
                 f"the rider's pose is {rider.pose!r}: a cyclist's rider needs "

@@ -39,6 +39,7 @@ CYCLIST_KEYS = (
     "mass",
     "sex",
     "percentile",
+    "passive_moments",
     "bicycle",
     "position",
     "heading",
@@ -284,7 +285,6 @@ def _pedestrian(t: _Table, scene: Scene, names: list[str]) -> None:
 
     # (a cyclist's seated pose is [[cyclists]]')
     kwargs["pose"] = t.string("pose", "standing", choices=tuple(p for p in POSES if p != "cycling"))
-    kwargs["passive_moments"] = t.number("passive_moments", 1.0)
 
     person = _wrap(t, None, lambda: Pedestrian(**kwargs))
     position, heading, velocity = _motion(t)
@@ -298,7 +298,7 @@ def _pedestrian(t: _Table, scene: Scene, names: list[str]) -> None:
 
 def _person(t: _Table, scene: Scene, names: list[str], what: str) -> dict[str, Any]:
     """The keywords of the person in table t ([[pedestrians]], [[cyclists]]): name, height
-    or percentile, mass, sex (SI)."""
+    or percentile, mass, sex, passive_moments (SI)."""
     name = t.string("name")
     if name in names:
         t.fail("name", f'a vehicle or obstacle named "{name}" is already in the scene: names '
@@ -312,6 +312,7 @@ def _person(t: _Table, scene: Scene, names: list[str], what: str) -> dict[str, A
         kwargs["height"] = t.quantity("height", "length", 1.75, low="> 0")
     kwargs["mass"] = t.quantity("mass", "mass", 75.0, low="> 0")
     kwargs["sex"] = t.string("sex", "male", choices=("male", "female"))
+    kwargs["passive_moments"] = t.number("passive_moments", 1.0)
     return kwargs
 
 
