@@ -6,6 +6,7 @@ speed fitted back from the person's rest position and the head-strike point.
     python3 benches/pedestrian_studies.py --fit               # fit 45 km/h back from 35
     python3 benches/pedestrian_studies.py --fit --method global   # the global search
     python3 benches/pedestrian_studies.py --scan              # the evidence against speed
+    python3 benches/pedestrian_studies.py --passive           # the passive moments' factor
     python3 benches/pedestrian_studies.py --mc 8 --duration 1.0   # a quick look
 
 The scene is benches/pedestrian_throw.py's: a generated sedan braking at the friction limit
@@ -25,6 +26,12 @@ Fit (``--fit``): the evidence is read off a run at 45 km/h (4.5 s): the person's
 model frame); ``cs.fit`` of ``car.speed`` within 25-70 km/h from 35 km/h, least squares
 (``--method global``: differential evolution, then least squares), runs of the same length.
 Prints the recovered speed, its 95 % range, the verdict, the runs and the wall time.
+
+Passive moments (``--passive``): a sweep of ``pedestrian.passive_moments`` (the factor on the
+leg's published passive joint moments: 0, 0.5, 1, 2 and 4) at 40 km/h, runs of 4.0 s; prints
+per factor the throw distance, the rest position, the centre of mass's speed at the end, the
+head's first contact (time, wrap-around distance, speed relative to the car) and the
+trajectory type (crashsim.analysis.throw.trajectory_type, from the variant's own run).
 
 Scan (``--scan``): a sweep of the speed over 30-60 km/h in steps of 1 km/h, runs of 4.5 s;
 prints per speed the person's rest position, the head-strike point and the throw distance,
@@ -107,6 +114,34 @@ def monte_carlo(n: int, duration: float, threads: int | None, dt: float = DT) ->
     print(f"  correlation of the throw distance with ground.body_friction: {r:.2f}")
 
 
+def passive(duration: float, threads: int | None, dt: float = DT) -> None:
+    from crashsim.analysis.throw import trajectory_type
+
+    factors = [0.0, 0.5, 1.0, 2.0, 4.0]
+    base = strike_scene(40.0)
+    t0 = time.perf_counter()
+    study = cs.sweep(base, {"pedestrian.passive_moments": factors}, duration=duration, dt=dt,
+                     threads=threads, progress=True)  # fmt: skip
+    wall = time.perf_counter() - t0
+    f = study.frame
+    print(f"{len(factors)} runs of {duration:g} s at 40 km/h, {len(study.errors)} failed; "
+          f"wall {wall:.0f} s")
+    print(" factor  throw (m)  rest x (m)  rest y (m)  end speed (m/s)  head (s)  head WAD (m)"
+          "  head rel. (m/s)  trajectory")
+    for k, factor in enumerate(factors):
+        variant = base.with_({"pedestrian.passive_moments": factor})
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            result = run_one(variant, {"duration": duration, "dt": dt})
+        kind = trajectory_type(result, variant.vehicles[0], variant.pedestrians["pedestrian"])
+        row = f.iloc[k]
+        print(f"{factor:7.1f}  {row['pedestrian.car.throw_distance']:9.2f}  "
+              f"{row['pedestrian.final_x']:10.2f}  {row['pedestrian.final_y']:10.2f}  "
+              f"{row['pedestrian.final_speed']:15.3f}  {row['pedestrian.car.head_time']:8.4f}  "
+              f"{row['pedestrian.car.head_wrap_around']:12.3f}  "
+              f"{row['pedestrian.car.head_relative_speed']:15.2f}  {kind}")
+
+
 def scan(duration: float, threads: int | None, dt: float = DT) -> None:
     from crashsim.studies import linspace
 
@@ -168,6 +203,8 @@ def main() -> None:
     p.add_argument("--method", choices=("least_squares", "global"), default="least_squares",
                    help="the fit's method (default least_squares)")
     p.add_argument("--scan", action="store_true", help="the evidence against the speed")
+    p.add_argument("--passive", action="store_true",
+                   help="a sweep of the factor on the leg's passive joint moments")
     p.add_argument("--duration", type=float, default=None,
                    help="s per run (default 4.0 for --mc, 4.5 for --fit and --scan)")
     p.add_argument("--threads", type=int, default=None)
@@ -175,12 +212,14 @@ def main() -> None:
                    help="s, the runs' step (default 0.2 ms; longer: sub-steps while a segment "
                         "presses on the car)")
     a = p.parse_args()
-    if a.mc is None and not a.fit and not a.scan:
-        p.error("give --mc N, --fit and/or --scan")
+    if a.mc is None and not a.fit and not a.scan and not a.passive:
+        p.error("give --mc N, --fit, --scan and/or --passive")
     if a.mc is not None:
         monte_carlo(a.mc, a.duration or 4.0, a.threads, a.dt)
     if a.scan:
         scan(a.duration or 4.5, a.threads, a.dt)
+    if a.passive:
+        passive(a.duration or 4.0, a.threads, a.dt)
     if a.fit:
         fit(a.duration or 4.5, a.threads, a.method, a.dt)
 
