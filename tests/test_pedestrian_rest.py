@@ -37,25 +37,38 @@ def segment_energy(result: cs.Result, ped: cs.Pedestrian) -> tuple[np.ndarray, n
     return t, total
 
 
-def test_the_standing_fall_alone_comes_to_rest_and_gains_no_energy() -> None:
-    # Without the leg's passive moments (the model before 2026-11-29): the limits and the
-    # contacts alone hold the lying body, which is what this test checks.
-    ped = cs.Pedestrian(pose="standing", passive_moments=0.0)
+def standing_fall(passive_moments: float) -> tuple[cs.Scene, np.ndarray, np.ndarray]:
+    """A standing man (no push) falls on a road of friction 0.8 and lies there until the
+    engine's rest test passes (a RestNotReachedWarning fails the test; 1 ms steps, at most
+    25 s): the scene, and the sample times (s) and segment energy (J) of segment_energy."""
+    ped = cs.Pedestrian(pose="standing", passive_moments=passive_moments)
     scene = cs.Scene(ground=cs.Ground(friction=0.8), depth_of_penetration=0.0)
     scene.add(ped, (0.0, 0.0), heading=0.0, velocity=(0.0, 0.0, 0.0))
-    assert not any(j.passive for j in scene.joints)
     with warnings.catch_warnings():
         warnings.simplefilter("error", cs.RestNotReachedWarning)
         result = scene.run(until="rest", max_duration=25.0, dt=1e-3, record_interval=0.01)
     t, energy = segment_energy(result, ped)
+    return scene, t, energy
+
+
+def largest_rise(t: np.ndarray, energy: np.ndarray, after: float) -> float:
+    """The most the energy (J) rises over its lowest so far from ``after`` (s) on."""
+    late = energy[t >= after]
+    return float(np.max(late - np.minimum.accumulate(late)))
+
+
+def test_the_standing_fall_alone_comes_to_rest_and_gains_no_energy() -> None:
+    # Without the leg's passive moments (the model before 2026-11-29): the limits and the
+    # contacts alone hold the lying body, which is what this test checks.
+    scene, t, energy = standing_fall(0.0)
+    assert not any(j.passive for j in scene.joints)
     # Measured: at rest at 18.50 s (scripts/pedestrian_rest.py); 10.20 s before the segments
     # had static friction: the right hand now holds where it slid, and the arm propped on it
     # topples over slowly (its energy falls 1.6 J from 3 s to 18 s, never rising).
     assert t[-1] < 20.0, f"came to rest only at {t[-1]:.2f} s"
     # Lying from about 3 s on: the energy only falls but for the contact springs' exchange
     # (measured: at most 0.9 mJ over its lowest so far from 4 s on; 2.2 J before the fix).
-    late = energy[t >= 4.0]
-    rise = float(np.max(late - np.minimum.accumulate(late)))
+    rise = largest_rise(t, energy, 4.0)
     assert rise < 0.01, f"the lying body gained {rise:.4f} J"
 
 
@@ -64,17 +77,10 @@ def test_the_legs_passive_moments_bring_the_fall_to_rest_sooner() -> None:
     # Riener and Edrich's passive moments: measured at rest at 2.71 s (18.50 s without); its
     # segments' energy then rises by at most 0.022 J over its lowest so far from 2 s on (the
     # moments' stored elastic energy is not counted in it).
-    ped = cs.Pedestrian(pose="standing")
-    scene = cs.Scene(ground=cs.Ground(friction=0.8), depth_of_penetration=0.0)
-    scene.add(ped, (0.0, 0.0), heading=0.0, velocity=(0.0, 0.0, 0.0))
+    scene, t, energy = standing_fall(1.0)
     assert sum(1 for j in scene.joints if j.passive) == 6
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", cs.RestNotReachedWarning)
-        result = scene.run(until="rest", max_duration=25.0, dt=1e-3, record_interval=0.01)
-    t, energy = segment_energy(result, ped)
     assert t[-1] < 4.0, f"came to rest only at {t[-1]:.2f} s"
-    late = energy[t >= 2.0]
-    rise = float(np.max(late - np.minimum.accumulate(late)))
+    rise = largest_rise(t, energy, 2.0)
     assert rise < 0.05, f"the lying body gained {rise:.4f} J"
 
 
