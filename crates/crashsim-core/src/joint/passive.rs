@@ -95,7 +95,8 @@ impl CoupledAngle {
 /// `M(phi) = sum of scale_k exp(rate_k (phi - centre_k)) + constant` (N m),
 ///
 /// with `phi = offset + the angle` (rad): `offset` is phi when the joint is made (the angle
-/// is 0 then), so published laws, written in anatomical angles, are used as published. A
+/// is 0 then, but for a ball joint whose two frames differ, which starts at the rotation
+/// between them), so published laws, written in anatomical angles, are used as published. A
 /// positive M turns body 2 against body 1 towards a larger angle (body 1 gets the opposite).
 /// The angles ([`JointKind::passive_names`]): a hinge's angle; a fifth wheel's articulation
 /// and pitch; a ball joint's relative rotation as a rotation vector in F1's axes, its x, y
