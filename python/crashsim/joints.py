@@ -63,11 +63,12 @@ class PassiveMoment:
 
     (N m) with ``phi = offset + the joint's angle`` (rad; the angle is 0 where the joint is
     made, so ``offset`` is phi there and a law published in anatomical angles is used as
-    published; a ball joint made with ``axes2`` starts at the rotation between its frames). ``terms``: ((scale N m, rate 1/rad, centre rad), ...), a term optionally with
-    a fourth item, its :class:`CoupledAngle` s (``coupled`` is the sum of their ``rate *
-    (offset + angle)``). A positive M turns the second vehicle against the first towards a
-    larger angle. The engine checks the numbers when the joint is made (rates within 200
-    /rad, sizes within 1e6 N m, offsets and centres within 2 pi)."""
+    published; a ball joint made with ``axes2`` starts at the rotation between its frames).
+    ``terms``: ((scale N m, rate 1/rad, centre rad), ...), a term optionally with a fourth
+    item, its :class:`CoupledAngle` s (``coupled`` is the sum of their ``rate * (offset +
+    angle)``). A positive M turns the second vehicle against the first towards a larger
+    angle. The engine checks the numbers when the joint is made (rates within 200 /rad,
+    sizes within 1e6 N m, offsets and centres within 2 pi)."""
 
     terms: tuple[tuple[Any, ...], ...] = ()
     constant: float = 0.0
