@@ -13,8 +13,9 @@ contacts with the frame (Scene.soft_contact: a spring-damper while the meshes ov
 friction; data in the SADDLE, HANDS and FEET tuples below, assumed); every other pair of a
 rider's segment and a bicycle's body never collides (Scene.no_contact), as the rider's
 unjoined segments among themselves. So the rider sits and is carried by friction, and leaves
-the bicycle when struck. Without muscles (the joints have only the pedestrian's damping) the
-rider slumps over the handlebar within a fraction of a second; the strikes reach it sooner.
+the bicycle when struck. Without muscles (the joints have only the pedestrian's damping and
+the leg's passive moments of a relaxed subject) the rider slumps over the handlebar within a
+fraction of a second; the strikes reach it sooner.
 """
 
 from __future__ import annotations

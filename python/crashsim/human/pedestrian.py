@@ -11,7 +11,7 @@ shoulders, wrists, lumbar, thoracic and neck joints. Ranges of motion come from
 data/segments.toml (Castori 2012) and data/pedestrian.toml (the motions segments.toml lacks);
 the relaxed leg's joints (hips, knees, ankles) carry Riener and Edrich's (1999) passive elastic
 moments, coupled through the two-joint muscles (data/pedestrian.toml, [passive]); every joint
-an assumed small damping (no published value was read).
+an assumed small damping (no published damping was read).
 
 Body frame as body_segments': x forward, y left, z up, origin on the ground midway between
 the feet. ``Scene.add(pedestrian, (x, y), heading=, velocity=)`` puts that origin at (x, y)
