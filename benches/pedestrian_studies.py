@@ -114,32 +114,30 @@ def monte_carlo(n: int, duration: float, threads: int | None, dt: float = DT) ->
     print(f"  correlation of the throw distance with ground.body_friction: {r:.2f}")
 
 
-def passive(duration: float, threads: int | None, dt: float = DT) -> None:
+def passive(duration: float, dt: float = DT) -> None:
+    """Each factor's variant (``Scene.with_``, as a study makes it) run once: its study row
+    (columns_of) and its trajectory type from the same run."""
     from crashsim.analysis.throw import trajectory_type
 
     factors = [0.0, 0.5, 1.0, 2.0, 4.0]
     base = strike_scene(40.0)
     t0 = time.perf_counter()
-    study = cs.sweep(base, {"pedestrian.passive_moments": factors}, duration=duration, dt=dt,
-                     threads=threads, progress=True)  # fmt: skip
-    wall = time.perf_counter() - t0
-    f = study.frame
-    print(f"{len(factors)} runs of {duration:g} s at 40 km/h, {len(study.errors)} failed; "
-          f"wall {wall:.0f} s")
     print(" factor  throw (m)  rest x (m)  rest y (m)  end speed (m/s)  head (s)  head WAD (m)"
           "  head rel. (m/s)  trajectory")
-    for k, factor in enumerate(factors):
+    for factor in factors:
         variant = base.with_({"pedestrian.passive_moments": factor})
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             result = run_one(variant, {"duration": duration, "dt": dt})
+        row = columns_of(result, variant, 2)
         kind = trajectory_type(result, variant.vehicles[0], variant.pedestrians["pedestrian"])
-        row = f.iloc[k]
         print(f"{factor:7.1f}  {row['pedestrian.car.throw_distance']:9.2f}  "
               f"{row['pedestrian.final_x']:10.2f}  {row['pedestrian.final_y']:10.2f}  "
               f"{row['pedestrian.final_speed']:15.3f}  {row['pedestrian.car.head_time']:8.4f}  "
               f"{row['pedestrian.car.head_wrap_around']:12.3f}  "
               f"{row['pedestrian.car.head_relative_speed']:15.2f}  {kind}")
+    print(f"{len(factors)} runs of {duration:g} s at 40 km/h, one after the other; wall "
+          f"{time.perf_counter() - t0:.0f} s")
 
 
 def scan(duration: float, threads: int | None, dt: float = DT) -> None:
@@ -219,7 +217,7 @@ def main() -> None:
     if a.scan:
         scan(a.duration or 4.5, a.threads, a.dt)
     if a.passive:
-        passive(a.duration or 4.0, a.threads, a.dt)
+        passive(a.duration or 4.0, a.dt)
     if a.fit:
         fit(a.duration or 4.5, a.threads, a.method, a.dt)
 
