@@ -410,6 +410,8 @@ def _segment_vehicle(p: _Posed, name: str) -> Vehicle:
 
 # The anatomical joint of each segment: its kind and how its published ranges become limits.
 _HINGES = {"knee", "elbow", "ankle"}
+# The joints pedestrian.toml's [passive] gives laws for (Riener and Edrich's), one per side.
+_PASSIVE_JOINTS = ("hip", "knee", "ankle")
 
 
 def _rom(segment: Segment, sex: str) -> dict[str, float]:
@@ -428,9 +430,10 @@ def _rom(segment: Segment, sex: str) -> dict[str, float]:
 def _joints(posed: dict[str, _Posed], sex: str, passive_moments: float) -> list[PedestrianJoint]:
     res = _table()["resistance"]
     made = []
-    # phi of each leg joint where it is made (rad, the anatomical angle of Riener and Edrich's
-    # law): (joint name, the engine's angle, phi = offset + that angle)
-    leg: dict[str, tuple[str, float]] = {}
+    # Per hinge and hip (by its name, e.g. "knee_left"): the engine's angle a passive law
+    # reads and phi, the law's anatomical angle (rad), where the joint is made less that
+    # angle then (the law's offset)
+    starts: dict[str, tuple[str, float]] = {}
     for p in posed.values():
         s = p.segment
         if s.parent is None:
@@ -444,7 +447,7 @@ def _joints(posed: dict[str, _Posed], sex: str, passive_moments: float) -> list[
         if joint in _HINGES:
             axes, limits, start = _hinge(joint, parent.rotation, rom, p, parent)
             kind = "revolute"
-            leg[full] = ("angle", start)
+            starts[full] = ("angle", start)
         else:
             axes, limits = _ball(joint, parent.rotation, rom, p, side)
             kind = "spherical"
@@ -461,7 +464,7 @@ def _joints(posed: dict[str, _Posed], sex: str, passive_moments: float) -> list[
             limits["swing"] = (0.0, (flexion + extension) / 2.0)
             # The ball's rotation-vector "y" (about the frame's y, the pelvis's right: the
             # thigh forward is positive) is the flexion less the cone's forward turn.
-            leg[full] = ("y", (flexion - extension) / 2.0)
+            starts[full] = ("y", (flexion - extension) / 2.0)
         made.append((s, full, kind, p, axes, limits, rom, child_axes))
     return [
         PedestrianJoint(
@@ -477,14 +480,14 @@ def _joints(posed: dict[str, _Posed], sex: str, passive_moments: float) -> list[
             damping=float(res["damping"]),
             friction=float(res["friction"]),
             child_axes=child_axes,
-            passive=MappingProxyType(_passive(s, leg, passive_moments)),
+            passive=MappingProxyType(_passive(s, starts, passive_moments)),
         )
         for s, full, kind, p, axes, limits, rom, child_axes in made
     ]
 
 
 def _passive(
-    segment: Segment, leg: Mapping[str, tuple[str, float]], factor: float
+    segment: Segment, starts: Mapping[str, tuple[str, float]], factor: float
 ) -> dict[str, PassiveMoment]:
     """Riener and Edrich's passive moment of a hip, knee or ankle (pedestrian.toml's
     [passive], angles in degrees) times ``factor`` as the engine's law about the joint's
@@ -494,24 +497,25 @@ def _passive(
     assert segment.joint is not None
     laws = _table()["passive"]
     joint = segment.joint.name
-    if joint not in ("hip", "knee", "ankle") or segment.side is None or factor == 0.0:
+    if joint not in _PASSIVE_JOINTS or segment.side is None or factor == 0.0:
         return {}
     law = laws[joint]
     per_rad = 180.0 / math.pi  # the law's coefficients are per degree
-    own, offset = leg[f"{joint}_{segment.side}"]
+    own, offset = starts[f"{joint}_{segment.side}"]
     terms = []
     for term in law["terms"]:
-        coupled = tuple(
-            CoupledAngle(f"{other}_{segment.side}", leg[f"{other}_{segment.side}"][0],
-                         float(term[other]) * per_rad, leg[f"{other}_{segment.side}"][1])
-            for other in ("hip", "knee", "ankle") if other != joint and other in term
-        )  # fmt: skip
+        coupled = []  # the same side's other joints this term reads
+        for other in _PASSIVE_JOINTS:
+            if other != joint and other in term:
+                name = f"{other}_{segment.side}"
+                angle, start = starts[name]
+                coupled.append(CoupledAngle(name, angle, float(term[other]) * per_rad, start))
         row = (
             factor * float(term["sign"]) * math.exp(float(term["exponent"])),
             float(term.get(joint, 0.0)) * per_rad,
             0.0,
         )
-        terms.append((*row, coupled) if coupled else row)
+        terms.append((*row, tuple(coupled)) if coupled else row)
     constant = factor * float(law["constant"])
     return {own: PassiveMoment(terms=tuple(terms), constant=constant, offset=offset)}
 
