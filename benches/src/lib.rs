@@ -1113,12 +1113,14 @@ mod tests {
                     s.size.label()
                 );
                 assert!(!meshes_overlap(s, st, &mut ws), "{} t {t}", s.size.label());
+                // Apart, not only uncrossed: min(d, cap) > 0 exactly when d > 0, and the
+                // small cap spares the search every node pair farther apart than it (m).
                 let d = surface_distance(
                     &a.shape,
                     &pose(&st[0]),
                     &b.shape,
                     &pose(&st[1]),
-                    1e9,
+                    1e-9,
                     &mut ws,
                 );
                 assert!(d > 0.0, "{} t {t}: d {d}", s.size.label());
