@@ -106,7 +106,14 @@ def main() -> int:
                     "200; 0: the Jacobian's only)")  # fmt: skip
     ap.add_argument("--threads", type=int, default=None)
     ap.add_argument("--method", choices=("least_squares", "global"), default="least_squares")
+    ap.add_argument("--no-settled-stop", action="store_true",
+                    help="the local solve without its stop once a Gauss-Newton step would "
+                    "lower chi^2 by less than 0.001 (SETTLED_CHI2 = 0: as before 2026-11-29)")
     a = ap.parse_args()
+    if a.no_settled_stop:
+        from crashsim.studies.fit import solvers
+
+        solvers.SETTLED_CHI2 = 0.0
     scene, triangles = case()
     t = time.monotonic()
     truth_run = scene.run(dt=DT, until="rest", max_duration=MAX_DURATION)

@@ -293,7 +293,14 @@ def main() -> int:
     ap.add_argument("--samples", type=int, default=None,
                     help="calibrate: candidates of the importance sampling (None: 50 k)")
     ap.add_argument("--out", default="fit.png", help="picture: the file written")
+    ap.add_argument("--no-settled-stop", action="store_true",
+                    help="the local solve without its stop once a Gauss-Newton step would "
+                    "lower chi^2 by less than 0.001 (SETTLED_CHI2 = 0: as before 2026-11-29)")
     a = ap.parse_args()
+    if a.no_settled_stop:
+        from crashsim.studies.fit import solvers
+
+        solvers.SETTLED_CHI2 = 0.0
     if a.what == "picture":
         return _picture(a)
     if a.what == "scan":

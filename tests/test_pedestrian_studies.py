@@ -273,7 +273,7 @@ def test_fit_recovers_the_impact_speed_from_the_rest_and_the_head_strike() -> No
     """Evidence read off a run at 45 km/h (0.5 s): the person's centre of mass at the end
     (0.1 m) and the head-strike point on the car (0.05 m per coordinate); the car's speed
     fitted from 38 km/h within 30-60 km/h comes back within 0.5 km/h, the truth inside the
-    95 % range. Least squares, no sampling or scan: about 20 runs of 0.5 s."""
+    95 % range. Least squares, no sampling or scan: 16 runs of 0.5 s."""
     truth = strike(45.0)
     result = run(truth, 0.5)
     person = truth.pedestrians["pedestrian"]
@@ -287,7 +287,8 @@ def test_fit_recovers_the_impact_speed_from_the_rest_and_the_head_strike() -> No
     assert abs(speed - cs.kmh(45.0)) < cs.kmh(0.5)
     lo, hi = fit.ranges["car.speed"]
     assert lo < cs.kmh(45.0) < hi and hi - lo < cs.kmh(8.0)
-    assert fit.n_runs <= 45 and fit.objective < 0.1  # measured 41 runs
+    # measured 16 runs; 32 without the local solve's stop once a step gains under 0.001
+    assert fit.n_runs <= 20 and fit.objective < 0.1
     # the person still slides at 0.5 s: the verdict says the "rest" is not one
     assert fit.verdict.status == "poor fit"
     assert any("still moves at" in r for r in fit.verdict.reasons)
