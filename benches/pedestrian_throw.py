@@ -3,6 +3,7 @@ corridors (docs/human.md, "Throw distance").
 
     python3 benches/pedestrian_throw.py                  # 20-70 km/h, four fronts, the picture
     python3 benches/pedestrian_throw.py --speeds 30 --fronts sedan --no-picture
+    python3 benches/pedestrian_throw.py --fronts flat_van --no-picture   # a flat-fronted van
 
 A walking 50th-percentile man (1.75 m, 75 kg) struck on his left side, his nearest point 5 cm
 ahead of the vehicle's foremost point, as scripts/pedestrian_strike.py does: soft car-segment
@@ -45,15 +46,26 @@ from crashsim.analysis.throw import (
 BODY_FRICTION = 0.45  # the engine's default body-ground friction (Ground.body_friction None)
 REST_SPEED = 0.1  # m/s, the pelvis below this at the end: at rest
 FRONTS = ("sedan", "suv", "van", "truck")
+# Not in the default table: a forward-control van, the van class's data (mass, CG, inertia,
+# wheels, stiffness and dimensions, docs/vehicle-data.md) with the generator's bus body, whose
+# front is flat and upright (the class's own 1990s minivan has a short sloping hood).
+EXTRA_FRONTS = ("flat_van",)
 SPEEDS = (20.0, 30.0, 40.0, 50.0, 60.0, 70.0)  # km/h
 PICTURE = Path(__file__).resolve().parent.parent / "docs" / "img" / "pedestrian-throw.png"
 
 
 def vehicle(front: str) -> cs.Vehicle:
-    """The striking vehicle: a generated sedan, SUV or van, or the laden rigid truck (18 t,
-    its flat cab front)."""
+    """The striking vehicle: a generated sedan, SUV or van, the laden rigid truck (18 t, its
+    flat cab front), or the flat-fronted van (EXTRA_FRONTS)."""
     if front == "truck":
         return cs.rigid_truck("rigid_truck", name="car")
+    if front == "flat_van":
+        from crashsim.vehicles.generator import body_params, default_dims, generate_body
+
+        van = cs.Vehicle.generate("van")
+        mesh = generate_body(body_params("bus", **default_dims("van")), 1.0)
+        return cs.Vehicle(mesh, van.mass, van.cg, van.inertia, name="car",
+                          stiffness=van.stiffness).with_wheels(van.wheels)  # fmt: skip
     return cs.Vehicle.generate(front, name="car")
 
 
@@ -149,8 +161,9 @@ def picture(rows: list[Strike], path: Path) -> None:
                     label=f"VKU 1997 adult, {name} (f_w {f:g}), mu {mu:g}")
     ax.errorbar([50.0], [20.0], xerr=[[10.0], [10.0]], fmt="none", ecolor="0.3", capsize=4,
                 label="20 m: 40-60 km/h (unfallanalyse.hamburg's table)")
-    markers = {"sedan": "o", "suv": "s", "van": "^", "truck": "D"}
-    colors = {"sedan": "tab:red", "suv": "tab:purple", "van": "tab:orange", "truck": "k"}
+    markers = {"sedan": "o", "suv": "s", "van": "^", "truck": "D", "flat_van": "v"}
+    colors = {"sedan": "tab:red", "suv": "tab:purple", "van": "tab:orange", "truck": "k",
+              "flat_van": "tab:brown"}
     for front in FRONTS:
         pts = [(r.speed_kmh, r.throw, r.at_rest or r.pelvis_end_speed < REST_SPEED) for r in rows
                if r.front == front]
@@ -177,7 +190,7 @@ def picture(rows: list[Strike], path: Path) -> None:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--speeds", type=float, nargs="+", default=SPEEDS, help="km/h")
-    p.add_argument("--fronts", nargs="+", default=FRONTS, choices=FRONTS)
+    p.add_argument("--fronts", nargs="+", default=FRONTS, choices=FRONTS + EXTRA_FRONTS)
     p.add_argument("--duration", type=float, default=None,
                    help="s, the same for every run (default: from the speed)")
     p.add_argument("--dt", type=float, default=2e-4,
@@ -192,7 +205,7 @@ def main() -> None:
         for speed in a.speeds:
             r = strike(speed, front, a.duration, a.dt)
             rows.append(r)
-            print(f"{speed:4.0f} km/h {front:6s} throw {r.throw:6.2f} m, head "
+            print(f"{speed:4.0f} km/h {front:8s} throw {r.throw:6.2f} m, head "
                   f"{'none' if r.head_time is None else f'{r.head_time:.3f} s'}, pelvis "
                   f"{r.pelvis_end_speed:.3f} m/s at {r.duration:.2f} s, at rest {r.at_rest}, "
                   f"wall {r.wall:.1f} s",
