@@ -326,8 +326,8 @@ class _Jittered(_Linear):
 def test_the_local_solve_stops_once_a_step_would_gain_under_a_thousandth(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    """A linear model (two unknowns, sigma 0.02-0.06 of their values) with a ripple far below
-    its tolerances: least squares from 20 % off stops once a Gauss-Newton step would lower
+    """A linear model (two unknowns, sigma 0.015 and 0.059 of their values) with a ripple far
+    below its tolerances: least squares from 20 % off stops once a Gauss-Newton step would lower
     chi^2 by less than 0.001 (SETTLED_CHI2), within 0.05 sigma of the truth, in fewer than
     half the points it runs without that stop, creeping on in the ripple as the struck
     pedestrian's fit crept on in the rest's scatter (measured 25 against 72, both within
