@@ -46,10 +46,11 @@ from crashsim.analysis.throw import (
 BODY_FRICTION = 0.45  # the engine's default body-ground friction (Ground.body_friction None)
 REST_SPEED = 0.1  # m/s, the pelvis below this at the end: at rest
 FRONTS = ("sedan", "suv", "van", "truck")
-# Not in the default table: a forward-control van, the van class's data (mass, CG, inertia,
-# wheels, stiffness and dimensions, docs/vehicle-data.md) with the generator's bus body, whose
-# front is flat and upright (the class's own 1990s minivan has a short sloping hood).
+# Not in the default table: a forward-control van, the generated van (its class's data,
+# docs/vehicle-data.md) with the bus preset's front profile at the van's size, a flat and
+# upright face (the class's own 1990s minivan has a short sloping hood).
 EXTRA_FRONTS = ("flat_van",)
+FLAT_FRONT = ("nose_height", "hood_height", "windshield_base", "roof_start")
 SPEEDS = (20.0, 30.0, 40.0, 50.0, 60.0, 70.0)  # km/h
 PICTURE = Path(__file__).resolve().parent.parent / "docs" / "img" / "pedestrian-throw.png"
 
@@ -60,12 +61,10 @@ def vehicle(front: str) -> cs.Vehicle:
     if front == "truck":
         return cs.rigid_truck("rigid_truck", name="car")
     if front == "flat_van":
-        from crashsim.vehicles.generator import body_params, default_dims, generate_body
+        from crashsim.vehicles.generator import body_params, default_dims
 
-        van = cs.Vehicle.generate("van")
-        mesh = generate_body(body_params("bus", **default_dims("van")), 1.0)
-        return cs.Vehicle(mesh, van.mass, van.cg, van.inertia, name="car",
-                          stiffness=van.stiffness).with_wheels(van.wheels)  # fmt: skip
+        bus = body_params("bus", **default_dims("van")).as_dict()
+        return cs.Vehicle.generate("van", name="car", **{k: bus[k] for k in FLAT_FRONT})
     return cs.Vehicle.generate(front, name="car")
 
 
