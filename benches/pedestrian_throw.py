@@ -9,11 +9,13 @@ A walking 50th-percentile man (1.75 m, 75 kg) struck on his left side, his neare
 ahead of the vehicle's foremost point, as scripts/pedestrian_strike.py does: soft car-segment
 contacts (1e5 N/m, damping ratio 0.5, friction 0.3, normal "volume"), 0.2 ms steps, tyre-road
 friction 0.8, the vehicle braking at the friction limit from the start (3-19 ms before the
-first contact). The pedestrian's segments slide on the road with the engine's body-ground
-friction (Ground.body_friction: 0.45, the engine's default). Each run goes until every
-body is at rest (``run(until="rest")``), at most 1 s + 1.2 v / (0.45 g) (v the impact speed;
-the slide from v at 0.45 g takes v / (0.45 g)); the table says when it ended, whether the
-engine's rest test passed, and the pelvis speed at the end.
+first contact). The pedestrian's segments slide on the road with the person's own road
+friction (Pedestrian.road_friction: 0.66, the default; before 2026-11-29 they slid with
+the ground's body friction, a car body's 0.45). Each run goes until every body is at rest
+(``run(until="rest")``), at most 1 s + 1.2 v / (0.45 g) (v the impact speed; the slide
+from v at 0.45 g takes v / (0.45 g), longer than at the person's 0.66, which leaves the lying
+body time to settle); the table says when it ended, whether the engine's rest test passed,
+and the pelvis speed at the end.
 
 Prints a row per run (speed, front, throw distance of the whole-body CG, the head's first
 contact time and speed relative to the vehicle, the pelvis speed at the end, the trajectory
@@ -43,7 +45,10 @@ from crashsim.analysis.throw import (
     vku_throw_distance,
 )
 
-BODY_FRICTION = 0.45  # the engine's default body-ground friction (Ground.body_friction None)
+ROAD_FRICTION = cs.Pedestrian().road_friction  # the person's default friction on the road
+# The run's length is sized by a slide at this friction (the ground's body friction, lower
+# than the person's): a body sliding at 0.66 stops sooner but still settles for seconds.
+LENGTH_FRICTION = 0.45
 REST_SPEED = 0.1  # m/s, the pelvis below this at the end: at rest
 FRONTS = ("sedan", "suv", "van", "truck")
 # Not in the default table: a forward-control van, the generated van (its class's data,
@@ -70,8 +75,8 @@ def vehicle(front: str) -> cs.Vehicle:
 
 def duration_for(speed_kmh: float) -> float:
     """The run's length (s): 1 s for the contact and flight, then 1.2 times the slide from
-    the impact speed at the body-ground friction."""
-    return 1.0 + 1.2 * cs.kmh(speed_kmh) / (BODY_FRICTION * G)
+    the impact speed at LENGTH_FRICTION."""
+    return 1.0 + 1.2 * cs.kmh(speed_kmh) / (LENGTH_FRICTION * G)
 
 
 @dataclass(frozen=True)
@@ -147,17 +152,12 @@ def picture(rows: list[Strike], path: Path) -> None:
     ax = fig.add_subplot()
     kmh = np.linspace(15.0, 75.0, 121)
     v = kmh / 3.6
-    lo, hi = np.array([searle_distance(x, BODY_FRICTION) for x in v]).T
+    lo, hi = np.array([searle_distance(x, ROAD_FRICTION) for x in v]).T
     ax.fill_between(kmh, lo, hi, color="tab:blue", alpha=0.18,
-                    label=f"Searle (1983), mu {BODY_FRICTION} (the engine's), v = impact speed")
-    lo66, hi66 = np.array([searle_distance(x, VKU_FRICTION) for x in v]).T
-    ax.plot(kmh, lo66, color="tab:blue", ls="--", lw=0.9,
-            label=f"Searle bounds, mu {VKU_FRICTION}")
-    ax.plot(kmh, hi66, color="tab:blue", ls="--", lw=0.9)
+                    label=f"Searle (1983), mu {ROAD_FRICTION:g} (the person's), v = impact speed")
     for (name, f), color in zip(VKU_THROW_FACTORS.items(), ("tab:green", "tab:olive"), strict=True):
-        for mu, ls in ((VKU_FRICTION, "-"), (BODY_FRICTION, ":")):
-            ax.plot(kmh, [vku_throw_distance(x, name, mu) for x in v], color=color, ls=ls, lw=1.4,
-                    label=f"VKU 1997 adult, {name} (f_w {f:g}), mu {mu:g}")
+        ax.plot(kmh, [vku_throw_distance(x, name, VKU_FRICTION) for x in v], color=color, lw=1.4,
+                label=f"VKU 1997 adult, {name} (f_w {f:g}), mu {VKU_FRICTION:g}")
     ax.errorbar([50.0], [20.0], xerr=[[10.0], [10.0]], fmt="none", ecolor="0.3", capsize=4,
                 label="20 m: 40-60 km/h (unfallanalyse.hamburg's table)")
     markers = {"sedan": "o", "suv": "s", "van": "^", "truck": "D", "flat_van": "v"}

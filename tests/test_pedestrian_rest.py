@@ -14,6 +14,7 @@ import warnings
 
 import crashsim as cs
 import numpy as np
+from crashsim.human.pedestrian import ROAD_FRICTION
 from crashsim.records import rotation_matrix
 
 GRAVITY = 9.80665  # m/s^2, the engine's (vehicle/wheel.rs)
@@ -37,11 +38,14 @@ def segment_energy(result: cs.Result, ped: cs.Pedestrian) -> tuple[np.ndarray, n
     return t, total
 
 
-def standing_fall(passive_moments: float) -> tuple[cs.Scene, np.ndarray, np.ndarray]:
-    """A standing man (no push) falls on a road of friction 0.8 and lies there until the
-    engine's rest test passes (a RestNotReachedWarning fails the test; 1 ms steps, at most
-    25 s): the scene, and the sample times (s) and segment energy (J) of segment_energy."""
-    ped = cs.Pedestrian(pose="standing", passive_moments=passive_moments)
+def standing_fall(passive_moments: float, road_friction: float = ROAD_FRICTION
+                  ) -> tuple[cs.Scene, np.ndarray, np.ndarray]:  # fmt: skip
+    """A standing man (no push) falls on a road of friction 0.8 (his segments sliding on it
+    at ``road_friction``) and lies there until the engine's rest test passes (a
+    RestNotReachedWarning fails the test; 1 ms steps, at most 25 s): the scene, and the
+    sample times (s) and segment energy (J) of segment_energy."""
+    ped = cs.Pedestrian(pose="standing", passive_moments=passive_moments,
+                        road_friction=road_friction)
     scene = cs.Scene(ground=cs.Ground(friction=0.8), depth_of_penetration=0.0)
     scene.add(ped, (0.0, 0.0), heading=0.0, velocity=(0.0, 0.0, 0.0))
     with warnings.catch_warnings():
@@ -58,9 +62,11 @@ def largest_rise(t: np.ndarray, energy: np.ndarray, after: float) -> float:
 
 
 def test_the_standing_fall_alone_comes_to_rest_and_gains_no_energy() -> None:
-    # Without the leg's passive moments (the model before 2026-11-29): the limits and the
-    # contacts alone hold the lying body, which is what this test checks.
-    scene, t, energy = standing_fall(0.0)
+    # Without the leg's passive moments and with the segments sliding at the ground's body
+    # friction 0.45 (the model before 2026-11-29, the same bits): the limits and the contacts
+    # alone hold the lying body, which is what this test checks. (At the person's 0.66 it
+    # rests at 21.57 s: the arm propped on the hand topples over more slowly still.)
+    scene, t, energy = standing_fall(0.0, road_friction=0.45)
     assert not any(j.passive for j in scene.joints)
     # Measured: at rest at 18.50 s (scripts/pedestrian_rest.py); 10.20 s before the segments
     # had static friction: the right hand now holds where it slid, and the arm propped on it
@@ -74,14 +80,24 @@ def test_the_standing_fall_alone_comes_to_rest_and_gains_no_energy() -> None:
 
 def test_the_legs_passive_moments_bring_the_fall_to_rest_sooner() -> None:
     # The same fall with the pedestrian as Scene.add makes it, the leg's joints carrying
-    # Riener and Edrich's passive moments: measured at rest at 2.71 s (18.50 s without); its
+    # Riener and Edrich's passive moments: measured at rest at 2.71 s (18.50 s without) at
+    # road friction 0.45; its
     # segments' energy then rises by at most 0.022 J over its lowest so far from 2 s on (the
     # moments' stored elastic energy is not counted in it).
-    scene, t, energy = standing_fall(1.0)
+    # Measured at the ground's body friction 0.45 (the segments' before 2026-11-29).
+    scene, t, energy = standing_fall(1.0, road_friction=0.45)
     assert sum(1 for j in scene.joints if j.passive) == 6
     assert t[-1] < 4.0, f"came to rest only at {t[-1]:.2f} s"
     rise = largest_rise(t, energy, 2.0)
     assert rise < 0.05, f"the lying body gained {rise:.4f} J"
+    # At the person's own 0.66 (the default): measured at rest at 2.81 s, the segments'
+    # energy rising by at most 0.135 J over its lowest so far from 2 s on (at 2.16-2.30 s,
+    # while the body still settles; 0.053 J from 2.3 s on): the static friction's springs and
+    # the passive moments hold more, and what they store is not counted in it.
+    scene, t, energy = standing_fall(1.0)
+    assert t[-1] < 4.0, f"came to rest only at {t[-1]:.2f} s"
+    rise = largest_rise(t, energy, 2.0)
+    assert rise < 0.2, f"the lying body gained {rise:.4f} J"
 
 
 def test_a_shoulder_flung_past_its_twist_range_does_not_blow_up() -> None:

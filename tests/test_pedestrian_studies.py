@@ -64,7 +64,8 @@ def test_a_pedestrian_scene_has_the_pedestrian_paths() -> None:
     scene = strike()
     paths = valid_paths(scene)
     for p in ("pedestrian.height", "pedestrian.mass", "pedestrian.percentile", "pedestrian.pose",
-              "pedestrian.passive_moments", "pedestrian.position_x", "pedestrian.position_y",
+              "pedestrian.passive_moments", "pedestrian.road_friction", "pedestrian.position_x",
+              "pedestrian.position_y",
               "pedestrian.heading", "pedestrian.speed", "car/pedestrian.friction",
               "car/pedestrian.stiffness", "car/pedestrian.damping_ratio", "ground.body_friction",
               "car.speed"):
@@ -79,7 +80,7 @@ def test_a_pedestrian_scene_has_the_pedestrian_paths() -> None:
               "pedestrian.heading": np.pi / 2, "pedestrian.speed": 0.0,
               "car/pedestrian.friction": 0.3, "car/pedestrian.stiffness": 1e5,
               "car/pedestrian.damping_ratio": 0.5, "ground.body_friction": 0.45,
-              "pedestrian.passive_moments": 1.0}
+              "pedestrian.passive_moments": 1.0, "pedestrian.road_friction": 0.66}
     for p, v in values.items():
         assert base_value(scene, p) == v, p
     assert math.isnan(base_value(scene, "pedestrian.percentile"))
@@ -115,6 +116,9 @@ def test_a_variant_is_the_scene_built_with_those_values() -> None:
     relaxed = scene.with_({"pedestrian.passive_moments": 0.5})
     halved = strike(passive_moments=0.5).to_spec(1.0, DT).to_json()
     assert relaxed.to_spec(1.0, DT).to_json() == halved != scene.to_spec(1.0, DT).to_json()
+    rough = scene.with_({"pedestrian.road_friction": 0.7})
+    built = strike(road_friction=0.7).to_spec(1.0, DT).to_json()
+    assert rough.to_spec(1.0, DT).to_json() == built != scene.to_spec(1.0, DT).to_json()
     fifth = scene.with_({"pedestrian.percentile": 5.0})
     assert fifth.to_spec(1.0, DT).to_json() == strike(percentile=5.0).to_spec(1.0, DT).to_json()
     # placed elsewhere, facing the other way, walking at 1.4 m/s along its facing

@@ -88,7 +88,7 @@ def test_the_cyclist_has_the_pedestrian_section(strike: tuple[cs.Result, cs.Cycl
     assert [r["vehicle"] for r in data["run_out"]] == ["car"]
     assert set(person_bodies(result.scene)) == {*seg, *b["bodies"]}
     text = report.summary_table()
-    assert "Cyclist 'cyclist' (the rider):" in text
+    assert "Cyclist 'cyclist' (the rider), sliding on the road at friction 0.66:" in text
     assert f"the bicycle 'cyclist' ({BICYCLE_MASS:.2f} kg):" in text
     assert f"throw distance from 'car': {struck['throw_distance']:.2f} m" in text
     assert "to the end of the run; trajectory: carried)" in text

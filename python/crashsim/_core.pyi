@@ -40,6 +40,7 @@ __all__ = [
     "wheel_loads",
     "check_table",
     "check_friction_zone",
+    "check_ground_friction",
     "check_brake",
     "check_wheel_switch",
     "check_steering_ratio",
@@ -222,6 +223,10 @@ def point_in_polygon(x: float, y: float, polygon: Any) -> bool:
 def check_friction_zone(polygon: ArrayLike, friction: float) -> None:
     """The engine's rules of one friction zone: (k, 2) corners (m, world), at least 3, finite,
     not crossing itself; friction in (0, 2]. ParameterError otherwise."""
+
+def check_ground_friction(friction: float, name: str) -> None:
+    """The core's rule of a body's own friction with the ground, in (0, 2]: a ParameterError
+    naming it ``name`` (crashsim.Pedestrian's road friction)."""
 
 def check_brake(kind: str, table: Any) -> None:
     """The engine's rules of one braking demand: kind "fraction" (in [0, 1]) or
@@ -530,6 +535,10 @@ class SceneSpec:
         right: tuple[float, float] | None = None,
     ) -> None:
         """A body's face stiffness: each face (A, B) in (N/m, N/m^2), or None without data."""
+    def set_ground_friction(self, body: int, friction: float) -> None:
+        """A moving body's own friction with the ground, in (0, 2], in place of the ground's
+        body friction: a person's clothing on the road (ParameterError out of range,
+        SceneError for a fixed obstacle)."""
     def set_run(
         self,
         duration: float,

@@ -61,6 +61,13 @@ class _People(_Contacts):
         """The bicycles added on their own (a cyclist's is its ``bicycle``), by name."""
         return {k: v for k, v in self._cyclists.items() if isinstance(v, Bicycle)}
 
+    def _ground_frictions(self) -> dict[str, float]:
+        """Each person's segments' own friction with the road (its Pedestrian's
+        ``road_friction``; a cyclist's rider's too), by the segment's vehicle name."""
+        people = [*self._pedestrians.values(),
+                  *(c.rider for c in self._cyclists.values() if isinstance(c, Cyclist))]
+        return {seg.name: p.road_friction for p in people for seg in p.segments}
+
     def pedestrian_place(self, name: str) -> tuple[Array, float, Array]:
         """Where pedestrian ``name`` was added: (position as given to :meth:`add` (m),
         heading (rad), velocity (m/s, world))."""

@@ -600,6 +600,7 @@ class Scene(_People):
             joints=self._joints,
             index=self._index,
             settings=settings,
+            ground_friction=self._ground_frictions(),
         )
 
     def build_world(self) -> _core.World:

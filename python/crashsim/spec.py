@@ -47,13 +47,15 @@ def _build_spec(
     joints: list[Joint],
     index: Callable[[VehicleRef], int],
     settings: tuple[float, float, bool, float | None, int | None],
+    ground_friction: dict[str, float] | None = None,
 ) -> _core.SceneSpec:
     """The engine's value of a scene's parts (:meth:`crashsim.Scene.to_spec`): the bodies
     (vehicles in the order placed, then the obstacles) and their face stiffness, every pair's
     parameters (``pairs`` as :meth:`crashsim.Scene.pairs` gives them; ``index`` gives a body's
     index in ``bodies``), the pairs that never collide, the soft contacts, with a ground the
     ground and each wheeled vehicle's wheels and inputs, the joints, and the run's checked
-    ``settings`` (:func:`_run_settings`)."""
+    ``settings`` (:func:`_run_settings`). ``ground_friction``: the bodies with their own
+    friction with the ground (a person's segments), by vehicle name."""
     spec = _core.SceneSpec()
     for p in placements:
         v = p.vehicle
@@ -67,6 +69,10 @@ def _build_spec(
             p.angular_velocity,
             name=v.name,
         )
+    own = ground_friction or {}
+    for i, p in enumerate(placements):
+        if (mu := own.get(p.vehicle.name)) is not None:
+            spec.set_ground_friction(i, mu)
     for o in obstacles:
         spec.add_obstacle(o.obstacle.shape, o.position, o.orientation, name=o.obstacle.name)
     for i, b in enumerate(bodies):

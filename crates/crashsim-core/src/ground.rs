@@ -98,7 +98,8 @@ impl Default for Ground {
     }
 }
 
-fn check_friction(name: &str, mu: Real) -> Result<()> {
+/// A friction coefficient's rule: finite, in (0, 2]; the error names it `name`.
+pub fn check_friction(name: &str, mu: Real) -> Result<()> {
     require_finite(name, mu)?;
     if !(mu > 0.0 && mu <= MAX_FRICTION) {
         return Err(Error::parameter(

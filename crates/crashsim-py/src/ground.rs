@@ -106,6 +106,14 @@ pub fn check_friction_zone(polygon: &Bound<'_, PyAny>, friction: Real) -> PyResu
         .map_err(errors::to_py)
 }
 
+/// The core's rule of a body's own friction with the ground (in (0, 2]): a ParameterError
+/// naming it `name` (crashsim.Pedestrian checks its road friction with it when made; the
+/// scene's spec checks it again with the same rule).
+#[pyfunction]
+pub fn check_ground_friction(friction: Real, name: &str) -> PyResult<()> {
+    core::ground::check_friction(name, friction).map_err(errors::to_py)
+}
+
 /// The ground, checked by the core once, when it is made (crashsim.Ground builds one and
 /// SceneSpec.set_ground takes it as it is).
 #[pyclass(frozen, module = "crashsim._core", name = "Ground")]

@@ -761,6 +761,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(wheel_loads, m)?)?;
     m.add_function(wrap_pyfunction!(check_table, m)?)?;
     m.add_function(wrap_pyfunction!(ground::check_friction_zone, m)?)?;
+    m.add_function(wrap_pyfunction!(ground::check_ground_friction, m)?)?;
     m.add_function(wrap_pyfunction!(ground::check_brake, m)?)?;
     m.add_function(wrap_pyfunction!(ground::check_wheel_switch, m)?)?;
     m.add_function(wrap_pyfunction!(ground::check_steering_ratio, m)?)?;

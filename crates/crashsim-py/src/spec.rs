@@ -228,6 +228,14 @@ impl SceneSpec {
             .map_err(errors::to_py)
     }
 
+    /// Gives a moving body its own friction with the ground (in (0, 2]), in place of the
+    /// ground's body friction: a person's clothing on the road.
+    fn set_ground_friction(&mut self, body: usize, friction: f64) -> PyResult<()> {
+        self.inner
+            .set_ground_friction(body, friction)
+            .map_err(errors::to_py)
+    }
+
     /// Puts the scene on the ground (a Ground, checked when it was made).
     fn set_ground(&mut self, ground: &ground::GroundValue) {
         self.inner.set_ground(ground.inner.clone());

@@ -364,7 +364,8 @@ class PedestrianReport:
     rider); ``contacts`` {vehicle: {segment: SegmentContact}} for every vehicle it touched;
     ``rest`` (3,) its centre of mass at the last sample (world, m) and ``rest_speed`` (m/s)
     its speed there; ``end_time`` (s); ``kind`` "pedestrian" or "cyclist"; ``bodies`` its
-    segments' vehicle names; ``height`` (m) and ``mass`` (kg); ``throws`` {vehicle: Throw}
+    segments' vehicle names; ``height`` (m) and ``mass`` (kg); ``road_friction`` (its
+    segments' friction sliding on the road); ``throws`` {vehicle: Throw}
     of its whole-body centre of mass from that vehicle's first contact with a segment; a
     cyclist's ``bicycle`` (:class:`BicycleReport`)."""
 
@@ -379,6 +380,7 @@ class PedestrianReport:
     mass: float | None = None
     throws: dict[str, Throw] = field(default_factory=dict)
     bicycle: BicycleReport | None = None
+    road_friction: float | None = None
 
     def to_dict(self) -> dict[str, object]:
         """The JSON report's record (SI)."""
@@ -388,6 +390,7 @@ class PedestrianReport:
             "bodies": list(self.bodies),
             "height": self.height,
             "mass": self.mass,
+            "road_friction": self.road_friction,
             "struck_by": _contacts_record(self.contacts, self.throws),
             "rest": [float(x) for x in self.rest],
             "rest_speed": self.rest_speed,
@@ -469,6 +472,7 @@ def pedestrian_reports(result: Result) -> list[PedestrianReport]:
                 mass=float(person.mass),
                 throws=_throws(result, contacts, x, {v.name: v for v in others}),
                 bicycle=None if bicycle is None else _bicycle_report(result, bicycle, others),
+                road_friction=float(person.road_friction),
             )
         )
     return out
@@ -516,7 +520,9 @@ def pedestrian_lines(reports: list[PedestrianReport]) -> list[str]:
     for r in reports:
         title = "Pedestrian" if r.kind == "pedestrian" else "Cyclist"
         rider = " (the rider)" if r.bicycle is not None else ""
-        lines.append(f"{title} {r.name!r}{rider}:")
+        sliding = ("" if r.road_friction is None
+                   else f", sliding on the road at friction {r.road_friction:g}")
+        lines.append(f"{title} {r.name!r}{rider}{sliding}:")
         lines += _first_contact_lines(r.contacts, r.throws, "centre of mass")
         lines.append("  centre of mass at " + _end_words(r.rest, r.end_time, r.rest_speed))
         b = r.bicycle

@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 from crashsim.errors import ParameterError
 from crashsim.human.bicycle import Bicycle, BicycleFit, Parts
 from crashsim.human.cycling_pose import pedal_points
-from crashsim.human.pedestrian import Pedestrian
+from crashsim.human.pedestrian import ROAD_FRICTION, Pedestrian
 from crashsim.names import check_name
 from crashsim.small_linalg import matmul, norm
 from crashsim.vehicles.vehicle import Vehicle
@@ -51,6 +51,7 @@ class Cyclist:
     """A rider on a bicycle (module docstring). ``rider``: a :class:`Pedestrian` in the
     "cycling" pose, or None to make one from ``height`` (m), ``mass`` (kg), ``sex``,
     ``percentile``, ``passive_moments`` (the factor on its leg's passive joint moments,
+    :class:`Pedestrian`'s), ``road_friction`` (its segments' friction sliding on the road,
     :class:`Pedestrian`'s); ``bicycle``: a :class:`Bicycle` (its kind is used; the cyclist fits a
     copy to the rider), default the city bicycle; ``name`` (default the rider's name, else
     "cyclist") names the rider's segments "<name>/head", ... and the bicycle's bodies
@@ -72,6 +73,7 @@ class Cyclist:
         percentile: float | None = None,
         name: str | None = None,
         passive_moments: float = 1.0,
+        road_friction: float = ROAD_FRICTION,
     ) -> None:
         if rider is not None and not isinstance(rider, Pedestrian):
             raise ParameterError(f"rider must be a crashsim.Pedestrian, got {type(rider).__name__}")
@@ -84,7 +86,7 @@ class Cyclist:
         check_name(name, "a cyclist")
         if rider is None:
             rider = Pedestrian(height, mass, sex, percentile, pose="cycling", name=name,
-                               passive_moments=passive_moments)
+                               passive_moments=passive_moments, road_friction=road_friction)
         elif rider.pose != "cycling":
             raise ParameterError(
                 f"the rider's pose is {rider.pose!r}: a cyclist's rider needs "

@@ -34,6 +34,7 @@ import numpy as np
 import trimesh
 from numpy.typing import ArrayLike, NDArray
 
+from crashsim import _core
 from crashsim.errors import ParameterError
 from crashsim.human.anthropometry import Segment, body_segments
 from crashsim.human.cycling_pose import cycling_angles
@@ -50,6 +51,13 @@ CLEARANCE = 1e-3  # m, the lowest point of the body above the ground at the star
 # The published passive moments may be scaled by at most this (a sensitivity's bound: a
 # relaxed subject's moments times ten; the engine's sub-steps follow the laws' slopes).
 PASSIVE_MOMENTS_MAX = 10.0
+# A clothed person's friction sliding on the road (each segment's with the ground, in place of
+# the ground's body friction, a car body's 0.45): the 0.66 that the 1997 throw factors were
+# derived with (docs/human.md, "The corridors and their sources"), inside the 0.6-0.7 that
+# JSPS KAKEN project 23H05208 measured towing a clothed dummy over a dry and a wet road
+# (cotton and nylon; 2023 report) and the 0.6-0.7 of its dummies dropped from a car at about
+# 50 km/h (0.6-0.9 at 20-25 km/h).
+ROAD_FRICTION = 0.66
 _CAPSULE_COUNT = (8, 8)  # trimesh capsule resolution: 128 triangles a segment
 
 _X, _Y, _Z = np.eye(3)
@@ -124,7 +132,9 @@ class Pedestrian:
     not used); ``pose`` "standing", "walking", "running" or "cycling"; ``name`` prefixes its
     segments' names; ``passive_moments`` scales the leg's published passive joint moments
     (1: Riener and Edrich's relaxed subjects, the default; 0: none, the joints' damping
-    alone; at most PASSIVE_MOMENTS_MAX; docs/human.md, "Resistance").
+    alone; at most PASSIVE_MOMENTS_MAX; docs/human.md, "Resistance"); ``road_friction``
+    is each segment's friction sliding on the road, in (0, 2] (default ROAD_FRICTION, a
+    clothed person's 0.66; the ground's body friction is a car body's).
 
     Attributes: ``segments`` (the :class:`crashsim.Vehicle` of each segment, pelvis first),
     ``joints`` (:class:`PedestrianJoint`), ``data`` (body_segments' :class:`Segment`\\ s),
@@ -141,8 +151,15 @@ class Pedestrian:
         pose: str = "standing",
         name: str = "pedestrian",
         passive_moments: float = 1.0,
+        road_friction: float = ROAD_FRICTION,
     ) -> None:
         check_name(name, "a pedestrian")
+        if not (isinstance(road_friction, int | float) and not isinstance(road_friction, bool)):
+            raise ParameterError(
+                f"road_friction = {road_friction!r}: give a number in (0, 2] (a clothed "
+                f"person on asphalt about {ROAD_FRICTION:g})"
+            )
+        _core.check_ground_friction(float(road_friction), "road_friction")
         if not (isinstance(passive_moments, int | float) and not isinstance(passive_moments, bool)
                 and 0.0 <= passive_moments <= PASSIVE_MOMENTS_MAX):  # fmt: skip
             raise ParameterError(
@@ -157,7 +174,8 @@ class Pedestrian:
         self._name, self._pose, self._sex = name, pose, sex
         self._arguments = {"height": height, "mass": mass, "sex": sex,
                            "percentile": percentile, "pose": pose, "name": name,
-                           "passive_moments": float(passive_moments)}  # fmt: skip
+                           "passive_moments": float(passive_moments),
+                           "road_friction": float(road_friction)}  # fmt: skip
         self._data = tuple(data)
         angles = dict(_table()["poses"][pose])
         if pose == "cycling":
@@ -168,6 +186,7 @@ class Pedestrian:
         self._posed = _pose(data, angles, sex)
         self._segments = tuple(_segment_vehicle(p, name) for p in self._posed.values())
         self._passive_moments = float(passive_moments)
+        self._road_friction = float(road_friction)
         self._joints = tuple(_joints(self._posed, sex, self._passive_moments))
         self._height = max(s.origin[2] for s in data)
         self._mass = sum(s.mass for s in data)
@@ -202,6 +221,12 @@ class Pedestrian:
         return self._passive_moments
 
     @property
+    def road_friction(self) -> float:
+        """Each segment's friction sliding on the road (in place of the ground's body
+        friction)."""
+        return self._road_friction
+
+    @property
     def pose_angles(self) -> Mapping[str, float]:
         """The pose's angles and targets as made (degrees; lengths in m): pedestrian.toml's
         ``[poses.<pose>]``, and for "cycling" the joint angles solved from its targets
@@ -211,10 +236,10 @@ class Pedestrian:
     @property
     def arguments(self) -> dict[str, Any]:
         """The arguments it was made with (``height``, ``mass``, ``sex``, ``percentile``,
-        ``pose``, ``name``, ``passive_moments``): ``Pedestrian(**p.arguments)`` makes the
-        same body, bit for bit (a study's variant of another height is
-        ``Pedestrian(**{**p.arguments, "height": h})``; the ``height`` property is the
-        stature computed from the segments)."""
+        ``pose``, ``name``, ``passive_moments``, ``road_friction``):
+        ``Pedestrian(**p.arguments)`` makes the same body, bit for bit (a study's variant of
+        another height is ``Pedestrian(**{**p.arguments, "height": h})``; the ``height``
+        property is the stature computed from the segments)."""
         return dict(self._arguments)
 
     @property
@@ -300,7 +325,8 @@ class Pedestrian:
     def __repr__(self) -> str:
         return (
             f"Pedestrian(height={self._height:.3f}, mass={self._mass:.1f}, sex={self._sex!r}, "
-            f"pose={self._pose!r}, name={self._name!r}, passive_moments={self._passive_moments:g})"
+            f"pose={self._pose!r}, name={self._name!r}, passive_moments={self._passive_moments:g}, "
+            f"road_friction={self._road_friction:g})"
         )
 
 

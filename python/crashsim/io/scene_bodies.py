@@ -15,6 +15,7 @@ from crashsim import _core
 from crashsim.environment.obstacles import Obstacle
 from crashsim.io.scene_common import _rows, _wrap
 from crashsim.io.scene_vehicles import _mesh_options, _stiffness
+from crashsim.human.pedestrian import ROAD_FRICTION
 from crashsim.io.tomlvalues import _show, _Table
 from crashsim.names import check_name
 from crashsim.scene import Scene
@@ -27,6 +28,7 @@ PEDESTRIAN_KEYS = (
     "percentile",
     "pose",
     "passive_moments",
+    "road_friction",
     "position",
     "heading",
     "speed",
@@ -40,6 +42,7 @@ CYCLIST_KEYS = (
     "sex",
     "percentile",
     "passive_moments",
+    "road_friction",
     "bicycle",
     "position",
     "heading",
@@ -298,7 +301,7 @@ def _pedestrian(t: _Table, scene: Scene, names: list[str]) -> None:
 
 def _person(t: _Table, scene: Scene, names: list[str], what: str) -> dict[str, Any]:
     """The keywords of the person in table t ([[pedestrians]], [[cyclists]]): name, height
-    or percentile, mass, sex, passive_moments (SI)."""
+    or percentile, mass, sex, passive_moments, road_friction (SI)."""
     name = t.string("name")
     if name in names:
         t.fail("name", f'a vehicle or obstacle named "{name}" is already in the scene: names '
@@ -313,6 +316,7 @@ def _person(t: _Table, scene: Scene, names: list[str], what: str) -> dict[str, A
     kwargs["mass"] = t.quantity("mass", "mass", 75.0, low="> 0")
     kwargs["sex"] = t.string("sex", "male", choices=("male", "female"))
     kwargs["passive_moments"] = t.number("passive_moments", 1.0)
+    kwargs["road_friction"] = t.number("road_friction", ROAD_FRICTION)
     return kwargs
 
 

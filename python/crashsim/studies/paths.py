@@ -27,13 +27,14 @@ path                       unit      what it sets
 ``red/blue.restitution``   1         one pair's (either order; obstacles too:
                                      ``red/wall.friction``)
 ``ground.friction``        1         the tyre-road friction outside friction zones
-``ground.body_friction``   1         body-ground friction (a pedestrian's segments on
-                                     the road)
+``ground.body_friction``   1         body-ground friction (a car body on the road)
 ``ped.height``             m         a pedestrian's stature (``ped.percentile`` instead:
                                      ANSUR II's, 0-100); ``ped.mass`` kg; ``ped.pose`` the
                                      index in POSES (0 standing, 1 walking, 3 running);
                                      ``ped.passive_moments`` 1 the factor on its leg's
-                                     passive joint moments (0-10)
+                                     passive joint moments (0-10);
+                                     ``ped.road_friction`` 1 its segments' friction
+                                     sliding on the road
 ``ped.position_x/_y``      m         its body frame's origin, as Scene.add took it
 ``ped.heading``            rad       its facing; its velocity turned with it
 ``ped.speed``              m/s       along its velocity (its facing when at rest)
@@ -131,6 +132,7 @@ PEDESTRIAN_PARAMETERS: dict[str, tuple[str | None, str]] = {
     "percentile": (None, "1"),
     "pose": (None, "1"),
     "passive_moments": (None, "1"),
+    "road_friction": (None, "1"),
     "position_x": ("length", "m"),
     "position_y": ("length", "m"),
     "heading": ("angle", "rad"),
@@ -705,6 +707,7 @@ def _pedestrian_value(scene: SceneView, person: str, parameter: str) -> float:
         "percentile": lambda: math.nan if args["percentile"] is None else args["percentile"],
         "pose": lambda: POSES.index(args["pose"]),
         "passive_moments": lambda: args["passive_moments"],
+        "road_friction": lambda: args["road_friction"],
         "position_x": lambda: position[0],
         "position_y": lambda: position[1],
         "heading": lambda: heading,

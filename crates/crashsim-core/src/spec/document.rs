@@ -38,8 +38,9 @@ const FORMAT: &str = "crashsim-scene-spec";
 /// linkage, per-wheel steering. 3: joints, a vehicle's coupling point, hitch load and load
 /// groups. 4: pairs of bodies that never collide (`no_contact`), soft contacts
 /// (`soft_contacts`). 5: a joint's passive moments (`passive`, written only when it has
-/// some). Versions 2 to 4, which lack the later fields, are read too.
-const VERSION: u32 = 5;
+/// some). 6: a moving body's own friction with the ground (`ground_friction`, written only
+/// when set). Versions 2 to 5, which lack the later fields, are read too.
+const VERSION: u32 = 6;
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -76,6 +77,9 @@ struct BodyDoc {
     /// (A N/m, B N/m^2) per face: front, rear, left, right.
     stiffness: [Option<[Real; 2]>; 4],
     motion: MotionDoc,
+    /// Its own friction with the ground (None: the ground's body friction).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    ground_friction: Option<Real>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -348,6 +352,7 @@ fn body_doc(b: &BodySpec, meshes: &mut Meshes) -> BodyDoc {
         name: b.name.clone(),
         mesh: meshes.index(&b.shape),
         stiffness: Face::ALL.map(|f| b.stiffness.face(f).map(|s| [s.a, s.b])),
+        ground_friction: b.ground_friction,
         motion: match &b.motion {
             BodyMotion::Moving {
                 props,
@@ -584,6 +589,7 @@ fn mesh_at(shapes: &[Arc<MeshShape>], k: usize) -> Result<Arc<MeshShape>> {
 /// an obstacle, then its stiffness.
 fn add_body(out: &mut SceneSpec, b: BodyDoc, shape: Arc<MeshShape>) -> Result<()> {
     let name = Some(b.name);
+    let ground_friction = b.ground_friction;
     let i = match b.motion {
         MotionDoc::Moving {
             mass,
@@ -620,6 +626,9 @@ fn add_body(out: &mut SceneSpec, b: BodyDoc, shape: Arc<MeshShape>) -> Result<()
         if let Some([a, bb]) = value {
             s = s.with(*face, FaceStiffness::new(a, bb)?);
         }
+    }
+    if let Some(mu) = ground_friction {
+        out.set_ground_friction(i, mu)?;
     }
     out.set_stiffness(i, s)
 }

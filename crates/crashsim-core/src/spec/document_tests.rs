@@ -89,3 +89,31 @@ fn a_joints_passive_moments_round_trip_and_none_are_not_written() {
     let back = joint(serde_json::from_str(&text).unwrap()).unwrap();
     assert_eq!(back, j);
 }
+
+#[test]
+fn a_bodys_ground_friction_round_trips_is_checked_and_absent_is_not_written() {
+    let mut s = crate::spec::tests::head_on();
+    let plain = to_json(&s);
+    assert!(!plain.contains("ground_friction"), "{plain}");
+    s.set_ground_friction(1, 0.66).unwrap();
+    let text = to_json(&s);
+    assert!(text.contains("\"ground_friction\":0.66"), "{text}");
+    let back = from_json(&text).unwrap();
+    assert_eq!(back.bodies[1].ground_friction, Some(0.66));
+    assert_eq!(back.bodies[0].ground_friction, None);
+    assert_eq!(to_json(&back), text);
+    // out of (0, 2], non-finite, an unknown body: typed errors naming what is wrong
+    for bad in [0.0, -0.1, 2.5, Real::NAN, Real::INFINITY] {
+        let e = s.set_ground_friction(0, bad).unwrap_err();
+        assert_eq!(e.kind, ErrorKind::Parameter, "{bad}: {e}");
+        assert!(e.message.contains("ground friction"), "{e}");
+    }
+    assert!(s.set_ground_friction(7, 0.5).is_err());
+    let shape = s.bodies[0].shape.clone();
+    let k = s.add_obstacle(None, shape, Isometry::identity()).unwrap();
+    assert!(s
+        .set_ground_friction(k, 0.5)
+        .is_err_and(|e| e.message.contains("fixed obstacle")));
+    let bad = text.replace("\"ground_friction\":0.66", "\"ground_friction\":3.0");
+    assert!(from_json(&bad).is_err_and(|e| e.kind == ErrorKind::Parameter));
+}

@@ -61,6 +61,9 @@ pub struct BodySpec {
     pub motion: BodyMotion,
     /// CRASH3 face stiffness (none by default).
     pub stiffness: Stiffness,
+    /// Its own friction with the ground, in (0, 2], in place of the ground's body friction
+    /// (a person's clothing on the road); None by default: the ground's.
+    pub ground_friction: Option<Real>,
 }
 
 impl BodySpec {
@@ -184,6 +187,7 @@ impl SceneSpec {
                 vehicle: None,
             },
             stiffness: Stiffness::none(),
+            ground_friction: None,
         });
         Ok(self.bodies.len() - 1)
     }
@@ -202,6 +206,7 @@ impl SceneSpec {
             shape,
             motion: BodyMotion::Fixed { pose },
             stiffness: Stiffness::none(),
+            ground_friction: None,
         });
         Ok(self.bodies.len() - 1)
     }
@@ -209,6 +214,21 @@ impl SceneSpec {
     /// Sets body `i`'s face stiffness.
     pub fn set_stiffness(&mut self, i: usize, stiffness: Stiffness) -> Result<()> {
         self.body_mut(i)?.stiffness = stiffness;
+        Ok(())
+    }
+
+    /// Gives moving body `i` its own friction with the ground (checked: in (0, 2]), in place
+    /// of the ground's body friction: a person's clothing on the road.
+    pub fn set_ground_friction(&mut self, i: usize, mu: Real) -> Result<()> {
+        crate::ground::check_friction("ground friction", mu).map_err(|e| e.at(Place::body(i)))?;
+        let body = self.body_mut(i)?;
+        if body.is_fixed() {
+            return Err(Error::invalid(
+                "it is a fixed obstacle: it does not slide on the ground".to_string(),
+            )
+            .at(Place::body(i)));
+        }
+        body.ground_friction = Some(mu);
         Ok(())
     }
 
@@ -416,6 +436,9 @@ impl SceneSpec {
         }
         for (i, b) in self.bodies.iter().enumerate() {
             world.set_stiffness(i, b.stiffness.clone())?;
+            if let Some(mu) = b.ground_friction {
+                world.set_ground_friction(i, mu)?;
+            }
             if let BodyMotion::Moving {
                 vehicle: Some(v), ..
             } = &b.motion

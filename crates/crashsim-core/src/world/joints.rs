@@ -323,7 +323,8 @@ impl World {
                 }
                 let own = wb.body().props().mass();
                 if let Motion::OnGround(g) = &mut wb.motion {
-                    let contact = BodyContact::new(&wb.shape, own, total, None)?;
+                    let contact = BodyContact::new(&wb.shape, own, total, None)?
+                        .with_friction(wb.ground_friction);
                     g.contact = Arc::new(contact.with_static_friction());
                 }
             }

@@ -362,7 +362,8 @@ impl World {
                 continue;
             }
             let mass = wb.body().props().mass();
-            let contact = BodyContact::new(&wb.shape, mass, mass, wb.vehicle.as_deref())?;
+            let contact = BodyContact::new(&wb.shape, mass, mass, wb.vehicle.as_deref())?
+                .with_friction(wb.ground_friction);
             let on_ground = OnGround::new(wb.vehicle.clone(), Arc::new(contact));
             if let Some((depth, p)) = on_ground.deepest(wb.body(), ground) {
                 if depth > PLACEMENT_TOLERANCE {
@@ -473,6 +474,30 @@ impl World {
                 .at(Place::body(i))
         })?;
         body.stiffness = stiffness;
+        Ok(())
+    }
+
+    /// Gives moving body `i` its own friction with the ground (in (0, 2]), in place of the
+    /// ground's body friction: a person's clothing on the road. Before the first run.
+    pub fn set_ground_friction(&mut self, i: usize, mu: Real) -> Result<()> {
+        if self.started {
+            return Err(Error::invalid(
+                "a body's ground friction must be set before the first run",
+            ));
+        }
+        crate::ground::check_friction("ground friction", mu).map_err(|e| e.at(Place::body(i)))?;
+        let n = self.bodies.len();
+        let body = self.bodies.get_mut(i).ok_or_else(|| {
+            Error::invalid(format!("it does not exist (the world has {n} bodies)"))
+                .at(Place::body(i))
+        })?;
+        if matches!(body.motion, Motion::Fixed) {
+            return Err(Error::invalid(
+                "it is a fixed obstacle: it does not slide on the ground".to_string(),
+            )
+            .at(Place::body(i)));
+        }
+        body.ground_friction = Some(mu);
         Ok(())
     }
 

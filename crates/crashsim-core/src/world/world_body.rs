@@ -24,6 +24,9 @@ pub(super) struct WorldBody {
     pub(super) stiffness: Stiffness,
     /// Wheels, tyre and inputs, used when the world has a ground.
     pub(super) vehicle: Option<Arc<VehicleSpec>>,
+    /// Its own friction with the ground (a person's clothing on the road), used when the
+    /// world has a ground; None: the ground's body friction.
+    pub(super) ground_friction: Option<Real>,
     pub(super) motion: Motion,
     /// Its state (world frame).
     body: RigidBody,
@@ -46,6 +49,7 @@ impl WorldBody {
             reach,
             stiffness: Stiffness::none(),
             vehicle: None,
+            ground_friction: None,
             motion,
             body,
             jumps: 0,
