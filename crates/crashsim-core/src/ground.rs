@@ -98,14 +98,29 @@ impl Default for Ground {
     }
 }
 
-/// A friction coefficient's rule: finite, in (0, 2]; the error names it `name`.
+/// A tyre-road friction coefficient's rule: finite, in (0, 2]; the error names it `name`.
 pub fn check_friction(name: &str, mu: Real) -> Result<()> {
+    check_coefficient(name, mu, "dry asphalt about 0.8")
+}
+
+/// The rule of a body's friction sliding on the ground (the ground's body friction, or a
+/// body's own: a person's clothing): finite, in (0, 2]; the error names it `name`.
+pub fn check_body_friction(name: &str, mu: Real) -> Result<()> {
+    check_coefficient(
+        name,
+        mu,
+        "a car body on asphalt about 0.45, a clothed person about 0.66",
+    )
+}
+
+/// Finite and in (0, 2]; `typical` says what values are usual.
+fn check_coefficient(name: &str, mu: Real, typical: &str) -> Result<()> {
     require_finite(name, mu)?;
     if !(mu > 0.0 && mu <= MAX_FRICTION) {
         return Err(Error::parameter(
             name,
             mu,
-            "a friction coefficient must lie in (0, 2] (dry asphalt about 0.8)",
+            &format!("a friction coefficient must lie in (0, 2] ({typical})"),
         ));
     }
     Ok(())
@@ -147,7 +162,7 @@ impl Ground {
     /// Sets the tyre-road friction outside every zone and the body-ground friction.
     pub fn with_friction(mut self, tyre: Real, body: Real) -> Result<Ground> {
         check_friction("tyre-road friction", tyre)?;
-        check_friction("body-ground friction", body)?;
+        check_body_friction("body-ground friction", body)?;
         self.tyre_friction = tyre;
         self.body_friction = body;
         Ok(self)

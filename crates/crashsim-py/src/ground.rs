@@ -111,7 +111,7 @@ pub fn check_friction_zone(polygon: &Bound<'_, PyAny>, friction: Real) -> PyResu
 /// scene's spec checks it again with the same rule).
 #[pyfunction]
 pub fn check_ground_friction(friction: Real, name: &str) -> PyResult<()> {
-    core::ground::check_friction(name, friction).map_err(errors::to_py)
+    core::ground::check_body_friction(name, friction).map_err(errors::to_py)
 }
 
 /// The ground, checked by the core once, when it is made (crashsim.Ground builds one and

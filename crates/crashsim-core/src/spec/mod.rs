@@ -220,7 +220,8 @@ impl SceneSpec {
     /// Gives moving body `i` its own friction with the ground (checked: in (0, 2]), in place
     /// of the ground's body friction: a person's clothing on the road.
     pub fn set_ground_friction(&mut self, i: usize, mu: Real) -> Result<()> {
-        crate::ground::check_friction("ground friction", mu).map_err(|e| e.at(Place::body(i)))?;
+        crate::ground::check_body_friction("ground friction", mu)
+            .map_err(|e| e.at(Place::body(i)))?;
         let body = self.body_mut(i)?;
         if body.is_fixed() {
             return Err(Error::invalid(

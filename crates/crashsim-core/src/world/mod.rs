@@ -485,7 +485,8 @@ impl World {
                 "a body's ground friction must be set before the first run",
             ));
         }
-        crate::ground::check_friction("ground friction", mu).map_err(|e| e.at(Place::body(i)))?;
+        crate::ground::check_body_friction("ground friction", mu)
+            .map_err(|e| e.at(Place::body(i)))?;
         let n = self.bodies.len();
         let body = self.bodies.get_mut(i).ok_or_else(|| {
             Error::invalid(format!("it does not exist (the world has {n} bodies)"))
