@@ -44,8 +44,8 @@ from crashsim.analysis.throw import (
     trajectory_type,
     vku_throw_distance,
 )
+from crashsim.human.pedestrian import ROAD_FRICTION  # the person's default friction on the road
 
-ROAD_FRICTION = cs.Pedestrian().road_friction  # the person's default friction on the road
 # The run's length is sized by a slide at this friction (the ground's body friction, lower
 # than the person's): a body sliding at 0.66 stops sooner but still settles for seconds.
 LENGTH_FRICTION = 0.45

@@ -19,10 +19,9 @@ from crashsim.human.pedestrian import ROAD_FRICTION
 from crashsim.io.scenefile import SceneFileError, loads_scene
 
 
-def fallen(road_friction: float | None = None, body_friction: float = 0.45) -> cs.Scene:
+def fallen(road_friction: float = ROAD_FRICTION, body_friction: float = 0.45) -> cs.Scene:
     """A standing man given 3 m/s forward: he falls and slides on the road."""
-    ped = (cs.Pedestrian(pose="standing") if road_friction is None
-           else cs.Pedestrian(pose="standing", road_friction=road_friction))
+    ped = cs.Pedestrian(pose="standing", road_friction=road_friction)
     scene = cs.Scene(ground=cs.Ground(friction=0.8, body_friction=body_friction))
     scene.add(ped, (0.0, 0.0), heading=0.0, velocity=(3.0, 0.0, 0.0))
     return scene

@@ -305,16 +305,21 @@ impl World {
         self.is_obstacle(i) && self.bodies[i].stiffness.is_none()
     }
 
+    /// Body `i`, or an error naming it when the world has no such body.
+    fn body_mut(&mut self, i: usize) -> Result<&mut WorldBody> {
+        let n = self.bodies.len();
+        self.bodies.get_mut(i).ok_or_else(|| {
+            Error::invalid(format!("it does not exist (the world has {n} bodies)"))
+                .at(Place::body(i))
+        })
+    }
+
     /// Gives body `i` wheels, a tyre and driver inputs (used when the world has a ground).
     pub fn set_vehicle(&mut self, i: usize, spec: VehicleSpec) -> Result<()> {
         if self.started {
             return Err(Error::invalid("wheels must be given before the first run"));
         }
-        let n = self.bodies.len();
-        let wb = self.bodies.get_mut(i).ok_or_else(|| {
-            Error::invalid(format!("it does not exist (the world has {n} bodies)"))
-                .at(Place::body(i))
-        })?;
+        let wb = self.body_mut(i)?;
         if matches!(wb.motion, Motion::Fixed) {
             return Err(
                 Error::invalid("it is a fixed obstacle: it has no wheels".to_string())
@@ -468,11 +473,7 @@ impl World {
     /// Sets body `i`'s face stiffness (used by automatic dt_p, the stiffness centroid and
     /// reported per impact).
     pub fn set_stiffness(&mut self, i: usize, stiffness: Stiffness) -> Result<()> {
-        let n = self.bodies.len();
-        let body = self.bodies.get_mut(i).ok_or_else(|| {
-            Error::invalid(format!("it does not exist (the world has {n} bodies)"))
-                .at(Place::body(i))
-        })?;
+        let body = self.body_mut(i)?;
         body.stiffness = stiffness;
         Ok(())
     }
@@ -487,11 +488,7 @@ impl World {
         }
         crate::ground::check_body_friction("ground friction", mu)
             .map_err(|e| e.at(Place::body(i)))?;
-        let n = self.bodies.len();
-        let body = self.bodies.get_mut(i).ok_or_else(|| {
-            Error::invalid(format!("it does not exist (the world has {n} bodies)"))
-                .at(Place::body(i))
-        })?;
+        let body = self.body_mut(i)?;
         if matches!(body.motion, Motion::Fixed) {
             return Err(Error::invalid(
                 "it is a fixed obstacle: it does not slide on the ground".to_string(),
