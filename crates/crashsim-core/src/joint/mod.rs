@@ -28,13 +28,15 @@
 //! nonlinear moments about its free angles, sums of exponentials, the form the published
 //! passive (relaxed) moments of human joints take ([`PassiveMoment`]).
 
+mod angles;
 mod constraint;
 mod passive;
 mod row;
 mod solve;
 
+pub(crate) use angles::limit_angles;
 pub(crate) use constraint::{
-    applied_torques, drift_rate, limit_angles, limit_rows, project_positions, project_velocities,
+    applied_torques, drift_rate, limit_rows, project_positions, project_velocities,
     project_velocities_each, reactions, RESTING_ANGLE,
 };
 pub(crate) use passive::{find_coupled_angles, passive_slope};

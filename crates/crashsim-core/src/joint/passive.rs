@@ -4,7 +4,7 @@
 //! the bound on its stiffness the integration's sub-steps follow, and the search for the
 //! coupled angles' joints when the world builds its mechanisms.
 
-use super::constraint::angles;
+use super::angles::angles;
 use super::row::JointBody;
 use super::{JointKind, JointSpec};
 use crate::error::{require_finite, Error, Result};

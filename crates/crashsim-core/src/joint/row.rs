@@ -33,3 +33,19 @@ pub(crate) struct Row {
     /// J' nu, the part of C's second derivative from the velocities alone.
     pub(super) bias: Real,
 }
+
+#[cfg(test)]
+impl JointBody {
+    /// The tests' body: unit mass and inertia at the origin, turned by `r` (body -> world),
+    /// turning at `w` (rad/s, world), its CG still.
+    pub(super) fn turning(r: Matrix, w: Vector) -> JointBody {
+        JointBody {
+            x: Point::origin(),
+            r,
+            v: Vector::zeros(),
+            w,
+            inv_mass: 1.0,
+            inv_inertia: Matrix::identity(),
+        }
+    }
+}
