@@ -128,7 +128,16 @@ FRICTION = 0.6
 DURATION = 1.0  # s
 DT = 1e-3  # s
 
-TARGETS = {"query": 0.5, "region": 0.2, "scene": 0.1, "runout": 0.1, "pycrash": 1e-3}
+# Goals (engine / peer ratio, median): issue 23's for the near-miss query (0.3 at 20k and
+# 200k), the seed's scene (0.1) and the run to rest (0.03); the earlier issues' (6 and 11) for
+# the query's other poses (0.5), the overlap region and pycrash.
+TARGETS = {"query": 0.5, "region": 0.2, "scene": 0.1, "runout": 0.03, "pycrash": 1e-3}
+QUERY_MISS_TARGET = 0.3  # the near miss ("miss") of the query
+
+
+def _query_target(case: str) -> float:
+    return QUERY_MISS_TARGET if case == "miss" else TARGETS["query"]
+
 
 # pycrash units
 M_PER_FT = 0.3048
@@ -1575,15 +1584,18 @@ def engine_loop(what: str, label: str, seconds: float) -> None:
 # -- main ------------------------------------------------------------------------------------
 
 
-def _print_rows(title: str, rows: list[Row], peer: str, target: float) -> None:
+def _print_rows(title: str, rows: list[Row], peer: str, target: float, of_case: Any = None) -> None:
+    """The rows with their verdicts against ``target``, or per case ``of_case(case)``."""
     print(title)
     head = f"  {'size':>5} {'triangles':>9}  {'case':<11} {'engine':>11}  {peer:>11}"
-    print(head + f"  {'ratio [range]':<22} target <= {target:g}")
+    goal = f"target <= {target:g}" + (" (per case)" if of_case else "")
+    print(head + f"  {'ratio [range]':<22} {goal}")
     for r in rows:
         t = r.timing
+        limit = of_case(r.case) if of_case else target
         print(
             f"  {r.size:>5} {r.triangles:>9,}  {r.case:<11} {_fmt_time(t.engine_median)}  "
-            f"{_fmt_time(t.peer_median)}  {_fmt_ratio(t):<22} {_verdict(t.ratio, target):<6}"
+            f"{_fmt_time(t.peer_median)}  {_fmt_ratio(t):<22} {_verdict(t.ratio, limit):<6}"
             + (f"   overlap engine/fcl: {r.answer}" if r.answer else "")
         )
     for r in rows:
@@ -1681,13 +1693,15 @@ def main(argv: list[str] | None = None) -> int:
             rows,
             "fcl",
             TARGETS["query"],
+            _query_target,
         )
         print(
             '  note: FCL detects surface crossings only; shapes_overlap also answers "one '
             'inside the other" (a winding number per shell when no surfaces cross)'
         )
         print()
-        summary += [(f"query {r.size} {r.case}", r.timing.ratio, TARGETS["query"]) for r in rows]
+        summary += [(f"query {r.size} {r.case}", r.timing.ratio, _query_target(r.case))
+                    for r in rows]  # fmt: skip
     if "region" in only:
         rows = [r for s in sizes for r in run_region(bodies[s], poses[s], repeats, min_time)]
         _print_rows(
