@@ -195,9 +195,6 @@ pub(crate) const TWIST_HELD_SWING: Real = 150.0 * std::f64::consts::PI / 180.0;
 mod tests {
     use super::*;
 
-    /// The swing's and the twist's rate vectors against central differences of the angles
-    /// along the motion, over orientations of every swing up to 170 deg and twists of both
-    /// signs (relative error below 1e-6).
     /// Sample `i` of the test motions: two bodies' orientations (world from body) and
     /// angular velocities (rad/s, world), spread over many relative orientations.
     fn sample_motion(i: usize) -> (Matrix, Matrix, Vector, Vector) {
@@ -217,6 +214,9 @@ mod tests {
         (ra, rb, wa, wb)
     }
 
+    /// The swing's and the twist's rate vectors against central differences of the angles
+    /// along the motion, over orientations of every swing up to 170 deg and twists of both
+    /// signs (relative error below 1e-6).
     #[test]
     fn a_ball_joints_limit_rates_are_the_angles_derivatives() {
         let joint = JointSpec::new(
