@@ -40,17 +40,17 @@ pub enum Key {
     Velocity,
     /// `angular_velocity` [V, 3]: world (rad/s).
     AngularVelocity,
-    /// `mass` [V]: kg; the inertia scales by the same ratio (radii of gyration kept) and a
+    /// `mass` \[V\]: kg; the inertia scales by the same ratio (radii of gyration kept) and a
     /// vehicle's wheels keep their natural frequencies (static loads, spring rates and
     /// damping scale with it).
     Mass,
-    /// `contact.restitution` [P]: 1, in [0, 1].
+    /// `contact.restitution` \[P\]: 1, in [0, 1].
     Restitution,
-    /// `contact.friction` [P]: 1, >= 0.
+    /// `contact.friction` \[P\]: 1, >= 0.
     Friction,
-    /// `contact.depth_of_penetration` [P]: s in [0, 0.060]; NaN = automatic.
+    /// `contact.depth_of_penetration` \[P\]: s in [0, 0.060]; NaN = automatic.
     DepthOfPenetration,
-    /// `contact.pitch` [P]: rad in [-pi/2, pi/2], for pairs with the horizontal normal.
+    /// `contact.pitch` \[P\]: rad in [-pi/2, pi/2], for pairs with the horizontal normal.
     Pitch,
     /// `ground.tyre_friction` []: tyre-road friction outside friction zones, in (0, 2].
     TyreFriction,

@@ -18,7 +18,7 @@ pub type Isometry = nalgebra::Isometry3<Real>;
 /// An axis-aligned bounding box (parry's).
 pub type Aabb = parry3d_f64::bounding_volume::Aabb;
 
-/// The skew-symmetric matrix [r]x such that [r]x v = r x v.
+/// The skew-symmetric matrix `[r]x` such that `[r]x v = r x v`.
 #[inline]
 pub fn cross_matrix(r: &Vector) -> Matrix {
     r.cross_matrix()

@@ -147,7 +147,7 @@ pub fn crush_share(k1: Real, k2: Real) -> Option<Real> {
 }
 
 /// Effective mass (kg) of a body along the unit direction `n` at lever arm `r` (m, world):
-/// 1 / (n . (1/m E - [r]x I^-1 [r]x) n). For planar motion this is gamma m with
+/// 1 / (n . (1/m E - `[r]x` I^-1 `[r]x`) n). For planar motion this is gamma m with
 /// gamma = k_g^2 / (k_g^2 + h^2) (seed, "Non-central collisions").
 pub fn effective_mass(
     mass: Real,

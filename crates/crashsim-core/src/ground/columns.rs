@@ -37,7 +37,7 @@ pub(crate) struct Columns {
     width: [Real; 2],
     /// Columns along x and y.
     count: [usize; 2],
-    /// Column k's triangles are `entries[starts[k]..starts[k + 1]]`; k = i * count[1] + j.
+    /// Column k's triangles are `entries[starts[k]..starts[k + 1]]`; `k = i * count[1] + j`.
     starts: Vec<u32>,
     entries: Vec<u32>,
     /// Each triangle's upward unit normal ([`upward_normal`]), computed once: the square root

@@ -197,7 +197,7 @@ pub fn pdof_deg(dv_body: &Vector) -> Option<Real> {
 }
 
 /// Yaw of a body's x axis from world x (rad, counter-clockwise seen from above, in
-/// (-pi, pi]): atan2(R[1][0], R[0][0]) of the unit quaternion, in the arithmetic of
+/// (-pi, pi]): `atan2(R[1][0], R[0][0])` of the unit quaternion, in the arithmetic of
 /// result.py's `_heading`.
 pub fn heading(q: &Rotation) -> Real {
     let (w, x, y, z) = (q.w, q.i, q.j, q.k);

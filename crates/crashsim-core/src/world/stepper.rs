@@ -3,9 +3,10 @@
 //!
 //! Every loop of a run is bounded: the steps (at most [`MAX_STEPS`]), the events at one
 //! instant (at most [`MAX_EVENTS_PER_INSTANT`] per pair), the first-contact search and every
-//! bisection; a bound that is hit ends the run with [`Error::Simulation`] naming the pair and
-//! the time. The caller's hook is asked after every step and inside the first-contact search,
-//! so an interrupt (Ctrl-C from Python) is honoured within the hook's own polling interval.
+//! bisection; a bound that is hit ends the run with a simulation error
+//! ([`crate::error::ErrorKind::Simulation`]) naming the pair and the time. The caller's hook
+//! is asked after every step and inside the first-contact search, so an interrupt (Ctrl-C
+//! from Python) is honoured within the hook's own polling interval.
 
 use super::{Motion, Phase, World, WorldBody};
 use crate::body::BodyState;
