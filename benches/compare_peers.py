@@ -1584,11 +1584,21 @@ def engine_loop(what: str, label: str, seconds: float) -> None:
 # -- main ------------------------------------------------------------------------------------
 
 
-def _print_rows(title: str, rows: list[Row], peer: str, target: float, of_case: Any = None) -> None:
+def _print_rows(
+    title: str,
+    rows: list[Row],
+    peer: str,
+    target: float,
+    of_case: Callable[[str], float] | None = None,
+) -> None:
     """The rows with their verdicts against ``target``, or per case ``of_case(case)``."""
     print(title)
     head = f"  {'size':>5} {'triangles':>9}  {'case':<11} {'engine':>11}  {peer:>11}"
-    goal = f"target <= {target:g}" + (" (per case)" if of_case else "")
+    if of_case is None:
+        goal = f"target <= {target:g}"
+    else:
+        cases = dict.fromkeys(r.case for r in rows)
+        goal = "targets: " + ", ".join(f"{c} <= {of_case(c):g}" for c in cases)
     print(head + f"  {'ratio [range]':<22} {goal}")
     for r in rows:
         t = r.timing
