@@ -108,7 +108,8 @@ def test_the_report_has_the_pedestrian_as_one() -> None:
     assert struck["first_contact_time"] == first["time"]
     assert struck["throw_distance"] == throw_distance(result, "car", person)
     text = report.summary_table()
-    assert "Pedestrian 'pedestrian', sliding on the road at friction 0.66:" in text and "first contacts with 'car': " in text
+    assert "Pedestrian 'pedestrian', sliding on the road at friction 0.66:" in text
+    assert "first contacts with 'car': " in text
     assert f"throw distance from 'car': {struck['throw_distance']:.2f} m" in text
     # the case page's data: every segment marked as the person's, in one colour
     from crashsim.io.viewer.data import page_data

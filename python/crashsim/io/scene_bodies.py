@@ -13,9 +13,9 @@ import numpy as np
 
 from crashsim import _core
 from crashsim.environment.obstacles import Obstacle
+from crashsim.human.pedestrian import ROAD_FRICTION
 from crashsim.io.scene_common import _rows, _wrap
 from crashsim.io.scene_vehicles import _mesh_options, _stiffness
-from crashsim.human.pedestrian import ROAD_FRICTION
 from crashsim.io.tomlvalues import _show, _Table
 from crashsim.names import check_name
 from crashsim.scene import Scene

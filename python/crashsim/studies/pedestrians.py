@@ -3,9 +3,10 @@ its pedestrians rebuilt, and the figures a study records per variant.
 
 A pedestrian's own paths (crashsim.studies.paths: ``<p>.height``, ``.mass``,
 ``.percentile``, ``.pose``, ``.passive_moments``, ``.road_friction``, ``.position_x``,
-``.position_y``, ``.heading``, ``.speed``) change its segments' shapes, masses, joints and places, which the
-batch engine's override arrays cannot carry: a variant **rebuilds the Pedestrian**
-(``Pedestrian(**arguments)`` with the variant's values) and places it as
+``.position_y``, ``.heading``, ``.speed``) change its segments' shapes, masses, joints,
+friction and places, which the batch engine's override arrays cannot carry: a variant
+**rebuilds the Pedestrian** (``Pedestrian(**arguments)`` with the variant's values) and
+places it as
 ``Scene.add(pedestrian, position, heading=, velocity=)`` did in the base scene, in a scene
 of the same ground; its segments and joints take the places of the base's under the same
 names, so every pair's contact parameters, the no-contact pairs and the soft contacts carry
@@ -124,14 +125,11 @@ def _new_person(old: Pedestrian, place: tuple[Array, float, Array], values: Mapp
         args["height"], args["percentile"] = values["height"], None
     if "percentile" in values:
         args["percentile"] = values["percentile"]
-    if "mass" in values:
-        args["mass"] = values["mass"]
     if "pose" in values:
         args["pose"] = pose_name(values["pose"])
-    if "passive_moments" in values:
-        args["passive_moments"] = values["passive_moments"]
-    if "road_friction" in values:
-        args["road_friction"] = values["road_friction"]
+    for key in ("mass", "passive_moments", "road_friction"):  # Pedestrian's own arguments
+        if key in values:
+            args[key] = values[key]
     position = np.array(place[0], dtype=np.float64)
     heading, velocity = place[1], np.array(place[2], dtype=np.float64)
     if "position_x" in values:
